@@ -1,0 +1,42 @@
+//! # guidance-core
+//!
+//! `no_std`, allocation-free re-entry guidance for flight software.
+//!
+//! The flow is: navigation state ([`NavState`]) -> normalised energy ([`energy`]) ->
+//! node table lookup ([`nodes`]) -> interpolation ([`interp`]) -> attitude-rate limiting
+//! ([`rate`]) -> fixed 2 s guidance clock with zero-order hold ([`clock`], [`guidance`]) ->
+//! command (angle of attack, bank angle). Constraint monitors live in [`monitor`]; the
+//! second-order closed forms of Vinh, Kim & Greenwood (1993) in [`vinh`]; onboard re-planning
+//! in [`replan`]; the processor-in-the-loop frame format in [`link`].
+//!
+//! Units: SI and radians everywhere. Degrees appear only in `*_deg` constructors/constants.
+//!
+//! Numerics: everything on the guidance path is generic over [`Scalar`] (implemented for `f32`,
+//! `f64` and the fixed-point [`Fixed`]); closed forms need transcendental functions and are
+//! generic over [`Real`] (`f32`, `f64`). All float math goes through [`math`].
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+#![deny(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::indexing_slicing
+)]
+
+pub mod clock;
+pub mod energy;
+pub mod error;
+pub mod guidance;
+pub mod interp;
+pub mod math;
+pub mod monitor;
+pub mod nav;
+pub mod nodes;
+pub mod rate;
+pub mod scalar;
+pub mod vinh;
+
+pub use error::GuidanceError;
+pub use nav::NavState;
+pub use scalar::{Fixed, Real, Scalar};

@@ -1,0 +1,1 @@
+//! Property tests of the guidance path (nodes, interpolation, rate limit, clock, monitors).

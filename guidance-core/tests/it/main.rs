@@ -1,0 +1,4 @@
+//! The guidance-core integration-test binary (one per crate). Each module is one topic.
+
+mod guidance_props;
+mod vinh_validation;

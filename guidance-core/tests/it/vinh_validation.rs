@@ -1,0 +1,1 @@
+//! Validation of the Vinh closed forms against numerical integration.

@@ -1,0 +1,14 @@
+//! # host-sim
+//!
+//! Host-side (std) re-entry simulation around `guidance-core`:
+//! environment models ([`env`]: atmosphere, gravity, planet), vehicles ([`vehicle`]),
+//! 3-DOF dynamics ([`dynamics`]), integrators ([`integrate`]), the closed-loop harness that
+//! flies the core's own `Guidance` at its fixed 2 s clock ([`sim`]), the analytical simulator
+//! ([`analytic`]), reports ([`report`]) and the CLI ([`cli`]).
+//!
+//! Units: SI and radians inside; degrees and km only at the edges (CLI, files, plots).
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod env;
+pub mod vehicle;

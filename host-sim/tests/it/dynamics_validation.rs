@@ -1,0 +1,1 @@
+//! Validation of integrators and dynamics (Kepler orbit, Cartesian vs spherical, ballistic entry).
