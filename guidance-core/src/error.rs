@@ -16,6 +16,9 @@ pub enum GuidanceError {
     InvalidConfig,
     /// The node table was rejected.
     NodeTable(NodeTableError),
+    /// A time stamp did not advance: navigation time earlier than the last guidance tick, or a
+    /// monitor sample not later than the previous one.
+    NonIncreasingTime,
 }
 
 impl From<NodeTableError> for GuidanceError {
@@ -33,6 +36,7 @@ impl core::fmt::Display for GuidanceError {
             }
             GuidanceError::InvalidConfig => f.write_str("invalid guidance configuration"),
             GuidanceError::NodeTable(e) => write!(f, "node table rejected: {e:?}"),
+            GuidanceError::NonIncreasingTime => f.write_str("time did not advance"),
         }
     }
 }

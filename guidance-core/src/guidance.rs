@@ -1,1 +1,479 @@
-//! (in progress)
+//! The guidance loop: navigation state -> independent variable -> interpolated command ->
+//! rate limit -> 2 s zero-order hold, plus the continuous attitude ramp between ticks.
+//!
+//! # Timing
+//! [`Guidance::update`] is called with every navigation sample. The first call is a tick and
+//! starts the clock at `t0 = nav.time_s`; later ticks are at `t0 + k * 2 s` (integer counter,
+//! see [`crate::clock`]). At a tick at time `t_k`:
+//!
+//! 1. `target = interpolate(x)`, with `x` the normalised energy of the sample (or its time, for
+//!    time-indexed tables); clamped into the angle bounds;
+//! 2. `start = attitude_at(t_k)` (the attitude the previous ramp reached, which equals the
+//!    previous command because every ramp completes within one period);
+//! 3. `command = start + clamp(target - start, +-rate * period)` (see [`crate::rate`]).
+//!
+//! Between ticks the command is held. [`Guidance::attitude_at`] gives the attitude the vehicle
+//! is commanded to fly: from `start` at `t_k` it moves towards the held command at the rate
+//! limits and reaches it no later than `t_k + period`. It is continuous in time and never
+//! exceeds the rate limits, so a g-load rate computed from the simulated attitude sees no
+//! artificial steps.
+//!
+//! # Gaps and errors
+//! * If the sample time has passed several tick instants (a navigation gap), guidance
+//!   recomputes **once**, at the latest tick instant `<= nav.time_s`, with the *normal* per-
+//!   period step `rate * period`: missed ticks are not made up, the command converges over the
+//!   following ticks. This keeps both guarantees above (rate never exceeded, command reached
+//!   within one period).
+//! * A sample that is non-finite, unphysical (radius <= 0, speed < 0) or earlier than the last
+//!   tick is rejected with an error; nothing changes (the clock does not advance, the held
+//!   command and the ramp stay valid).
+//!
+//! # Guarantees
+//! Every command and attitude that comes out is finite and inside the table's angle bounds.
+//!
+//! # Precision of `f32` and fixed point relative to `f64`
+//! Let `e_k` be the difference between the commands of two runs (say `f32` and `f64`) fed the
+//! same navigation samples, with tick instants that coincide (sample times exactly
+//! representable in both types, e.g. multiples of 0.25 s below 2^22 s). The rate limiter is
+//! 1-Lipschitz in the max norm (see [`crate::rate`]) and returns the target exactly when it is
+//! within reach, so per tick
+//!
+//! * `e_k <= e_target` when neither run is rate-limited at tick `k`;
+//! * `e_k <= max(e_{k-1}, e_target) + r` otherwise, with `r` the rounding of one addition
+//!   (one ulp of an angle <= pi/2 in `f32`: 1.2e-7 rad; 2^-32 rad in fixed point);
+//!
+//! hence `e_k <= e_0 + e_target + L_k * r`, with `L_k` the length of the current run of ticks
+//! in which either run was limited. The target error is
+//! `e_target <= Lip * dx + C * u * A`: `Lip` the largest slope of the interpolant [rad per
+//! unit x], `dx` the error of the independent variable (time: 0, exact; E-hat: 2e-6 in `f32`,
+//! 1e-8 in fixed point, the bounds asserted by [`crate::energy`]'s tests), `u` the unit
+//! roundoff (2^-24 for `f32`, an absolute 2^-32 for fixed point), `A` the magnitude of the
+//! quantities in one evaluation (angles and tangents, a few radians) and `C` a count of rounded
+//! operations (node conversion, `t`, the Hermite sum, the tangent solve: C = 64 is used). The
+//! test `guidance_props::f32_and_fixed_agree_with_f64` measures `Lip` by sampling the `f64`
+//! interpolant and `L_k` from the runs, and checks this bound.
+
+use crate::clock::{ClockEvent, GuidanceClock};
+use crate::energy::EnergyNormalizer;
+use crate::error::GuidanceError;
+use crate::interp::{Interpolation, Interpolator};
+use crate::nav::NavState;
+use crate::nodes::{Independent, NodeTable};
+use crate::rate::limit_command;
+use crate::scalar::Scalar;
+
+pub use crate::rate::RateLimits;
+
+/// Degrees to radians.
+const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
+
+/// An attitude command (or attitude) [rad].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Command<S> {
+    /// Angle of attack [rad].
+    pub alpha_rad: S,
+    /// Bank angle [rad].
+    pub sigma_rad: S,
+}
+
+impl<S: Scalar> Command<S> {
+    /// Command from degrees (converted to radians); `None` if non-finite or not
+    /// representable in `S`.
+    #[must_use]
+    pub fn from_deg(alpha_deg: f64, sigma_deg: f64) -> Option<Self> {
+        Some(Self {
+            alpha_rad: S::from_f64_checked(alpha_deg * DEG_TO_RAD)?,
+            sigma_rad: S::from_f64_checked(sigma_deg * DEG_TO_RAD)?,
+        })
+    }
+
+    /// True if both angles are finite.
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        self.alpha_rad.is_finite() && self.sigma_rad.is_finite()
+    }
+}
+
+/// Guidance configuration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GuidanceConfig<S> {
+    /// Guidance period [s] (thesis: 2.0 s, zero-order hold).
+    pub period_s: S,
+    /// Attitude rate limits.
+    pub rates: RateLimits<S>,
+}
+
+impl<S: Scalar> GuidanceConfig<S> {
+    /// Thesis values: 2.0 s period, 5 deg/s and 15 deg/s rate limits.
+    #[must_use]
+    pub fn thesis_default() -> Self {
+        Self {
+            period_s: S::from_f64(2.0),
+            rates: RateLimits::thesis_default(),
+        }
+    }
+
+    /// Period finite and > 0, rates finite and > 0.
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] otherwise.
+    pub fn validate(&self) -> Result<(), GuidanceError> {
+        if !(self.period_s.is_finite() && self.period_s > S::ZERO) {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        self.rates.validate()
+    }
+}
+
+impl<S: Scalar> Default for GuidanceConfig<S> {
+    fn default() -> Self {
+        Self::thesis_default()
+    }
+}
+
+/// Result of one [`Guidance::update`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GuidanceOutput<S> {
+    /// The held command after this update [rad].
+    pub command: Command<S>,
+    /// True if this sample was a tick (the command was recomputed).
+    pub ticked: bool,
+    /// The independent variable of this sample: E-hat [-] or time [s].
+    pub independent_value: S,
+}
+
+/// The guidance function (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Guidance<S> {
+    config: GuidanceConfig<S>,
+    table: NodeTable<S>,
+    interp: Interpolator<S>,
+    energy: EnergyNormalizer<S>,
+    clock: GuidanceClock<S>,
+    /// Held (rate-limited) command.
+    command: Command<S>,
+    /// Last interpolated (un-limited) command.
+    target: Command<S>,
+    /// Attitude at the last tick.
+    ramp_start: Command<S>,
+    /// Time of the last tick [s] (`None` before the first).
+    ramp_start_s: Option<S>,
+}
+
+impl<S: Scalar> Guidance<S> {
+    /// Set up guidance. `energy` maps (r, V) to E-hat (used for energy-indexed tables);
+    /// `initial` is the attitude at start [rad] (clamped into the table's bounds). The first
+    /// call to [`Guidance::update`] is a tick.
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] for an invalid config or tension, or a non-finite
+    /// `initial`.
+    pub fn new(
+        config: GuidanceConfig<S>,
+        table: NodeTable<S>,
+        kind: Interpolation<S>,
+        energy: EnergyNormalizer<S>,
+        initial: Command<S>,
+    ) -> Result<Self, GuidanceError> {
+        config.validate()?;
+        if !initial.is_finite() {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        let clock = GuidanceClock::new(config.period_s)?;
+        let interp = Interpolator::new(&table, kind)?;
+        let bounds = table.bounds();
+        let initial = Command {
+            alpha_rad: bounds.clamp_alpha(initial.alpha_rad),
+            sigma_rad: bounds.clamp_sigma(initial.sigma_rad),
+        };
+        Ok(Self {
+            config,
+            table,
+            interp,
+            energy,
+            clock,
+            command: initial,
+            target: initial,
+            ramp_start: initial,
+            ramp_start_s: None,
+        })
+    }
+
+    /// Process one navigation sample. Recomputes the command only when `nav.time_s` has
+    /// reached the next tick (`t0 + k * period`); otherwise returns the held command.
+    ///
+    /// # Errors
+    /// [`GuidanceError::NonFiniteState`], [`GuidanceError::UnphysicalState`] (radius <= 0 or
+    /// speed < 0) or [`GuidanceError::NonIncreasingTime`] (time before the last tick). On error
+    /// nothing changes: the held command and the ramp remain valid.
+    pub fn update(&mut self, nav: &NavState<S>) -> Result<GuidanceOutput<S>, GuidanceError> {
+        nav.validate()?;
+        let x = match self.table.independent() {
+            Independent::NormalizedEnergy => self.energy.normalized(nav.radius_m, nav.speed_m_s)?,
+            Independent::TimeS => nav.time_s,
+        };
+        let event = self.clock.poll(nav.time_s)?;
+        let ClockEvent::Tick { time_s: tick_s, .. } = event else {
+            return Ok(GuidanceOutput {
+                command: self.command,
+                ticked: false,
+                independent_value: x,
+            });
+        };
+        let start = self.attitude_at(tick_s);
+        let target = self.interp.evaluate(x);
+        let limited = limit_command(start, target, self.config.rates, self.config.period_s);
+        let bounds = self.table.bounds();
+        let command = Command {
+            alpha_rad: bounds.clamp_alpha(limited.alpha_rad),
+            sigma_rad: bounds.clamp_sigma(limited.sigma_rad),
+        };
+        if !(command.is_finite() && target.is_finite()) {
+            // Unreachable with validated inputs; kept so that nothing non-finite is ever stored.
+            return Err(GuidanceError::NonFiniteState);
+        }
+        self.clock.commit(event);
+        self.ramp_start = start;
+        self.ramp_start_s = Some(tick_s);
+        self.command = command;
+        self.target = target;
+        Ok(GuidanceOutput {
+            command,
+            ticked: true,
+            independent_value: x,
+        })
+    }
+
+    /// Attitude at `time_s` [s]: from the attitude at the last tick it moves towards the held
+    /// command at the rate limits (a ramp) and equals the command from one period after the
+    /// tick on. Before the last tick it returns the attitude at the last tick; before the first
+    /// update, the initial attitude; for a NaN time, the held command.
+    #[must_use]
+    pub fn attitude_at(&self, time_s: S) -> Command<S> {
+        let Some(t_k) = self.ramp_start_s else {
+            return self.command;
+        };
+        if !time_s.is_finite() {
+            return self.command;
+        }
+        let dt = time_s - t_k;
+        if dt <= S::ZERO {
+            self.ramp_start
+        } else if dt >= self.config.period_s {
+            self.command
+        } else {
+            limit_command(self.ramp_start, self.command, self.config.rates, dt)
+        }
+    }
+
+    /// Time of the next tick [s]; 0 before the first update (which is always a tick).
+    #[must_use]
+    pub fn next_tick_s(&self) -> S {
+        self.clock.next_tick_s()
+    }
+
+    /// Time of the last tick [s] (`None` before the first update).
+    #[must_use]
+    pub fn last_tick_s(&self) -> Option<S> {
+        self.ramp_start_s
+    }
+
+    /// The held (rate-limited) command [rad].
+    #[must_use]
+    pub fn command(&self) -> Command<S> {
+        self.command
+    }
+
+    /// The interpolated command of the last tick before rate limiting [rad] (equal to
+    /// [`Guidance::command`] when the limiter did not act).
+    #[must_use]
+    pub fn target(&self) -> Command<S> {
+        self.target
+    }
+
+    /// The node table in use.
+    #[must_use]
+    pub fn table(&self) -> &NodeTable<S> {
+        &self.table
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub fn config(&self) -> GuidanceConfig<S> {
+        self.config
+    }
+
+    /// The interpolator in use.
+    #[must_use]
+    pub fn interpolator(&self) -> &Interpolator<S> {
+        &self.interp
+    }
+
+    /// Replace the node table (onboard re-planning), keeping the interpolation kind. Takes
+    /// effect at the next tick; the held command and ramp are kept. If the new table's bounds
+    /// exclude the current attitude, the next command is clamped into the new bounds, which
+    /// can step faster than the rate limit (keep the bounds when re-planning).
+    ///
+    /// # Errors
+    /// As [`Interpolator::new`]; on error the old table stays in use.
+    pub fn replace_table(&mut self, table: NodeTable<S>) -> Result<(), GuidanceError> {
+        let interp = Interpolator::new(&table, self.interp.kind())?;
+        self.interp = interp;
+        self.table = table;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M};
+    use crate::scalar::Fixed;
+
+    const DEG: f64 = core::f64::consts::PI / 180.0;
+
+    fn energy<S: Scalar>() -> EnergyNormalizer<S> {
+        EnergyNormalizer::new(
+            EARTH_MU_M3_S2,
+            EARTH_RADIUS_M,
+            EARTH_RADIUS_M + 122_000.0,
+            7435.5,
+        )
+        .unwrap()
+    }
+
+    fn nav<S: Scalar>(t: f64) -> NavState<S> {
+        NavState {
+            time_s: S::from_f64(t),
+            radius_m: S::from_f64(EARTH_RADIUS_M + 80_000.0),
+            speed_m_s: S::from_f64(7000.0),
+            flight_path_angle_rad: S::ZERO,
+            heading_rad: S::ZERO,
+            latitude_rad: S::ZERO,
+            longitude_rad: S::ZERO,
+        }
+    }
+
+    fn reference<S: Scalar>() -> Guidance<S> {
+        Guidance::new(
+            GuidanceConfig::thesis_default(),
+            NodeTable::horus2b_reference().unwrap(),
+            Interpolation::Linear,
+            energy(),
+            Command::from_deg(40.0, 0.0).unwrap(),
+        )
+        .unwrap()
+    }
+
+    /// Across the 0 -> 79.6 deg bank step of the reference mission (264 s -> 290 s, 3.06 deg/s,
+    /// below the 15 deg/s limit) the command follows the linear interpolation at each tick.
+    #[test]
+    fn reference_mission_bank_step() {
+        let mut g = reference::<f64>();
+        let out = g.update(&nav(264.0)).unwrap();
+        assert!(out.ticked);
+        assert!(out.command.sigma_rad.abs() < 1e-12);
+        assert!(!g.update(&nav(265.0)).unwrap().ticked);
+        let out = g.update(&nav(266.0)).unwrap();
+        assert!(out.ticked);
+        assert!((out.command.sigma_rad - 79.6 * DEG * 2.0 / 26.0).abs() < 1e-12);
+        assert!((out.command.alpha_rad - 40.0 * DEG).abs() < 1e-12);
+        assert_eq!(out.independent_value, 266.0);
+    }
+
+    /// Starting at 0 deg bank in the middle of the plateau (59.8 deg), the limiter steps
+    /// 15 deg/s * 2 s = 30 deg per tick: 30, 59.8.
+    #[test]
+    fn rate_limit_binds_and_ramp_is_continuous() {
+        let mut g = Guidance::<f64>::new(
+            GuidanceConfig::thesis_default(),
+            NodeTable::horus2b_reference().unwrap(),
+            Interpolation::Linear,
+            energy(),
+            Command::from_deg(40.0, 0.0).unwrap(),
+        )
+        .unwrap();
+        g.update(&nav(600.0)).unwrap();
+        assert!((g.command().sigma_rad - 30.0 * DEG).abs() < 1e-12);
+        assert!((g.target().sigma_rad - 59.8 * DEG).abs() < 1e-12);
+        assert!((g.attitude_at(601.0).sigma_rad - 15.0 * DEG).abs() < 1e-12);
+        assert_eq!(g.attitude_at(602.0), g.command());
+        assert_eq!(g.attitude_at(599.0).sigma_rad, 0.0);
+        g.update(&nav(602.5)).unwrap();
+        assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
+        assert!((g.attitude_at(603.0).sigma_rad - 45.0 * DEG).abs() < 1e-12);
+        assert_eq!(g.last_tick_s(), Some(602.0));
+        assert_eq!(g.next_tick_s(), 604.0);
+    }
+
+    #[test]
+    fn bad_samples_change_nothing() {
+        let mut g = reference::<f64>();
+        g.update(&nav(600.0)).unwrap();
+        let before = g.clone();
+        let mut bad = nav::<f64>(602.0);
+        bad.speed_m_s = f64::NAN;
+        assert_eq!(g.update(&bad), Err(GuidanceError::NonFiniteState));
+        bad.speed_m_s = -1.0;
+        assert_eq!(g.update(&bad), Err(GuidanceError::UnphysicalState));
+        assert_eq!(g.update(&nav(598.0)), Err(GuidanceError::NonIncreasingTime));
+        assert_eq!(g, before);
+        // Fixed point has no NaN: 0/0 saturates to 0, a zero radius, which is unphysical.
+        let mut gx = reference::<Fixed>();
+        let mut bad = nav::<Fixed>(0.0);
+        bad.radius_m = Fixed::ZERO / Fixed::ZERO;
+        assert_eq!(gx.update(&bad), Err(GuidanceError::UnphysicalState));
+    }
+
+    #[test]
+    fn gap_recomputes_once_at_latest_tick() {
+        let mut g = reference::<f64>();
+        g.update(&nav(600.0)).unwrap();
+        let out = g.update(&nav(611.0)).unwrap();
+        assert!(out.ticked);
+        assert_eq!(g.last_tick_s(), Some(610.0));
+        // One normal step only: 30 -> 59.8 deg (step 29.8 <= 30).
+        assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
+        assert!((g.attitude_at(611.0).sigma_rad - 45.0 * DEG).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rejects_bad_config() {
+        let mk = |c: GuidanceConfig<f64>, init: Command<f64>| {
+            Guidance::new(
+                c,
+                NodeTable::horus2b_reference().unwrap(),
+                Interpolation::Linear,
+                energy(),
+                init,
+            )
+        };
+        let ok = Command::from_deg(40.0, 0.0).unwrap();
+        let mut c = GuidanceConfig::thesis_default();
+        c.period_s = 0.0;
+        assert_eq!(mk(c, ok).unwrap_err(), GuidanceError::InvalidConfig);
+        let mut c = GuidanceConfig::thesis_default();
+        c.rates.sigma_rad_s = f64::INFINITY;
+        assert_eq!(mk(c, ok).unwrap_err(), GuidanceError::InvalidConfig);
+        let bad = Command {
+            alpha_rad: f64::NAN,
+            sigma_rad: 0.0,
+        };
+        assert_eq!(
+            mk(GuidanceConfig::thesis_default(), bad).unwrap_err(),
+            GuidanceError::InvalidConfig
+        );
+        // Out-of-bounds initial attitude is clamped.
+        let g = mk(
+            GuidanceConfig::thesis_default(),
+            Command::from_deg(60.0, -5.0).unwrap(),
+        )
+        .unwrap();
+        assert!((g.command().alpha_rad - 45.0 * DEG).abs() < 1e-15);
+        assert_eq!(g.command().sigma_rad, 0.0);
+    }
+}

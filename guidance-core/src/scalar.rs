@@ -229,6 +229,19 @@ float_scalar!(
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Fixed(pub I32F32);
 
+impl Fixed {
+    /// From the raw two's-complement bits of the I32F32 value (value = bits / 2^32).
+    #[must_use]
+    pub const fn from_bits(bits: i64) -> Self {
+        Fixed(I32F32::from_bits(bits))
+    }
+    /// The raw two's-complement bits of the I32F32 value (value = bits / 2^32).
+    #[must_use]
+    pub const fn to_bits(self) -> i64 {
+        self.0.to_bits()
+    }
+}
+
 impl Add for Fixed {
     type Output = Self;
     #[inline]

@@ -10,5 +10,8 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod dynamics;
 pub mod env;
+pub mod integrate;
+pub mod sim;
 pub mod vehicle;

@@ -1,1 +1,318 @@
-fn main() {}
+//! `cargo xtask`: the project's tasks that cargo alone cannot do.
+//!
+//! * `cargo xtask test`      every check CI runs (installs what it needs first)
+//! * `cargo xtask firmware`  build the firmware for each target and run it under QEMU
+//! * `cargo xtask size`      check the firmware's flash/RAM footprint against its budget
+//! * `cargo xtask golden`    regenerate the firmware's golden commands on the host
+//! * `cargo xtask setup`     install rustup targets/components and QEMU
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+mod elf;
+mod golden;
+
+/// Thumb targets the flight core must build for.
+const CORE_TARGETS: [&str; 3] = [
+    "thumbv6m-none-eabi",
+    "thumbv7m-none-eabi",
+    "thumbv7em-none-eabihf",
+];
+
+/// Firmware images run under QEMU: (target, machine description).
+const FIRMWARE_TARGETS: [(&str, &str); 2] = [
+    (
+        "thumbv7em-none-eabihf",
+        "mps2-an386, Cortex-M4F, f32 guidance",
+    ),
+    (
+        "thumbv7m-none-eabi",
+        "lm3s6965evb, Cortex-M3 without FPU, fixed-point guidance",
+    ),
+];
+
+const USAGE: &str = "usage: cargo xtask <test|firmware|size|golden|setup> [--help]\n\
+  test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, size budget\n\
+  firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
+  size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
+  golden    regenerate onboard-demo/src/golden.rs from the host run of the smoke scenario\n\
+  setup     rustup targets and components, qemu-system-arm (apt-get when root)";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("test") => test(),
+        Some("firmware") => setup().and_then(|()| firmware()),
+        Some("size") => size(),
+        Some("golden") => golden::write(&root()),
+        Some("setup") => setup(),
+        Some("--help" | "-h" | "help") => {
+            println!("{USAGE}");
+            Ok(())
+        }
+        _ => Err(USAGE.to_string()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("xtask: error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn cargo() -> Command {
+    let mut c = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    c.current_dir(root());
+    c
+}
+
+/// Run a command, echoing it; error if it fails.
+fn run(mut cmd: Command, what: &str) -> Result<(), String> {
+    eprintln!("xtask: {what}: {cmd:?}");
+    let status = cmd
+        .status()
+        .map_err(|e| format!("{what}: cannot start {cmd:?}: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("{what} failed ({status})"))
+    }
+}
+
+fn have(program: &str, arg: &str) -> bool {
+    Command::new(program)
+        .arg(arg)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
+}
+
+/// Install what the checks need: rustup targets/components, and qemu-system-arm.
+fn setup() -> Result<(), String> {
+    if have("rustup", "--version") {
+        let mut t = Command::new("rustup");
+        t.args(["target", "add"]).args(CORE_TARGETS);
+        run(t, "rustup targets")?;
+        let mut c = Command::new("rustup");
+        c.args(["component", "add", "clippy", "rustfmt", "llvm-tools"]);
+        run(c, "rustup components")?;
+    } else {
+        eprintln!("xtask: rustup not found; make sure targets {CORE_TARGETS:?} are installed");
+    }
+    if !have("qemu-system-arm", "--version") {
+        let cmd = "apt-get update && apt-get install -y qemu-system-arm";
+        if is_root() && have("apt-get", "--version") {
+            let mut c = Command::new("sh");
+            c.args(["-c", &format!("DEBIAN_FRONTEND=noninteractive {cmd}")]);
+            run(c, "install qemu-system-arm")?;
+        } else {
+            return Err(format!(
+                "qemu-system-arm is missing; install it with: sudo sh -c '{cmd}'"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Every check, in order; stops at the first failure.
+fn test() -> Result<(), String> {
+    let mut steps: Vec<(&str, Box<dyn Fn() -> Result<(), String>>)> = vec![
+        ("setup", Box::new(setup)),
+        (
+            "rustfmt",
+            Box::new(|| {
+                let mut c = cargo();
+                c.args(["fmt", "--all", "--check"]);
+                run(c, "cargo fmt --check")
+            }),
+        ),
+        (
+            "clippy (host crates)",
+            Box::new(|| {
+                let mut c = cargo();
+                c.args(["clippy", "--all-targets", "--", "-D", "warnings"]);
+                run(c, "clippy host")
+            }),
+        ),
+        (
+            "host tests",
+            Box::new(|| {
+                let mut c = cargo();
+                c.args(["test"]);
+                run(c, "cargo test")
+            }),
+        ),
+    ];
+    for target in CORE_TARGETS {
+        steps.push((
+            "guidance-core no_std build",
+            Box::new(move || {
+                let mut c = cargo();
+                c.args(["build", "-p", "guidance-core", "--target", target]);
+                run(c, &format!("guidance-core for {target}"))
+            }),
+        ));
+    }
+    steps.push((
+        "guidance-core with micromath, no_std",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args([
+                "build",
+                "-p",
+                "guidance-core",
+                "--features",
+                "micromath",
+                "--target",
+                "thumbv7em-none-eabihf",
+            ]);
+            run(c, "guidance-core micromath build")
+        }),
+    ));
+    steps.push((
+        "clippy (firmware)",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args([
+                "clippy",
+                "-p",
+                "onboard-demo",
+                "--target",
+                "thumbv7em-none-eabihf",
+                "--",
+                "-D",
+                "warnings",
+            ]);
+            run(c, "clippy firmware")
+        }),
+    ));
+    steps.push(("firmware under QEMU", Box::new(firmware)));
+    steps.push(("firmware size budget", Box::new(size)));
+
+    let total = steps.len();
+    for (i, (name, step)) in steps.iter().enumerate() {
+        eprintln!("xtask: [{}/{total}] {name}", i + 1);
+        if let Err(e) = step() {
+            println!("xtask: {} passed, 1 failed", i);
+            return Err(format!("step '{name}': {e}"));
+        }
+    }
+    println!("xtask: {total} passed, 0 failed");
+    Ok(())
+}
+
+fn firmware_elf(target: &str) -> PathBuf {
+    root()
+        .join("target")
+        .join(target)
+        .join("firmware")
+        .join("onboard-demo")
+}
+
+fn build_firmware(target: &str) -> Result<PathBuf, String> {
+    let mut c = cargo();
+    c.args([
+        "build",
+        "-p",
+        "onboard-demo",
+        "--profile",
+        "firmware",
+        "--target",
+        target,
+    ]);
+    run(c, &format!("build firmware for {target}"))?;
+    Ok(firmware_elf(target))
+}
+
+/// Build and run the smoke firmware under QEMU on each machine; it exits 0 only if its
+/// commands match the golden values computed on the host.
+fn firmware() -> Result<(), String> {
+    for (target, machine) in FIRMWARE_TARGETS {
+        let elf = build_firmware(target)?;
+        let (cpu, board) = if target.starts_with("thumbv7em") {
+            ("cortex-m4", "mps2-an386")
+        } else {
+            ("cortex-m3", "lm3s6965evb")
+        };
+        let mut q = Command::new("timeout");
+        q.args([
+            "120",
+            "qemu-system-arm",
+            "-cpu",
+            cpu,
+            "-machine",
+            board,
+            "-nographic",
+        ])
+        .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+        .arg(&elf);
+        run(q, &format!("QEMU smoke firmware on {machine}"))?;
+    }
+    Ok(())
+}
+
+/// Parse `key = integer` lines of the budget file.
+fn budget_value(text: &str, key: &str, file: &Path) -> Result<u64, String> {
+    for line in text.lines() {
+        let line = line.trim();
+        if let Some(rest) = line.strip_prefix(key) {
+            if let Some(v) = rest.trim_start().strip_prefix('=') {
+                let v = v.trim().replace('_', "");
+                return v.parse::<u64>().map_err(|e| {
+                    format!(
+                        "{}: field `{key}` = {v:?}: not an integer ({e})",
+                        file.display()
+                    )
+                });
+            }
+        }
+    }
+    Err(format!("{}: field `{key}` is missing", file.display()))
+}
+
+/// Check the release footprint of each firmware image against onboard-demo/size-budget.toml.
+fn size() -> Result<(), String> {
+    let budget_file = root().join("onboard-demo").join("size-budget.toml");
+    let text = std::fs::read_to_string(&budget_file)
+        .map_err(|e| format!("{}: cannot read: {e}", budget_file.display()))?;
+    let mut over = Vec::new();
+    for (target, _) in FIRMWARE_TARGETS {
+        let elf = build_firmware(target)?;
+        let bytes = std::fs::read(&elf).map_err(|e| format!("{}: {e}", elf.display()))?;
+        let fp = elf::footprint(&bytes).map_err(|e| format!("{}: {e}", elf.display()))?;
+        let key = target.replace('-', "_");
+        let flash_max = budget_value(&text, &format!("{key}_flash_bytes"), &budget_file)?;
+        let ram_max = budget_value(&text, &format!("{key}_ram_bytes"), &budget_file)?;
+        println!(
+            "xtask: size {target}: flash {} / {flash_max} bytes, static RAM {} / {ram_max} bytes",
+            fp.flash, fp.ram
+        );
+        if fp.flash > flash_max {
+            over.push(format!("{target} flash {} > budget {flash_max}", fp.flash));
+        }
+        if fp.ram > ram_max {
+            over.push(format!("{target} RAM {} > budget {ram_max}", fp.ram));
+        }
+    }
+    if over.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "firmware over budget ({}): {}",
+            budget_file.display(),
+            over.join("; ")
+        ))
+    }
+}

@@ -1,4 +1,5 @@
 //! The guidance-core integration-test binary (one per crate). Each module is one topic.
 
 mod guidance_props;
+mod vinh_support;
 mod vinh_validation;

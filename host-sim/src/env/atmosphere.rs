@@ -1,4 +1,12 @@
-//! Atmosphere models (interface; US76 and exponential implementations in progress).
+//! Atmosphere models: the [`Atmosphere`] trait, the U.S. Standard Atmosphere 1976 from 0 to
+//! 1000 km ([`Us76`]) and the exponential atmosphere of the analytical solutions
+//! ([`ExponentialAtmosphere`]); thesis sec. 3.6.2.
+
+pub mod exponential;
+pub mod us76;
+
+pub use exponential::{ExponentialAtmosphere, ExponentialAtmosphereError};
+pub use us76::Us76;
 
 /// Atmospheric state at one altitude.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,5 +29,9 @@ pub trait Atmosphere: Send + Sync {
     /// Density only [kg/m^3] (may be faster than [`Atmosphere::state`]).
     fn density_kg_m3(&self, altitude_m: f64) -> f64 {
         self.state(altitude_m).density_kg_m3
+    }
+    /// Short model name for reports (e.g. `"us76"`, `"exponential"`).
+    fn name(&self) -> &'static str {
+        "atmosphere"
     }
 }

@@ -1,12 +1,103 @@
-//! Environment models: atmosphere, gravity, planet.
+//! Environment models: atmosphere, gravity, planet, and the [`Environment`] bundle the
+//! dynamics use.
 //!
 //! The traits here are the seams between the environment and the dynamics; implementations
 //! live in the submodules.
+//!
+//! * [`Environment::full`]: rotating spherical Earth, US76 atmosphere, central + J2 gravity
+//!   (the thesis' high-fidelity environment, sec. 7.4).
+//! * [`Environment::simplified`]: non-rotating spherical Earth, exponential atmosphere,
+//!   central gravity: the environment of the analytical solutions (thesis sec. 8.1.3,
+//!   "simplified numerical simulator").
 
 pub mod atmosphere;
 pub mod gravity;
 pub mod planet;
 
-pub use atmosphere::{Atmosphere, AtmosphereState};
-pub use gravity::Gravity;
+pub use atmosphere::{Atmosphere, AtmosphereState, ExponentialAtmosphere, Us76};
+pub use gravity::{CentralGravity, Gravity, J2Gravity};
 pub use planet::Planet;
+
+/// A complete environment: planet, atmosphere and gravity model.
+pub struct Environment {
+    /// Planet (radius, rotation, constants).
+    pub planet: Planet,
+    /// Atmosphere model.
+    pub atmosphere: Box<dyn Atmosphere>,
+    /// Gravity model.
+    pub gravity: Box<dyn Gravity>,
+}
+
+impl Environment {
+    /// Rotating spherical Earth, US76, central + J2 gravity.
+    #[must_use]
+    pub fn full() -> Self {
+        let planet = Planet::earth();
+        Self {
+            planet,
+            atmosphere: Box::new(Us76::new()),
+            gravity: Box::new(J2Gravity::from_planet(&planet)),
+        }
+    }
+
+    /// Non-rotating spherical Earth, the given exponential atmosphere, central gravity.
+    #[must_use]
+    pub fn simplified(atmosphere: ExponentialAtmosphere) -> Self {
+        let planet = Planet::earth_non_rotating();
+        Self {
+            planet,
+            atmosphere: Box::new(atmosphere),
+            gravity: Box::new(CentralGravity::from_planet(&planet)),
+        }
+    }
+
+    /// [`Environment::simplified`] with the default Earth exponential atmosphere
+    /// (rho_0 = 1.225 kg/m^3, H_s = 7.2 km).
+    #[must_use]
+    pub fn simplified_default() -> Self {
+        Self::simplified(ExponentialAtmosphere::earth())
+    }
+
+    /// Any combination.
+    #[must_use]
+    pub fn new(planet: Planet, atmosphere: Box<dyn Atmosphere>, gravity: Box<dyn Gravity>) -> Self {
+        Self {
+            planet,
+            atmosphere,
+            gravity,
+        }
+    }
+}
+
+impl std::fmt::Debug for Environment {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Environment")
+            .field("planet", &self.planet)
+            .field("atmosphere", &self.atmosphere.name())
+            .field("gravity", &self.gravity.name())
+            .finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    #[test]
+    fn presets_bundle_the_right_models() {
+        let full = Environment::full();
+        assert!(full.planet.is_rotating());
+        assert_eq!(full.atmosphere.name(), "us76");
+        assert_eq!(full.gravity.name(), "j2");
+        let simple = Environment::simplified_default();
+        assert!(!simple.planet.is_rotating());
+        assert_eq!(simple.atmosphere.name(), "exponential");
+        assert_eq!(simple.gravity.name(), "central");
+        // Central gravity magnitude mu/r^2 at the surface.
+        let r = Vector3::new(0.0, simple.planet.radius_m, 0.0);
+        let g = simple.gravity.acceleration(&r).norm();
+        assert!((g - simple.planet.surface_gravity_m_s2()).abs() < 1e-12);
+        assert!(format!("{full:?}").contains("us76"));
+    }
+}

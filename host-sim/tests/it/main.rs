@@ -1,4 +1,6 @@
 //! The host-sim integration-test binary (one per crate). Each module is one topic.
 
+mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
+mod support;

@@ -1,0 +1,549 @@
+//! Atmospheric skip, second order (thesis sec. 3.5.1; Vinh, Kim & Greenwood 1993), with the
+//! ERRATA corrections.
+//!
+//! # What is computed
+//! * First-order deepest point `x1f`: root of `phi^2 = c^2 - 2 k1 (e^x - 1) - 2 (1 - alpha) x`
+//!   (eq. 3.39, ERRATA `(1 - alpha)`), by bracketing on `[0, x_surface]`.
+//! * Second-order deepest point `x1`: first root of eq. 3.50,
+//!   `phi^2 = c^2 - 2 k1 (e^x - 1) - 2 (1 - alpha) x + 2 eta alpha I(x)`, where `I` (eq. 3.51) is
+//!   evaluated on the descending leg of the first-order solution. Beyond `x1f` the first-order
+//!   `tau(x)` is complex; Vinh's remedy (low L/D, where `x1 > x1f`) freezes `x = x1f` inside
+//!   `2 eta alpha I(x)`, which is applied here. With [`SkipOptions::deepest_point_refinements`]
+//!   `> 0` the quadratic is rebuilt at the new `x1` and the root found again (the thesis'
+//!   "iterating on the estimated deepest value"), a bounded number of times.
+//! * `a1, a2, a3` (eq. 3.45-3.47, written with `(e^x - 1 - x)/x^2` to avoid cancellation) at
+//!   `x1`; `x(tau) = -a2/(2 a1) - sqrt(a2^2 - 4 a1 a3)/(2 a1) sin(sqrt(-a1) tau - beta)`,
+//!   `sin(beta) = a2 / sqrt(a2^2 - 4 a1 a3)` (eq. 3.43/3.44 as corrected in ERRATA); the
+//!   approximate `phi_a = dx/dtau` is the derivative of that sinusoid.
+//! * `I1, I2` (eq. 3.52/3.53), `I` (3.51), `J` (3.55), `phi` from eq. 3.50 with its sign per
+//!   leg (ERRATA: `phi > 0` descending, `phi < 0` ascending), `v` (3.54).
+//! * Drag, lift, g-load and Chapman heat flux (eq. 3.56-3.58), radius, speed and flight-path
+//!   angle (eq. 3.59-3.61), and the exit where `x(tau)` returns to 0 at
+//!   `tau_exit = (pi + 2 beta)/sqrt(-a1)`.
+//!
+//! # Domain of validity (each limit is a [`VinhError`], checked before it could bite)
+//! * Reference state descending (`gamma_E < 0`): [`VinhError::NotDescending`].
+//! * `|k1|` above `64 EPSILON` of the float type: [`VinhError::VerticalLiftTooSmall`] (the
+//!   closed forms divide by `k1`).
+//! * A real deepest point above the surface: [`VinhError::NoDeepestPoint`].
+//! * `a1 < 0`: [`VinhError::NotOscillatory`].
+//! * `|eta v| <= MAX_ETA_V` along the skip, where `exp(eta v) ~ 1 + eta v` holds:
+//!   [`VinhError::SpeedExpansionInvalid`]. Entry speeds above
+//!   [`super::nondim::MAX_ENTRY_SPEED_M_S`] (thesis: complex numbers above 11 km/s) are
+//!   rejected by the set-up.
+//! * Eq. 3.50 and the quadratic fit are two different approximations of `phi^2`; near the
+//!   deepest point 3.50 may dip slightly below zero. Values above `-PHI2_TOLERANCE c^2` are
+//!   taken as 0 (the deepest point); below that the point is "beyond the deepest point" and
+//!   [`VinhError::BeyondDeepestPoint`] is returned, never a complex or NaN `phi`.
+//! * The solution is planar and non-rotating, with an exponential atmosphere and inverse-square
+//!   gravity; `cos(gamma) ~ 1` and `h ~ 0` are assumed (eq. 3.33-3.35), so accuracy degrades for
+//!   steep entries and deep dives (see docs/VINH.md for the measured errors).
+
+use super::error::VinhError;
+use super::nondim::{NonDim, k1_min};
+use super::num::{expm1mx_over_x2, finite, first_root, k, maximize};
+use crate::scalar::Real;
+
+/// Largest accepted `|eta v|` along the skip: the speed-ratio range `V/V_E` in
+/// `[exp(-0.5), exp(0.5)] = [0.61, 1.65]` over which `exp(eta v) ~ 1 + eta v` (error
+/// `(eta v)^2/2 <= 12.5 %` of the gravity term) is used.
+pub const MAX_ETA_V: f64 = 1.0;
+
+/// Relative tolerance (times `c^2`) for a negative second-order `phi^2` near the deepest point.
+pub const PHI2_TOLERANCE: f64 = 0.05;
+
+/// Options of the skip solution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SkipOptions {
+    /// Number of extra passes re-fitting the quadratic at the new second-order `x1` and
+    /// re-solving eq. 3.50 (0 = the thesis' single pass with Vinh's freeze). At most 8 are used.
+    pub deepest_point_refinements: u8,
+}
+
+impl Default for SkipOptions {
+    fn default() -> Self {
+        Self {
+            deepest_point_refinements: 0,
+        }
+    }
+}
+
+/// Which leg of the skip a depth belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Leg {
+    /// Before the deepest point (`gamma < 0`, `phi > 0`).
+    Descending,
+    /// After the deepest point (`gamma > 0`, `phi < 0`).
+    Ascending,
+}
+
+/// One point of the skip, dimensional and non-dimensional.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SkipPoint<S> {
+    /// Non-dimensional range angle `tau` [-].
+    pub tau: S,
+    /// Range angle from the reference point `theta` [rad].
+    pub range_angle_rad: S,
+    /// Depth `x = (r_E - r)/H_s` [-].
+    pub x: S,
+    /// `phi = -sqrt(r_E/H_s) sin(gamma)` [-].
+    pub phi: S,
+    /// `eta v = ln(V_E^2 / V^2)` [-].
+    pub eta_v: S,
+    /// Distance from the planet centre [m].
+    pub radius_m: S,
+    /// Speed [m/s].
+    pub speed_m_s: S,
+    /// Flight-path angle [rad].
+    pub flight_path_angle_rad: S,
+    /// Chapman stagnation heat flux [W/m^2].
+    pub heat_flux_w_m2: S,
+    /// Drag acceleration [m/s^2].
+    pub drag_acc_m_s2: S,
+    /// Total-lift acceleration [m/s^2].
+    pub lift_acc_m_s2: S,
+    /// g-load `sqrt(L^2 + D^2)/(m g0)` [-].
+    pub g_load: S,
+}
+
+impl<S: Real> SkipPoint<S> {
+    fn check(self) -> Result<Self, VinhError> {
+        let all = [
+            self.tau,
+            self.range_angle_rad,
+            self.x,
+            self.phi,
+            self.eta_v,
+            self.radius_m,
+            self.speed_m_s,
+            self.flight_path_angle_rad,
+            self.heat_flux_w_m2,
+            self.drag_acc_m_s2,
+            self.lift_acc_m_s2,
+            self.g_load,
+        ];
+        if all.iter().all(|v| v.is_finite()) {
+            Ok(self)
+        } else {
+            Err(VinhError::NonFiniteResult)
+        }
+    }
+}
+
+/// Quadratic fit `phi_a^2 = a1 x^2 + a2 x + a3` and its sinusoidal `x(tau)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Quad<S> {
+    a1: S,
+    a2: S,
+    a3: S,
+    x1: S,
+    omega: S,
+    beta: S,
+    center: S,
+    amp: S,
+    tau_bottom: S,
+    tau_exit: S,
+}
+
+impl<S: Real> Quad<S> {
+    /// Eq. 3.45-3.47 at deepest point `x1 > 0`.
+    fn new(c2: S, k1: S, oma: S, x1: S) -> Result<Self, VinhError> {
+        if !(x1 > S::ZERO) {
+            return Err(VinhError::NoDeepestPoint);
+        }
+        let three: S = k(3.0);
+        let g = expm1mx_over_x2(x1);
+        let a1 = three / x1 * (k::<S>(2.0) * oma - c2 / x1 + k::<S>(4.0) * k1 * g);
+        let a2 = k::<S>(-6.0) * oma + k::<S>(2.0) * c2 / x1 - k::<S>(12.0) * k1 * g;
+        let a3 = c2;
+        finite(a1)?;
+        finite(a2)?;
+        if !(a1 < S::ZERO) {
+            return Err(VinhError::NotOscillatory);
+        }
+        let disc = a2 * a2 - k::<S>(4.0) * a1 * a3;
+        if !(disc > S::ZERO) {
+            return Err(VinhError::NotOscillatory);
+        }
+        let sd = disc.sqrt_raw();
+        let omega = (-a1).sqrt_raw();
+        let sin_beta = (a2 / sd).clamp(-S::ONE, S::ONE);
+        let beta = sin_beta.asin();
+        let center = -a2 / (k::<S>(2.0) * a1);
+        let amp = sd / (k::<S>(-2.0) * a1);
+        let tau_bottom = (beta + S::PI.half()) / omega;
+        let tau_exit = (S::PI + beta + beta) / omega;
+        let q = Self {
+            a1,
+            a2,
+            a3,
+            x1: center + amp,
+            omega,
+            beta,
+            center,
+            amp,
+            tau_bottom: finite(tau_bottom)?,
+            tau_exit: finite(tau_exit)?,
+        };
+        finite(q.x1)?;
+        Ok(q)
+    }
+
+    fn x(&self, tau: S) -> S {
+        self.center + self.amp * (self.omega * tau - self.beta).sin()
+    }
+
+    fn phi_a(&self, tau: S) -> S {
+        self.amp * self.omega * (self.omega * tau - self.beta).cos()
+    }
+
+    /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
+    fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
+        let sn = ((x - self.center) / self.amp).clamp(-S::ONE, S::ONE);
+        let arg = sn.asin();
+        let cs = (S::ONE - sn * sn).sqrt();
+        match leg {
+            Leg::Descending => ((arg + self.beta) / self.omega, self.amp * self.omega * cs),
+            Leg::Ascending => (
+                (S::PI - arg + self.beta) / self.omega,
+                -self.amp * self.omega * cs,
+            ),
+        }
+    }
+}
+
+/// Second-order skip solution from a descending reference state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SkipSolution<S> {
+    nd: NonDim<S>,
+    q: Quad<S>,
+    x1_first: S,
+    remedy_used: bool,
+    exit: SkipPoint<S>,
+}
+
+/// Terms of eq. 3.50/3.54 at one point.
+struct Terms<S> {
+    phi2: S,
+    i: S,
+    j: S,
+}
+
+impl<S: Real> SkipSolution<S> {
+    /// Solve the skip with default options.
+    ///
+    /// # Errors
+    /// See [`SkipSolution::with_options`].
+    pub fn new(nd: &NonDim<S>) -> Result<Self, VinhError> {
+        Self::with_options(nd, SkipOptions::default())
+    }
+
+    /// Solve the skip from the reference state of `nd`.
+    ///
+    /// Cost: two bracketed roots (each at most 64 scan + 200 bisection evaluations), plus the
+    /// same per refinement pass.
+    ///
+    /// # Errors
+    /// [`VinhError::NotDescending`], [`VinhError::VerticalLiftTooSmall`],
+    /// [`VinhError::NoDeepestPoint`], [`VinhError::NotOscillatory`],
+    /// [`VinhError::BeyondDeepestPoint`] (exit inconsistent), [`VinhError::SpeedExpansionInvalid`],
+    /// [`VinhError::FlightPathAngleOutOfDomain`], [`VinhError::NonFiniteResult`].
+    pub fn with_options(nd: &NonDim<S>, options: SkipOptions) -> Result<Self, VinhError> {
+        let c = nd.c;
+        if !(c.c > S::ZERO) {
+            return Err(VinhError::NotDescending);
+        }
+        if c.k1.abs() < k1_min::<S>() {
+            return Err(VinhError::VerticalLiftTooSmall);
+        }
+        let c2 = c.c * c.c;
+        let oma = S::ONE - c.alpha;
+        let two: S = k(2.0);
+        let x_surf = nd.surface_x();
+        let f1 = |x: S| -> Result<S, VinhError> {
+            finite(c2 - two * c.k1 * (x.exp() - S::ONE) - two * oma * x)
+        };
+        let x1_first = first_root(f1, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?;
+        let mut q = Quad::new(c2, c.k1, oma, x1_first)?;
+        let mut remedy_used = false;
+        let passes = 1 + options.deepest_point_refinements.min(8);
+        let mut pass = 0;
+        while pass < passes {
+            let q_fit = q;
+            let mut froze = false;
+            let f2 = |x: S| -> Result<S, VinhError> {
+                let x_eff = if x > q_fit.x1 {
+                    froze = true;
+                    q_fit.x1
+                } else {
+                    x
+                };
+                let (tau, phi_a) = q_fit.at_depth(x_eff, Leg::Descending);
+                let i = Self::terms_raw(nd, &q_fit, tau, x_eff, phi_a).i;
+                finite(
+                    c2 - two * c.k1 * (x.exp() - S::ONE) - two * oma * x
+                        + two * c.eta * c.alpha * i,
+                )
+            };
+            let x1 = first_root(f2, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?;
+            remedy_used |= froze && x1 > q_fit.x1;
+            q = Quad::new(c2, c.k1, oma, x1)?;
+            pass += 1;
+        }
+        let mut sol = Self {
+            nd: *nd,
+            q,
+            x1_first,
+            remedy_used,
+            exit: SkipPoint {
+                tau: S::ZERO,
+                range_angle_rad: S::ZERO,
+                x: S::ZERO,
+                phi: S::ZERO,
+                eta_v: S::ZERO,
+                radius_m: S::ZERO,
+                speed_m_s: S::ZERO,
+                flight_path_angle_rad: S::ZERO,
+                heat_flux_w_m2: S::ZERO,
+                drag_acc_m_s2: S::ZERO,
+                lift_acc_m_s2: S::ZERO,
+                g_load: S::ZERO,
+            },
+        };
+        sol.exit = sol.point_at_tau(q.tau_exit)?;
+        Ok(sol)
+    }
+
+    /// `I`, `J` and `phi^2` at `(tau, x, phi_a)` on fit `q` (eq. 3.50-3.53, 3.55).
+    fn terms_raw(nd: &NonDim<S>, q: &Quad<S>, tau: S, x: S, phi_a: S) -> Terms<S> {
+        let c = nd.c;
+        let two: S = k(2.0);
+        let l = S::ONE + c.lambda * c.lambda;
+        let oma = S::ONE - c.alpha;
+        let l_k1 = l / c.k1;
+        let ka = c.k * c.alpha;
+        let cm = c.c - phi_a;
+        let i2 = -cm / q.a1 - q.a2 * tau / (two * q.a1);
+        let i1 = phi_a * x / two - q.a2 / (k::<S>(4.0) * q.a1) * cm
+            + (k::<S>(4.0) * q.a1 * q.a3 - q.a2 * q.a2) / (k::<S>(8.0) * q.a1) * tau;
+        let i = l_k1 * (c.c * x - i1) - ka * x * x / two - oma * l_k1 * (tau * x - i2);
+        let j = l_k1 * (c.c * tau - x) - oma * l_k1 * tau * tau / two - ka * i2;
+        let phi2 =
+            c.c * c.c - two * c.k1 * (x.exp() - S::ONE) - two * oma * x + two * c.eta * c.alpha * i;
+        Terms { phi2, i, j }
+    }
+
+    /// Second-order point at `(tau, x, phi_a)` with the `phi` sign of `leg`.
+    fn point(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<SkipPoint<S>, VinhError> {
+        let nd = &self.nd;
+        let c = nd.c;
+        let t = Self::terms_raw(nd, &self.q, tau, x, phi_a);
+        let phi2 = finite(t.phi2)?;
+        let tol = k::<S>(PHI2_TOLERANCE) * c.c * c.c;
+        if phi2 < -tol {
+            return Err(VinhError::BeyondDeepestPoint);
+        }
+        let mag = phi2.max(S::ZERO).sqrt();
+        let phi = match leg {
+            Leg::Descending => mag,
+            Leg::Ascending => -mag,
+        };
+        let l = S::ONE + c.lambda * c.lambda;
+        let l_k1 = l / c.k1;
+        let oma = S::ONE - c.alpha;
+        let v =
+            l_k1 * (c.c - phi) - c.k * c.alpha * x - oma * l_k1 * tau - c.eta * c.k * c.alpha * t.i
+                + c.eta * c.alpha * l_k1 * t.j;
+        let eta_v = finite(c.eta * v)?;
+        if eta_v.abs() > k(MAX_ETA_V) {
+            return Err(VinhError::SpeedExpansionInvalid);
+        }
+        let gamma = nd.fpa_from_phi(phi)?;
+        SkipPoint {
+            tau,
+            range_angle_rad: nd.range_angle_from_tau(tau),
+            x,
+            phi,
+            eta_v,
+            radius_m: nd.radius_from_x(x),
+            speed_m_s: nd.speed_from_eta_v(eta_v),
+            flight_path_angle_rad: gamma,
+            heat_flux_w_m2: nd.heat_flux_w_m2(x, eta_v),
+            drag_acc_m_s2: nd.drag_acc_m_s2(x, eta_v),
+            lift_acc_m_s2: nd.lift_acc_m_s2(x, eta_v),
+            g_load: nd.g_load(x, eta_v),
+        }
+        .check()
+    }
+
+    /// State at non-dimensional range angle `tau` in `[0, tau_exit]`.
+    ///
+    /// # Errors
+    /// [`VinhError::NonFiniteInput`], [`VinhError::OutsideSkip`] outside `[0, tau_exit]`, and the
+    /// point errors ([`VinhError::BeyondDeepestPoint`], [`VinhError::SpeedExpansionInvalid`],
+    /// [`VinhError::FlightPathAngleOutOfDomain`], [`VinhError::NonFiniteResult`]).
+    pub fn point_at_tau(&self, tau: S) -> Result<SkipPoint<S>, VinhError> {
+        if !tau.is_finite() {
+            return Err(VinhError::NonFiniteInput);
+        }
+        if tau < S::ZERO || tau > self.q.tau_exit {
+            return Err(VinhError::OutsideSkip);
+        }
+        let (x, phi_a) = if tau == self.q.tau_exit {
+            (S::ZERO, self.q.phi_a(tau))
+        } else if tau == S::ZERO {
+            (S::ZERO, self.nd.c.c)
+        } else {
+            (self.q.x(tau).max(S::ZERO), self.q.phi_a(tau))
+        };
+        let leg = if tau <= self.q.tau_bottom {
+            Leg::Descending
+        } else {
+            Leg::Ascending
+        };
+        self.point(tau, x, phi_a, leg)
+    }
+
+    /// State at range angle `theta` [rad] from the reference point.
+    ///
+    /// # Errors
+    /// As [`SkipSolution::point_at_tau`].
+    pub fn point_at_range_angle(&self, range_angle_rad: S) -> Result<SkipPoint<S>, VinhError> {
+        if !range_angle_rad.is_finite() {
+            return Err(VinhError::NonFiniteInput);
+        }
+        self.point_at_tau(range_angle_rad * self.nd.c.sqrt_s)
+    }
+
+    /// State at depth `x` in `[0, x1]` on `leg`.
+    ///
+    /// # Errors
+    /// [`VinhError::BeyondDeepestPoint`] for `x > x1` (where `phi` would be complex),
+    /// [`VinhError::OutsideSkip`] for `x < 0`, and the point errors.
+    pub fn point_at_depth(&self, x: S, leg: Leg) -> Result<SkipPoint<S>, VinhError> {
+        if !x.is_finite() {
+            return Err(VinhError::NonFiniteInput);
+        }
+        if x > self.q.x1 {
+            return Err(VinhError::BeyondDeepestPoint);
+        }
+        if x < S::ZERO {
+            return Err(VinhError::OutsideSkip);
+        }
+        let (tau, phi_a) = self.q.at_depth(x, leg);
+        self.point(tau.clamp(S::ZERO, self.q.tau_exit), x, phi_a, leg)
+    }
+
+    /// State at the deepest point (`tau_bottom`, `x = x1`).
+    ///
+    /// # Errors
+    /// The point errors.
+    pub fn deepest_point(&self) -> Result<SkipPoint<S>, VinhError> {
+        self.point(self.q.tau_bottom, self.q.x1, S::ZERO, Leg::Descending)
+    }
+
+    /// Raw second-order `phi^2` of eq. 3.50 at `tau` in `[0, tau_exit]` (before the sign and the
+    /// tolerance of the deepest point are applied); a diagnostic of the fit consistency.
+    ///
+    /// # Errors
+    /// [`VinhError::NonFiniteInput`], [`VinhError::OutsideSkip`], [`VinhError::NonFiniteResult`].
+    pub fn phi_squared_at_tau(&self, tau: S) -> Result<S, VinhError> {
+        if !tau.is_finite() {
+            return Err(VinhError::NonFiniteInput);
+        }
+        if tau < S::ZERO || tau > self.q.tau_exit {
+            return Err(VinhError::OutsideSkip);
+        }
+        let x = self.q.x(tau).max(S::ZERO);
+        finite(Self::terms_raw(&self.nd, &self.q, tau, x, self.q.phi_a(tau)).phi2)
+    }
+
+    /// Exit state, where `x` returns to 0 (the reference radius) on the ascending leg.
+    #[must_use]
+    pub fn exit(&self) -> SkipPoint<S> {
+        self.exit
+    }
+
+    /// Second-order deepest depth `x1` [-].
+    #[must_use]
+    pub fn x1(&self) -> S {
+        self.q.x1
+    }
+
+    /// First-order deepest depth `x1` (root of eq. 3.39) [-].
+    #[must_use]
+    pub fn x1_first_order(&self) -> S {
+        self.x1_first
+    }
+
+    /// Whether Vinh's low-L/D remedy (freezing `x = x1f` in `2 eta alpha I`) decided the
+    /// second-order root.
+    #[must_use]
+    pub fn low_ld_remedy_used(&self) -> bool {
+        self.remedy_used
+    }
+
+    /// `(a1, a2, a3)` of the quadratic fit at `x1` (eq. 3.45-3.47).
+    #[must_use]
+    pub fn fit_coefficients(&self) -> (S, S, S) {
+        (self.q.a1, self.q.a2, self.q.a3)
+    }
+
+    /// Non-dimensional range angle of the deepest point [-].
+    #[must_use]
+    pub fn tau_bottom(&self) -> S {
+        self.q.tau_bottom
+    }
+
+    /// Non-dimensional range angle of the exit [-].
+    #[must_use]
+    pub fn tau_exit(&self) -> S {
+        self.q.tau_exit
+    }
+
+    /// The set-up this solution was built from.
+    #[must_use]
+    pub fn nondim(&self) -> &NonDim<S> {
+        &self.nd
+    }
+
+    /// Peak Chapman heat flux over the skip: `(point, heat flux [W/m^2])`.
+    ///
+    /// Cost: 48 scan + 62 golden-section evaluations.
+    ///
+    /// # Errors
+    /// The point errors.
+    pub fn peak_heat_flux(&self) -> Result<SkipPoint<S>, VinhError> {
+        let m2: S = k(super::nondim::CHAPMAN_SPEED_EXPONENT / 2.0);
+        let (tau, _) = maximize(
+            |t| {
+                let p = self.point_at_tau(t)?;
+                Ok(p.x.half() - m2 * p.eta_v)
+            },
+            S::ZERO,
+            self.q.tau_exit,
+        )?;
+        self.point_at_tau(tau)
+    }
+
+    /// Peak g-load over the skip.
+    ///
+    /// # Errors
+    /// The point errors.
+    pub fn peak_g_load(&self) -> Result<SkipPoint<S>, VinhError> {
+        let (tau, _) = maximize(
+            |t| {
+                let p = self.point_at_tau(t)?;
+                Ok(p.x - p.eta_v)
+            },
+            S::ZERO,
+            self.q.tau_exit,
+        )?;
+        self.point_at_tau(tau)
+    }
+}

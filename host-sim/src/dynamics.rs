@@ -1,0 +1,391 @@
+//! 3-DOF translational dynamics of an unpowered entry vehicle over a rotating spherical planet
+//! (thesis sec. 3.3-3.4).
+//!
+//! Two formulations of the same physics:
+//! * [`Dynamics::cartesian_rhs`]: inertial planet-centred Cartesian position and velocity,
+//!   `F = m a` (eq. 3.12). This is what the simulator integrates. The atmosphere co-rotates
+//!   with the planet, so the aerodynamic forces use the air-relative velocity
+//!   `v_rel = v_I - omega x r`.
+//! * [`Dynamics::spherical_rhs`]: planet-relative spherical state `(r, tau, delta, V, gamma,
+//!   chi)` with Coriolis and centripetal terms (eq. 3.13 after Mooij, with the ERRATA fixes:
+//!   the first line is the longitude rate `tau-dot`, and the centripetal term of the
+//!   gamma equation has `r`, not `R`). Gravity enters through its radial and northward
+//!   components, so J2 is included exactly. Used as an independent cross-check.
+//!
+//! Frames: the inertial frame I and the planet-fixed frame R share the z axis (rotation
+//! axis) and coincide at t = 0; at time t, R is rotated by `omega t` about z. Heading `chi` is
+//! measured clockwise from north, flight-path angle `gamma` positive up, bank angle `sigma`
+//! positive turns the velocity to the right (towards increasing heading).
+//!
+//! The integrated state (see [`STATE_LEN`]) is position (3), velocity (3), heat load
+//! `Q = integral q dt` [J/m^2] and flown range angle `theta = integral V cos(gamma)/r dt`
+//! [rad] (eq. 3.15).
+
+use nalgebra::Vector3;
+
+use crate::env::{Atmosphere, Gravity, Planet};
+use crate::vehicle::Vehicle;
+
+/// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1).
+pub const G0_M_S2: f64 = 9.806_65;
+/// Sea-level density rho_0 of Chapman's relation [kg/m^3] (eq. 2.2).
+pub const CHAPMAN_RHO0_KG_M3: f64 = 1.225;
+/// Chapman's reference circular speed V_c [m/s] (eq. 2.2).
+pub const CHAPMAN_VC_M_S: f64 = 7905.4;
+/// Chapman's constant c* [W/m^2 * m^0.5] (eq. 2.2).
+pub const CHAPMAN_C_STAR: f64 = 1.1097e8;
+
+/// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
+pub const STATE_LEN: usize = 8;
+
+/// Commanded aerodynamic attitude.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Attitude {
+    /// Angle of attack [rad].
+    pub alpha_rad: f64,
+    /// Bank angle [rad].
+    pub sigma_rad: f64,
+}
+
+/// Inertial Cartesian state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CartesianState {
+    /// Position in the inertial frame [m].
+    pub position_m: Vector3<f64>,
+    /// Inertial velocity [m/s].
+    pub velocity_m_s: Vector3<f64>,
+}
+
+/// Planet-relative spherical state (thesis eq. 3.4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphericalState {
+    /// Distance from the planet centre r [m].
+    pub radius_m: f64,
+    /// Longitude tau [rad], positive east.
+    pub longitude_rad: f64,
+    /// Geocentric latitude delta [rad].
+    pub latitude_rad: f64,
+    /// Planet-relative speed V [m/s].
+    pub speed_m_s: f64,
+    /// Planet-relative flight-path angle gamma [rad].
+    pub flight_path_angle_rad: f64,
+    /// Planet-relative heading chi [rad], clockwise from north.
+    pub heading_rad: f64,
+}
+
+impl SphericalState {
+    /// As an array `[r, tau, delta, V, gamma, chi]`.
+    #[must_use]
+    pub fn to_array(&self) -> [f64; 6] {
+        [
+            self.radius_m,
+            self.longitude_rad,
+            self.latitude_rad,
+            self.speed_m_s,
+            self.flight_path_angle_rad,
+            self.heading_rad,
+        ]
+    }
+
+    /// From an array `[r, tau, delta, V, gamma, chi]`.
+    #[must_use]
+    pub fn from_array(a: &[f64; 6]) -> Self {
+        Self {
+            radius_m: a[0],
+            longitude_rad: a[1],
+            latitude_rad: a[2],
+            speed_m_s: a[3],
+            flight_path_angle_rad: a[4],
+            heading_rad: a[5],
+        }
+    }
+}
+
+fn rot_z(angle: f64, v: &Vector3<f64>) -> Vector3<f64> {
+    let (s, c) = angle.sin_cos();
+    Vector3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+}
+
+/// Local unit vectors (up, east, north) in the planet-fixed frame at longitude `tau`,
+/// latitude `delta`.
+fn local_axes(tau: f64, delta: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let (st, ct) = tau.sin_cos();
+    let (sd, cd) = delta.sin_cos();
+    (
+        Vector3::new(cd * ct, cd * st, sd),
+        Vector3::new(-st, ct, 0.0),
+        Vector3::new(-sd * ct, -sd * st, cd),
+    )
+}
+
+/// Planet-relative spherical state -> inertial Cartesian state at time `t_s` [s].
+#[must_use]
+pub fn spherical_to_cartesian(s: &SphericalState, planet: &Planet, t_s: f64) -> CartesianState {
+    let (up, east, north) = local_axes(s.longitude_rad, s.latitude_rad);
+    let r_r = up * s.radius_m;
+    let (sg, cg) = s.flight_path_angle_rad.sin_cos();
+    let (sc, cc) = s.heading_rad.sin_cos();
+    let v_r = (north * (cg * cc) + east * (cg * sc) + up * sg) * s.speed_m_s;
+    let omega = Vector3::new(0.0, 0.0, planet.rotation_rate_rad_s);
+    let theta = planet.rotation_rate_rad_s * t_s;
+    CartesianState {
+        position_m: rot_z(theta, &r_r),
+        velocity_m_s: rot_z(theta, &(v_r + omega.cross(&r_r))),
+    }
+}
+
+/// Inertial Cartesian state at time `t_s` [s] -> planet-relative spherical state.
+/// Longitude is wrapped to (-pi, pi], heading to [0, 2 pi).
+#[must_use]
+pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> SphericalState {
+    let theta = planet.rotation_rate_rad_s * t_s;
+    let r_r = rot_z(-theta, &c.position_m);
+    let omega = Vector3::new(0.0, 0.0, planet.rotation_rate_rad_s);
+    let v_r = rot_z(-theta, &c.velocity_m_s) - omega.cross(&r_r);
+    let r = r_r.norm();
+    let tau = r_r.y.atan2(r_r.x);
+    let delta = r_r.z.atan2(r_r.x.hypot(r_r.y));
+    let (up, east, north) = local_axes(tau, delta);
+    let (vu, ve, vn) = (v_r.dot(&up), v_r.dot(&east), v_r.dot(&north));
+    let v = v_r.norm();
+    let gamma = vu.atan2(ve.hypot(vn));
+    let mut chi = ve.atan2(vn);
+    if chi < 0.0 {
+        chi += std::f64::consts::TAU;
+    }
+    SphericalState {
+        radius_m: r,
+        longitude_rad: tau,
+        latitude_rad: delta,
+        speed_m_s: v,
+        flight_path_angle_rad: gamma,
+        heading_rad: chi,
+    }
+}
+
+/// Chapman stagnation-point heat flux [W/m^2] (thesis eq. 2.2, n = 0.5, m = 3.15, cold wall).
+#[must_use]
+pub fn chapman_heat_flux_w_m2(density_kg_m3: f64, speed_m_s: f64, nose_radius_m: f64) -> f64 {
+    if density_kg_m3 <= 0.0 {
+        return 0.0;
+    }
+    CHAPMAN_C_STAR / nose_radius_m.sqrt()
+        * (density_kg_m3 / CHAPMAN_RHO0_KG_M3).sqrt()
+        * (speed_m_s / CHAPMAN_VC_M_S).powf(3.15)
+}
+
+/// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlightConditions {
+    /// Altitude above the sphere [m].
+    pub altitude_m: f64,
+    /// Air density [kg/m^3].
+    pub density_kg_m3: f64,
+    /// Air-relative (planet-relative) speed [m/s].
+    pub airspeed_m_s: f64,
+    /// Mach number [-] (airspeed over the local speed of sound; 0 where the model has no
+    /// speed of sound).
+    pub mach: f64,
+    /// Dynamic pressure [Pa].
+    pub dynamic_pressure_pa: f64,
+    /// Lift coefficient [-].
+    pub cl: f64,
+    /// Drag coefficient [-].
+    pub cd: f64,
+    /// Lift [N].
+    pub lift_n: f64,
+    /// Drag [N].
+    pub drag_n: f64,
+    /// Chapman stagnation heat flux [W/m^2].
+    pub heat_flux_w_m2: f64,
+    /// Aerodynamic load factor sqrt(L^2 + D^2) / (m g0) [-] (eq. 2.1).
+    pub g_load: f64,
+}
+
+/// Forces model: planet, atmosphere, gravity and vehicle.
+#[derive(Clone, Copy)]
+pub struct Dynamics<'a> {
+    /// Planet constants (radius, rotation rate).
+    pub planet: Planet,
+    /// Atmosphere model (co-rotating).
+    pub atmosphere: &'a dyn Atmosphere,
+    /// Gravity model.
+    pub gravity: &'a dyn Gravity,
+    /// Vehicle.
+    pub vehicle: &'a Vehicle,
+}
+
+impl std::fmt::Debug for Dynamics<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Dynamics")
+            .field("planet", &self.planet)
+            .field("vehicle", &self.vehicle.name)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Unit lift direction for air-relative velocity direction `vhat` at position direction
+/// `rhat` and bank angle `sigma`: `cos(sigma) e_gamma + sin(sigma) (vhat x e_gamma)`, where
+/// `e_gamma` is the unit vector in the vertical plane perpendicular to `vhat` pointing up.
+/// For vertical flight (undefined vertical plane) `e_gamma` falls back to the direction of
+/// `z x vhat` (or `x x vhat`), a documented arbitrary choice.
+#[must_use]
+pub fn lift_direction(rhat: &Vector3<f64>, vhat: &Vector3<f64>, sigma_rad: f64) -> Vector3<f64> {
+    let mut e_up = rhat - vhat * rhat.dot(vhat);
+    if e_up.norm() < 1e-12 {
+        e_up = Vector3::z().cross(vhat);
+        if e_up.norm() < 1e-12 {
+            e_up = Vector3::x().cross(vhat);
+        }
+    }
+    let e_up = e_up.normalize();
+    let (s, c) = sigma_rad.sin_cos();
+    e_up * c + vhat.cross(&e_up) * s
+}
+
+impl Dynamics<'_> {
+    fn omega(&self) -> Vector3<f64> {
+        Vector3::new(0.0, 0.0, self.planet.rotation_rate_rad_s)
+    }
+
+    /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s`.
+    #[must_use]
+    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Attitude) -> FlightConditions {
+        let atm = self.atmosphere.state(altitude_m);
+        let rho = atm.density_kg_m3.max(0.0);
+        let mach = if atm.speed_of_sound_m_s > 0.0 {
+            v_m_s / atm.speed_of_sound_m_s
+        } else {
+            0.0
+        };
+        let q_dyn = 0.5 * rho * v_m_s * v_m_s;
+        let (cl, cd, lift, drag) = if q_dyn > 0.0 {
+            let c = self.vehicle.aero.coefficients(mach, att.alpha_rad);
+            let qs = q_dyn * self.vehicle.reference_area_m2;
+            (c.cl, c.cd, c.cl * qs, c.cd * qs)
+        } else {
+            (0.0, 0.0, 0.0, 0.0)
+        };
+        FlightConditions {
+            altitude_m,
+            density_kg_m3: rho,
+            airspeed_m_s: v_m_s,
+            mach,
+            dynamic_pressure_pa: q_dyn,
+            cl,
+            cd,
+            lift_n: lift,
+            drag_n: drag,
+            heat_flux_w_m2: chapman_heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
+            g_load: lift.hypot(drag) / (self.vehicle.mass_kg * G0_M_S2),
+        }
+    }
+
+    /// Conditions at an integrated Cartesian state `y` (see [`STATE_LEN`]).
+    #[must_use]
+    pub fn conditions_at(&self, y: &[f64; STATE_LEN], att: Attitude) -> FlightConditions {
+        let r = Vector3::new(y[0], y[1], y[2]);
+        let v = Vector3::new(y[3], y[4], y[5]);
+        let v_rel = v - self.omega().cross(&r);
+        self.conditions(r.norm() - self.planet.radius_m, v_rel.norm(), att)
+    }
+
+    /// Time derivative of the Cartesian state `[r, v, Q, theta]` (inertial frame) under
+    /// attitude `att`. Returns the derivative and the flight conditions used.
+    #[must_use]
+    pub fn cartesian_rhs(
+        &self,
+        y: &[f64; STATE_LEN],
+        att: Attitude,
+    ) -> ([f64; STATE_LEN], FlightConditions) {
+        let r = Vector3::new(y[0], y[1], y[2]);
+        let v = Vector3::new(y[3], y[4], y[5]);
+        let rn = r.norm();
+        let rhat = r / rn;
+        let v_rel = v - self.omega().cross(&r);
+        let vr = v_rel.norm();
+        let fc = self.conditions(rn - self.planet.radius_m, vr, att);
+        let mut a = self.gravity.acceleration(&r);
+        let mut theta_dot = 0.0;
+        if vr > 0.0 {
+            let vhat = v_rel / vr;
+            let m = self.vehicle.mass_kg;
+            if fc.dynamic_pressure_pa > 0.0 {
+                a += lift_direction(&rhat, &vhat, att.sigma_rad) * (fc.lift_n / m)
+                    - vhat * (fc.drag_n / m);
+            }
+            // Horizontal planet-relative speed over r.
+            theta_dot = (v_rel - rhat * v_rel.dot(&rhat)).norm() / rn;
+        }
+        (
+            [v.x, v.y, v.z, a.x, a.y, a.z, fc.heat_flux_w_m2, theta_dot],
+            fc,
+        )
+    }
+
+    /// Time derivative of the planet-relative spherical state `[r, tau, delta, V, gamma, chi]`
+    /// (eq. 3.13 with the ERRATA fixes, gravity split into radial and northward components).
+    #[must_use]
+    pub fn spherical_rhs(&self, s: &[f64; 6], att: Attitude) -> [f64; 6] {
+        let [r, tau, delta, v, gamma, chi] = *s;
+        let w = self.planet.rotation_rate_rad_s;
+        let (up, _east, north) = local_axes(tau, delta);
+        let g = self.gravity.acceleration(&(up * r));
+        let g_r = -g.dot(&up); // positive towards the centre
+        let g_n = g.dot(&north); // positive northwards
+        let fc = self.conditions(r - self.planet.radius_m, v, att);
+        let m = self.vehicle.mass_kg;
+        let (l, d) = (fc.lift_n / m, fc.drag_n / m);
+        let (sg, cg) = gamma.sin_cos();
+        let (sc, cc) = chi.sin_cos();
+        let (sd, cd) = delta.sin_cos();
+        let (ss, cs) = att.sigma_rad.sin_cos();
+        let r_dot = v * sg;
+        let tau_dot = v * cg * sc / (r * cd);
+        let delta_dot = v * cg * cc / r;
+        let v_dot = -d - g_r * sg + g_n * cg * cc + w * w * r * cd * (sg * cd - cg * sd * cc);
+        let gamma_dot = (l * cs - g_r * cg - g_n * sg * cc
+            + 2.0 * w * v * cd * sc
+            + v * v / r * cg
+            + w * w * r * cd * (cd * cg + sg * sd * cc))
+            / v;
+        let chi_dot = (l * ss - g_n * sc
+            + 2.0 * w * v * (sd * cg - cd * sg * cc)
+            + v * v / r * cg * cg * sd / cd * sc
+            + w * w * r * cd * sd * sc)
+            / (v * cg);
+        [r_dot, tau_dot, delta_dot, v_dot, gamma_dot, chi_dot]
+    }
+
+    /// Initial integrated state `[r, v, 0, 0]` from a planet-relative spherical state at
+    /// time `t_s`.
+    #[must_use]
+    pub fn initial_state(&self, s: &SphericalState, t_s: f64) -> [f64; STATE_LEN] {
+        let c = spherical_to_cartesian(s, &self.planet, t_s);
+        [
+            c.position_m.x,
+            c.position_m.y,
+            c.position_m.z,
+            c.velocity_m_s.x,
+            c.velocity_m_s.y,
+            c.velocity_m_s.z,
+            0.0,
+            0.0,
+        ]
+    }
+
+    /// Planet-relative spherical state of an integrated state `y` at time `t_s`.
+    #[must_use]
+    pub fn spherical_of(&self, y: &[f64; STATE_LEN], t_s: f64) -> SphericalState {
+        cartesian_to_spherical(&cartesian_of(y), &self.planet, t_s)
+    }
+}
+
+/// The Cartesian part of an integrated state.
+#[must_use]
+pub fn cartesian_of(y: &[f64; STATE_LEN]) -> CartesianState {
+    CartesianState {
+        position_m: Vector3::new(y[0], y[1], y[2]),
+        velocity_m_s: Vector3::new(y[3], y[4], y[5]),
+    }
+}

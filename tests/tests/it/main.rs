@@ -1,0 +1,3 @@
+//! The workspace-level integration-test binary. Each module is one topic.
+
+mod firmware_golden;
