@@ -15,12 +15,10 @@
 #![deny(missing_docs)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-use core::panic::PanicInfo;
 use cortex_m_rt::{ExceptionFrame, entry, exception};
-use cortex_m_semihosting::{debug, hprintln};
+use cortex_m_semihosting::hprintln;
 
-mod golden;
-mod scenario;
+use onboard_demo::{golden, scenario};
 
 #[cfg(target_abi = "eabihf")]
 type Num = f32;
@@ -92,15 +90,12 @@ fn main() -> ! {
                 "onboard-demo: {} guidance outputs match the host golden values",
                 n
             );
-            debug::exit(debug::EXIT_SUCCESS);
+            onboard_demo::exit(true)
         }
         Err(e) => {
             hprintln!("onboard-demo: FAIL: {}", e);
-            debug::exit(debug::EXIT_FAILURE);
+            onboard_demo::exit(false)
         }
-    }
-    loop {
-        cortex_m::asm::nop();
     }
 }
 
@@ -108,17 +103,5 @@ fn main() -> ! {
 #[allow(unsafe_code)] // cortex-m-rt requires HardFault handlers to be `unsafe fn`.
 unsafe fn HardFault(_frame: &ExceptionFrame) -> ! {
     hprintln!("onboard-demo: HardFault");
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::nop();
-    }
-}
-
-#[panic_handler]
-fn panic(_info: &PanicInfo) -> ! {
-    hprintln!("onboard-demo: panic");
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::nop();
-    }
+    onboard_demo::exit(false)
 }

@@ -2,6 +2,7 @@
 //!
 //! * `cargo xtask test`      every check CI runs (installs what it needs first)
 //! * `cargo xtask firmware`  build the firmware for each target and run it under QEMU
+//! * `cargo xtask bench-firmware`  instruction counts of the core on each target (QEMU -icount)
 //! * `cargo xtask size`      check the firmware's flash/RAM footprint against its budget
 //! * `cargo xtask golden`    regenerate the firmware's golden commands on the host
 //! * `cargo xtask setup`     install rustup targets/components and QEMU
@@ -30,9 +31,10 @@ const FIRMWARE_TARGETS: [(&str, &str); 2] = [
     ),
 ];
 
-const USAGE: &str = "usage: cargo xtask <test|firmware|size|golden|setup> [--help]\n\
+const USAGE: &str = "usage: cargo xtask <test|firmware|bench-firmware|size|golden|setup> [--help]\n\
   test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, size budget\n\
   firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
+  bench-firmware  instruction counts of guidance-core on the M4F and M3 under QEMU -icount\n\
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
   golden    regenerate onboard-demo/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)";
@@ -43,6 +45,7 @@ fn main() -> ExitCode {
         Some("test") => test(),
         Some("firmware") => setup().and_then(|()| firmware()),
         Some("size") => size(),
+        Some("bench-firmware") => setup().and_then(|()| bench_firmware()),
         Some("golden") => golden::write(&root()),
         Some("setup") => setup(),
         Some("--help" | "-h" | "help") => {
@@ -199,6 +202,7 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push(("firmware under QEMU", Box::new(firmware)));
+    steps.push(("firmware instruction counter (calibrated run)", Box::new(bench_firmware)));
     steps.push(("firmware size budget", Box::new(size)));
 
     let total = steps.len();
@@ -236,29 +240,39 @@ fn build_firmware(target: &str) -> Result<PathBuf, String> {
     Ok(firmware_elf(target))
 }
 
+fn qemu(target: &str, elf: &Path, icount: bool) -> Command {
+    let (cpu, board) = if target.starts_with("thumbv7em") {
+        ("cortex-m4", "mps2-an386")
+    } else {
+        ("cortex-m3", "lm3s6965evb")
+    };
+    let mut q = Command::new("timeout");
+    q.args(["120", "qemu-system-arm", "-cpu", cpu, "-machine", board, "-nographic"])
+        .args(["-semihosting-config", "enable=on,target=native"]);
+    if icount {
+        q.args(["-icount", "shift=0"]);
+    }
+    q.arg("-kernel").arg(elf);
+    q
+}
+
 /// Build and run the smoke firmware under QEMU on each machine; it exits 0 only if its
 /// commands match the golden values computed on the host.
 fn firmware() -> Result<(), String> {
     for (target, machine) in FIRMWARE_TARGETS {
         let elf = build_firmware(target)?;
-        let (cpu, board) = if target.starts_with("thumbv7em") {
-            ("cortex-m4", "mps2-an386")
-        } else {
-            ("cortex-m3", "lm3s6965evb")
-        };
-        let mut q = Command::new("timeout");
-        q.args([
-            "120",
-            "qemu-system-arm",
-            "-cpu",
-            cpu,
-            "-machine",
-            board,
-            "-nographic",
-        ])
-        .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
-        .arg(&elf);
-        run(q, &format!("QEMU smoke firmware on {machine}"))?;
+        run(qemu(target, &elf, false), &format!("QEMU smoke firmware on {machine}"))?;
+    }
+    Ok(())
+}
+
+/// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`.
+fn bench_firmware() -> Result<(), String> {
+    for (target, machine) in FIRMWARE_TARGETS {
+        build_firmware(target)?;
+        let elf = firmware_elf(target).with_file_name("insn-bench");
+        eprintln!("xtask: instruction counts on {machine} ({target}):");
+        run(qemu(target, &elf, true), &format!("insn-bench on {machine}"))?;
     }
     Ok(())
 }

@@ -1,0 +1,105 @@
+//! Instruction counts of guidance-core on the target, under QEMU `-icount shift=0`
+//! (run by `cargo xtask bench-firmware`; see `onboard_demo::insn` for the method).
+//!
+//! Prints one line per benchmark: `bench <name>: <instructions> insn/call`. The first line
+//! is the calibration (10 000 `nop`s must count as 10 000 instructions); the binary exits 1 if
+//! the calibration is off, so a wrong QEMU setting cannot produce plausible-looking numbers.
+#![no_std]
+#![no_main]
+
+use cortex_m_rt::{ExceptionFrame, entry, exception};
+use cortex_m_semihosting::hprintln;
+use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
+use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
+use guidance_core::interp::Interpolation;
+use guidance_core::nodes::NodeTable;
+use guidance_core::{NavState, Scalar};
+use onboard_demo::insn::InsnCounter;
+
+#[cfg(target_abi = "eabihf")]
+type Num = f32;
+#[cfg(not(target_abi = "eabihf"))]
+type Num = guidance_core::Fixed;
+
+/// Instructions per SysTick tick: 1 ns per instruction (`-icount shift=0`) over the CPU clock.
+#[cfg(target_abi = "eabihf")]
+const INSN_PER_TICK: u32 = 40; // mps2-an386: 25 MHz
+#[cfg(not(target_abi = "eabihf"))]
+const INSN_PER_TICK: u32 = 80; // lm3s6965evb: SysTick at 12.5 MHz under QEMU (calibrated)
+
+const REPS: u32 = 100;
+
+fn nav(t: f64, speed: f64) -> NavState<Num> {
+    NavState {
+        time_s: Num::from_f64(t),
+        radius_m: Num::from_f64(EARTH_RADIUS_M + 80_000.0),
+        speed_m_s: Num::from_f64(speed),
+        flight_path_angle_rad: Num::ZERO,
+        heading_rad: Num::ZERO,
+        latitude_rad: Num::ZERO,
+        longitude_rad: Num::ZERO,
+    }
+}
+
+fn bench_guidance(c: &mut InsnCounter, name: &str, kind: Interpolation<Num>) -> bool {
+    let Ok(table) = NodeTable::<Num>::horus2b_reference() else { return false };
+    let Ok(energy) = EnergyNormalizer::<Num>::new(EARTH_MU_M3_S2, EARTH_RADIUS_M, EARTH_RADIUS_M + 122_000.0, 7435.5)
+    else {
+        return false;
+    };
+    let initial = Command { alpha_rad: Num::from_f64(0.6981), sigma_rad: Num::ZERO };
+    let Ok(mut g) = Guidance::new(GuidanceConfig::thesis_default(), table, kind, energy, initial) else {
+        return false;
+    };
+    let mut ok = true;
+    // Every call is a tick: times 2 s apart, crossing the bank-angle step of the reference mission.
+    let mut k = 0u32;
+    let ticks = c.ticks(|| {
+        for _ in 0..REPS {
+            let t = 250.0 + 2.0 * f64::from(k);
+            ok &= g.update(&nav(t, 7000.0 - f64::from(k))).is_ok();
+            k += 1;
+        }
+    });
+    // The nav-state construction (f64 -> Num conversions) is measured separately and removed.
+    let mut j = 0u32;
+    let overhead = c.ticks(|| {
+        for _ in 0..REPS {
+            let s = nav(250.0 + 2.0 * f64::from(j), 7000.0 - f64::from(j));
+            core::hint::black_box(s);
+            j += 1;
+        }
+    });
+    let per_call = (ticks.saturating_sub(overhead)) * INSN_PER_TICK / REPS;
+    hprintln!("bench guidance_tick_{}: {} insn/call", name, per_call);
+    ok
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(p) = cortex_m::Peripherals::take() else { onboard_demo::exit(false) };
+    let mut c = InsnCounter::new(p.SYST);
+    let t = c.ticks(|| {
+        #[allow(unsafe_code)]
+        // SAFETY: 10 000 `nop` instructions: no memory, register or flag effects.
+        unsafe {
+            core::arch::asm!(".rept 10000", "nop", ".endr", options(nomem, nostack, preserves_flags));
+        }
+    });
+    let calibrated = t * INSN_PER_TICK;
+    hprintln!("bench calibration_10000_nop: {} insn/call", calibrated);
+    // Resolution is one tick; allow one tick of phase.
+    if calibrated.abs_diff(10_000) > INSN_PER_TICK {
+        onboard_demo::exit(false)
+    }
+    let mut ok = bench_guidance(&mut c, "linear", Interpolation::Linear);
+    ok &= bench_guidance(&mut c, "natural_cubic", Interpolation::NaturalCubic);
+    ok &= bench_guidance(&mut c, "cardinal_hermite", Interpolation::CardinalHermite { tension: Num::from_f64(0.5) });
+    onboard_demo::exit(ok)
+}
+
+#[exception]
+#[allow(unsafe_code)]
+unsafe fn HardFault(_frame: &ExceptionFrame) -> ! {
+    onboard_demo::exit(false)
+}

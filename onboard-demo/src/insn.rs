@@ -1,0 +1,47 @@
+//! Instruction counting under QEMU with `-icount shift=0`.
+//!
+//! With `-icount shift=0` QEMU advances its virtual clock by exactly 1 ns per executed
+//! instruction. SysTick, clocked from the CPU clock (`CLKSOURCE = 1`; 25 MHz on `mps2-an386`,
+//! 12 MHz on `lm3s6965evb`), then decrements once every `1e9 / f_cpu` instructions. A
+//! measurement runs the code `reps` times between two SysTick reads and converts ticks to
+//! instructions with the ratio calibrated against a loop of known length, so the result is the
+//! mean instruction count per call with a resolution of `ns_per_tick / reps` instructions.
+//! (DWT CYCCNT reads 0 under QEMU, hence this method.) On real hardware these numbers are
+//! instruction counts, not cycles: multiply by the core's CPI for time.
+
+use cortex_m::peripheral::SYST;
+use cortex_m::peripheral::syst::SystClkSource;
+
+/// SysTick reload value: the full 24-bit range.
+const RELOAD: u32 = 0x00FF_FFFF;
+
+/// A free-running SysTick used as an instruction counter.
+pub struct InsnCounter {
+    syst: SYST,
+}
+
+impl InsnCounter {
+    /// Take SysTick and start it free-running from the core clock.
+    pub fn new(mut syst: SYST) -> Self {
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(RELOAD);
+        syst.clear_current();
+        syst.enable_counter();
+        Self { syst }
+    }
+
+    /// SysTick ticks elapsed while `f` runs (must be < 2^24 ticks; SysTick counts down).
+    pub fn ticks<F: FnMut()>(&mut self, mut f: F) -> u32 {
+        self.syst.clear_current();
+        let start = SYST::get_current();
+        f();
+        let end = SYST::get_current();
+        // Reading just after clear_current may see RELOAD; the counter counts down.
+        start.wrapping_sub(end) & RELOAD
+    }
+
+    /// Keep the counter alive for the caller's lifetime (returns the peripheral).
+    pub fn free(self) -> SYST {
+        self.syst
+    }
+}
