@@ -52,7 +52,12 @@ pub fn limits() -> VehicleLimits {
 }
 
 /// Parse one CSV number; empty gives `None`.
-fn cell(file: &str, line_no: usize, column: &str, s: &str) -> Result<Option<f64>, VehicleFileError> {
+fn cell(
+    file: &str,
+    line_no: usize,
+    column: &str,
+    s: &str,
+) -> Result<Option<f64>, VehicleFileError> {
     let s = s.trim();
     if s.is_empty() {
         return Ok(None);
@@ -78,7 +83,12 @@ fn data_lines(text: &str) -> impl Iterator<Item = (usize, Vec<&str>)> {
         .map(|(i, l)| (i + 1, l.split(',').collect()))
 }
 
-fn required(file: &str, line: usize, column: &str, v: Option<f64>) -> Result<f64, VehicleFileError> {
+fn required(
+    file: &str,
+    line: usize,
+    column: &str,
+    v: Option<f64>,
+) -> Result<f64, VehicleFileError> {
     v.ok_or_else(|| VehicleFileError::Field {
         file: file.to_string(),
         field: format!("line {line} column `{column}`"),
@@ -101,7 +111,9 @@ fn axis(mut v: Vec<f64>) -> Vec<f64> {
 pub fn aerodynamics(fill: GapFill) -> Result<TableAerodynamics, VehicleFileError> {
     let mut rows = Vec::new();
     for (line, f) in data_lines(CLEAN_AERO_CSV) {
-        let get = |k: usize, name: &str| cell(CLEAN_AERO_FILE, line, name, f.get(k).copied().unwrap_or(""));
+        let get = |k: usize, name: &str| {
+            cell(CLEAN_AERO_FILE, line, name, f.get(k).copied().unwrap_or(""))
+        };
         let mach = required(CLEAN_AERO_FILE, line, "mach", get(0, "mach")?)?;
         let alpha = required(CLEAN_AERO_FILE, line, "alpha_deg", get(1, "alpha_deg")?)?;
         rows.push((mach, alpha, get(2, "cl")?, get(3, "cd")?));

@@ -145,7 +145,11 @@ pub struct PolynomialAerodynamics {
 
 impl Aerodynamics for PolynomialAerodynamics {
     fn coefficients(&self, _mach: f64, alpha_rad: f64) -> AeroCoefficients {
-        let a = clamp_alpha(alpha_rad.to_degrees(), self.alpha_min_deg, self.alpha_max_deg);
+        let a = clamp_alpha(
+            alpha_rad.to_degrees(),
+            self.alpha_min_deg,
+            self.alpha_max_deg,
+        );
         AeroCoefficients {
             cl: poly(&self.cl, a),
             cd: poly(&self.cd, a),
@@ -169,7 +173,11 @@ pub struct PolarAerodynamics {
 
 impl Aerodynamics for PolarAerodynamics {
     fn coefficients(&self, _mach: f64, alpha_rad: f64) -> AeroCoefficients {
-        let a = clamp_alpha(alpha_rad.to_degrees(), self.alpha_min_deg, self.alpha_max_deg);
+        let a = clamp_alpha(
+            alpha_rad.to_degrees(),
+            self.alpha_min_deg,
+            self.alpha_max_deg,
+        );
         let cl = poly(&self.cl, a);
         AeroCoefficients {
             cl,

@@ -233,7 +233,8 @@ fn fill_row_from(row: &mut [Option<f64>], neighbour: &[Option<f64>]) {
     // Upward in alpha: C(i,j) = C(i,j-1) + [C(n,j) - C(n,j-1)].
     for j in 1..row.len() {
         if row[j].is_none()
-            && let (Some(prev), Some(nj), Some(nprev)) = (row[j - 1], neighbour[j], neighbour[j - 1])
+            && let (Some(prev), Some(nj), Some(nprev)) =
+                (row[j - 1], neighbour[j], neighbour[j - 1])
         {
             row[j] = Some(prev + (nj - nprev));
         }
@@ -241,7 +242,8 @@ fn fill_row_from(row: &mut [Option<f64>], neighbour: &[Option<f64>]) {
     // Leading gaps, downward: C(i,j) = C(i,j+1) - [C(n,j+1) - C(n,j)].
     for j in (0..row.len().saturating_sub(1)).rev() {
         if row[j].is_none()
-            && let (Some(next), Some(nj), Some(nnext)) = (row[j + 1], neighbour[j], neighbour[j + 1])
+            && let (Some(next), Some(nj), Some(nnext)) =
+                (row[j + 1], neighbour[j], neighbour[j + 1])
         {
             row[j] = Some(next - (nnext - nj));
         }
@@ -289,12 +291,12 @@ mod tests {
 
     #[test]
     fn rejects_bad_input() {
-        assert!(CoefficientTable::new("cl", vec![2.0, 1.0], vec![0.0], vec![vec![0.0]; 2]).is_err());
+        assert!(
+            CoefficientTable::new("cl", vec![2.0, 1.0], vec![0.0], vec![vec![0.0]; 2]).is_err()
+        );
         assert!(CoefficientTable::new("cl", vec![1.0], vec![0.0, 1.0], vec![vec![0.0]]).is_err());
         assert!(CoefficientTable::new("cl", vec![1.0], vec![0.0], vec![]).is_err());
-        assert!(
-            CoefficientTable::new("cl", vec![1.0], vec![0.0], vec![vec![f64::NAN]]).is_err()
-        );
+        assert!(CoefficientTable::new("cl", vec![1.0], vec![0.0], vec![vec![f64::NAN]]).is_err());
     }
 
     #[test]
@@ -312,8 +314,9 @@ mod tests {
         ];
         let axes = || (vec![1.0, 2.0, 3.0], vec![0.0, 0.1, 0.2]);
         let (m, a) = axes();
-        let inc = CoefficientTable::with_gaps("cl", m, a, cells.clone(), GapFill::NeighbourMachIncrement)
-            .unwrap();
+        let inc =
+            CoefficientTable::with_gaps("cl", m, a, cells.clone(), GapFill::NeighbourMachIncrement)
+                .unwrap();
         // Row 0 from row 1 increments: 2 + (6 - 3) = 5.
         assert_eq!(inc.value(1.0, 0.2), 5.0);
         // Row 2 (highest Mach) from row 1: leading 4 - (3 - 1.5) = 2.5, trailing 4 + 3 = 7.

@@ -11,7 +11,7 @@ use host_sim::env::{
     Atmosphere, CentralGravity, Environment, ExponentialAtmosphere, Gravity, J2Gravity, Planet,
     Us76,
 };
-use host_sim::vehicle::{self, Aerodynamics, VehicleFileError};
+use host_sim::vehicle::{self, VehicleFileError};
 use nalgebra::Vector3;
 
 const LEVELS_CSV: &str = include_str!("../../data/us76/levels.csv");
@@ -48,13 +48,13 @@ fn validate_us76_levels_csv_density_within_0p1_percent() {
         let got = atm.state(z_km * 1000.0).density_kg_m3;
         let e = rel(got, rho);
         worst = worst.max(e);
+        eprintln!("US76 z = {z_km:6} km: rho {got:.6e} vs {rho:.6e}  rel {e:.2e}");
         assert!(
             e < 1e-3,
             "z = {z_km} km: rho {got:e} vs {rho:e} ({:.4}%)",
             100.0 * e
         );
     }
-    // The grid above 86 km and the constants should do much better than the requirement.
     eprintln!("US76 density worst relative error: {:.3e}", worst);
 }
 
@@ -63,15 +63,20 @@ fn validate_us76_levels_csv_pressure_within_0p1_percent() {
     let atm = Us76::new();
     for (z_km, _, p, _) in us76_levels() {
         let got = atm.state(z_km * 1000.0).pressure_pa;
+        eprintln!(
+            "US76 z = {z_km:6} km: p {got:.6e} vs {p:.6e}  rel {:.2e}",
+            rel(got, p)
+        );
         assert!(rel(got, p) < 1e-3, "z = {z_km} km: p {got:e} vs {p:e}");
     }
 }
 
 #[test]
-fn validate_us76_levels_csv_temperature_within_0p01_kelvin_scale() {
+fn validate_us76_levels_csv_temperature_to_table_precision() {
     let atm = Us76::new();
     for (z_km, t, _, _) in us76_levels() {
         let got = atm.state(z_km * 1000.0).temperature_k;
+        eprintln!("US76 z = {z_km:6} km: T {got:.4} vs {t}");
         // The table prints 3-6 significant digits: allow half a unit of its last digit plus
         // 1e-5 relative.
         let tol = if t < 200.0 || z_km >= 86.0 {
@@ -229,7 +234,7 @@ fn validate_horus2b_table_reproduced_at_published_grid_points() {
             published += 1;
         }
     }
-    assert_eq!(published, 70 + 70 - 9 - 4, "published cells");
+    assert_eq!(published, 70 + 70 - 7 - 4, "published cells");
 }
 
 #[test]
@@ -351,6 +356,7 @@ fn validate_thesis_sec_9_2_srm_glide_entry_speed() {
     let k1 = rho_e * s.reference_area_m2 * r_e * cl / (2.0 * s.mass_kg);
     let u_e = 1.0 / (1.0 + k1);
     let v_e = (u_e * env.planet.mu_m3_s2 / r_e).sqrt();
+    eprintln!("SRM glide entry speed at 100 km: {v_e:.2} m/s (thesis 7658.34 m/s)");
     assert!(rel(v_e, 7658.34) < 5e-3, "V_E = {v_e}");
 }
 
@@ -434,6 +440,7 @@ fn toml_vehicle_malformed_toml_names_file_and_location() {
     let e = vehicle::from_toml_str(&bad, "vehicle.toml")
         .unwrap_err()
         .to_string();
+    eprintln!("{e}");
     assert!(e.starts_with("vehicle.toml: invalid TOML"), "{e}");
     assert!(e.contains("g_load = = 4.0") || e.contains("line 11"), "{e}");
 }
@@ -464,7 +471,7 @@ fn toml_vehicle_wrong_type_and_bad_table_name_field_and_value() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.starts_with("v.toml: field `aero.mach` = [10, 2]: "),
+        e.starts_with("v.toml: field `aero.mach` = [10.0, 2.0]: "),
         "{e}"
     );
     let bad = VALID_TOML.replace("kind = \"table\"", "kind = \"magic\"");
@@ -491,4 +498,13 @@ fn toml_vehicle_file_on_disk_and_missing_file() {
         .to_string();
     assert!(e.contains("nope.toml") && e.contains("cannot read"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn toml_vehicle_shipped_example_parses() {
+    let text = include_str!("../../data/vehicles/example-glider.toml");
+    let v = vehicle::from_toml_str(text, "data/vehicles/example-glider.toml").unwrap();
+    assert_eq!(v.name, "example-glider");
+    let c = v.aero.coefficients(10.0, 20.0_f64.to_radians());
+    assert_eq!((c.cl, c.cd), (0.35, 0.18));
 }

@@ -89,6 +89,46 @@ impl ExponentialAtmosphere {
         }
     }
 
+    /// The exponential atmosphere through two (altitude, density) points: H_s =
+    /// (h2 - h1) / ln(rho1/rho2), reference altitude h1, rho_0 = rho1. Useful to match another
+    /// model (e.g. US76) over the altitude band an analytical solution covers.
+    ///
+    /// # Errors
+    /// If a density is not finite and positive, or the points do not give a finite positive
+    /// scale height (density must decrease with altitude).
+    pub fn through_points(
+        (h1_m, rho1_kg_m3): (f64, f64),
+        (h2_m, rho2_kg_m3): (f64, f64),
+    ) -> Result<Self, ExponentialAtmosphereError> {
+        for (parameter, value) in [("rho1_kg_m3", rho1_kg_m3), ("rho2_kg_m3", rho2_kg_m3)] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ExponentialAtmosphereError {
+                    parameter,
+                    value,
+                    reason: "must be finite and positive",
+                });
+            }
+        }
+        let scale_height_m = (h2_m - h1_m) / (rho1_kg_m3 / rho2_kg_m3).ln();
+        Self::new(rho1_kg_m3, scale_height_m, h1_m)
+    }
+
+    /// The exponential atmosphere matching `atmosphere`'s density at `h1_m` and `h2_m` [m]
+    /// (see [`ExponentialAtmosphere::through_points`]).
+    ///
+    /// # Errors
+    /// As [`ExponentialAtmosphere::through_points`].
+    pub fn fitted_to(
+        atmosphere: &dyn Atmosphere,
+        h1_m: f64,
+        h2_m: f64,
+    ) -> Result<Self, ExponentialAtmosphereError> {
+        Self::through_points(
+            (h1_m, atmosphere.density_kg_m3(h1_m)),
+            (h2_m, atmosphere.density_kg_m3(h2_m)),
+        )
+    }
+
     /// Density at the reference altitude [kg/m^3].
     #[must_use]
     pub fn rho0_kg_m3(&self) -> f64 {
@@ -180,6 +220,22 @@ mod tests {
         assert!(e.to_string().contains("`scale_height_m` = -7"), "{e}");
         assert!(ExponentialAtmosphere::new(f64::NAN, 7.0, 0.0).is_err());
         assert!(ExponentialAtmosphere::new(1.2, 7.0, f64::INFINITY).is_err());
+    }
+
+    #[test]
+    fn through_points_and_fit_to_us76() {
+        let a =
+            ExponentialAtmosphere::through_points((0.0, 1.0), (7_000.0, (-1.0f64).exp())).unwrap();
+        assert!((a.scale_height_m() - 7_000.0).abs() < 1e-9);
+        let us76 = super::super::Us76::new();
+        let fit = ExponentialAtmosphere::fitted_to(&us76, 60_000.0, 80_000.0).unwrap();
+        for h in [60_000.0, 80_000.0] {
+            let r = fit.density_kg_m3(h) / us76.density_kg_m3(h);
+            assert!((r - 1.0).abs() < 1e-12, "{h}");
+        }
+        // Density increasing with altitude gives a negative scale height: rejected.
+        assert!(ExponentialAtmosphere::through_points((0.0, 1.0), (1.0, 2.0)).is_err());
+        assert!(ExponentialAtmosphere::through_points((0.0, 0.0), (1.0, 2.0)).is_err());
     }
 
     #[test]
