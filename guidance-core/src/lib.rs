@@ -23,6 +23,8 @@
     clippy::panic,
     clippy::indexing_slicing
 )]
+// `!(x > 0.0)` is the NaN-rejecting form of `x <= 0.0`: flight code relies on it on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod clock;
 pub mod energy;

@@ -23,17 +23,11 @@
 
 use nalgebra::Vector3;
 
-use crate::env::{Atmosphere, Gravity, Planet};
+use crate::env::{Atmosphere, Environment, Gravity, Planet};
 use crate::vehicle::Vehicle;
 
-/// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1).
-pub const G0_M_S2: f64 = 9.806_65;
-/// Sea-level density rho_0 of Chapman's relation [kg/m^3] (eq. 2.2).
-pub const CHAPMAN_RHO0_KG_M3: f64 = 1.225;
-/// Chapman's reference circular speed V_c [m/s] (eq. 2.2).
-pub const CHAPMAN_VC_M_S: f64 = 7905.4;
-/// Chapman's constant c* [W/m^2 * m^0.5] (eq. 2.2).
-pub const CHAPMAN_C_STAR: f64 = 1.1097e8;
+/// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1); `guidance-core`'s value.
+pub const G0_M_S2: f64 = guidance_core::monitor::G0_M_S2;
 
 /// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
 pub const STATE_LEN: usize = 8;
@@ -163,15 +157,11 @@ pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> 
     }
 }
 
-/// Chapman stagnation-point heat flux [W/m^2] (thesis eq. 2.2, n = 0.5, m = 3.15, cold wall).
+/// Chapman stagnation-point heat flux [W/m^2] (thesis eq. 2.2, n = 0.5, m = 3.15, cold
+/// wall): `guidance-core`'s monitor function (0 for zero density or invalid input).
 #[must_use]
 pub fn chapman_heat_flux_w_m2(density_kg_m3: f64, speed_m_s: f64, nose_radius_m: f64) -> f64 {
-    if density_kg_m3 <= 0.0 {
-        return 0.0;
-    }
-    CHAPMAN_C_STAR / nose_radius_m.sqrt()
-        * (density_kg_m3 / CHAPMAN_RHO0_KG_M3).sqrt()
-        * (speed_m_s / CHAPMAN_VC_M_S).powf(3.15)
+    guidance_core::monitor::chapman_heat_flux_w_m2(density_kg_m3, speed_m_s, nose_radius_m)
 }
 
 /// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
@@ -243,7 +233,18 @@ pub fn lift_direction(rhat: &Vector3<f64>, vhat: &Vector3<f64>, sigma_rad: f64) 
     e_up * c + vhat.cross(&e_up) * s
 }
 
-impl Dynamics<'_> {
+impl<'a> Dynamics<'a> {
+    /// Dynamics from an environment bundle and a vehicle.
+    #[must_use]
+    pub fn from_environment(env: &'a Environment, vehicle: &'a Vehicle) -> Self {
+        Self {
+            planet: env.planet,
+            atmosphere: env.atmosphere.as_ref(),
+            gravity: env.gravity.as_ref(),
+            vehicle,
+        }
+    }
+
     fn omega(&self) -> Vector3<f64> {
         Vector3::new(0.0, 0.0, self.planet.rotation_rate_rad_s)
     }
@@ -277,7 +278,7 @@ impl Dynamics<'_> {
             lift_n: lift,
             drag_n: drag,
             heat_flux_w_m2: chapman_heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
-            g_load: lift.hypot(drag) / (self.vehicle.mass_kg * G0_M_S2),
+            g_load: guidance_core::monitor::g_load(lift, drag, self.vehicle.mass_kg),
         }
     }
 

@@ -10,8 +10,12 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod analytic;
+pub mod cli;
+pub mod compare;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;
+pub mod report;
 pub mod sim;
 pub mod vehicle;

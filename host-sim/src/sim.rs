@@ -16,6 +16,8 @@
 
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::guidance::{Command, Guidance};
+use guidance_core::monitor::GLoadRateMonitor;
 use serde::Serialize;
 
 use crate::dynamics::{Attitude, Dynamics, FlightConditions, STATE_LEN, SphericalState};
@@ -32,6 +34,14 @@ pub trait AttitudeSource {
     fn attitude_at(&self, time_s: f64) -> Attitude;
     /// Time of the next tick [s]; `f64::INFINITY` for none.
     fn next_tick_s(&self) -> f64;
+    /// The next time after `time_s` at which [`AttitudeSource::attitude_at`] has a kink (a
+    /// rate-limited ramp reaching the held command) [s]; `f64::INFINITY` for none. The loop
+    /// makes these breakpoints, so no integration step straddles a kink (which would cost
+    /// rejected steps and accuracy).
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        let _ = time_s;
+        f64::INFINITY
+    }
 }
 
 /// Constant attitude, never ticks (open loop).
@@ -47,6 +57,53 @@ impl AttitudeSource for FixedAttitude {
     }
     fn next_tick_s(&self) -> f64 {
         f64::INFINITY
+    }
+}
+
+/// `guidance-core`'s flight [`Guidance`] as the attitude source of the closed loop: called
+/// at every tick with the navigation state; the attitude between ticks is its rate-limited
+/// ramp ([`Guidance::attitude_at`]).
+#[derive(Clone, Debug)]
+pub struct CoreGuidance(pub Guidance<f64>);
+
+fn attitude_of(c: Command<f64>) -> Attitude {
+    Attitude {
+        alpha_rad: c.alpha_rad,
+        sigma_rad: c.sigma_rad,
+    }
+}
+
+impl AttitudeSource for CoreGuidance {
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
+        let out = self.0.update(nav).map_err(|e| e.to_string())?;
+        if out.ticked {
+            Ok(())
+        } else {
+            Err(format!(
+                "guidance did not tick at t = {} s (next tick {} s)",
+                nav.time_s,
+                self.0.next_tick_s()
+            ))
+        }
+    }
+    fn attitude_at(&self, time_s: f64) -> Attitude {
+        attitude_of(self.0.attitude_at(time_s))
+    }
+    fn next_tick_s(&self) -> f64 {
+        self.0.next_tick_s()
+    }
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        let Some(t_k) = self.0.last_tick_s() else {
+            return f64::INFINITY;
+        };
+        let rates = self.0.config().rates;
+        ramp_kink(
+            time_s,
+            t_k,
+            attitude_of(self.0.attitude_at(t_k)),
+            attitude_of(self.0.command()),
+            (rates.alpha_rad_s, rates.sigma_rad_s),
+        )
     }
 }
 
@@ -209,6 +266,37 @@ impl AttitudeSource for HostSchedule {
         // t0 = 0: tick k at k * period exactly.
         self.ticks as f64 * self.period_s
     }
+
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        ramp_kink(
+            time_s,
+            self.tick_time,
+            self.at_tick,
+            self.command,
+            (self.alpha_rate, self.sigma_rate),
+        )
+    }
+}
+
+/// Next ramp end after `time_s` for ramps that started at `tick_time` from `at_tick`
+/// towards `command` at `rates` [rad/s]; `f64::INFINITY` if none.
+#[must_use]
+pub fn ramp_kink(
+    time_s: f64,
+    tick_time: f64,
+    at_tick: Attitude,
+    command: Attitude,
+    rates: (f64, f64),
+) -> f64 {
+    let ta = tick_time + (command.alpha_rad - at_tick.alpha_rad).abs() / rates.0;
+    let ts = tick_time + (command.sigma_rad - at_tick.sigma_rad).abs() / rates.1;
+    let mut best = f64::INFINITY;
+    for k in [ta, ts] {
+        if k > time_s && k.is_finite() {
+            best = best.min(k);
+        }
+    }
+    best
 }
 
 /// Termination conditions (each optional except the time limit).
@@ -389,7 +477,9 @@ pub struct Summary {
     pub peak_heat_flux_w_m2: Peak,
     /// Peak g-load [-].
     pub peak_g_load: Peak,
-    /// Peak |g-load rate| [1/s].
+    /// Peak |g-load rate| [1/s]: finite differences (core `GLoadRateMonitor`) of the g-load
+    /// at accepted steps at least [`SimConfig::g_rate_window_s`] apart. Steps end on every
+    /// tick and ramp end, so the short attitude ramps after each tick are resolved.
     pub peak_g_load_rate_per_s: Peak,
     /// Atmosphere exits (rising through the interface).
     pub exits: u32,
@@ -420,10 +510,10 @@ pub struct Violations {
     pub g_load_rate: f64,
 }
 
-/// Eq. 4.9-4.11: 0 if `peak <= limit`, else `peak / limit`.
+/// Eq. 4.9-4.11: 0 if `peak <= limit`, else `peak / limit` (`guidance-core`'s monitor).
 #[must_use]
 pub fn violation(peak: f64, limit: f64) -> f64 {
-    if peak <= limit { 0.0 } else { peak / limit }
+    guidance_core::monitor::violation(peak, limit)
 }
 
 /// Result of a run.
@@ -452,7 +542,8 @@ struct Loop<'a, A> {
     peak_q: Peak,
     peak_g: Peak,
     peak_gdot: Peak,
-    g_ref: Option<(f64, f64)>,
+    g_rate: GLoadRateMonitor<f64>,
+    g_rate_last_s: Option<f64>,
 }
 
 impl<A: AttitudeSource> Loop<'_, A> {
@@ -460,14 +551,15 @@ impl<A: AttitudeSource> Loop<'_, A> {
         let fc = self.dynm.conditions_at(y, self.source.attitude_at(t));
         self.peak_q.update(fc.heat_flux_w_m2, t);
         self.peak_g.update(fc.g_load, t);
-        match self.g_ref {
-            None => self.g_ref = Some((t, fc.g_load)),
-            Some((t0, g0)) => {
-                if t - t0 >= self.g_rate_window_s {
-                    self.peak_gdot.update((fc.g_load - g0).abs() / (t - t0), t);
-                    self.g_ref = Some((t, fc.g_load));
-                }
+        // g-load rate from successive samples at least one window apart (core monitor).
+        if self
+            .g_rate_last_s
+            .is_none_or(|t0| t - t0 >= self.g_rate_window_s)
+        {
+            if let Ok(Some(rate)) = self.g_rate.update(t, fc.g_load) {
+                self.peak_gdot.update(rate.abs(), t);
             }
+            self.g_rate_last_s = Some(t);
         }
     }
 
@@ -697,7 +789,8 @@ pub fn simulate<A: AttitudeSource>(
         peak_q: Peak::default(),
         peak_g: Peak::default(),
         peak_gdot: Peak::default(),
-        g_ref: None,
+        g_rate: GLoadRateMonitor::new(),
+        g_rate_last_s: None,
     };
     let mut integ = Rkf45::new(cfg.tolerances, state_atol(cfg.tolerances.rtol));
     let mut t = 0.0_f64;
@@ -737,7 +830,11 @@ pub fn simulate<A: AttitudeSource>(
             f64::INFINITY
         };
         let t_out = next_out(out_k);
-        let t_break = t_tick.min(t_out).min(cfg.termination.max_time_s);
+        let t_kink = lp.source.next_kink_s(t);
+        let t_break = t_tick
+            .min(t_out)
+            .min(t_kink)
+            .min(cfg.termination.max_time_s);
         let hit = integ.advance_to(&mut lp, &mut t, &mut y, t_break)?;
         if let Some(hit) = hit {
             match hit.index {
@@ -820,4 +917,88 @@ pub fn great_circle(a: &SphericalState, b: &SphericalState) -> f64 {
     let x = sa * sb + ca * cb * dl.cos();
     let yv = ((cb * dl.sin()).powi(2) + (ca * sb - sa * cb * dl.cos()).powi(2)).sqrt();
     yv.atan2(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(lat_deg: f64, lon_deg: f64) -> SphericalState {
+        SphericalState {
+            radius_m: 1.0,
+            longitude_rad: lon_deg.to_radians(),
+            latitude_rad: lat_deg.to_radians(),
+            speed_m_s: 0.0,
+            flight_path_angle_rad: 0.0,
+            heading_rad: 0.0,
+        }
+    }
+
+    #[test]
+    fn great_circle_angles() {
+        let d = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert!(d(
+            great_circle(&at(0.0, 0.0), &at(0.0, 90.0)),
+            std::f64::consts::FRAC_PI_2
+        ));
+        assert!(d(
+            great_circle(&at(0.0, 0.0), &at(90.0, 0.0)),
+            std::f64::consts::FRAC_PI_2
+        ));
+        assert!(d(great_circle(&at(10.0, 20.0), &at(10.0, 20.0)), 0.0));
+        assert!(d(
+            great_circle(&at(0.0, -170.0), &at(0.0, 170.0)),
+            20f64.to_radians()
+        ));
+        assert!(d(
+            great_circle(&at(0.0, 0.0), &at(0.0, 180.0)),
+            std::f64::consts::PI
+        ));
+    }
+
+    #[test]
+    fn ramp_kinks() {
+        let a = |x: f64, y: f64| Attitude {
+            alpha_rad: x,
+            sigma_rad: y,
+        };
+        // alpha needs 0.1/0.5 = 0.2 s, sigma 0.3/1.0 = 0.3 s from the tick at t = 10.
+        let k = ramp_kink(10.0, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0));
+        assert!((k - 10.2).abs() < 1e-12);
+        let k = ramp_kink(10.25, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0));
+        assert!((k - 10.3).abs() < 1e-12);
+        assert!(ramp_kink(10.5, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0)).is_infinite());
+    }
+
+    #[test]
+    fn config_validation_names_fields() {
+        let mut c = SimConfig::new(at(0.0, 0.0));
+        c.entry.radius_m = 7e6;
+        c.entry.speed_m_s = 7000.0;
+        assert!(validate_config(&c, 6.4e6).is_ok());
+        let mut bad = c;
+        bad.entry.speed_m_s = f64::NAN;
+        assert!(
+            validate_config(&bad, 6.4e6)
+                .unwrap_err()
+                .to_string()
+                .contains("entry.speed_m_s")
+        );
+        let mut bad = c;
+        bad.termination.max_time_s = -1.0;
+        assert!(
+            validate_config(&bad, 6.4e6)
+                .unwrap_err()
+                .to_string()
+                .contains("max_time_s")
+        );
+        let mut bad = c;
+        bad.tolerances.rtol = 0.0;
+        assert!(
+            validate_config(&bad, 6.4e6)
+                .unwrap_err()
+                .to_string()
+                .contains("rtol")
+        );
+    }
 }

@@ -47,6 +47,9 @@ pub enum VinhError {
     /// The second-order `phi^2` (eq. 3.50) is negative by more than the consistency tolerance at
     /// a point of the skip: the point would be beyond the deepest point (complex `phi`).
     BeyondDeepestPoint,
+    /// Skip: the second-order `phi^2` is negative where `x(tau)` returns to 0, so the vehicle does
+    /// not climb back to the reference radius (captured; a glide follows).
+    NoAtmosphericExit,
     /// A requested range angle or depth lies outside the skip (`tau` outside `[0, tau_exit]`,
     /// `x` outside `[0, x1]`).
     OutsideSkip,
@@ -65,10 +68,14 @@ pub enum VinhError {
     NotAscending,
     /// Ballistic arc: the conic is not elliptic (`e >= 1`); the vehicle escapes.
     EscapeTrajectory,
-    /// Ballistic arc: the conic does not reach the requested re-entry radius (apoapsis below it).
+    /// Ballistic arc: the conic does not reach the requested re-entry radius (apoapsis below it or
+    /// periapsis above it).
     NoReentry,
     /// A requested time is outside the ballistic arc.
     OutsideArc,
+    /// Predictor or re-planner configuration out of range (non-positive final speed, too many
+    /// phases or iterations, inconsistent limits).
+    InvalidConfig,
     /// Predictor: the phase budget was used up before the final glide.
     PhaseLimit,
     /// A bounded iteration ended without meeting its tolerance.
@@ -94,6 +101,7 @@ impl core::fmt::Display for VinhError {
             VinhError::NoDeepestPoint => "no real deepest point above the surface",
             VinhError::NotOscillatory => "quadratic fit of phi^2 is not oscillatory",
             VinhError::BeyondDeepestPoint => "point beyond the deepest point (complex phi)",
+            VinhError::NoAtmosphericExit => "skip does not return to the reference radius",
             VinhError::OutsideSkip => "point outside the skip",
             VinhError::SpeedExpansionInvalid => "exp(eta v) expansion out of its valid range",
             VinhError::GlideNearCircular => "glide entry too close to circular speed",
@@ -103,6 +111,7 @@ impl core::fmt::Display for VinhError {
             VinhError::EscapeTrajectory => "ballistic arc is not elliptic",
             VinhError::NoReentry => "ballistic arc does not reach the re-entry radius",
             VinhError::OutsideArc => "time outside the ballistic arc",
+            VinhError::InvalidConfig => "invalid predictor configuration",
             VinhError::PhaseLimit => "predictor phase budget used up",
             VinhError::NoConvergence => "bounded iteration did not converge",
             VinhError::NonFiniteResult => "non-finite result",

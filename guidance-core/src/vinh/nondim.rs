@@ -44,10 +44,13 @@ pub const CHAPMAN_VC_M_S: f64 = 7905.4;
 pub const CHAPMAN_SPEED_EXPONENT: f64 = 3.15;
 /// Standard gravity used to express g-loads, eq. 2.1 [m/s^2].
 pub const G0_M_S2: f64 = 9.806_65;
-/// Highest accepted reference speed [m/s]. Thesis sec. 8.2.1 reports complex numbers for entry
-/// speeds above 11000 m/s; above it the skip's speed loss drives `eta v` far outside the range of
-/// the expansion `exp(eta v) ~ 1 + eta v` and the exit state approaches escape.
-pub const MAX_ENTRY_SPEED_M_S: f64 = 20_000.0;
+/// Highest accepted reference speed [m/s]: the top of the validated range (docs/VINH.md).
+/// Thesis sec. 8.2.1 reports complex numbers for entry speeds above 11000 m/s. With the ERRATA
+/// corrections the skip closed form stays real and accurate up to this limit (measured); what
+/// does fail above about 11 km/s is the ballistic arc: the local escape speed at 122 km is
+/// 11.07 km/s, and an exit above it makes the conic hyperbolic, reported as
+/// [`VinhError::EscapeTrajectory`] by [`crate::vinh::ballistic`].
+pub const MAX_ENTRY_SPEED_M_S: f64 = 14_000.0;
 
 /// Central-gravity, spherical, non-rotating planet.
 #[derive(Clone, Copy, Debug, PartialEq)]

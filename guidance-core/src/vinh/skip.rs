@@ -13,13 +13,14 @@
 //!   "iterating on the estimated deepest value"), a bounded number of times.
 //! * `a1, a2, a3` (eq. 3.45-3.47, written with `(e^x - 1 - x)/x^2` to avoid cancellation) at
 //!   `x1`; `x(tau) = -a2/(2 a1) - sqrt(a2^2 - 4 a1 a3)/(2 a1) sin(sqrt(-a1) tau - beta)`,
-//!   `sin(beta) = a2 / sqrt(a2^2 - 4 a1 a3)` (eq. 3.43/3.44 as corrected in ERRATA); the
-//!   approximate `phi_a = dx/dtau` is the derivative of that sinusoid.
+//!   `sin(beta) = a2 / sqrt(a2^2 - 4 a1 a3)` (eq. 3.43/3.44 as corrected in ERRATA), evaluated in
+//!   an identical form about the deepest point that stays accurate in `f32` when `a1 -> 0`
+//!   (shallow skips); the approximate `phi_a = dx/dtau` is the derivative of that sinusoid.
 //! * `I1, I2` (eq. 3.52/3.53), `I` (3.51), `J` (3.55), `phi` from eq. 3.50 with its sign per
 //!   leg (ERRATA: `phi > 0` descending, `phi < 0` ascending), `v` (3.54).
 //! * Drag, lift, g-load and Chapman heat flux (eq. 3.56-3.58), radius, speed and flight-path
 //!   angle (eq. 3.59-3.61), and the exit where `x(tau)` returns to 0 at
-//!   `tau_exit = (pi + 2 beta)/sqrt(-a1)`.
+//!   `tau_exit = (pi + 2 beta)/sqrt(-a1)`, twice the range angle of the deepest point.
 //!
 //! # Domain of validity (each limit is a [`VinhError`], checked before it could bite)
 //! * Reference state descending (`gamma_E < 0`): [`VinhError::NotDescending`].
@@ -45,28 +46,21 @@ use super::num::{expm1mx_over_x2, finite, first_root, k, maximize};
 use crate::scalar::Real;
 
 /// Largest accepted `|eta v|` along the skip: the speed-ratio range `V/V_E` in
-/// `[exp(-0.5), exp(0.5)] = [0.61, 1.65]` over which `exp(eta v) ~ 1 + eta v` (error
-/// `(eta v)^2/2 <= 12.5 %` of the gravity term) is used.
-pub const MAX_ETA_V: f64 = 1.0;
+/// `[exp(-0.35), exp(0.35)] = [0.70, 1.42]` over which `exp(eta v) ~ 1 + eta v` (error
+/// `(eta v)^2/2 <= 25 %` of the gravity term) is used; the measured exit errors grow with
+/// `eta v` (docs/VINH.md).
+pub const MAX_ETA_V: f64 = 0.7;
 
 /// Relative tolerance (times `c^2`) for a negative second-order `phi^2` near the deepest point.
 pub const PHI2_TOLERANCE: f64 = 0.05;
 
-/// Options of the skip solution.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Options of the skip solution (default: the thesis' single pass).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SkipOptions {
     /// Number of extra passes re-fitting the quadratic at the new second-order `x1` and
     /// re-solving eq. 3.50 (0 = the thesis' single pass with Vinh's freeze). At most 8 are used.
     pub deepest_point_refinements: u8,
-}
-
-impl Default for SkipOptions {
-    fn default() -> Self {
-        Self {
-            deepest_point_refinements: 0,
-        }
-    }
 }
 
 /// Which leg of the skip a depth belongs to.
@@ -134,6 +128,13 @@ impl<S: Real> SkipPoint<S> {
 }
 
 /// Quadratic fit `phi_a^2 = a1 x^2 + a2 x + a3` and its sinusoidal `x(tau)`.
+///
+/// Evaluated in a form that stays well conditioned when `a1 -> 0-` (shallow skips, where
+/// `phi^2` is nearly linear in `x` and the centre `-a2/(2 a1)` and amplitude of eq. 3.43 grow
+/// without bound): with `omega = sqrt(-a1)`, `sd = sqrt(a2^2 - 4 a1 a3)`,
+/// `tau_b = atan2(2 omega c, -a2) / omega` (= `(beta + pi/2)/omega`, eq. 3.44) and
+/// `Delta = tau - tau_b`, eq. 3.43 is identically
+/// `x = x1 - sd (sin(omega Delta / 2) / omega)^2`, `phi_a = dx/dtau = -sd sin(omega Delta)/(2 omega)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 struct Quad<S> {
@@ -142,19 +143,18 @@ struct Quad<S> {
     a3: S,
     x1: S,
     omega: S,
-    beta: S,
-    center: S,
-    amp: S,
+    sd: S,
     tau_bottom: S,
     tau_exit: S,
 }
 
 impl<S: Real> Quad<S> {
-    /// Eq. 3.45-3.47 at deepest point `x1 > 0`.
-    fn new(c2: S, k1: S, oma: S, x1: S) -> Result<Self, VinhError> {
+    /// Eq. 3.45-3.47 at deepest point `x1 > 0`, `c > 0`.
+    fn new(c: S, k1: S, oma: S, x1: S) -> Result<Self, VinhError> {
         if !(x1 > S::ZERO) {
             return Err(VinhError::NoDeepestPoint);
         }
+        let c2 = c * c;
         let three: S = k(3.0);
         let g = expm1mx_over_x2(x1);
         let a1 = three / x1 * (k::<S>(2.0) * oma - c2 / x1 + k::<S>(4.0) * k1 * g);
@@ -171,48 +171,47 @@ impl<S: Real> Quad<S> {
         }
         let sd = disc.sqrt_raw();
         let omega = (-a1).sqrt_raw();
-        let sin_beta = (a2 / sd).clamp(-S::ONE, S::ONE);
-        let beta = sin_beta.asin();
-        let center = -a2 / (k::<S>(2.0) * a1);
-        let amp = sd / (k::<S>(-2.0) * a1);
-        let tau_bottom = (beta + S::PI.half()) / omega;
-        let tau_exit = (S::PI + beta + beta) / omega;
-        let q = Self {
+        if !(omega > S::ZERO) {
+            return Err(VinhError::NotOscillatory);
+        }
+        // Positive root of the quadratic without cancellation.
+        let x1q = if a2 < S::ZERO {
+            k::<S>(2.0) * a3 / (sd - a2)
+        } else {
+            (a2 + sd) / (k::<S>(-2.0) * a1)
+        };
+        let tau_bottom = (k::<S>(2.0) * omega * c).atan2(-a2) / omega;
+        Ok(Self {
             a1,
             a2,
             a3,
-            x1: center + amp,
+            x1: finite(x1q)?,
             omega,
-            beta,
-            center,
-            amp,
+            sd,
             tau_bottom: finite(tau_bottom)?,
-            tau_exit: finite(tau_exit)?,
-        };
-        finite(q.x1)?;
-        Ok(q)
+            tau_exit: finite(tau_bottom + tau_bottom)?,
+        })
     }
 
     fn x(&self, tau: S) -> S {
-        self.center + self.amp * (self.omega * tau - self.beta).sin()
+        let h = (self.omega * (tau - self.tau_bottom)).half().sin() / self.omega;
+        self.x1 - self.sd * h * h
     }
 
     fn phi_a(&self, tau: S) -> S {
-        self.amp * self.omega * (self.omega * tau - self.beta).cos()
+        -self.sd * (self.omega * (tau - self.tau_bottom)).sin() / (k::<S>(2.0) * self.omega)
     }
 
     /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
     fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
-        let sn = ((x - self.center) / self.amp).clamp(-S::ONE, S::ONE);
-        let arg = sn.asin();
-        let cs = (S::ONE - sn * sn).sqrt();
-        match leg {
-            Leg::Descending => ((arg + self.beta) / self.omega, self.amp * self.omega * cs),
-            Leg::Ascending => (
-                (S::PI - arg + self.beta) / self.omega,
-                -self.amp * self.omega * cs,
-            ),
-        }
+        let depth = (self.x1 - x).max(S::ZERO);
+        let arg = (self.omega * (depth / self.sd).sqrt()).min(S::ONE);
+        let half = k::<S>(2.0) / self.omega * arg.asin();
+        let tau = match leg {
+            Leg::Descending => (self.tau_bottom - half).max(S::ZERO),
+            Leg::Ascending => (self.tau_bottom + half).min(self.tau_exit),
+        };
+        (tau, self.phi_a(tau))
     }
 }
 
@@ -251,7 +250,7 @@ impl<S: Real> SkipSolution<S> {
     /// # Errors
     /// [`VinhError::NotDescending`], [`VinhError::VerticalLiftTooSmall`],
     /// [`VinhError::NoDeepestPoint`], [`VinhError::NotOscillatory`],
-    /// [`VinhError::BeyondDeepestPoint`] (exit inconsistent), [`VinhError::SpeedExpansionInvalid`],
+    /// [`VinhError::NoAtmosphericExit`] (`phi^2 < 0` where `x` returns to 0: captured), [`VinhError::SpeedExpansionInvalid`],
     /// [`VinhError::FlightPathAngleOutOfDomain`], [`VinhError::NonFiniteResult`].
     pub fn with_options(nd: &NonDim<S>, options: SkipOptions) -> Result<Self, VinhError> {
         let c = nd.c;
@@ -269,7 +268,7 @@ impl<S: Real> SkipSolution<S> {
             finite(c2 - two * c.k1 * (x.exp() - S::ONE) - two * oma * x)
         };
         let x1_first = first_root(f1, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?;
-        let mut q = Quad::new(c2, c.k1, oma, x1_first)?;
+        let mut q = Quad::new(c.c, c.k1, oma, x1_first)?;
         let mut remedy_used = false;
         let passes = 1 + options.deepest_point_refinements.min(8);
         let mut pass = 0;
@@ -291,8 +290,10 @@ impl<S: Real> SkipSolution<S> {
                 )
             };
             let x1 = first_root(f2, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?;
-            remedy_used |= froze && x1 > q_fit.x1;
-            q = Quad::new(c2, c.k1, oma, x1)?;
+            if pass == 0 {
+                remedy_used = froze && x1 > q_fit.x1;
+            }
+            q = Quad::new(c.c, c.k1, oma, x1)?;
             pass += 1;
         }
         let mut sol = Self {
@@ -315,7 +316,12 @@ impl<S: Real> SkipSolution<S> {
                 g_load: S::ZERO,
             },
         };
-        sol.exit = sol.point_at_tau(q.tau_exit)?;
+        // A negative phi^2 at the return to x = 0 means the vehicle cannot climb back to the
+        // reference radius: no exit (captured).
+        sol.exit = sol.point_at_tau(q.tau_exit).map_err(|e| match e {
+            VinhError::BeyondDeepestPoint => VinhError::NoAtmosphericExit,
+            other => other,
+        })?;
         Ok(sol)
     }
 

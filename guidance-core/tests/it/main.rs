@@ -1,5 +1,6 @@
 //! The guidance-core integration-test binary (one per crate). Each module is one topic.
 
 mod guidance_props;
+mod vinh_props;
 mod vinh_support;
 mod vinh_validation;

@@ -1,6 +1,8 @@
 //! The host-sim integration-test binary (one per crate). Each module is one topic.
 
+mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
 mod support;
+mod analytic_validation;

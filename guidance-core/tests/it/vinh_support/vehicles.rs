@@ -24,9 +24,6 @@ impl Vehicle {
     pub fn cl_star(&self) -> f64 {
         (self.cd0 / self.k).sqrt()
     }
-    pub fn e_star(&self) -> f64 {
-        1.0 / (2.0 * (self.k * self.cd0).sqrt())
-    }
 }
 
 /// HORUS-2B drag polars, read from `shared/data/horus2b/drag_polar.csv` (thesis table 8.1):

@@ -1,0 +1,233 @@
+//! Analytic trajectory predictor: skip -> ballistic arc -> next skip ... -> final glide.
+//!
+//! From a planar state, a vehicle and a constant lift setting, [`predict`] chains the closed
+//! forms of this module and returns the predicted range angle (and surface range), the peak
+//! Chapman heat flux and the peak g-load:
+//!
+//! 1. The radius of the initial state is the *interface radius* of the whole prediction: every
+//!    skip starts and ends there and every ballistic arc leaves and re-enters there.
+//! 2. Descending state: a second-order skip ([`SkipSolution`]). If it exits, a Kepler arc
+//!    ([`BallisticArc`]) carries the vehicle to re-entry at the interface radius, with the exit
+//!    speed and the mirrored flight-path angle, and the next phase starts there. If the skip does
+//!    not return to the interface radius ([`VinhError::NoAtmosphericExit`]: captured), the final
+//!    glide follows.
+//! 3. Ascending state (e.g. in the upper part of a skip): the remainder is treated as a Kepler
+//!    arc to the descending crossing of the same radius.
+//! 4. Final glide: the glide method imposes its entry speed for a given altitude
+//!    (eq. 3.78), so the glide is started at the reference radius `r_g` below the interface
+//!    where the imposed speed equals the current speed (bracketed root, bounded), and runs to
+//!    [`PredictorConfig::final_speed_m_s`]. The descent from the interface to `r_g` is not
+//!    modelled: its range angle is taken as zero and its heating is not included (a documented
+//!    approximation; the glide peaks normally dominate).
+//!
+//! The number of phases is bounded by [`PredictorConfig::max_skips`] (at most [`MAX_SKIPS`]);
+//! a chain that is still skipping after it returns [`VinhError::PhaseLimit`].
+//!
+//! # Domain of validity
+//! The union of the domains of the phases (see [`super::skip`], [`super::ballistic`],
+//! [`super::glide`]); any phase's domain error is returned unchanged, so the caller can fall
+//! back to a stored profile.
+
+use super::ballistic::BallisticArc;
+use super::error::VinhError;
+use super::glide::GlideSolution;
+use super::nondim::{EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams};
+use super::num::{bisect, finite, k};
+use super::skip::SkipSolution;
+use crate::scalar::Real;
+
+/// Largest accepted [`PredictorConfig::max_skips`].
+pub const MAX_SKIPS: u8 = 8;
+
+/// Predictor settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PredictorConfig<S> {
+    /// Speed at which the final glide ends [m/s] (must be below the glide start speed).
+    pub final_speed_m_s: S,
+    /// Maximum number of skips before the final glide (at most [`MAX_SKIPS`]).
+    pub max_skips: u8,
+}
+
+/// How the predicted trajectory ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Prediction<S> {
+    /// Total predicted range angle [rad].
+    pub range_angle_rad: S,
+    /// Total predicted surface range `R theta` [m].
+    pub range_m: S,
+    /// Peak Chapman heat flux over all modelled phases [W/m^2].
+    pub peak_heat_flux_w_m2: S,
+    /// Peak g-load over all modelled phases [-].
+    pub peak_g_load: S,
+    /// Number of skips that exited the atmosphere.
+    pub skips: u8,
+    /// Number of ballistic arcs flown.
+    pub arcs: u8,
+    /// Reference radius where the final glide starts [m].
+    pub glide_start_radius_m: S,
+    /// Range angle of the final glide [rad].
+    pub glide_range_angle_rad: S,
+}
+
+/// Predict range and peak loads from `state` with constant lift `lift`.
+///
+/// Cost: at most `max_skips` skips and arcs, plus one glide and a bounded (200-step) bisection
+/// for the glide start radius.
+///
+/// # Errors
+/// Input validation errors, [`VinhError::PhaseLimit`], and any domain error of a phase
+/// (e.g. [`VinhError::EscapeTrajectory`], [`VinhError::GlideNearCircular`],
+/// [`VinhError::GlideSpeedOutOfDomain`], [`VinhError::NoDeepestPoint`]).
+pub fn predict<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+) -> Result<Prediction<S>, VinhError> {
+    if !config.final_speed_m_s.is_finite() {
+        return Err(VinhError::NonFiniteInput);
+    }
+    if config.max_skips > MAX_SKIPS || !(config.final_speed_m_s > S::ZERO) {
+        return Err(VinhError::InvalidConfig);
+    }
+    // Validates every input.
+    NonDim::new(planet, atmosphere, vehicle, lift, state)?;
+    let mut cur = *state;
+    let mut theta = S::ZERO;
+    let mut q_max = S::ZERO;
+    let mut n_max = S::ZERO;
+    let mut skips = 0_u8;
+    let mut arcs = 0_u8;
+    let r_i = state.radius_m;
+    let mut phase = 0_u8;
+    // Each pass is a skip (descending) or an arc (ascending); at most 2 max_skips + 1 passes.
+    let max_phases = config.max_skips.saturating_mul(2).saturating_add(1);
+    loop {
+        if phase > max_phases {
+            return Err(VinhError::PhaseLimit);
+        }
+        phase += 1;
+        if cur.flight_path_angle_rad > S::ZERO {
+            let arc = BallisticArc::new(planet, &cur, r_i)?;
+            theta = theta + arc.range_angle_rad();
+            let re = arc.reentry();
+            cur = EntryState {
+                radius_m: r_i,
+                speed_m_s: re.speed_m_s,
+                flight_path_angle_rad: re.flight_path_angle_rad,
+            };
+            arcs += 1;
+            continue;
+        }
+        if skips >= config.max_skips {
+            // Budget used up: only a captured trajectory may go on to the glide.
+            let nd = NonDim::new(planet, atmosphere, vehicle, lift, &cur)?;
+            match SkipSolution::new(&nd) {
+                Err(VinhError::NoAtmosphericExit) => break,
+                Err(e) => return Err(e),
+                Ok(_) => return Err(VinhError::PhaseLimit),
+            }
+        }
+        let nd = NonDim::new(planet, atmosphere, vehicle, lift, &cur)?;
+        match SkipSolution::new(&nd) {
+            Ok(skip) => {
+                let q = skip.peak_heat_flux()?;
+                let g = skip.peak_g_load()?;
+                q_max = q_max.max(q.heat_flux_w_m2);
+                n_max = n_max.max(g.g_load);
+                let ex = skip.exit();
+                theta = theta + ex.range_angle_rad;
+                cur = EntryState {
+                    radius_m: r_i,
+                    speed_m_s: ex.speed_m_s,
+                    flight_path_angle_rad: ex.flight_path_angle_rad,
+                };
+                skips += 1;
+                if !(cur.flight_path_angle_rad > S::ZERO) {
+                    return Err(VinhError::NotAscending);
+                }
+            }
+            Err(VinhError::NoAtmosphericExit) => break,
+            Err(e) => return Err(e),
+        }
+    }
+    // Final glide from the captured state.
+    let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, cur.speed_m_s, r_i)?;
+    let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
+    let end = glide.point_at_speed(config.final_speed_m_s)?;
+    let q = glide.peak_heat_flux(config.final_speed_m_s)?;
+    let g = glide.peak_g_load(config.final_speed_m_s)?;
+    q_max = q_max.max(q.heat_flux_w_m2);
+    n_max = n_max.max(g.g_load);
+    theta = theta + end.range_angle_rad;
+    Ok(Prediction {
+        range_angle_rad: finite(theta)?,
+        range_m: finite(theta * planet.radius_m)?,
+        peak_heat_flux_w_m2: finite(q_max)?,
+        peak_g_load: finite(n_max)?,
+        skips,
+        arcs,
+        glide_start_radius_m: r_g,
+        glide_range_angle_rad: end.range_angle_rad,
+    })
+}
+
+/// Imposed glide entry speed (eq. 3.78) at reference radius `r` [m/s].
+fn imposed_speed<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    r: S,
+) -> Result<S, VinhError> {
+    let rho = atmosphere.density_kg_m3(r)?;
+    let cl_star = vehicle.cl_max_ld()?;
+    let k1 = rho * vehicle.reference_area_m2 * r / (k::<S>(2.0) * vehicle.mass_kg)
+        * cl_star
+        * lift.lambda
+        * lift.vertical_fraction;
+    finite((planet.mu_m3_s2 / r / (S::ONE + k1)).sqrt_raw())
+}
+
+/// Reference radius in `(R, r_max]` where the imposed glide speed equals `speed_m_s`.
+///
+/// # Errors
+/// [`VinhError::GlideNoLift`] without upward lift, [`VinhError::GlideNearCircular`] if the
+/// speed is above the imposed speed at `r_max`, [`VinhError::GlideSpeedOutOfDomain`] if it is
+/// below the imposed speed 1 m above the surface.
+pub fn glide_start_radius<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    speed_m_s: S,
+    r_max: S,
+) -> Result<S, VinhError> {
+    lift.validate()?;
+    if !(lift.lambda * lift.vertical_fraction > S::ZERO) {
+        return Err(VinhError::GlideNoLift);
+    }
+    if !(speed_m_s.is_finite() && r_max.is_finite()) {
+        return Err(VinhError::NonFiniteInput);
+    }
+    let lo = planet.radius_m + S::ONE;
+    if !(r_max > lo) {
+        return Err(VinhError::UnphysicalState);
+    }
+    let f = |r: S| -> Result<S, VinhError> {
+        Ok(imposed_speed(planet, atmosphere, vehicle, lift, r)? - speed_m_s)
+    };
+    let f_hi = f(r_max)?;
+    let f_lo = f(lo)?;
+    if f_hi < S::ZERO {
+        return Err(VinhError::GlideNearCircular);
+    }
+    if f_lo > S::ZERO {
+        return Err(VinhError::GlideSpeedOutOfDomain);
+    }
+    bisect(f, lo, r_max, f_lo, f_hi)
+}

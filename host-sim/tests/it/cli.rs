@@ -1,0 +1,343 @@
+//! The `host-sim` command line: run directories, error messages on bad input, help and the
+//! small subcommands. The binary is run through `std::process::Command`.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use host_sim::cli::{Scenario, parse_scenario, run, scenario_to_toml};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_host-sim"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("host-sim-it-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const TINY: &str = r#"
+name = "tiny"
+vehicle = "horus-2b"
+
+[environment]
+preset = "simplified"
+
+[entry]
+altitude_km = 122.0
+longitude_deg = 0.0
+latitude_deg = 0.0
+speed_m_s = 7400.0
+flight_path_angle_deg = -1.5
+heading_deg = 90.0
+
+[guidance]
+independent = "energy"
+interpolation = "hermite"
+tension = 0.5
+nodes = [[1.0, 40, 0], [0.9, 35, 45], [0.5, 20, 60]]
+
+[termination]
+max_time_s = 30.0
+
+[output]
+interval_s = 1.0
+"#;
+
+#[test]
+fn simulate_tiny_scenario_writes_csv_json_svg() {
+    let dir = temp_dir("tiny");
+    let sc = dir.join("tiny.toml");
+    std::fs::write(&sc, TINY).unwrap();
+    let out = dir.join("run");
+    let o = bin()
+        .args(["simulate", "--scenario"])
+        .arg(&sc)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "stderr: {stderr}");
+    assert!(!stderr.contains("panicked"));
+    let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    for col in [
+        "time_s",
+        "altitude_km",
+        "speed_m_s",
+        "gamma_deg",
+        "alpha_deg",
+        "sigma_deg",
+        "heat_flux_kw_m2",
+        "g_load",
+    ] {
+        assert!(
+            header.split(',').any(|c| c == col),
+            "missing column {col}: {header}"
+        );
+    }
+    // Start, 1 s samples up to 30 s (the 30 s one is the end), end: 1 + 29 + 1 rows.
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 31, "{csv}");
+    let last: Vec<&str> = rows[rows.len() - 1].split(',').collect();
+    assert_eq!(last[0].parse::<f64>().unwrap(), 30.0);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(json["scenario"], "tiny");
+    assert_eq!(json["termination"], "max_time");
+    assert!(json["heat_load_mj_m2"].as_f64().unwrap() > 0.0);
+    assert!(json["rhs_evals"].as_u64().unwrap() > 0);
+    for svg in [
+        "altitude_velocity.svg",
+        "heat_flux.svg",
+        "g_load.svg",
+        "attitude.svg",
+    ] {
+        let text = std::fs::read_to_string(out.join(svg)).unwrap();
+        assert!(
+            text.starts_with("<svg") && text.trim_end().ends_with("</svg>"),
+            "{svg}"
+        );
+        assert!(text.contains("<polyline"), "{svg}");
+    }
+    // No temporary files left behind by the atomic writes.
+    for e in std::fs::read_dir(&out).unwrap() {
+        let n = e.unwrap().file_name().to_string_lossy().into_owned();
+        assert!(!n.contains(".tmp-"), "left over {n}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Each bad scenario must fail with a non-zero exit, no panic, and a message naming the
+/// file, the field and the value.
+#[test]
+fn bad_scenarios_name_file_field_and_value() {
+    let dir = temp_dir("bad");
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "alt_string.toml",
+            "[entry]\naltitude_km = \"high\"\n",
+            &["entry.altitude_km", "\"high\"", "number"],
+        ),
+        (
+            "alt_negative.toml",
+            "[entry]\naltitude_km = -5.0\n",
+            &["entry.altitude_km", "-5", "must be"],
+        ),
+        (
+            "vehicle.toml",
+            "vehicle = \"x-37\"\n",
+            &["vehicle", "\"x-37\"", "unknown vehicle"],
+        ),
+        (
+            "typo.toml",
+            "[entry]\naltitde_km = 100.0\n",
+            &["entry.altitde_km", "100", "unknown field"],
+        ),
+        (
+            "nodes.toml",
+            "[guidance]\nnodes = [[0, 40, 0], [10, 60, 0]]\n",
+            &["guidance.nodes[1]", "60", "alpha"],
+        ),
+        (
+            "order.toml",
+            "[guidance]\nnodes = [[0, 40, 0], [0, 30, 0]]\n",
+            &["guidance.nodes[1]", "increase"],
+        ),
+        (
+            "syntax.toml",
+            "[entry]\naltitude_km = = 3\n",
+            &["malformed TOML", "line 2", "altitude_km = = 3"],
+        ),
+        (
+            "vfile.toml",
+            "vehicle_file = \"does-not-exist.toml\"\n",
+            &["does-not-exist.toml", "cannot read"],
+        ),
+        (
+            "rtol.toml",
+            "[integrator]\nrtol = 0.5\n",
+            &["integrator.rtol", "0.5", "must be"],
+        ),
+    ];
+    for (name, text, needles) in cases {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        let o = bin()
+            .args(["simulate", "--quiet", "--scenario"])
+            .arg(&p)
+            .arg("--out")
+            .arg(dir.join("out"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{name} should fail");
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        // The scenario file is named, except for a missing vehicle file, which names itself.
+        if *name != "vfile.toml" {
+            assert!(err.contains(name), "{name}: file not named: {err}");
+        }
+        for n in *needles {
+            assert!(err.contains(n), "{name}: `{n}` not in: {err}");
+        }
+    }
+    // A missing scenario file is named too.
+    let missing = dir.join("nope.toml");
+    let o = bin()
+        .args(["simulate", "--scenario"])
+        .arg(&missing)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("nope.toml") && err.contains("cannot read"),
+        "{err}"
+    );
+    assert!(!dir.join("out").exists(), "nothing written on bad input");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn help_on_every_subcommand() {
+    for sub in [
+        &["--help"][..],
+        &["simulate", "--help"],
+        &["atmosphere", "--help"],
+        &["vehicles", "--help"],
+        &["compare", "--help"],
+    ] {
+        let o = bin().args(sub).output().unwrap();
+        assert!(o.status.success(), "{sub:?}");
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(text.contains("Usage"), "{sub:?}: {text}");
+    }
+    let o = bin().args(["simulate", "--help"]).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("--scenario") && text.contains("--out"));
+    // `compare` exists but says clearly that it is not available yet.
+    let o = bin().arg("compare").output().unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not yet available"));
+    // Unknown subcommand: usage error, non-zero.
+    let o = bin().arg("fly").output().unwrap();
+    assert!(!o.status.success());
+}
+
+#[test]
+fn atmosphere_and_vehicles_subcommands() {
+    let mut out = Vec::new();
+    run(
+        ["host-sim", "atmosphere", "--model", "us76", "0", "11"],
+        &mut out,
+    )
+    .unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 2);
+    // US76 sea level (NOAA 1976 table): 288.15 K, 101325 Pa, 1.225 kg/m^3, 340.29 m/s.
+    assert!((rows[0][1] - 288.15).abs() < 1e-3);
+    assert!((rows[0][2] - 101_325.0).abs() < 1.0);
+    assert!((rows[0][3] - 1.225).abs() < 1e-3);
+    assert!((rows[0][4] - 340.29).abs() < 0.05);
+    assert!(rows[1][3] < rows[0][3]);
+
+    let mut out = Vec::new();
+    let e = run(["host-sim", "atmosphere", "5000"], &mut out).unwrap_err();
+    assert!(e.to_string().contains("5000"), "{e}");
+
+    let mut out = Vec::new();
+    run(["host-sim", "vehicles"], &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.contains("horus-2b,26029"), "{text}");
+    assert!(text.to_lowercase().contains("srm"), "{text}");
+}
+
+#[test]
+fn printed_scenario_parses_back() {
+    let d = Scenario::default();
+    let text = scenario_to_toml(&d);
+    let back = parse_scenario(&text, "printed.toml", std::path::Path::new(".")).unwrap();
+    assert_eq!(back.name, d.name);
+    assert_eq!(back.vehicle, d.vehicle);
+    assert_eq!(back.environment, d.environment);
+    assert_eq!(back.guidance.independent, d.guidance.independent);
+    assert_eq!(back.guidance.interpolation, d.guidance.interpolation);
+    assert_eq!(back.termination, d.termination);
+    assert_eq!(back.tolerances, d.tolerances);
+    assert_eq!(back.interface_altitude_m, d.interface_altitude_m);
+    assert_eq!(back.g_rate_window_s, d.g_rate_window_s);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(1.0);
+    for (a, b) in back.entry.to_array().iter().zip(d.entry.to_array()) {
+        assert!(close(*a, b), "{a} vs {b}");
+    }
+    assert_eq!(back.guidance.nodes.len(), 7);
+    for (a, b) in back.guidance.nodes.iter().zip(&d.guidance.nodes) {
+        for k in 0..3 {
+            assert!(close(a[k], b[k]));
+        }
+    }
+}
+
+/// Same scenario, same output, byte for byte.
+#[test]
+fn runs_are_deterministic() {
+    let dir = temp_dir("det");
+    let sc = parse_scenario(TINY, "tiny.toml", &dir).unwrap();
+    let mut outs = vec![];
+    for k in 0..2 {
+        let out = dir.join(format!("run{k}"));
+        host_sim::cli::simulate_scenario(&sc, "tiny.toml", &out, &mut |_, _| {}).unwrap();
+        outs.push((
+            std::fs::read(out.join("trajectory.csv")).unwrap(),
+            std::fs::read(out.join("summary.json")).unwrap(),
+        ));
+    }
+    assert!(outs[0] == outs[1]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+
+    /// Arbitrary values in the scenario fields never panic: either a named error or a
+    /// short run that completes or fails with an error.
+    #[test]
+    fn scenario_values_never_panic(
+        alt in proptest::prelude::prop_oneof![-20.0..200.0f64, proptest::prelude::Just(f64::NAN), proptest::prelude::Just(1e308)],
+        speed in -100.0..20_000.0f64,
+        gamma in -100.0..100.0f64,
+        lat in -100.0..100.0f64,
+        x2 in -10.0..3000.0f64,
+        a2 in -10.0..60.0f64,
+        rtol_exp in -16.0..0.0f64,
+        junk in "[a-z =\\[\\]\"0-9.]{0,12}",
+    ) {
+        let rtol = 10f64.powf(rtol_exp);
+        let text = format!(
+            "[entry]\naltitude_km = {alt:?}\nspeed_m_s = {speed:?}\nflight_path_angle_deg = {gamma:?}\nlatitude_deg = {lat:?}\n\
+             [guidance]\nnodes = [[0, 40, 0], [{x2:?}, {a2:?}, 30]]\n[integrator]\nrtol = {rtol:?}\n[termination]\nmax_time_s = 4.0\n# {junk}\n"
+        );
+        let text = text.replace("NaN", "nan");
+        match parse_scenario(&text, "p.toml", std::path::Path::new(".")) {
+            Err(e) => {
+                let m = e.to_string();
+                proptest::prop_assert!(m.starts_with("p.toml: "), "{}", m);
+            }
+            Ok(sc) => {
+                // Flies (or fails cleanly) without panicking.
+                let _ = host_sim::cli::fly(&sc, "p.toml", &mut |_, _| {});
+            }
+        }
+        // Garbage after a valid key is a syntax error naming the file.
+        let bad = format!("name = {junk}\n");
+        if let Err(e) = parse_scenario(&bad, "q.toml", std::path::Path::new(".")) {
+            proptest::prop_assert!(e.to_string().starts_with("q.toml: "));
+        }
+    }
+}
