@@ -13,6 +13,9 @@
 use crate::error::GuidanceError;
 use crate::scalar::Scalar;
 
+/// Bound on the correction steps of the tick-index estimate in [`GuidanceClock::poll`].
+const MAX_CORRECTIONS: u32 = 4;
+
 /// What a poll of the clock found.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -23,7 +26,7 @@ pub enum ClockEvent<S> {
     Tick {
         /// Index of the tick (0 for the first).
         index: u32,
-        /// Time of the tick, `t0 + index * period` [s].
+        /// Time of the tick, `t0 + index * period`, in seconds.
         time_s: S,
         /// Tick instants reached since the previous tick (1 normally, more after a gap; 1 for
         /// the first tick).
@@ -45,7 +48,7 @@ pub struct GuidanceClock<S> {
 }
 
 impl<S: Scalar> GuidanceClock<S> {
-    /// A clock with the given period [s] (finite, > 0), not yet started.
+    /// A clock with the given period in seconds (finite, > 0), not yet started.
     ///
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for a non-finite or non-positive period.
@@ -60,31 +63,31 @@ impl<S: Scalar> GuidanceClock<S> {
         })
     }
 
-    /// Period [s].
+    /// Period \[s\].
     #[must_use]
     pub fn period_s(&self) -> S {
         self.period_s
     }
 
-    /// Start time `t0` [s], once the first tick has been committed.
+    /// Start time `t0` \[s\], once the first tick has been committed.
     #[must_use]
     pub fn start_s(&self) -> Option<S> {
         self.start_s
     }
 
-    /// Time of tick `k` [s]: `t0 + k * period` (`t0` = 0 before the start).
+    /// Time of tick `k` \[s\]: `t0 + k * period` (`t0` = 0 before the start).
     #[must_use]
     pub fn tick_time_s(&self, k: u32) -> S {
         self.start_s.unwrap_or(S::ZERO) + S::from_f64(f64::from(k)) * self.period_s
     }
 
-    /// Time of the last tick taken [s] (`None` before the start).
+    /// Time of the last tick taken \[s\] (`None` before the start).
     #[must_use]
     pub fn last_tick_s(&self) -> Option<S> {
         self.start_s.map(|_| self.tick_time_s(self.last_index))
     }
 
-    /// Time of the next tick [s]. Before the first tick the clock ticks at the first poll;
+    /// Time of the next tick \[s\]. Before the first tick the clock ticks at the first poll;
     /// this then returns 0.
     #[must_use]
     pub fn next_tick_s(&self) -> S {
@@ -94,7 +97,7 @@ impl<S: Scalar> GuidanceClock<S> {
         }
     }
 
-    /// Decide whether `time_s` [s] is a tick. Does not change the clock.
+    /// Decide whether `time_s` \[s\] is a tick. Does not change the clock.
     ///
     /// # Errors
     /// [`GuidanceError::NonFiniteState`] for a non-finite time;
@@ -120,14 +123,30 @@ impl<S: Scalar> GuidanceClock<S> {
         }
         // Latest k with tick_time(k) <= time: estimate by division (a non-negative f64, so the
         // saturating `as` cast floors it), then correct by comparing with the exact tick times.
+        // The corrections are bounded (the estimate is off by at most one in the exact range;
+        // beyond it, e.g. saturated fixed point or f32 times above 2^24 periods, tick times
+        // are not distinct anyway), and the result never precedes `next_index` nor lies after
+        // `time_s`.
         let estimate = ((time_s - t0) / self.period_s).to_f64();
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let mut k = (estimate as u32).max(next_index);
-        while k > next_index && self.tick_time_s(k) > time_s {
-            k -= 1;
+        for _ in 0..MAX_CORRECTIONS {
+            if k > next_index && self.tick_time_s(k) > time_s {
+                k -= 1;
+            }
         }
-        while k < u32::MAX && self.tick_time_s(k + 1) <= time_s {
-            k += 1;
+        for _ in 0..MAX_CORRECTIONS {
+            if k < u32::MAX && self.tick_time_s(k + 1) <= time_s {
+                k += 1;
+            }
+        }
+        if self.tick_time_s(k) > time_s {
+            k = next_index;
+        }
+        if self.tick_time_s(k) <= last {
+            // Tick times no longer distinct (saturated fixed point, or f32 far beyond 2^24
+            // periods): hold rather than tick twice at the same instant.
+            return Ok(ClockEvent::Hold);
         }
         Ok(ClockEvent::Tick {
             index: k,
@@ -217,5 +236,23 @@ mod tests {
             );
         }
         assert_eq!(ticks, 1000);
+    }
+
+    /// Huge times (saturated fixed point, f32 beyond 2^24 periods) terminate promptly and
+    /// give a tick at or before the sample time.
+    #[test]
+    fn huge_time_jumps_terminate() {
+        let mut cx = GuidanceClock::new(Fixed::from_f64(2.0)).unwrap();
+        step(&mut cx, 0.0);
+        let e = step(&mut cx, 1e300);
+        assert!(matches!(e, ClockEvent::Tick { time_s, .. } if time_s <= Fixed::MAX));
+        assert_eq!(step(&mut cx, 1e300), ClockEvent::Hold);
+        let mut c32 = GuidanceClock::new(2.0_f32).unwrap();
+        step(&mut c32, 0.0);
+        for t in [1e9, 3e9, 1e20, 1e38] {
+            if let ClockEvent::Tick { time_s, .. } = step(&mut c32, t) {
+                assert!(f64::from(time_s) <= t);
+            }
+        }
     }
 }

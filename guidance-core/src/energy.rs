@@ -1,6 +1,6 @@
 //! Specific energy and normalised specific energy (thesis sec. 3.7, corrected per ERRATA).
 //!
-//! E = V^2/2 - mu/r [J/kg] (negative for a bound vehicle), and
+//! E = V^2/2 - mu/r \[J/kg\] (negative for a bound vehicle), and
 //! E-hat = (E - E_0) / (E_entry - E_0) with E_0 = -mu/R, the energy of standstill on the
 //! surface. E-hat is 1 at entry and 0 at standstill on the surface.
 //!
@@ -12,12 +12,12 @@
 use crate::error::GuidanceError;
 use crate::scalar::Scalar;
 
-/// Earth's gravitational parameter [m^3/s^2] (as in the thesis, EGM96/WGS84 value).
+/// Earth's gravitational parameter \[m^3/s^2\] (as in the thesis, EGM96/WGS84 value).
 pub const EARTH_MU_M3_S2: f64 = 3.986_004_418e14;
-/// Earth's mean equatorial radius [m] used by the thesis' spherical Earth.
+/// Earth's mean equatorial radius \[m\] used by the thesis' spherical Earth.
 pub const EARTH_RADIUS_M: f64 = 6_378_137.0;
 
-/// Specific mechanical energy E = V^2/2 - mu/r [J/kg], in `f64`.
+/// Specific mechanical energy E = V^2/2 - mu/r \[J/kg\], in `f64`.
 #[must_use]
 pub fn specific_energy(mu_m3_s2: f64, radius_m: f64, speed_m_s: f64) -> f64 {
     0.5 * speed_m_s * speed_m_s - mu_m3_s2 / radius_m
@@ -28,19 +28,19 @@ pub fn specific_energy(mu_m3_s2: f64, radius_m: f64, speed_m_s: f64) -> f64 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EnergyNormalizer<S> {
-    /// Surface circular speed sqrt(mu/R) [m/s].
+    /// Surface circular speed sqrt(mu/R) \[m/s\].
     circular_speed_m_s: S,
-    /// Planet radius R [m].
+    /// Planet radius R \[m\].
     planet_radius_m: S,
-    /// 1 / span, span = (E_entry - E_0)/(mu/R) [-].
+    /// 1 / span, span = (E_entry - E_0)/(mu/R) \[-\].
     inv_span: S,
 }
 
 impl<S: Scalar> EnergyNormalizer<S> {
     /// Build from planet constants and the entry state that defines E-hat = 1.
     ///
-    /// * `mu_m3_s2`: gravitational parameter [m^3/s^2]; `planet_radius_m`: R [m];
-    /// * `entry_radius_m` [m], `entry_speed_m_s` [m/s].
+    /// * `mu_m3_s2`: gravitational parameter \[m^3/s^2\]; `planet_radius_m`: R \[m\];
+    /// * `entry_radius_m` \[m\], `entry_speed_m_s` \[m/s\].
     ///
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] if any input is non-finite or non-positive, the entry
@@ -69,7 +69,7 @@ impl<S: Scalar> EnergyNormalizer<S> {
         })
     }
 
-    /// Normalised energy E-hat [-] at `radius_m` [m] and `speed_m_s` [m/s]. 1 at entry, 0 at
+    /// Normalised energy E-hat \[-\] at `radius_m` \[m\] and `speed_m_s` \[m/s\]. 1 at entry, 0 at
     /// standstill on the surface; not clamped (it can exceed 1 or go below 0).
     ///
     /// # Errors

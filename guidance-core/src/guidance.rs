@@ -67,13 +67,13 @@ pub use crate::rate::RateLimits;
 /// Degrees to radians.
 const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
 
-/// An attitude command (or attitude) [rad].
+/// An attitude command (or attitude) \[rad\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Command<S> {
-    /// Angle of attack [rad].
+    /// Angle of attack \[rad\].
     pub alpha_rad: S,
-    /// Bank angle [rad].
+    /// Bank angle \[rad\].
     pub sigma_rad: S,
 }
 
@@ -99,7 +99,7 @@ impl<S: Scalar> Command<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct GuidanceConfig<S> {
-    /// Guidance period [s] (thesis: 2.0 s, zero-order hold).
+    /// Guidance period \[s\] (thesis: 2.0 s, zero-order hold).
     pub period_s: S,
     /// Attitude rate limits.
     pub rates: RateLimits<S>,
@@ -137,11 +137,11 @@ impl<S: Scalar> Default for GuidanceConfig<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct GuidanceOutput<S> {
-    /// The held command after this update [rad].
+    /// The held command after this update \[rad\].
     pub command: Command<S>,
     /// True if this sample was a tick (the command was recomputed).
     pub ticked: bool,
-    /// The independent variable of this sample: E-hat [-] or time [s].
+    /// The independent variable of this sample: E-hat \[-\] or time \[s\].
     pub independent_value: S,
 }
 
@@ -160,13 +160,13 @@ pub struct Guidance<S> {
     target: Command<S>,
     /// Attitude at the last tick.
     ramp_start: Command<S>,
-    /// Time of the last tick [s] (`None` before the first).
+    /// Time of the last tick \[s\] (`None` before the first).
     ramp_start_s: Option<S>,
 }
 
 impl<S: Scalar> Guidance<S> {
     /// Set up guidance. `energy` maps (r, V) to E-hat (used for energy-indexed tables);
-    /// `initial` is the attitude at start [rad] (clamped into the table's bounds). The first
+    /// `initial` is the attitude at start \[rad\] (clamped into the table's bounds). The first
     /// call to [`Guidance::update`] is a tick.
     ///
     /// # Errors
@@ -248,9 +248,10 @@ impl<S: Scalar> Guidance<S> {
         })
     }
 
-    /// Attitude at `time_s` [s]: from the attitude at the last tick it moves towards the held
+    /// Attitude at `time_s` \[s\]: from the attitude at the last tick it moves towards the held
     /// command at the rate limits (a ramp) and equals the command from one period after the
-    /// tick on. Before the last tick it returns the attitude at the last tick; before the first
+    /// tick on (from `time_s - t_k >= period` or `time_s >=` [`Guidance::next_tick_s`],
+    /// whichever comes first in floating point). Before the last tick it returns the attitude at the last tick; before the first
     /// update, the initial attitude; for a NaN time, the held command.
     #[must_use]
     pub fn attitude_at(&self, time_s: S) -> Command<S> {
@@ -263,32 +264,32 @@ impl<S: Scalar> Guidance<S> {
         let dt = time_s - t_k;
         if dt <= S::ZERO {
             self.ramp_start
-        } else if dt >= self.config.period_s {
+        } else if dt >= self.config.period_s || time_s >= self.clock.next_tick_s() {
             self.command
         } else {
             limit_command(self.ramp_start, self.command, self.config.rates, dt)
         }
     }
 
-    /// Time of the next tick [s]; 0 before the first update (which is always a tick).
+    /// Time of the next tick \[s\]; 0 before the first update (which is always a tick).
     #[must_use]
     pub fn next_tick_s(&self) -> S {
         self.clock.next_tick_s()
     }
 
-    /// Time of the last tick [s] (`None` before the first update).
+    /// Time of the last tick \[s\] (`None` before the first update).
     #[must_use]
     pub fn last_tick_s(&self) -> Option<S> {
         self.ramp_start_s
     }
 
-    /// The held (rate-limited) command [rad].
+    /// The held (rate-limited) command \[rad\].
     #[must_use]
     pub fn command(&self) -> Command<S> {
         self.command
     }
 
-    /// The interpolated command of the last tick before rate limiting [rad] (equal to
+    /// The interpolated command of the last tick before rate limiting \[rad\] (equal to
     /// [`Guidance::command`] when the limiter did not act).
     #[must_use]
     pub fn target(&self) -> Command<S> {
@@ -439,6 +440,24 @@ mod tests {
         // One normal step only: 30 -> 59.8 deg (step 29.8 <= 30).
         assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
         assert!((g.attitude_at(611.0).sigma_rad - 45.0 * DEG).abs() < 1e-12);
+    }
+
+    /// A replaced table takes effect at the next tick; the held command is kept until then.
+    #[test]
+    fn replace_table_takes_effect_at_next_tick() {
+        let mut g = reference::<f64>();
+        g.update(&nav(600.0)).unwrap();
+        let held = g.command();
+        let mut t = g.table().clone();
+        for i in 0..t.len() {
+            t.set_sigma(i, 10.0 * DEG).unwrap();
+        }
+        g.replace_table(t).unwrap();
+        assert_eq!(g.command(), held);
+        assert_eq!(g.update(&nav(601.0)).unwrap().command, held);
+        g.update(&nav(602.0)).unwrap();
+        assert!((g.target().sigma_rad - 10.0 * DEG).abs() < 1e-12);
+        assert!((g.command().sigma_rad - 10.0 * DEG).abs() < 1e-12);
     }
 
     #[test]

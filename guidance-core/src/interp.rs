@@ -4,7 +4,7 @@
 //!
 //! # Form
 //! All three are evaluated per segment `i` (nodes `i`, `i + 1`) on the normalised parameter
-//! `t = (x - x_i) / (x_{i+1} - x_i)` in `[0, 1]` (eq. 5.9):
+//! `t = (x - x_i) / (x_{i+1} - x_i)` in `\[0, 1\]` (eq. 5.9):
 //!
 //! * linear: `p = p_i + (p_{i+1} - p_i) t`;
 //! * splines, in cubic Hermite form (eq. 5.7/5.10): `p = p_i + h01(t) (p_{i+1} - p_i)
@@ -28,7 +28,7 @@
 //! * cardinal Hermite (eq. 5.11): `m_j = (1 - c) (p_{j+1} - p_{j-1}) / (x_{j+1} - x_{j-1})` at
 //!   interior nodes, so `T0_i = (1 - c) (p_{i+1} - p_{i-1}) h_i / (h_{i-1} + h_i)`; at the end
 //!   nodes (where eq. 5.11 has no neighbour) the one-sided `m_0 = (1 - c)(p_1 - p_0)/h_0` and
-//!   `m_{n-1} = (1 - c)(p_{n-1} - p_{n-2})/h_{n-2}`. Tension `c` in `[0, 1]`: 0 gives the
+//!   `m_{n-1} = (1 - c)(p_{n-1} - p_{n-2})/h_{n-2}`. Tension `c` in `\[0, 1\]`: 0 gives the
 //!   Catmull-Rom spline, 1 gives zero tangents.
 //!
 //! Energy-indexed tables (x decreasing in flight order) are handled by interpolating over the
@@ -68,9 +68,9 @@ pub enum Interpolation<S> {
     Linear,
     /// Natural cubic spline (thesis sec. 5.2.2): C2, zero second derivative at both ends.
     NaturalCubic,
-    /// Cardinal Hermite spline (thesis sec. 5.2.3, eq. 5.11); tension `c` in `[0, 1]`.
+    /// Cardinal Hermite spline (thesis sec. 5.2.3, eq. 5.11); tension `c` in `\[0, 1\]`.
     CardinalHermite {
-        /// Tension `c` [-], 0 (Catmull-Rom) to 1 (zero tangents).
+        /// Tension `c` \[-\], 0 (Catmull-Rom) to 1 (zero tangents).
         tension: S,
     },
 }
@@ -87,7 +87,7 @@ pub struct Interpolator<S> {
     keys: [S; MAX_NODES],
     alpha: [S; MAX_NODES],
     sigma: [S; MAX_NODES],
-    /// Per segment: tangents at the segment start/end in segment units [rad].
+    /// Per segment: tangents at the segment start/end in segment units \[rad\].
     alpha_t0: [S; MAX_NODES],
     alpha_t1: [S; MAX_NODES],
     sigma_t0: [S; MAX_NODES],
@@ -95,14 +95,14 @@ pub struct Interpolator<S> {
     bounds: AngleBounds<S>,
 }
 
-/// Read `a[i]`, zero if out of range (never happens for in-range indices; keeps the code free
+/// Read `a\[i\]`, zero if out of range (never happens for in-range indices; keeps the code free
 /// of panicking indexing).
 #[inline]
 fn at<S: Scalar>(a: &[S], i: usize) -> S {
     a.get(i).copied().unwrap_or(S::ZERO)
 }
 
-/// Write `a[i] = v` if in range.
+/// Write `a\[i\] = v` if in range.
 #[inline]
 fn put<S: Scalar>(a: &mut [S], i: usize, v: S) {
     if let Some(slot) = a.get_mut(i) {
@@ -114,7 +114,7 @@ impl<S: Scalar> Interpolator<S> {
     /// Build the interpolator for `table` (copied) and precompute the spline tangents.
     ///
     /// # Errors
-    /// [`GuidanceError::InvalidConfig`] for a non-finite tension or one outside `[0, 1]`.
+    /// [`GuidanceError::InvalidConfig`] for a non-finite tension or one outside `\[0, 1\]`.
     pub fn new(table: &NodeTable<S>, kind: Interpolation<S>) -> Result<Self, GuidanceError> {
         if let Interpolation::CardinalHermite { tension } = kind
             && !(tension.is_finite() && tension >= S::ZERO && tension <= S::ONE)
@@ -193,7 +193,7 @@ impl<S: Scalar> Interpolator<S> {
         self.bounds
     }
 
-    /// Command at independent value `x` (E-hat [-] or time [s], as the table). Outside the
+    /// Command at independent value `x` (E-hat \[-\] or time \[s\], as the table). Outside the
     /// node range, the end node's command; the result is clamped into the angle bounds, so it
     /// is always finite and within bounds.
     #[must_use]
@@ -245,7 +245,7 @@ impl<S: Scalar> Interpolator<S> {
         }
     }
 
-    /// Segment `i` with `keys[i] <= key < keys[i + 1]`, given `keys[0] < key < keys[len-1]`.
+    /// Segment `i` with `keys\[i\] <= key < keys\[i + 1\]`, given `keys\[0\] < key < keys\[len-1\]`.
     /// Bisection on indices with midpoint `lo + (hi - lo) / 2`.
     fn segment(&self, key: S) -> usize {
         let mut lo = 0usize;
@@ -262,7 +262,7 @@ impl<S: Scalar> Interpolator<S> {
     }
 }
 
-/// `p0 + (p1 - p0) t`; for `t` in [0, 1] the result lies between `p0` and `p1` up to rounding.
+/// `p0 + (p1 - p0) t`; for `t` in \[0, 1\] the result lies between `p0` and `p1` up to rounding.
 #[inline]
 fn lerp<S: Scalar>(p0: S, p1: S, t: S) -> S {
     p0 + (p1 - p0) * t

@@ -7,9 +7,10 @@
 //! ([`rate`]) -> fixed 2 s guidance clock with zero-order hold ([`clock`], [`guidance`]) ->
 //! command (angle of attack, bank angle). Constraint monitors live in [`monitor`]; the
 //! second-order closed forms of Vinh, Kim & Greenwood (1993) in [`vinh`]; onboard re-planning
-//! in [`replan`]; the processor-in-the-loop frame format in [`link`].
+//! (an analytic predictor-corrector on the bank-angle nodes) in `replan`.
 //!
 //! Units: SI and radians everywhere. Degrees appear only in `*_deg` constructors/constants.
+//! Units in docs are written in brackets, e.g. \[m/s\].
 //!
 //! Numerics: everything on the guidance path is generic over [`Scalar`] (implemented for `f32`,
 //! `f64` and the fixed-point [`Fixed`]); closed forms need transcendental functions and are
@@ -36,6 +37,7 @@ pub mod monitor;
 pub mod nav;
 pub mod nodes;
 pub mod rate;
+pub mod replan;
 pub mod scalar;
 pub mod vinh;
 

@@ -7,19 +7,19 @@ use crate::scalar::Scalar;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct NavState<S> {
-    /// Mission time since entry interface [s].
+    /// Mission time since entry interface \[s\].
     pub time_s: S,
-    /// Distance from the planet centre [m].
+    /// Distance from the planet centre \[m\].
     pub radius_m: S,
-    /// Planet-relative speed [m/s].
+    /// Planet-relative speed \[m/s\].
     pub speed_m_s: S,
-    /// Planet-relative flight-path angle [rad], positive above the local horizontal.
+    /// Planet-relative flight-path angle \[rad\], positive above the local horizontal.
     pub flight_path_angle_rad: S,
-    /// Planet-relative heading [rad], clockwise from north.
+    /// Planet-relative heading \[rad\], clockwise from north.
     pub heading_rad: S,
-    /// Geocentric latitude [rad].
+    /// Geocentric latitude \[rad\].
     pub latitude_rad: S,
-    /// Longitude [rad], positive east.
+    /// Longitude \[rad\], positive east.
     pub longitude_rad: S,
 }
 

@@ -1,12 +1,12 @@
 //! Guidance node tables (thesis sec. 3.7, eq. 3.102-3.103, and sec. 4.2.1, eq. 4.7).
 //!
 //! A node is `{x, alpha, sigma}`: the value `x` of the independent variable and the commanded
-//! angle of attack and bank angle there [rad]. A [`NodeTable`] holds between 2 and
+//! angle of attack and bank angle there \[rad\]. A [`NodeTable`] holds between 2 and
 //! [`MAX_NODES`] nodes in *flight order*:
 //!
-//! * [`Independent::NormalizedEnergy`]: `x` is E-hat [-] (see [`crate::energy`]), which falls
+//! * [`Independent::NormalizedEnergy`]: `x` is E-hat \[-\] (see [`crate::energy`]), which falls
 //!   during unpowered flight, so `x` must be strictly *decreasing* node to node;
-//! * [`Independent::TimeS`]: `x` is mission time [s] (the HORUS-2B reference mission of thesis
+//! * [`Independent::TimeS`]: `x` is mission time \[s\] (the HORUS-2B reference mission of thesis
 //!   eq. 2.3 is time-indexed), strictly *increasing*.
 //!
 //! Construction validates every node: finite values, strictly monotone `x` in flight order, and
@@ -32,9 +32,9 @@ const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Independent {
-    /// Normalised specific energy E-hat [-]; nodes strictly decreasing in flight order.
+    /// Normalised specific energy E-hat \[-\]; nodes strictly decreasing in flight order.
     NormalizedEnergy,
-    /// Mission time since entry interface [s]; nodes strictly increasing.
+    /// Mission time since entry interface \[s\]; nodes strictly increasing.
     TimeS,
 }
 
@@ -50,16 +50,16 @@ impl Independent {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Node<S> {
-    /// Independent variable: E-hat [-] or time [s], see [`Independent`].
+    /// Independent variable: E-hat \[-\] or time \[s\], see [`Independent`].
     pub x: S,
-    /// Commanded angle of attack [rad].
+    /// Commanded angle of attack \[rad\].
     pub alpha_rad: S,
-    /// Commanded bank angle [rad].
+    /// Commanded bank angle \[rad\].
     pub sigma_rad: S,
 }
 
 impl<S: Scalar> Node<S> {
-    /// Node from `x` (E-hat [-] or time [s]) and angles in degrees (converted to radians).
+    /// Node from `x` (E-hat \[-\] or time \[s\]) and angles in degrees (converted to radians).
     /// `None` if a value is non-finite or does not fit `S` (bounds are checked later, by
     /// [`NodeTable::new`]).
     #[must_use]
@@ -72,17 +72,17 @@ impl<S: Scalar> Node<S> {
     }
 }
 
-/// Allowed ranges of the commanded angles [rad], inclusive.
+/// Allowed ranges of the commanded angles \[rad\], inclusive.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AngleBounds<S> {
-    /// Smallest angle of attack [rad].
+    /// Smallest angle of attack \[rad\].
     pub alpha_min_rad: S,
-    /// Largest angle of attack [rad].
+    /// Largest angle of attack \[rad\].
     pub alpha_max_rad: S,
-    /// Smallest bank angle [rad].
+    /// Smallest bank angle \[rad\].
     pub sigma_min_rad: S,
-    /// Largest bank angle [rad].
+    /// Largest bank angle \[rad\].
     pub sigma_max_rad: S,
 }
 
@@ -141,32 +141,32 @@ impl<S: Scalar> AngleBounds<S> {
         Ok(())
     }
 
-    /// True if `alpha_rad` lies in `[alpha_min_rad, alpha_max_rad]` (false for NaN).
+    /// True if `alpha_rad` lies in `\[alpha_min_rad, alpha_max_rad\]` (false for NaN).
     #[must_use]
     pub fn alpha_ok(&self, alpha_rad: S) -> bool {
         alpha_rad >= self.alpha_min_rad && alpha_rad <= self.alpha_max_rad
     }
 
-    /// True if `sigma_rad` lies in `[sigma_min_rad, sigma_max_rad]` (false for NaN).
+    /// True if `sigma_rad` lies in `\[sigma_min_rad, sigma_max_rad\]` (false for NaN).
     #[must_use]
     pub fn sigma_ok(&self, sigma_rad: S) -> bool {
         sigma_rad >= self.sigma_min_rad && sigma_rad <= self.sigma_max_rad
     }
 
-    /// Clamp an angle of attack [rad] into the bounds; NaN maps to `alpha_min_rad`.
+    /// Clamp an angle of attack \[rad\] into the bounds; NaN maps to `alpha_min_rad`.
     #[must_use]
     pub fn clamp_alpha(&self, alpha_rad: S) -> S {
         clamp_finite(alpha_rad, self.alpha_min_rad, self.alpha_max_rad)
     }
 
-    /// Clamp a bank angle [rad] into the bounds; NaN maps to `sigma_min_rad`.
+    /// Clamp a bank angle \[rad\] into the bounds; NaN maps to `sigma_min_rad`.
     #[must_use]
     pub fn clamp_sigma(&self, sigma_rad: S) -> S {
         clamp_finite(sigma_rad, self.sigma_min_rad, self.sigma_max_rad)
     }
 }
 
-/// Clamp into `[lo, hi]` (valid bounds assumed); NaN gives `lo`, so the result is always
+/// Clamp into `\[lo, hi\]` (valid bounds assumed); NaN gives `lo`, so the result is always
 /// inside the bounds.
 fn clamp_finite<S: Scalar>(v: S, lo: S, hi: S) -> S {
     if v.is_finite() {
@@ -218,8 +218,8 @@ pub enum NodeTableError {
     },
 }
 
-/// The HORUS-2B nominal guidance table of thesis eq. 2.3: rows `(t [s], alpha [deg],
-/// sigma [deg])`.
+/// The HORUS-2B nominal guidance table of thesis eq. 2.3: rows `(t \[s\], alpha \[deg\],
+/// sigma \[deg\])`.
 pub const HORUS2B_REFERENCE_DEG: [(f64, f64, f64); 7] = [
     (0.0, 40.0, 0.0),
     (264.0, 40.0, 0.0),
@@ -296,7 +296,7 @@ impl<S: Scalar> NodeTable<S> {
         Self::new(independent, &all, bounds)
     }
 
-    /// Build a table from `(x, alpha_deg, sigma_deg)` rows (x: E-hat [-] or time [s]; angles
+    /// Build a table from `(x, alpha_deg, sigma_deg)` rows (x: E-hat \[-\] or time \[s\]; angles
     /// in degrees, converted to radians). Validation as for [`NodeTable::new`].
     ///
     /// # Errors
@@ -370,7 +370,7 @@ impl<S: Scalar> NodeTable<S> {
         self.nodes.is_empty()
     }
 
-    /// Change the bank angle of node `index` [rad] (onboard re-planning). The table is
+    /// Change the bank angle of node `index` \[rad\] (onboard re-planning). The table is
     /// unchanged on error.
     ///
     /// # Errors
@@ -392,7 +392,7 @@ impl<S: Scalar> NodeTable<S> {
         Ok(())
     }
 
-    /// Change the angle of attack of node `index` [rad]. The table is unchanged on error.
+    /// Change the angle of attack of node `index` \[rad\]. The table is unchanged on error.
     ///
     /// # Errors
     /// [`NodeTableError::IndexOutOfRange`], [`NodeTableError::NonFinite`] or

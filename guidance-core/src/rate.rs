@@ -18,13 +18,13 @@ use crate::scalar::Scalar;
 /// Degrees to radians.
 const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
 
-/// Largest attitude rates [rad/s].
+/// Largest attitude rates \[rad/s\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RateLimits<S> {
-    /// Largest |alpha-dot| [rad/s].
+    /// Largest |alpha-dot| \[rad/s\].
     pub alpha_rad_s: S,
-    /// Largest |sigma-dot| [rad/s].
+    /// Largest |sigma-dot| \[rad/s\].
     pub sigma_rad_s: S,
 }
 
@@ -88,7 +88,7 @@ pub fn limit_step<S: Scalar>(previous: S, target: S, max_step: S) -> S {
     }
 }
 
-/// Rate-limit a whole command over `dt_s` [s] (>= 0): each angle moves towards `target` by at
+/// Rate-limit a whole command over `dt_s` \[s\] (>= 0): each angle moves towards `target` by at
 /// most `rate * dt_s`.
 #[must_use]
 pub fn limit_command<S: Scalar>(

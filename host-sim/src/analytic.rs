@@ -17,6 +17,8 @@
 //!   ([`SkipSolution::peak_heat_flux`], [`GlideSolution::peak_heat_flux`], ...); their times
 //!   are interpolated in range angle. The g-load rate is the largest finite difference between
 //!   samples (the closed forms are smooth, so this is a lower bound of a real vehicle's).
+//! * Attitude: the samples carry the bank angle; the angle of attack is 0 (the closed forms,
+//!   and the constant-`C_L` polar vehicle of the comparison runs, are parameterised by `C_L`).
 //! * Termination: the glide ends at an altitude or a speed ([`GlideEnd`]) and is reported as
 //!   [`TerminationReason::Altitude`] or [`TerminationReason::Mach`] (the speed of sound of the
 //!   isothermal exponential atmosphere is constant, so a speed is a Mach number). The skip ends
@@ -567,7 +569,11 @@ pub fn glide_trajectory(
         error,
     };
     if !entry_altitude_m.is_finite() {
-        return Err(setting("entry_altitude_m", entry_altitude_m, "must be finite"));
+        return Err(setting(
+            "entry_altitude_m",
+            entry_altitude_m,
+            "must be finite",
+        ));
     }
     let planet = planet();
     let glide = GlideSolution::new(
@@ -638,11 +644,7 @@ pub fn glide_trajectory(
         GlideEnd::SpeedFraction { .. } => TerminationReason::Mach,
     };
     let result = ctx.assemble(&rows, peak_q, peak_g, reason);
-    let deepest = rows
-        .iter()
-        .map(|p| p.radius)
-        .fold(f64::INFINITY, f64::min)
-        - planet.radius_m;
+    let deepest = rows.iter().map(|p| p.radius).fold(f64::INFINITY, f64::min) - planet.radius_m;
     Ok(AnalyticRun {
         result,
         phase: Phase::Glide,

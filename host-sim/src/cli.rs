@@ -93,20 +93,9 @@ pub enum Command {
     Atmosphere(AtmosphereArgs),
     /// List the built-in vehicles.
     Vehicles,
-    /// Compare the numerical and the analytical simulator on a scenario (not yet available:
-    /// needs the analytical simulator).
-    Compare(CompareArgs),
-}
-
-/// Arguments of `compare`.
-#[derive(Debug, clap::Args)]
-pub struct CompareArgs {
-    /// Scenario TOML file (default: built-in HORUS-2B reference mission).
-    #[arg(long, value_name = "FILE")]
-    pub scenario: Option<PathBuf>,
-    /// Output directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
+    /// Analytical (Vinh closed forms) against numerical simulation over a grid of entry
+    /// altitude or speed x vertical lift coefficient (thesis fig. 8.5): grid.csv + SVG heat maps.
+    Compare(crate::compare::CompareCliArgs),
 }
 
 /// Arguments of `simulate`.
@@ -167,9 +156,9 @@ pub enum CliError {
     /// Output could not be written.
     #[error("{0}")]
     Report(#[from] report::ReportError),
-    /// A subcommand that is not implemented yet.
+    /// Analytical-vs-numerical comparison failed.
     #[error("{0}")]
-    NotYetAvailable(String),
+    Compare(#[from] crate::compare::CompareError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -1424,10 +1413,10 @@ where
             }
             Ok(())
         }
-        Command::Compare(_) => Err(CliError::NotYetAvailable(
-            "`compare` is not yet available: it needs the analytical simulator, which has not landed"
-                .into(),
-        )),
+        Command::Compare(a) => {
+            crate::compare::run_cli(&a, out)?;
+            Ok(())
+        }
         Command::Vehicles => {
             writeln!(
                 out,

@@ -9,6 +9,8 @@
 //! Units: SI and radians inside; degrees and km only at the edges (CLI, files, plots).
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
+// Units are written in brackets in the docs ("[m/s]"), which rustdoc would read as links.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 pub mod analytic;
 pub mod cli;

@@ -13,7 +13,11 @@ use cortex_m_semihosting::{debug, hprintln};
 
 /// Exit QEMU through semihosting with the given success flag, then idle.
 pub fn exit(success: bool) -> ! {
-    debug::exit(if success { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+    debug::exit(if success {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    });
     loop {
         cortex_m::asm::nop();
     }

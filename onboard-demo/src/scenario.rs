@@ -77,7 +77,7 @@ fn sequence<S: Scalar>(
         if i == BAD_SAMPLE {
             // A corrupted sample: radius 0/0 is NaN in floating point and 0 in fixed point
             // (which has no NaN); either way guidance must reject it and hold its command.
-            state.radius_m = S::ZERO / S::ZERO;
+            state.radius_m = S::ZERO / S::from_f64(0.0);
             if guidance.update(&state).is_ok() {
                 return Err(GuidanceError::InvalidConfig);
             }

@@ -129,9 +129,12 @@ fn setup() -> Result<(), String> {
     Ok(())
 }
 
+/// One check of `cargo xtask test`.
+type Step = Box<dyn Fn() -> Result<(), String>>;
+
 /// Every check, in order; stops at the first failure.
 fn test() -> Result<(), String> {
-    let mut steps: Vec<(&str, Box<dyn Fn() -> Result<(), String>>)> = vec![
+    let mut steps: Vec<(&str, Step)> = vec![
         ("setup", Box::new(setup)),
         (
             "rustfmt",
@@ -185,6 +188,30 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push((
+        "guidance-core docs (rustdoc -D warnings)",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args(["doc", "-p", "guidance-core", "--no-deps"]);
+            c.env("RUSTDOCFLAGS", "-D warnings");
+            run(c, "guidance-core docs")
+        }),
+    ));
+    steps.push((
+        "guidance-core unit tests with micromath",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args([
+                "test",
+                "-p",
+                "guidance-core",
+                "--features",
+                "micromath",
+                "--lib",
+            ]);
+            run(c, "guidance-core micromath tests")
+        }),
+    ));
+    steps.push((
         "clippy (firmware)",
         Box::new(|| {
             let mut c = cargo();
@@ -202,7 +229,10 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push(("firmware under QEMU", Box::new(firmware)));
-    steps.push(("firmware instruction counter (calibrated run)", Box::new(bench_firmware)));
+    steps.push((
+        "firmware instruction counter (calibrated run)",
+        Box::new(bench_firmware),
+    ));
     steps.push(("firmware size budget", Box::new(size)));
 
     let total = steps.len();
@@ -247,8 +277,16 @@ fn qemu(target: &str, elf: &Path, icount: bool) -> Command {
         ("cortex-m3", "lm3s6965evb")
     };
     let mut q = Command::new("timeout");
-    q.args(["120", "qemu-system-arm", "-cpu", cpu, "-machine", board, "-nographic"])
-        .args(["-semihosting-config", "enable=on,target=native"]);
+    q.args([
+        "120",
+        "qemu-system-arm",
+        "-cpu",
+        cpu,
+        "-machine",
+        board,
+        "-nographic",
+    ])
+    .args(["-semihosting-config", "enable=on,target=native"]);
     if icount {
         q.args(["-icount", "shift=0"]);
     }
@@ -261,7 +299,10 @@ fn qemu(target: &str, elf: &Path, icount: bool) -> Command {
 fn firmware() -> Result<(), String> {
     for (target, machine) in FIRMWARE_TARGETS {
         let elf = build_firmware(target)?;
-        run(qemu(target, &elf, false), &format!("QEMU smoke firmware on {machine}"))?;
+        run(
+            qemu(target, &elf, false),
+            &format!("QEMU smoke firmware on {machine}"),
+        )?;
     }
     Ok(())
 }
@@ -272,7 +313,10 @@ fn bench_firmware() -> Result<(), String> {
         build_firmware(target)?;
         let elf = firmware_elf(target).with_file_name("insn-bench");
         eprintln!("xtask: instruction counts on {machine} ({target}):");
-        run(qemu(target, &elf, true), &format!("insn-bench on {machine}"))?;
+        run(
+            qemu(target, &elf, true),
+            &format!("insn-bench on {machine}"),
+        )?;
     }
     Ok(())
 }
@@ -281,16 +325,16 @@ fn bench_firmware() -> Result<(), String> {
 fn budget_value(text: &str, key: &str, file: &Path) -> Result<u64, String> {
     for line in text.lines() {
         let line = line.trim();
-        if let Some(rest) = line.strip_prefix(key) {
-            if let Some(v) = rest.trim_start().strip_prefix('=') {
-                let v = v.trim().replace('_', "");
-                return v.parse::<u64>().map_err(|e| {
-                    format!(
-                        "{}: field `{key}` = {v:?}: not an integer ({e})",
-                        file.display()
-                    )
-                });
-            }
+        if let Some(rest) = line.strip_prefix(key)
+            && let Some(v) = rest.trim_start().strip_prefix('=')
+        {
+            let v = v.trim().replace('_', "");
+            return v.parse::<u64>().map_err(|e| {
+                format!(
+                    "{}: field `{key}` = {v:?}: not an integer ({e})",
+                    file.display()
+                )
+            });
         }
     }
     Err(format!("{}: field `{key}` is missing", file.display()))

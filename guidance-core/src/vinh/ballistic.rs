@@ -38,15 +38,15 @@ pub const KEPLER_MAX_STEPS: u32 = 120;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ArcPoint<S> {
-    /// Time since the exit point [s].
+    /// Time since the exit point \[s\].
     pub time_s: S,
-    /// Range angle from the exit point [rad].
+    /// Range angle from the exit point \[rad\].
     pub range_angle_rad: S,
-    /// Distance from the planet centre [m].
+    /// Distance from the planet centre \[m\].
     pub radius_m: S,
-    /// Speed [m/s].
+    /// Speed \[m/s\].
     pub speed_m_s: S,
-    /// Flight-path angle [rad].
+    /// Flight-path angle \[rad\].
     pub flight_path_angle_rad: S,
 }
 
@@ -78,8 +78,8 @@ fn ecc_from_true<S: Real>(e: S, nu: S) -> S {
 }
 
 impl<S: Real> BallisticArc<S> {
-    /// Arc from `exit` (radius [m], speed [m/s], flight-path angle [rad] > 0) to the descending
-    /// crossing of `reentry_radius_m` [m].
+    /// Arc from `exit` (radius \[m\], speed \[m/s\], flight-path angle \[rad\] > 0) to the descending
+    /// crossing of `reentry_radius_m` \[m\].
     ///
     /// # Errors
     /// [`VinhError::NonFiniteInput`], [`VinhError::InvalidPlanet`], [`VinhError::UnphysicalState`]
@@ -145,6 +145,10 @@ impl<S: Real> BallisticArc<S> {
         let mean0 = ecc0 - e * ecc0.sin();
         let mean1 = ecc1 - e * ecc1.sin();
         let t1 = finite((mean1 - mean0) / n)?;
+        // A flight-path angle too small to resolve at apoapsis gives a zero-length arc.
+        if !(nu1 > nu0 && t1 > S::ZERO) {
+            return Err(VinhError::NotAscending);
+        }
         let mut arc = Self {
             mu,
             p,
@@ -184,13 +188,13 @@ impl<S: Real> BallisticArc<S> {
         })
     }
 
-    /// Range angle from exit to re-entry [rad].
+    /// Range angle from exit to re-entry \[rad\].
     #[must_use]
     pub fn range_angle_rad(&self) -> S {
         self.nu1 - self.nu0
     }
 
-    /// Flight time from exit to re-entry [s].
+    /// Flight time from exit to re-entry \[s\].
     #[must_use]
     pub fn flight_time_s(&self) -> S {
         self.reentry.time_s
@@ -202,31 +206,31 @@ impl<S: Real> BallisticArc<S> {
         self.reentry
     }
 
-    /// Eccentricity `e` [-].
+    /// Eccentricity `e` \[-\].
     #[must_use]
     pub fn eccentricity(&self) -> S {
         self.e
     }
 
-    /// Semi-latus rectum `p` [m].
+    /// Semi-latus rectum `p` \[m\].
     #[must_use]
     pub fn semi_latus_rectum_m(&self) -> S {
         self.p
     }
 
-    /// True anomaly at the exit point `nu0` [rad] (not zero in general, ERRATA on eq. 3.81).
+    /// True anomaly at the exit point `nu0` \[rad\] (not zero in general, ERRATA on eq. 3.81).
     #[must_use]
     pub fn exit_true_anomaly_rad(&self) -> S {
         self.nu0
     }
 
-    /// Apoapsis radius `p / (1 - e)` [m].
+    /// Apoapsis radius `p / (1 - e)` \[m\].
     #[must_use]
     pub fn apoapsis_radius_m(&self) -> S {
         self.p / (S::ONE - self.e)
     }
 
-    /// Radius [m] at range angle `theta` [rad] from the exit: `p / (1 + e cos(nu0 + theta))`
+    /// Radius \[m\] at range angle `theta` \[rad\] from the exit: `p / (1 + e cos(nu0 + theta))`
     /// (eq. 3.81 with the exit phase).
     ///
     /// # Errors
@@ -241,7 +245,7 @@ impl<S: Real> BallisticArc<S> {
         finite(self.p / (S::ONE + self.e * (self.nu0 + range_angle_rad).cos()))
     }
 
-    /// State at time `time_s` [s] after the exit, by Kepler's equation.
+    /// State at time `time_s` \[s\] after the exit, by Kepler's equation.
     ///
     /// # Errors
     /// [`VinhError::NonFiniteInput`], [`VinhError::OutsideArc`] outside `[0, flight time]`,

@@ -16,7 +16,7 @@
 //!   this in the tests, see docs/VINH.md);
 //! * range angle (3.77, ERRATA layout):
 //!   `theta = (E/2) { ln[(1-u)/(1-u_E)] + (2/s) ln[u_E (1-u) / ((1-u_E) u)] +
-//!   (2/s) [1/(1-u_E) - 1/(1-u)] }`;
+//!   (2/s) \[1/(1-u_E) - 1/(1-u)\] }`;
 //! * imposed entry (3.78/3.79, ERRATA sign): `u_E = 1/(1 + k1)`,
 //!   `sin(gamma_E) = -2 k1 (1 + k1) / (E [2 (1 + k1)^2 + s k1])`.
 //!
@@ -43,7 +43,7 @@ use crate::scalar::Real;
 
 /// Smallest accepted `1 - u_E` (glide entry speed ratio to circular, `u_E = 1/(1 + k1)`).
 ///
-/// Chosen from the measured validation (docs/VINH.md, `explore_glide_near_circular`): the final
+/// Chosen from the measured validation (docs/VINH.md; measured with the limit lowered): the final
 /// range-angle error against the numerical glide grows as `1 - u_E` shrinks (about 2 % at
 /// 0.012, 3 % at 0.006, 5-9 % at 0.0015-0.003, 15-50 % at 1e-4 to 4e-4); HORUS-2B at 122 km has
 /// `1 - u_E ~ 1e-4` (thesis sec. 8.1.6). 0.01 keeps the measured error below 2.1 %.
@@ -53,27 +53,27 @@ pub const MIN_ONE_MINUS_U_E: f64 = 0.01;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct GlidePoint<S> {
-    /// `u = V^2 / (g_E r_E)` [-].
+    /// `u = V^2 / (g_E r_E)` \[-\].
     pub u: S,
-    /// Speed [m/s].
+    /// Speed \[m/s\].
     pub speed_m_s: S,
-    /// Range angle from the glide start [rad] (eq. 3.77).
+    /// Range angle from the glide start \[rad\] (eq. 3.77).
     pub range_angle_rad: S,
-    /// Second-order density ratio `y1 = rho / rho_E` [-].
+    /// Second-order density ratio `y1 = rho / rho_E` \[-\].
     pub density_ratio: S,
-    /// Distance from the planet centre, `r_E - H_s ln(y1)` [m].
+    /// Distance from the planet centre, `r_E - H_s ln(y1)` \[m\].
     pub radius_m: S,
-    /// Second-order `phi1` [-].
+    /// Second-order `phi1` \[-\].
     pub phi: S,
-    /// Flight-path angle `asin(-phi1 / sqrt(s))` [rad].
+    /// Flight-path angle `asin(-phi1 / sqrt(s))` \[rad\].
     pub flight_path_angle_rad: S,
-    /// Chapman heat flux [W/m^2].
+    /// Chapman heat flux \[W/m^2\].
     pub heat_flux_w_m2: S,
-    /// Drag acceleration [m/s^2].
+    /// Drag acceleration \[m/s^2\].
     pub drag_acc_m_s2: S,
-    /// Total-lift acceleration [m/s^2].
+    /// Total-lift acceleration \[m/s^2\].
     pub lift_acc_m_s2: S,
-    /// g-load [-].
+    /// g-load \[-\].
     pub g_load: S,
 }
 
@@ -118,7 +118,7 @@ struct Y1<S> {
 }
 
 impl<S: Real> GlideSolution<S> {
-    /// Glide starting at `reference_radius_m` [m] with lift setting `lift`; the entry speed and
+    /// Glide starting at `reference_radius_m` \[m\] with lift setting `lift`; the entry speed and
     /// flight-path angle are imposed by eq. 3.78/3.79.
     ///
     /// # Errors
@@ -185,7 +185,7 @@ impl<S: Real> GlideSolution<S> {
         self.nd.entry
     }
 
-    /// `u_E = 1/(1 + k1)` [-].
+    /// `u_E = 1/(1 + k1)` \[-\].
     #[must_use]
     pub fn u_entry(&self) -> S {
         self.u_e
@@ -197,7 +197,7 @@ impl<S: Real> GlideSolution<S> {
         &self.nd
     }
 
-    /// `u` [-] of speed `speed_m_s` [m/s].
+    /// `u` \[-\] of speed `speed_m_s` \[m/s\].
     #[must_use]
     pub fn u_from_speed(&self, speed_m_s: S) -> S {
         speed_m_s * speed_m_s / (self.nd.g_e * self.nd.entry.radius_m)
@@ -235,7 +235,7 @@ impl<S: Real> GlideSolution<S> {
         (S::ONE - u) / (self.k1 * u)
     }
 
-    /// Range angle [rad] from the glide start to `u` (eq. 3.77, ERRATA layout).
+    /// Range angle \[rad\] from the glide start to `u` (eq. 3.77, ERRATA layout).
     fn theta(&self, u: S) -> S {
         let one = S::ONE;
         let two: S = k(2.0);
@@ -290,7 +290,7 @@ impl<S: Real> GlideSolution<S> {
         .check()
     }
 
-    /// Glide point at speed `speed_m_s` [m/s] (at most the imposed entry speed).
+    /// Glide point at speed `speed_m_s` \[m/s\] (at most the imposed entry speed).
     ///
     /// # Errors
     /// As [`GlideSolution::point_at_u`].
@@ -319,7 +319,7 @@ impl<S: Real> GlideSolution<S> {
         self.point_at_u(u)
     }
 
-    /// Peak Chapman heat flux between the glide start and `final_speed_m_s` [m/s].
+    /// Peak Chapman heat flux between the glide start and `final_speed_m_s` \[m/s\].
     ///
     /// # Errors
     /// As [`GlideSolution::point_at_u`] for the final speed.
@@ -331,7 +331,7 @@ impl<S: Real> GlideSolution<S> {
         })
     }
 
-    /// Peak g-load between the glide start and `final_speed_m_s` [m/s].
+    /// Peak g-load between the glide start and `final_speed_m_s` \[m/s\].
     ///
     /// # Errors
     /// As [`GlideSolution::point_at_u`] for the final speed.

@@ -34,17 +34,17 @@ use super::error::VinhError;
 use super::num::{finite, k};
 use crate::scalar::Real;
 
-/// Chapman heat-flux constant `c*` (thesis eq. 2.2) [W/m^2 with the nose radius in m].
+/// Chapman heat-flux constant `c*` (thesis eq. 2.2) \[W/m^2 with the nose radius in m\].
 pub const CHAPMAN_C_STAR: f64 = 1.1097e8;
-/// Chapman reference density `rho_0` [kg/m^3].
+/// Chapman reference density `rho_0` \[kg/m^3\].
 pub const CHAPMAN_RHO0_KG_M3: f64 = 1.225;
-/// Chapman reference circular speed `V_c` [m/s].
+/// Chapman reference circular speed `V_c` \[m/s\].
 pub const CHAPMAN_VC_M_S: f64 = 7905.4;
-/// Chapman speed exponent `m` [-].
+/// Chapman speed exponent `m` \[-\].
 pub const CHAPMAN_SPEED_EXPONENT: f64 = 3.15;
-/// Standard gravity used to express g-loads, eq. 2.1 [m/s^2].
+/// Standard gravity used to express g-loads, eq. 2.1 \[m/s^2\].
 pub const G0_M_S2: f64 = 9.806_65;
-/// Highest accepted reference speed [m/s]: the top of the validated range (docs/VINH.md).
+/// Highest accepted reference speed \[m/s\]: the top of the validated range (docs/VINH.md).
 /// Thesis sec. 8.2.1 reports complex numbers for entry speeds above 11000 m/s. With the ERRATA
 /// corrections the skip closed form stays real and accurate up to this limit (measured); what
 /// does fail above about 11 km/s is the ballistic arc: the local escape speed at 122 km is
@@ -56,9 +56,9 @@ pub const MAX_ENTRY_SPEED_M_S: f64 = 14_000.0;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Planet<S> {
-    /// Gravitational parameter `mu` [m^3/s^2].
+    /// Gravitational parameter `mu` \[m^3/s^2\].
     pub mu_m3_s2: S,
-    /// Surface radius `R` [m] (altitude zero).
+    /// Surface radius `R` \[m\] (altitude zero).
     pub radius_m: S,
 }
 
@@ -87,11 +87,11 @@ impl<S: Real> Planet<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ExpAtmosphere<S> {
-    /// Density at `ref_radius_m` [kg/m^3].
+    /// Density at `ref_radius_m` \[kg/m^3\].
     pub rho0_kg_m3: S,
-    /// Scale height `H_s` [m].
+    /// Scale height `H_s` \[m\].
     pub scale_height_m: S,
-    /// Radius where the density is `rho0_kg_m3` [m] (normally the planet radius).
+    /// Radius where the density is `rho0_kg_m3` \[m\] (normally the planet radius).
     pub ref_radius_m: S,
 }
 
@@ -121,7 +121,7 @@ impl<S: Real> ExpAtmosphere<S> {
         Ok(())
     }
 
-    /// Density [kg/m^3] at radius `radius_m` [m].
+    /// Density \[kg/m^3\] at radius `radius_m` \[m\].
     ///
     /// # Errors
     /// [`VinhError::NonFiniteInput`] for a non-finite radius, [`VinhError::InvalidAtmosphere`]
@@ -144,15 +144,15 @@ impl<S: Real> ExpAtmosphere<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct VehicleParams<S> {
-    /// Mass `m` [kg].
+    /// Mass `m` \[kg\].
     pub mass_kg: S,
-    /// Aerodynamic reference area `S` [m^2].
+    /// Aerodynamic reference area `S` \[m^2\].
     pub reference_area_m2: S,
-    /// Zero-lift drag coefficient `C_D0` [-].
+    /// Zero-lift drag coefficient `C_D0` \[-\].
     pub cd0: S,
-    /// Induced-drag factor `K` [-].
+    /// Induced-drag factor `K` \[-\].
     pub k_polar: S,
-    /// Nose radius `R_N` for the Chapman heat flux [m].
+    /// Nose radius `R_N` for the Chapman heat flux \[m\].
     pub nose_radius_m: S,
 }
 
@@ -181,7 +181,7 @@ impl<S: Real> VehicleParams<S> {
         Ok(())
     }
 
-    /// Lift coefficient of maximum L/D, `C_L* = sqrt(C_D0 / K)` [-].
+    /// Lift coefficient of maximum L/D, `C_L* = sqrt(C_D0 / K)` \[-\].
     ///
     /// # Errors
     /// As for validation: [`VinhError::NonFiniteInput`], [`VinhError::NonPositiveZeroLiftDrag`],
@@ -191,7 +191,7 @@ impl<S: Real> VehicleParams<S> {
         finite((self.cd0 / self.k_polar).sqrt_raw())
     }
 
-    /// Maximum lift-to-drag ratio `E* = 1 / (2 sqrt(K C_D0))` [-] (eq. 3.18).
+    /// Maximum lift-to-drag ratio `E* = 1 / (2 sqrt(K C_D0))` \[-\] (eq. 3.18).
     ///
     /// # Errors
     /// As for [`VehicleParams::cl_max_ld`].
@@ -206,9 +206,9 @@ impl<S: Real> VehicleParams<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LiftControl<S> {
-    /// Lift parameter `lambda` [-], `>= 0` (1 at maximum L/D, 0 ballistic).
+    /// Lift parameter `lambda` \[-\], `>= 0` (1 at maximum L/D, 0 ballistic).
     pub lambda: S,
-    /// Vertical fraction of the lift `cos(sigma)` [-], in `[-1, 1]`.
+    /// Vertical fraction of the lift `cos(sigma)` \[-\], in `[-1, 1]`.
     pub vertical_fraction: S,
 }
 
@@ -222,7 +222,7 @@ impl<S: Real> LiftControl<S> {
         }
     }
 
-    /// From a total lift coefficient `c_l` [-] and bank angle `bank_rad` [rad].
+    /// From a total lift coefficient `c_l` \[-\] and bank angle `bank_rad` \[rad\].
     ///
     /// # Errors
     /// [`VinhError::NonFiniteInput`] and the vehicle's validation errors.
@@ -258,11 +258,11 @@ impl<S: Real> LiftControl<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EntryState<S> {
-    /// Distance from the planet centre `r_E` [m].
+    /// Distance from the planet centre `r_E` \[m\].
     pub radius_m: S,
-    /// Planet-relative speed `V_E` [m/s].
+    /// Planet-relative speed `V_E` \[m/s\].
     pub speed_m_s: S,
-    /// Flight-path angle `gamma_E` [rad], positive above the horizontal.
+    /// Flight-path angle `gamma_E` \[rad\], positive above the horizontal.
     pub flight_path_angle_rad: S,
 }
 
@@ -291,27 +291,27 @@ impl<S: Real> EntryState<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Constants<S> {
-    /// `E*`, maximum lift-to-drag ratio [-] (eq. 3.18).
+    /// `E*`, maximum lift-to-drag ratio \[-\] (eq. 3.18).
     pub e_star: S,
-    /// `B` [-] (eq. 3.20).
+    /// `B` \[-\] (eq. 3.20).
     pub b: S,
-    /// `lambda` (total lift) [-] (eq. 3.21).
+    /// `lambda` (total lift) \[-\] (eq. 3.21).
     pub lambda: S,
-    /// `k1 = B lambda cos(sigma)` [-] (eq. 3.32).
+    /// `k1 = B lambda cos(sigma)` \[-\] (eq. 3.32).
     pub k1: S,
-    /// `eta` [-] (eq. 3.25).
+    /// `eta` \[-\] (eq. 3.25).
     pub eta: S,
-    /// `k = 2 / (eta s)` [-] (eq. 3.27).
+    /// `k = 2 / (eta s)` \[-\] (eq. 3.27).
     pub k: S,
-    /// `alpha = g_E r_E / V_E^2` [-] (eq. 3.28).
+    /// `alpha = g_E r_E / V_E^2` \[-\] (eq. 3.28).
     pub alpha: S,
-    /// `s = r_E / H_s` [-].
+    /// `s = r_E / H_s` \[-\].
     pub s: S,
-    /// `sqrt(s)` [-].
+    /// `sqrt(s)` \[-\].
     pub sqrt_s: S,
-    /// `c = phi_E = -sqrt(s) sin(gamma_E)` [-].
+    /// `c = phi_E = -sqrt(s) sin(gamma_E)` \[-\].
     pub c: S,
-    /// Vertical lift-to-drag ratio `E = 2 E* lambda cos(sigma) / (1 + lambda^2)` [-] (ERRATA:
+    /// Vertical lift-to-drag ratio `E = 2 E* lambda cos(sigma) / (1 + lambda^2)` \[-\] (ERRATA:
     /// the `E` of eq. 3.68-3.79 is the actual L/D, not `E*`).
     pub e_vertical: S,
 }
@@ -329,11 +329,11 @@ pub struct NonDim<S> {
     pub(crate) scale_height_m: S,
     pub(crate) rho_e: S,
     pub(crate) g_e: S,
-    /// Chapman heat flux at the reference state [W/m^2].
+    /// Chapman heat flux at the reference state \[W/m^2\].
     pub(crate) q_e: S,
-    /// Drag acceleration at the reference state [m/s^2].
+    /// Drag acceleration at the reference state \[m/s^2\].
     pub(crate) drag_e: S,
-    /// Total-lift acceleration at the reference state [m/s^2].
+    /// Total-lift acceleration at the reference state \[m/s^2\].
     pub(crate) lift_e: S,
 }
 
@@ -434,43 +434,43 @@ impl<S: Real> NonDim<S> {
         self.entry
     }
 
-    /// Density at the reference radius `rho_E` [kg/m^3].
+    /// Density at the reference radius `rho_E` \[kg/m^3\].
     #[must_use]
     pub fn entry_density_kg_m3(&self) -> S {
         self.rho_e
     }
 
-    /// Gravity at the reference radius `g_E = mu / r_E^2` [m/s^2].
+    /// Gravity at the reference radius `g_E = mu / r_E^2` \[m/s^2\].
     #[must_use]
     pub fn entry_gravity_m_s2(&self) -> S {
         self.g_e
     }
 
-    /// `x` of the planet surface, `(r_E - R)/H_s` [-]: the deepest admissible `x`.
+    /// `x` of the planet surface, `(r_E - R)/H_s` \[-\]: the deepest admissible `x`.
     #[must_use]
     pub fn surface_x(&self) -> S {
         (self.entry.radius_m - self.planet.radius_m) / self.scale_height_m
     }
 
-    /// Radius [m] from `x`: `r = r_E - H_s x` (eq. 3.59).
+    /// Radius \[m\] from `x`: `r = r_E - H_s x` (eq. 3.59).
     #[must_use]
     pub fn radius_from_x(&self, x: S) -> S {
         self.entry.radius_m - self.scale_height_m * x
     }
 
-    /// `x = (r_E - r)/H_s` [-] from radius [m].
+    /// `x = (r_E - r)/H_s` \[-\] from radius \[m\].
     #[must_use]
     pub fn x_from_radius(&self, radius_m: S) -> S {
         (self.entry.radius_m - radius_m) / self.scale_height_m
     }
 
-    /// Speed [m/s] from `eta v`: `V = V_E exp(-eta v / 2)` (eq. 3.60).
+    /// Speed \[m/s\] from `eta v`: `V = V_E exp(-eta v / 2)` (eq. 3.60).
     #[must_use]
     pub fn speed_from_eta_v(&self, eta_v: S) -> S {
         self.entry.speed_m_s * (-eta_v.half()).exp()
     }
 
-    /// Flight-path angle [rad] from `phi`: `gamma = asin(-phi / sqrt(s))` (eq. 3.61).
+    /// Flight-path angle \[rad\] from `phi`: `gamma = asin(-phi / sqrt(s))` (eq. 3.61).
     ///
     /// # Errors
     /// [`VinhError::FlightPathAngleOutOfDomain`] if `|phi| >= sqrt(s)`.
@@ -485,31 +485,31 @@ impl<S: Real> NonDim<S> {
         Ok(sn.asin())
     }
 
-    /// Range angle `theta = tau / sqrt(s)` [rad] (eq. 3.22).
+    /// Range angle `theta = tau / sqrt(s)` \[rad\] (eq. 3.22).
     #[must_use]
     pub fn range_angle_from_tau(&self, tau: S) -> S {
         tau / self.c.sqrt_s
     }
 
-    /// Chapman heat flux [W/m^2] at depth `x` and `eta v` (eq. 3.58 with `b = 1/2`, `M = 3.15`).
+    /// Chapman heat flux \[W/m^2\] at depth `x` and `eta v` (eq. 3.58 with `b = 1/2`, `M = 3.15`).
     #[must_use]
     pub fn heat_flux_w_m2(&self, x: S, eta_v: S) -> S {
         self.q_e * (x.half() - k::<S>(CHAPMAN_SPEED_EXPONENT / 2.0) * eta_v).exp()
     }
 
-    /// Drag acceleration [m/s^2] at `x`, `eta v` (eq. 3.56 times `g_E`).
+    /// Drag acceleration \[m/s^2\] at `x`, `eta v` (eq. 3.56 times `g_E`).
     #[must_use]
     pub fn drag_acc_m_s2(&self, x: S, eta_v: S) -> S {
         self.drag_e * (x - eta_v).exp()
     }
 
-    /// Lift acceleration [m/s^2] of the total lift at `x`, `eta v` (eq. 3.57 times `g_E`).
+    /// Lift acceleration \[m/s^2\] of the total lift at `x`, `eta v` (eq. 3.57 times `g_E`).
     #[must_use]
     pub fn lift_acc_m_s2(&self, x: S, eta_v: S) -> S {
         self.lift_e * (x - eta_v).exp()
     }
 
-    /// g-load `sqrt(L^2 + D^2)/(m g0)` [-] at `x`, `eta v` (eq. 2.1).
+    /// g-load `sqrt(L^2 + D^2)/(m g0)` \[-\] at `x`, `eta v` (eq. 2.1).
     #[must_use]
     pub fn g_load(&self, x: S, eta_v: S) -> S {
         let d = self.drag_e;
@@ -541,7 +541,7 @@ impl<S: Real> NonDim<S> {
         self.lift
     }
 
-    /// Scale height `H_s` [m].
+    /// Scale height `H_s` \[m\].
     #[must_use]
     pub fn scale_height_m(&self) -> S {
         self.scale_height_m

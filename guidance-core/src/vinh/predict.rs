@@ -9,8 +9,8 @@
 //! 2. Descending state: a second-order skip ([`SkipSolution`]). If it exits, a Kepler arc
 //!    ([`BallisticArc`]) carries the vehicle to re-entry at the interface radius, with the exit
 //!    speed and the mirrored flight-path angle, and the next phase starts there. If the skip does
-//!    not return to the interface radius ([`VinhError::NoAtmosphericExit`]: captured), the final
-//!    glide follows.
+//!    not return to the interface radius ([`VinhError::NoAtmosphericExit`]: captured), or exits
+//!    too shallow for a resolvable arc, the final glide follows.
 //! 3. Ascending state (e.g. in the upper part of a skip): the remainder is treated as a Kepler
 //!    arc to the descending crossing of the same radius.
 //! 4. Final glide: the glide method imposes its entry speed for a given altitude
@@ -43,7 +43,7 @@ pub const MAX_SKIPS: u8 = 8;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PredictorConfig<S> {
-    /// Speed at which the final glide ends [m/s] (must be below the glide start speed).
+    /// Speed at which the final glide ends \[m/s\] (must be below the glide start speed).
     pub final_speed_m_s: S,
     /// Maximum number of skips before the final glide (at most [`MAX_SKIPS`]).
     pub max_skips: u8,
@@ -53,21 +53,21 @@ pub struct PredictorConfig<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Prediction<S> {
-    /// Total predicted range angle [rad].
+    /// Total predicted range angle \[rad\].
     pub range_angle_rad: S,
-    /// Total predicted surface range `R theta` [m].
+    /// Total predicted surface range `R theta` \[m\].
     pub range_m: S,
-    /// Peak Chapman heat flux over all modelled phases [W/m^2].
+    /// Peak Chapman heat flux over all modelled phases \[W/m^2\].
     pub peak_heat_flux_w_m2: S,
-    /// Peak g-load over all modelled phases [-].
+    /// Peak g-load over all modelled phases \[-\].
     pub peak_g_load: S,
     /// Number of skips that exited the atmosphere.
     pub skips: u8,
     /// Number of ballistic arcs flown.
     pub arcs: u8,
-    /// Reference radius where the final glide starts [m].
+    /// Reference radius where the final glide starts \[m\].
     pub glide_start_radius_m: S,
-    /// Range angle of the final glide [rad].
+    /// Range angle of the final glide \[rad\].
     pub glide_range_angle_rad: S,
 }
 
@@ -112,7 +112,13 @@ pub fn predict<S: Real>(
         }
         phase += 1;
         if cur.flight_path_angle_rad > S::ZERO {
-            let arc = BallisticArc::new(planet, &cur, r_i)?;
+            let arc = match BallisticArc::new(planet, &cur, r_i) {
+                Ok(a) => a,
+                // Exit too shallow to resolve an arc: the vehicle stays at the interface
+                // radius, treated as captured.
+                Err(VinhError::NotAscending) if arcs < skips => break,
+                Err(e) => return Err(e),
+            };
             theta = theta + arc.range_angle_rad();
             let re = arc.reentry();
             cur = EntryState {
@@ -148,7 +154,8 @@ pub fn predict<S: Real>(
                 };
                 skips += 1;
                 if !(cur.flight_path_angle_rad > S::ZERO) {
-                    return Err(VinhError::NotAscending);
+                    // Exit at zero flight-path angle: captured.
+                    break;
                 }
             }
             Err(VinhError::NoAtmosphericExit) => break,
@@ -176,7 +183,7 @@ pub fn predict<S: Real>(
     })
 }
 
-/// Imposed glide entry speed (eq. 3.78) at reference radius `r` [m/s].
+/// Imposed glide entry speed (eq. 3.78) at reference radius `r` \[m/s\].
 fn imposed_speed<S: Real>(
     planet: &Planet<S>,
     atmosphere: &ExpAtmosphere<S>,

@@ -77,29 +77,29 @@ pub enum Leg {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SkipPoint<S> {
-    /// Non-dimensional range angle `tau` [-].
+    /// Non-dimensional range angle `tau` \[-\].
     pub tau: S,
-    /// Range angle from the reference point `theta` [rad].
+    /// Range angle from the reference point `theta` \[rad\].
     pub range_angle_rad: S,
-    /// Depth `x = (r_E - r)/H_s` [-].
+    /// Depth `x = (r_E - r)/H_s` \[-\].
     pub x: S,
-    /// `phi = -sqrt(r_E/H_s) sin(gamma)` [-].
+    /// `phi = -sqrt(r_E/H_s) sin(gamma)` \[-\].
     pub phi: S,
-    /// `eta v = ln(V_E^2 / V^2)` [-].
+    /// `eta v = ln(V_E^2 / V^2)` \[-\].
     pub eta_v: S,
-    /// Distance from the planet centre [m].
+    /// Distance from the planet centre \[m\].
     pub radius_m: S,
-    /// Speed [m/s].
+    /// Speed \[m/s\].
     pub speed_m_s: S,
-    /// Flight-path angle [rad].
+    /// Flight-path angle \[rad\].
     pub flight_path_angle_rad: S,
-    /// Chapman stagnation heat flux [W/m^2].
+    /// Chapman stagnation heat flux \[W/m^2\].
     pub heat_flux_w_m2: S,
-    /// Drag acceleration [m/s^2].
+    /// Drag acceleration \[m/s^2\].
     pub drag_acc_m_s2: S,
-    /// Total-lift acceleration [m/s^2].
+    /// Total-lift acceleration \[m/s^2\].
     pub lift_acc_m_s2: S,
-    /// g-load `sqrt(L^2 + D^2)/(m g0)` [-].
+    /// g-load `sqrt(L^2 + D^2)/(m g0)` \[-\].
     pub g_load: S,
 }
 
@@ -415,7 +415,7 @@ impl<S: Real> SkipSolution<S> {
         self.point(tau, x, phi_a, leg)
     }
 
-    /// State at range angle `theta` [rad] from the reference point.
+    /// State at range angle `theta` \[rad\] from the reference point.
     ///
     /// # Errors
     /// As [`SkipSolution::point_at_tau`].
@@ -475,13 +475,13 @@ impl<S: Real> SkipSolution<S> {
         self.exit
     }
 
-    /// Second-order deepest depth `x1` [-].
+    /// Second-order deepest depth `x1` \[-\].
     #[must_use]
     pub fn x1(&self) -> S {
         self.q.x1
     }
 
-    /// First-order deepest depth `x1` (root of eq. 3.39) [-].
+    /// First-order deepest depth `x1` (root of eq. 3.39) \[-\].
     #[must_use]
     pub fn x1_first_order(&self) -> S {
         self.x1_first
@@ -500,13 +500,13 @@ impl<S: Real> SkipSolution<S> {
         (self.q.a1, self.q.a2, self.q.a3)
     }
 
-    /// Non-dimensional range angle of the deepest point [-].
+    /// Non-dimensional range angle of the deepest point \[-\].
     #[must_use]
     pub fn tau_bottom(&self) -> S {
         self.q.tau_bottom
     }
 
-    /// Non-dimensional range angle of the exit [-].
+    /// Non-dimensional range angle of the exit \[-\].
     #[must_use]
     pub fn tau_exit(&self) -> S {
         self.q.tau_exit

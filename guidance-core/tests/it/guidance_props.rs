@@ -197,7 +197,7 @@ proptest! {
                 prop_assert!((c.sigma_rad - prev_cmd.sigma_rad).abs() <= config.rates.sigma_rad_s * 2.0 + 1e-15);
                 // Continuity: the new ramp starts where the old one was at the tick instant.
                 prop_assert_eq!(g.attitude_at(tick), old.attitude_at(tick));
-                prop_assert_eq!(g.attitude_at(tick + 2.0), c);
+                prop_assert_eq!(g.attitude_at(g.next_tick_s()), c);
                 prop_assert_eq!(g.attitude_at(tick + 1e9), c);
                 // Ramp: sample [tick - 0.5, tick + 2.5] and check the rate between samples.
                 let mut prev_a = g.attitude_at(tick - 0.5);
@@ -285,6 +285,12 @@ proptest! {
     }
 }
 
+/// NaN in the float types (0/0), 0 in fixed point (which has no NaN; 0/0 saturates to 0).
+#[allow(clippy::eq_op)]
+fn nan<S: Scalar>() -> S {
+    S::ZERO / S::ZERO
+}
+
 /// f64 values including the awkward ones.
 fn special_f64() -> impl Strategy<Value = f64> {
     prop_oneof![
@@ -336,16 +342,16 @@ fn check_random_nav<S: Scalar>(
             // from_f64 maps NaN to 0 for all types: re-inject NaN for the float types.
             let mut state = state;
             if t.is_nan() {
-                state.time_s = S::ZERO / S::ZERO;
+                state.time_s = nan::<S>();
             }
             if r.is_nan() {
-                state.radius_m = S::ZERO / S::ZERO;
+                state.radius_m = nan::<S>();
             }
             if v.is_nan() {
-                state.speed_m_s = S::ZERO / S::ZERO;
+                state.speed_m_s = nan::<S>();
             }
             if other.is_nan() {
-                state.flight_path_angle_rad = S::ZERO / S::ZERO;
+                state.flight_path_angle_rad = nan::<S>();
             }
             let before = g.command();
             match g.update(&state) {
@@ -357,14 +363,15 @@ fn check_random_nav<S: Scalar>(
             }
             prop_assert!(in_bounds(g.command(), &b));
             prop_assert!(in_bounds(g.attitude_at(state.time_s), &b));
-            prop_assert!(in_bounds(g.attitude_at(S::ZERO / S::ZERO), &b));
+            prop_assert!(in_bounds(g.attitude_at(nan::<S>()), &b));
         }
     }
     Ok(())
 }
 
 /// Energy-indexed test table (E-hat decreasing) with one steep bank reversal between 0.62 and
-/// 0.615 (70 deg over 0.005 of E-hat) so that the 15 deg/s bank-rate limit binds.
+/// 0.618 (70 deg over 0.002 of E-hat, about 3 s of the test descent) so that the 15 deg/s
+/// bank-rate limit binds.
 fn energy_table<S: Scalar>() -> NodeTable<S> {
     NodeTable::from_deg(
         Independent::NormalizedEnergy,
@@ -372,7 +379,7 @@ fn energy_table<S: Scalar>() -> NodeTable<S> {
             (1.0, 40.0, 0.0),
             (0.9, 38.0, 75.0),
             (0.62, 30.0, 80.0),
-            (0.615, 30.0, 10.0),
+            (0.618, 30.0, 10.0),
             (0.4, 20.0, 60.0),
             (0.1, 11.5, 54.0),
         ],
@@ -393,7 +400,7 @@ fn run<S: Scalar>(
         table,
         kind,
         energy(),
-        Command::from_deg(40.0, 30.0).unwrap(),
+        Command::from_deg(40.0, 60.0).unwrap(),
     )
     .unwrap();
     let mut out = Vec::new();
@@ -462,10 +469,10 @@ fn compare(
     let mut run = [0u32; 2];
     let (mut worst, mut worst_bound) = (0.0f64, 0.0f64);
     for (k, (a, b)) in reference.iter().zip(other).enumerate() {
-        for j in 0..2 {
+        for (j, run_j) in run.iter_mut().enumerate() {
             let limited = a.0[j] != a.1[j] || b.0[j] != b.1[j];
-            run[j] = if limited { run[j] + 1 } else { 0 };
-            let bound = e0.max(e_target) + f64::from(run[j]) * r;
+            *run_j = if limited { *run_j + 1 } else { 0 };
+            let bound = e0.max(e_target) + f64::from(*run_j) * r;
             let e = (a.0[j] - b.0[j]).abs();
             assert!(
                 e <= bound,
@@ -580,9 +587,17 @@ fn chapman_heat_flux_known_value() {
     assert!((q - 2.2194e6).abs() < 1e-6 * 2.2194e6, "{q}");
     let q = try_chapman_heat_flux_w_m2(1.225e-4_f64, 15_810.8, 0.8).unwrap();
     assert!((q - 1.101299e7).abs() < 2e-6 * 1.101299e7, "{q}");
+    // f32: libm is within a few ulp. With `micromath`, two square roots whose error was
+    // measured up to 2.5 % (the 5e-3 of crate::math's docs does not hold everywhere; observed
+    // total 2.4 % here), so 6e-2.
+    let rel32 = if cfg!(feature = "micromath") {
+        6e-2
+    } else {
+        1e-5
+    };
     let q32 = chapman_heat_flux_w_m2(1.225e-4_f32, 15_810.8, 0.8);
     assert!(
-        (f64::from(q32) - 1.101299e7).abs() < 1e-5 * 1.101299e7,
+        (f64::from(q32) - 1.101299e7).abs() < rel32 * 1.101299e7,
         "{q32}"
     );
     // Zero density: no heating.
@@ -596,8 +611,15 @@ fn chapman_heat_flux_known_value() {
 fn g_load_known_value() {
     let n = g_load(3.0e5_f64, 4.0e5, 26_029.0);
     assert!((n - 1.958808).abs() < 1e-6, "{n}");
+    // f32 with micromath: its sqrt was measured 2.5 % off at 1.5625 = 1 + (3/4)^2 (the 5e-3
+    // of crate::math's docs does not hold there), so 3e-2 with that feature.
+    let rel32 = if cfg!(feature = "micromath") {
+        3e-2
+    } else {
+        1e-6
+    };
     let n = try_g_load(-4.0e5_f32, 3.0e5, 26_029.0).unwrap();
-    assert!((f64::from(n) - 1.958808).abs() < 1e-6, "{n}");
+    assert!((f64::from(n) - 1.958808).abs() < rel32 * 1.958808, "{n}");
     assert!((g_load(0.0, 9.80665, 1.0_f64) - 1.0).abs() < 1e-15);
     assert_eq!(G0_M_S2, 9.80665);
 }

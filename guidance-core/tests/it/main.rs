@@ -2,5 +2,6 @@
 
 mod guidance_props;
 mod vinh_props;
+mod vinh_replan;
 mod vinh_support;
 mod vinh_validation;

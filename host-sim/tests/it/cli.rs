@@ -216,10 +216,38 @@ fn help_on_every_subcommand() {
     let o = bin().args(["simulate", "--help"]).output().unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("--scenario") && text.contains("--out"));
-    // `compare` exists but says clearly that it is not available yet.
-    let o = bin().arg("compare").output().unwrap();
+    let o = bin().args(["compare", "--help"]).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("--altitudes-km") && text.contains("--gamma-deg"),
+        "{text}"
+    );
+    // A one-point skip comparison in the simplified environment writes its grid.
+    let dir = std::env::temp_dir().join(format!("host-sim-compare-{}", std::process::id()));
+    let o = bin()
+        .args([
+            "compare",
+            "--phase",
+            "skip",
+            "--speeds-m-s",
+            "9000",
+            "--cl-vertical",
+            "1",
+        ])
+        .args(["--environments", "simplified", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.join("grid.csv").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+    // Bad compare input: error naming the option and value, non-zero exit.
+    let o = bin()
+        .args(["compare", "--vehicle", "nope"])
+        .output()
+        .unwrap();
     assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("not yet available"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("nope"));
     // Unknown subcommand: usage error, non-zero.
     let o = bin().arg("fly").output().unwrap();
     assert!(!o.status.success());

@@ -1,8 +1,8 @@
 //! The host-sim integration-test binary (one per crate). Each module is one topic.
 
+mod analytic_validation;
 mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
 mod support;
-mod analytic_validation;

@@ -42,13 +42,28 @@ fn nav(t: f64, speed: f64) -> NavState<Num> {
 }
 
 fn bench_guidance(c: &mut InsnCounter, name: &str, kind: Interpolation<Num>) -> bool {
-    let Ok(table) = NodeTable::<Num>::horus2b_reference() else { return false };
-    let Ok(energy) = EnergyNormalizer::<Num>::new(EARTH_MU_M3_S2, EARTH_RADIUS_M, EARTH_RADIUS_M + 122_000.0, 7435.5)
-    else {
+    let Ok(table) = NodeTable::<Num>::horus2b_reference() else {
         return false;
     };
-    let initial = Command { alpha_rad: Num::from_f64(0.6981), sigma_rad: Num::ZERO };
-    let Ok(mut g) = Guidance::new(GuidanceConfig::thesis_default(), table, kind, energy, initial) else {
+    let Ok(energy) = EnergyNormalizer::<Num>::new(
+        EARTH_MU_M3_S2,
+        EARTH_RADIUS_M,
+        EARTH_RADIUS_M + 122_000.0,
+        7435.5,
+    ) else {
+        return false;
+    };
+    let initial = Command {
+        alpha_rad: Num::from_f64(0.6981),
+        sigma_rad: Num::ZERO,
+    };
+    let Ok(mut g) = Guidance::new(
+        GuidanceConfig::thesis_default(),
+        table,
+        kind,
+        energy,
+        initial,
+    ) else {
         return false;
     };
     let mut ok = true;
@@ -77,13 +92,20 @@ fn bench_guidance(c: &mut InsnCounter, name: &str, kind: Interpolation<Num>) -> 
 
 #[entry]
 fn main() -> ! {
-    let Some(p) = cortex_m::Peripherals::take() else { onboard_demo::exit(false) };
+    let Some(p) = cortex_m::Peripherals::take() else {
+        onboard_demo::exit(false)
+    };
     let mut c = InsnCounter::new(p.SYST);
     let t = c.ticks(|| {
         #[allow(unsafe_code)]
         // SAFETY: 10 000 `nop` instructions: no memory, register or flag effects.
         unsafe {
-            core::arch::asm!(".rept 10000", "nop", ".endr", options(nomem, nostack, preserves_flags));
+            core::arch::asm!(
+                ".rept 10000",
+                "nop",
+                ".endr",
+                options(nomem, nostack, preserves_flags)
+            );
         }
     });
     let calibrated = t * INSN_PER_TICK;
@@ -94,7 +116,13 @@ fn main() -> ! {
     }
     let mut ok = bench_guidance(&mut c, "linear", Interpolation::Linear);
     ok &= bench_guidance(&mut c, "natural_cubic", Interpolation::NaturalCubic);
-    ok &= bench_guidance(&mut c, "cardinal_hermite", Interpolation::CardinalHermite { tension: Num::from_f64(0.5) });
+    ok &= bench_guidance(
+        &mut c,
+        "cardinal_hermite",
+        Interpolation::CardinalHermite {
+            tension: Num::from_f64(0.5),
+        },
+    );
     onboard_demo::exit(ok)
 }
 
