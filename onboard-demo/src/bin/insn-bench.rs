@@ -13,6 +13,12 @@ use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
 use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
 use guidance_core::interp::Interpolation;
 use guidance_core::nodes::NodeTable;
+use guidance_core::vinh::glide::GlideSolution;
+use guidance_core::vinh::nondim::{
+    EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
+};
+use guidance_core::vinh::predict::{PredictorConfig, predict};
+use guidance_core::vinh::skip::SkipSolution;
 use guidance_core::{NavState, Scalar};
 use onboard_demo::insn::InsnCounter;
 
@@ -90,6 +96,80 @@ fn bench_guidance(c: &mut InsnCounter, name: &str, kind: Interpolation<Num>) -> 
     ok
 }
 
+/// SRM capsule (thesis table 2.3) with the drag polar back-derived in docs/VINH.md.
+fn srm() -> VehicleParams<f32> {
+    VehicleParams {
+        mass_kg: 38.77,
+        reference_area_m2: 0.441,
+        cd0: 0.2576,
+        k_polar: 0.1879,
+        nose_radius_m: 0.9,
+    }
+}
+
+/// Closed forms in `f32` (hardware FPU on the M4F, soft float on the M3): one skip
+/// solution with its exit state, one glide point, one full predictor chain.
+fn bench_closed_forms(c: &mut InsnCounter) -> bool {
+    let planet = Planet::<f32>::earth();
+    let atm = ExpAtmosphere::<f32>::earth();
+    let veh = srm();
+    let lift = LiftControl::<f32>::max_ld_lift_up();
+    let entry = EntryState {
+        radius_m: 6_378_137.0 + 122_000.0,
+        speed_m_s: 7_500.0,
+        flight_path_angle_rad: -0.035,
+    };
+    let mut ok = true;
+    let reps = 10u32;
+    let skip = c.ticks(|| {
+        for _ in 0..reps {
+            let r = NonDim::new(&planet, &atm, &veh, &lift, &entry)
+                .and_then(|nd| SkipSolution::new(&nd));
+            ok &= r.is_ok();
+            core::hint::black_box(r.map(|s| s.exit()).ok());
+        }
+    });
+    hprintln!(
+        "bench vinh_skip_solution_f32: {} insn/call",
+        skip * INSN_PER_TICK / reps
+    );
+    let glide = c.ticks(|| {
+        for _ in 0..reps {
+            let r = GlideSolution::new(&planet, &atm, &veh, &lift, 6_378_137.0 + 80_000.0)
+                .and_then(|g| g.point_at_u(core::hint::black_box(0.5)));
+            ok &= r.is_ok();
+            core::hint::black_box(r.ok());
+        }
+    });
+    hprintln!(
+        "bench vinh_glide_point_f32: {} insn/call",
+        glide * INSN_PER_TICK / reps
+    );
+    let config = PredictorConfig {
+        final_speed_m_s: 2_000.0,
+        max_skips: 3,
+    };
+    let chain = c.ticks(|| {
+        for _ in 0..reps {
+            let r = predict(
+                &planet,
+                &atm,
+                &veh,
+                &lift,
+                &core::hint::black_box(entry),
+                &config,
+            );
+            ok &= r.is_ok();
+            core::hint::black_box(r.ok());
+        }
+    });
+    hprintln!(
+        "bench vinh_predictor_chain_f32: {} insn/call",
+        chain * INSN_PER_TICK / reps
+    );
+    ok
+}
+
 #[entry]
 fn main() -> ! {
     let Some(p) = cortex_m::Peripherals::take() else {
@@ -123,6 +203,7 @@ fn main() -> ! {
             tension: Num::from_f64(0.5),
         },
     );
+    ok &= bench_closed_forms(&mut c);
     onboard_demo::exit(ok)
 }
 

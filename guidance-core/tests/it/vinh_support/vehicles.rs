@@ -26,14 +26,15 @@ impl Vehicle {
     }
 }
 
-/// HORUS-2B drag polars, read from `shared/data/horus2b/drag_polar.csv` (thesis table 8.1):
+/// HORUS-2B drag polars, read from the repository's copy of `shared/data/horus2b/drag_polar.csv`
+/// (`host-sim/data/horus2b/drag_polar.csv`, thesis table 8.1):
 /// `(mach, cd0, k)`.
 pub fn horus_polars() -> Vec<(f64, f64, f64)> {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../shared/data/horus2b/drag_polar.csv"
+        "/../host-sim/data/horus2b/drag_polar.csv"
     );
-    let text = std::fs::read_to_string(path).expect("shared/data/horus2b/drag_polar.csv");
+    let text = std::fs::read_to_string(path).expect("host-sim/data/horus2b/drag_polar.csv");
     let mut out = Vec::new();
     for line in text.lines().skip(1) {
         let f: Vec<f64> = line
