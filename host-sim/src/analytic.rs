@@ -34,8 +34,10 @@
 //! * trim-only vehicles (the SRM capsule, which has no polar) get the polar on which their trim
 //!   point is the maximum-L/D point: `C_D0 = C_D,trim / 2`, `K = C_D0 / C_L,trim^2`, so
 //!   `lambda = 1`, `E* = (L/D)_trim` and the polar reproduces the trim `C_D` exactly. They are
-//!   steered by bank only: vertical lift coefficient `C_L,trim cos(sigma)`. This is the same
-//!   construction as the thesis-derived SRM polar of guidance-core's Vinh validation.
+//!   steered by bank only: vertical lift coefficient `C_L,trim cos(sigma)`. For the SRM this
+//!   gives C_D0 = 0.2816, K = 0.1722 (E* = 2.27); guidance-core's Vinh validation uses the polar
+//!   back-derived from thesis sec. 9.2 instead (C_D0 = 0.2576, K = 0.1879, same E*), on which
+//!   the trim point C_L = 1.2786 lies within 0.3 % in C_D. Both fly the same trim lift and drag.
 //!
 //! # Atmosphere
 //! The closed forms assume an isothermal exponential atmosphere. [`fit_us76`] gives the one
