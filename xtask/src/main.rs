@@ -247,9 +247,13 @@ fn test() -> Result<(), String> {
     Ok(())
 }
 
+/// Cargo's target directory: `CARGO_TARGET_DIR` if set, else `<workspace>/target`.
+fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| root().join("target"), PathBuf::from)
+}
+
 fn firmware_elf(target: &str) -> PathBuf {
-    root()
-        .join("target")
+    target_dir()
         .join(target)
         .join("firmware")
         .join("onboard-demo")
