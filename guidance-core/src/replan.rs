@@ -20,23 +20,70 @@
 //!    monotone in `f`: more lift can turn a captured glide into a skip with a higher peak). No
 //!    feasible grid point: [`ReplanCase::FallBack`] with [`ReplanFallBack::LimitsInfeasible`].
 //!
+//! # In the guidance loop
+//! [`ReplanningGuidance`] wraps [`crate::guidance::Guidance`] and runs [`replan`] on every N-th
+//! tick of the 2 s clock towards a target point, replacing the bank angle of the remaining
+//! energy nodes when the solver succeeds (see its module docs).
+//!
+//! # Predictor
+//! [`ReplanConfig::mode`] selects the full chain ([`crate::vinh::predict()`]), a glide-only
+//! prediction from the current speed ([`predict_glide`], for a vehicle already in its glide,
+//! where the skip closed form is out of domain), or the chain with an automatic switch to the
+//! glide when the chain is out of domain ([`PredictorMode::Auto`]).
+//!
 //! # Worst-case cost
-//! `max_iterations + 2 + LIMIT_GRID` predictor calls (at most `40 + 2 + 16 = 58`); each
-//! predictor call is
-//! at most [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one glide (see
-//! [`crate::vinh::predict()`]).
+//! `max_iterations + 4 + LIMIT_GRID` predictor calls (at most
+//! [`MAX_PREDICTOR_CALLS`]` = 40 + 4 + 16 = 60`; `+ 2` instead of `+ 4` outside
+//! [`PredictorMode::Auto`]); each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
+//! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide.
+
+mod replanning;
+
+pub use replanning::{
+    MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts, ReplanReport, ReplanningConfig,
+    ReplanningGuidance, ReplanningOutput, TargetPoint, range_to_go_m,
+};
 
 use crate::nav::NavState;
 use crate::scalar::Real;
 use crate::vinh::VinhError;
+use crate::vinh::glide::GlideSolution;
 use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
-use crate::vinh::predict::{Prediction, PredictorConfig, predict};
+use crate::vinh::predict::{Prediction, PredictorConfig, glide_start_radius, predict};
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
 pub const MAX_ITERATIONS: u8 = 40;
 
 /// Fractions scanned when a limit binds.
 pub const LIMIT_GRID: u8 = 16;
+
+/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 4 + LIMIT_GRID` (two end
+/// points of a failed [`PredictorMode::Auto`] chain attempt, two end points of the glide
+/// attempt, the bisection, the limit grid).
+pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 4 + LIMIT_GRID;
+
+/// How far above the current radius a glide-mode prediction may start \[m\] (a vehicle with
+/// more lift than its equilibrium glide needs climbs to a higher equilibrium).
+pub const GLIDE_CLIMB_MARGIN_M: f64 = 20_000.0;
+
+/// Which analytic prediction the solver uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PredictorMode {
+    /// The full chain [`crate::vinh::predict()`] (skips, arcs, final glide) from the state.
+    Chain,
+    /// Equilibrium glide only, from the current speed: the glide closed form started at the
+    /// radius (at most [`GLIDE_CLIMB_MARGIN_M`] above the current one) where its imposed speed
+    /// (eq. 3.78) equals the current speed, run to the final speed. The current flight-path
+    /// angle is not used (the glide imposes its own). For a vehicle already gliding, where the
+    /// skip closed form of the chain is out of its domain (e.g. `NotOscillatory` for a shallow
+    /// state deep in the atmosphere).
+    Glide,
+    /// [`PredictorMode::Chain`]; if it is out of domain at either end of the interval, the
+    /// whole solve is redone in [`PredictorMode::Glide`] (never mixing the two in one solve,
+    /// so the bracketing stays consistent).
+    Auto,
+}
 
 /// Vehicle limits checked on the prediction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,6 +111,8 @@ pub struct ReplanConfig<S> {
     pub max_iterations: u8,
     /// Predictor settings (final glide speed, skip budget).
     pub predictor: PredictorConfig<S>,
+    /// Which prediction to use.
+    pub mode: PredictorMode,
 }
 
 /// Why the re-planner fell back to the stored profile.
@@ -116,6 +165,7 @@ struct Ctx<'a, S> {
     state: EntryState<S>,
     config: &'a ReplanConfig<S>,
     calls: u8,
+    glide: bool,
 }
 
 impl<S: Real> Ctx<'_, S> {
@@ -125,15 +175,76 @@ impl<S: Real> Ctx<'_, S> {
             lambda: self.config.lambda,
             vertical_fraction: f,
         };
-        predict(
-            self.planet,
-            self.atmosphere,
-            self.vehicle,
-            &lift,
-            &self.state,
-            &self.config.predictor,
-        )
+        if self.glide {
+            predict_glide(
+                self.planet,
+                self.atmosphere,
+                self.vehicle,
+                &lift,
+                &self.state,
+                &self.config.predictor,
+            )
+        } else {
+            predict(
+                self.planet,
+                self.atmosphere,
+                self.vehicle,
+                &lift,
+                &self.state,
+                &self.config.predictor,
+            )
+        }
     }
+}
+
+/// Glide-only prediction ([`PredictorMode::Glide`]) from `state` with constant `lift`.
+///
+/// # Errors
+/// Input validation errors, and the domain errors of [`glide_start_radius`] and
+/// [`GlideSolution`] (e.g. [`VinhError::GlideNearCircular`] when the speed is above the imposed
+/// speed even [`GLIDE_CLIMB_MARGIN_M`] above the state).
+pub fn predict_glide<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+) -> Result<Prediction<S>, VinhError> {
+    if !(config.final_speed_m_s.is_finite()
+        && state.radius_m.is_finite()
+        && state.speed_m_s.is_finite()
+        && state.flight_path_angle_rad.is_finite())
+    {
+        return Err(VinhError::NonFiniteInput);
+    }
+    if !(config.final_speed_m_s > S::ZERO) {
+        return Err(VinhError::InvalidConfig);
+    }
+    // Validates every input (as the chain does).
+    crate::vinh::NonDim::new(planet, atmosphere, vehicle, lift, state)?;
+    let r_max = state.radius_m + S::from_f64(GLIDE_CLIMB_MARGIN_M);
+    let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, state.speed_m_s, r_max)?;
+    let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
+    let end = glide.point_at_speed(config.final_speed_m_s)?;
+    let q = glide.peak_heat_flux(config.final_speed_m_s)?;
+    let g = glide.peak_g_load(config.final_speed_m_s)?;
+    let theta = end.range_angle_rad;
+    let range = theta * planet.radius_m;
+    let all = [theta, range, q.heat_flux_w_m2, g.g_load];
+    if all.iter().any(|v| !v.is_finite()) {
+        return Err(VinhError::NonFiniteResult);
+    }
+    Ok(Prediction {
+        range_angle_rad: theta,
+        range_m: range,
+        peak_heat_flux_w_m2: q.heat_flux_w_m2,
+        peak_g_load: g.g_load,
+        skips: 0,
+        arcs: 0,
+        glide_start_radius_m: r_g,
+        glide_range_angle_rad: theta,
+    })
 }
 
 fn fall_back<S: Real>(reason: ReplanFallBack, calls: u8) -> ReplanResult<S> {
@@ -197,14 +308,23 @@ pub fn replan<S: Real>(
         },
         config,
         calls: 0,
+        glide: config.mode == PredictorMode::Glide,
     };
     let (f_lo, f_hi) = (config.min_vertical_fraction, config.max_vertical_fraction);
-    let p_lo = match ctx.eval(f_lo) {
-        Ok(p) => p,
-        Err(e) => return fall_back(ReplanFallBack::OutOfDomain(e), ctx.calls),
+    let ends = |ctx: &mut Ctx<'_, S>| -> Result<(Prediction<S>, Prediction<S>), VinhError> {
+        let p_lo = ctx.eval(f_lo)?;
+        let p_hi = ctx.eval(f_hi)?;
+        Ok((p_lo, p_hi))
     };
-    let p_hi = match ctx.eval(f_hi) {
+    let (p_lo, p_hi) = match ends(&mut ctx) {
         Ok(p) => p,
+        Err(_) if config.mode == PredictorMode::Auto => {
+            ctx.glide = true;
+            match ends(&mut ctx) {
+                Ok(p) => p,
+                Err(e) => return fall_back(ReplanFallBack::OutOfDomain(e), ctx.calls),
+            }
+        }
         Err(e) => return fall_back(ReplanFallBack::OutOfDomain(e), ctx.calls),
     };
     if p_hi.range_m < p_lo.range_m {

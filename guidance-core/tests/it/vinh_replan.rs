@@ -2,7 +2,7 @@
 
 use crate::vinh_support::vehicles::{self, H_S, MU, R_EARTH, RHO0};
 use guidance_core::NavState;
-use guidance_core::replan::{ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, replan};
+use guidance_core::replan::{PredictorMode, ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, replan};
 use guidance_core::vinh::{
     EntryState, ExpAtmosphere, LiftControl, Planet, PredictorConfig, VehicleParams, VinhError,
     predict,
@@ -54,6 +54,7 @@ fn config() -> ReplanConfig<f64> {
             final_speed_m_s: 2500.0,
             max_skips: 4,
         },
+        mode: PredictorMode::Chain,
     }
 }
 fn range_at(n: &NavState<f64>, f: f64) -> guidance_core::vinh::Prediction<f64> {

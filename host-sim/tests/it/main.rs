@@ -6,3 +6,4 @@ mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
 mod support;
+mod replan_loop;

@@ -1,0 +1,504 @@
+//! [`ReplanningGuidance`]: the flight [`Guidance`] with the onboard re-planner in the loop.
+//!
+//! # What it does
+//! [`ReplanningGuidance::update`] is called with every navigation sample, like
+//! [`Guidance::update`]. On every `every_n_ticks`-th guidance tick (the 2 s clock; the first
+//! tick is tick 0 and re-plans) and *before* the command of that tick is computed, it
+//!
+//! 1. computes the range to go to the target ([`RangeTarget`]: a point, see [`range_to_go_m`],
+//!    or a total range angle along the path);
+//! 2. runs the solver ([`super::replan`]) from the current [`NavState`] with the configured
+//!    predictor model, limits and solver options;
+//! 3. if the case is [`ReplanCase::Converged`] or [`ReplanCase::LimitsBind`] (a feasible
+//!    fraction that satisfies the limits) — and, only if
+//!    [`ReplanningConfig::apply_out_of_reach`] is set, [`ReplanCase::TargetOutOfReach`] —
+//!    sets the bank angle of every *remaining* node (E-hat strictly below the current E-hat:
+//!    not yet passed) to the solved magnitude with the node's own sign (a node at 0 counts as
+//!    positive), clamped into the table's bounds, keeps the angle of attack and the node
+//!    positions, and installs the table with [`Guidance::replace_table`]. Because this happens
+//!    before the tick's command is computed, the re-planned table is used at this tick;
+//! 4. otherwise ([`ReplanCase::FallBack`], or out of reach without the option) keeps the table
+//!    in use (the stored profile, or the last applied re-plan).
+//!
+//! Then the tick proceeds exactly as in [`Guidance::update`] (interpolation, rate limit, hold).
+//! The command is therefore subject to the same guarantees: always finite and inside the
+//! table's bounds. Between the last passed node and the first remaining one the interpolated
+//! command moves from the passed node's (unchanged) bank towards the solved value; the
+//! predictor-corrector loop absorbs this at the next re-plan.
+//!
+//! Ticks are counted as guidance ticks taken (a navigation gap that skips tick instants counts
+//! once, as [`Guidance`] recomputes once).
+//!
+//! # Target
+//! Two forms ([`RangeTarget`]); in both the range to go is recomputed onboard from navigation at
+//! each re-plan, so a dispersion of the flown path is seen by the next re-plan:
+//!
+//! * a target point (geocentric latitude/longitude): the range to go is the great-circle angle
+//!   from the current position to the target, times the predictor planet radius (the same
+//!   `R theta` as [`crate::vinh::Prediction::range_m`]), *negative* when the target lies behind
+//!   the vehicle (bearing to the target more than 90 deg from the heading): the solver then
+//!   reports [`ReplanCase::TargetOutOfReach`] at the smallest vertical fraction. Suited when
+//!   the path stays close to the great circle to the target (small bank, or bank reversals by
+//!   a lateral logic that this module does not provide);
+//! * a total range angle along the path: range to go = `(total - flown) R` with an onboard
+//!   odometer. This is the quantity the planar predictor models; with a bank-only vehicle of
+//!   high L/D and no bank reversals the heading turns by tens of degrees and only this form
+//!   is consistent with the predictor.
+//!
+//! # Cost (worst case, bounded)
+//! An update without a re-plan costs what [`Guidance::update`] costs. An update with a re-plan
+//! adds: one E-hat evaluation, one great-circle angle (6 trig functions, one `atan2`, one square
+//! root), one solver call of at most [`super::MAX_ITERATIONS`]` + 2 + `[`super::LIMIT_GRID`]` = 58`
+//! predictor calls (each at most [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one
+//! glide), a copy of the table (at most [`crate::nodes::MAX_NODES`] nodes) and one
+//! interpolator rebuild. Measured host times are in `docs/VINH.md` ("Re-planning"). No
+//! allocation, no recursion, no panics.
+
+use crate::energy::EnergyNormalizer;
+use crate::error::GuidanceError;
+use crate::guidance::{Command, Guidance, GuidanceConfig, GuidanceOutput};
+use crate::interp::Interpolation;
+use crate::nav::NavState;
+use crate::nodes::{Independent, NodeTable};
+use crate::scalar::Real;
+use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
+
+use super::{ReplanCase, ReplanConfig, ReplanLimits, replan};
+
+/// Largest accepted [`ReplanningConfig::every_n_ticks`] (one re-plan per 65535 ticks, about
+/// 36 h at 2 s).
+pub const MAX_EVERY_N_TICKS: u16 = u16::MAX;
+
+/// Target point on the planet \[rad\].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TargetPoint<S> {
+    /// Geocentric latitude \[rad\], in `[-pi/2, pi/2]`.
+    pub latitude_rad: S,
+    /// Longitude \[rad\], positive east.
+    pub longitude_rad: S,
+}
+
+/// What the re-planner aims at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RangeTarget<S> {
+    /// A point: range to go = signed great-circle distance from the current position
+    /// ([`range_to_go_m`]).
+    Point(TargetPoint<S>),
+    /// A total range angle to fly along the path, counted from the first accepted navigation
+    /// sample \[rad\]: range to go = `(total_rad - flown) R`, with the flown range angle
+    /// accumulated onboard from successive navigation positions (great-circle angle between
+    /// samples; the chord error at 2 s samples is below 1e-9 relative). This is what the planar
+    /// predictor models (range along the path), so it stays meaningful when the bank turns the
+    /// vehicle far from the initial great circle.
+    FlownRangeAngle {
+        /// Total range angle along the path \[rad\].
+        total_rad: S,
+    },
+}
+
+/// The predictor's model of the world: planet, exponential atmosphere and vehicle polar.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PredictorModel<S> {
+    /// Central-gravity, non-rotating planet; its radius also scales the range to go.
+    pub planet: Planet<S>,
+    /// Exponential atmosphere.
+    pub atmosphere: ExpAtmosphere<S>,
+    /// Vehicle constants (parabolic polar).
+    pub vehicle: VehicleParams<S>,
+}
+
+/// Settings of [`ReplanningGuidance`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ReplanningConfig<S> {
+    /// Re-plan on every N-th guidance tick \[ticks\], `>= 1` (1: every 2 s tick).
+    pub every_n_ticks: u16,
+    /// Where the vehicle should arrive (at the predictor's final speed).
+    pub target: RangeTarget<S>,
+    /// Peak heat-flux and g-load limits checked on the prediction.
+    pub limits: ReplanLimits<S>,
+    /// Solver options (lambda, vertical-fraction interval, tolerance, iterations, predictor).
+    pub solver: ReplanConfig<S>,
+    /// Predictor model.
+    pub model: PredictorModel<S>,
+    /// Also apply the nearest end of the vertical-fraction interval when the target is out of
+    /// reach (a saturated corrector). `false`: out of reach keeps the current table.
+    pub apply_out_of_reach: bool,
+}
+
+/// What one re-plan did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ReplanReport<S> {
+    /// Index of the guidance tick (ticks taken, the first is 0).
+    pub tick: u32,
+    /// Navigation time of the re-plan \[s\].
+    pub time_s: S,
+    /// E-hat at the re-plan \[-\].
+    pub normalized_energy: S,
+    /// Signed range to go to the target \[m\] (negative: target behind).
+    pub range_to_go_m: S,
+    /// What the solver reported.
+    pub case: ReplanCase,
+    /// Predictor calls made (at most 58).
+    pub predictor_calls: u8,
+    /// Solved bank-angle magnitude \[rad\] (0 for a fall-back).
+    pub bank_rad: S,
+    /// Predicted range at the solved bank \[m\] (`None` for a fall-back).
+    pub predicted_range_m: Option<S>,
+    /// Predicted peak heat flux at the solved bank \[W/m^2\] (`None` for a fall-back).
+    pub predicted_peak_heat_flux_w_m2: Option<S>,
+    /// Predicted peak g-load at the solved bank \[-\] (`None` for a fall-back).
+    pub predicted_peak_g_load: Option<S>,
+    /// True if the table was replaced.
+    pub applied: bool,
+    /// Number of nodes whose bank angle was set (0 if not applied).
+    pub nodes_replanned: u8,
+}
+
+/// Counts of re-plan outcomes since start (saturating).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ReplanCounts {
+    /// Re-plans run.
+    pub replans: u32,
+    /// [`ReplanCase::Converged`].
+    pub converged: u32,
+    /// [`ReplanCase::TargetOutOfReach`].
+    pub out_of_reach: u32,
+    /// [`ReplanCase::LimitsBind`].
+    pub limits_bind: u32,
+    /// [`ReplanCase::FallBack`] (any reason).
+    pub fall_backs: u32,
+    /// Re-plans whose table was installed.
+    pub applied: u32,
+    /// Largest predictor-call count of one re-plan.
+    pub max_predictor_calls: u8,
+}
+
+impl ReplanCounts {
+    fn record<S>(&mut self, r: &ReplanReport<S>) {
+        let inc = |v: &mut u32| *v = v.saturating_add(1);
+        inc(&mut self.replans);
+        match r.case {
+            ReplanCase::Converged => inc(&mut self.converged),
+            ReplanCase::TargetOutOfReach => inc(&mut self.out_of_reach),
+            ReplanCase::LimitsBind => inc(&mut self.limits_bind),
+            ReplanCase::FallBack(_) => inc(&mut self.fall_backs),
+        }
+        if r.applied {
+            inc(&mut self.applied);
+        }
+        self.max_predictor_calls = self.max_predictor_calls.max(r.predictor_calls);
+    }
+}
+
+/// Result of one [`ReplanningGuidance::update`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ReplanningOutput<S> {
+    /// The guidance output of this sample (held command, tick flag, E-hat).
+    pub guidance: GuidanceOutput<S>,
+    /// The re-plan run at this sample, if any.
+    pub replan: Option<ReplanReport<S>>,
+}
+
+/// [`Guidance`] (energy-indexed table) with periodic onboard re-planning (module docs).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ReplanningGuidance<S> {
+    guidance: Guidance<S>,
+    energy: EnergyNormalizer<S>,
+    config: ReplanningConfig<S>,
+    ticks: u32,
+    last: Option<ReplanReport<S>>,
+    counts: ReplanCounts,
+    /// Flown range angle since the first accepted sample \[rad\].
+    flown_rad: S,
+    /// Position of the last accepted sample (latitude, longitude) \[rad\].
+    last_position: Option<(S, S)>,
+}
+
+/// Great-circle angle \[rad\] between two points (haversine form); `None` if non-finite.
+fn central_angle<S: Real>(lat1: S, lon1: S, lat2: S, lon2: S) -> Option<S> {
+    let two = S::ONE + S::ONE;
+    let s_dlat = ((lat2 - lat1) / two).sin();
+    let s_dlon = ((lon2 - lon1) / two).sin();
+    let a = s_dlat * s_dlat + lat1.cos() * lat2.cos() * s_dlon * s_dlon;
+    if !a.is_finite() {
+        return None;
+    }
+    let a = a.clamp(S::ZERO, S::ONE);
+    let theta = two * a.sqrt_raw().atan2((S::ONE - a).sqrt_raw());
+    theta.is_finite().then_some(theta)
+}
+
+/// Signed range to go \[m\] from `nav`'s position to `target` on a sphere of radius
+/// `planet_radius_m` \[m\]: great-circle angle (haversine form, accurate for small and large
+/// angles) times the radius, negative when the bearing to the target differs from the heading
+/// by more than 90 deg. `None` for non-finite input or result.
+#[must_use]
+pub fn range_to_go_m<S: Real>(
+    nav: &NavState<S>,
+    target: &TargetPoint<S>,
+    planet_radius_m: S,
+) -> Option<S> {
+    let all = [
+        nav.latitude_rad,
+        nav.longitude_rad,
+        nav.heading_rad,
+        target.latitude_rad,
+        target.longitude_rad,
+        planet_radius_m,
+    ];
+    if all.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    let (lat1, lat2) = (nav.latitude_rad, target.latitude_rad);
+    let dlon = target.longitude_rad - nav.longitude_rad;
+    let theta = central_angle(lat1, nav.longitude_rad, lat2, target.longitude_rad)?;
+    let (c1, c2) = (lat1.cos(), lat2.cos());
+    // Initial bearing to the target, clockwise from north.
+    let y = dlon.sin() * c2;
+    let x = c1 * lat2.sin() - lat1.sin() * c2 * dlon.cos();
+    let ahead = if x == S::ZERO && y == S::ZERO {
+        true
+    } else {
+        (y.atan2(x) - nav.heading_rad).cos() >= S::ZERO
+    };
+    let r = theta * planet_radius_m;
+    let r = if ahead { r } else { -r };
+    r.is_finite().then_some(r)
+}
+
+impl<S: Real> ReplanningGuidance<S> {
+    /// Set up: the arguments up to `initial` are those of [`Guidance::new`] (the table must be
+    /// energy-indexed); `config` the re-planning settings.
+    ///
+    /// # Errors
+    /// As [`Guidance::new`]; [`GuidanceError::InvalidConfig`] for a time-indexed table,
+    /// `every_n_ticks == 0`, or a non-finite target.
+    pub fn new(
+        guidance_config: GuidanceConfig<S>,
+        table: NodeTable<S>,
+        kind: Interpolation<S>,
+        energy: EnergyNormalizer<S>,
+        initial: Command<S>,
+        config: ReplanningConfig<S>,
+    ) -> Result<Self, GuidanceError> {
+        let target_ok = match config.target {
+            RangeTarget::Point(p) => p.latitude_rad.is_finite() && p.longitude_rad.is_finite(),
+            RangeTarget::FlownRangeAngle { total_rad } => total_rad.is_finite(),
+        };
+        if table.independent() != Independent::NormalizedEnergy
+            || config.every_n_ticks == 0
+            || !target_ok
+        {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        let guidance = Guidance::new(guidance_config, table, kind, energy, initial)?;
+        Ok(Self {
+            guidance,
+            energy,
+            config,
+            ticks: 0,
+            last: None,
+            counts: ReplanCounts::default(),
+            flown_rad: S::ZERO,
+            last_position: None,
+        })
+    }
+
+    /// Process one navigation sample (see the module docs): re-plan if this sample is a
+    /// re-planning tick, then [`Guidance::update`].
+    ///
+    /// # Errors
+    /// As [`Guidance::update`]; on error nothing changes (a table installed by a re-plan at
+    /// this sample is withdrawn).
+    pub fn update(&mut self, nav: &NavState<S>) -> Result<ReplanningOutput<S>, GuidanceError> {
+        nav.validate()?;
+        // Odometer (committed only if the update succeeds).
+        let step = match self.last_position {
+            Some((lat, lon)) => {
+                central_angle(lat, lon, nav.latitude_rad, nav.longitude_rad).unwrap_or(S::ZERO)
+            }
+            None => S::ZERO,
+        };
+        let flown = self.flown_rad + step;
+        let will_tick = match self.guidance.last_tick_s() {
+            None => true,
+            Some(_) => nav.time_s >= self.guidance.next_tick_s(),
+        };
+        let n = u32::from(self.config.every_n_ticks.max(1));
+        let mut report = None;
+        let mut previous = None;
+        if will_tick && self.ticks % n == 0 {
+            let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
+            let (r, old) = self.replan_now(nav, e_hat, flown);
+            report = Some(r);
+            previous = old;
+        }
+        let out = match self.guidance.update(nav) {
+            Ok(o) => o,
+            Err(e) => {
+                if let Some(t) = previous {
+                    // Restore the table in use before this sample (it was valid).
+                    let _ = self.guidance.replace_table(t);
+                }
+                return Err(e);
+            }
+        };
+        if let Some(r) = &report {
+            self.counts.record(r);
+            self.last = Some(*r);
+        }
+        if out.ticked {
+            self.ticks = self.ticks.saturating_add(1);
+        }
+        self.flown_rad = flown;
+        self.last_position = Some((nav.latitude_rad, nav.longitude_rad));
+        Ok(ReplanningOutput {
+            guidance: out,
+            replan: report,
+        })
+    }
+
+    /// Run the solver and, if applicable, install the re-planned table. Returns the report and
+    /// the replaced table (to restore on a later error).
+    fn replan_now(
+        &mut self,
+        nav: &NavState<S>,
+        e_hat: S,
+        flown_rad: S,
+    ) -> (ReplanReport<S>, Option<NodeTable<S>>) {
+        let cfg = &self.config;
+        let m = &cfg.model;
+        // A non-finite range to go (only for a non-finite model radius) is passed on as NaN:
+        // the solver rejects it as a fall-back.
+        let rtg = match cfg.target {
+            RangeTarget::Point(p) => range_to_go_m(nav, &p, m.planet.radius_m),
+            RangeTarget::FlownRangeAngle { total_rad } => {
+                let r = (total_rad - flown_rad) * m.planet.radius_m;
+                r.is_finite().then_some(r)
+            }
+        }
+        .unwrap_or(S::ZERO / S::ZERO);
+        let res = replan(
+            &m.planet,
+            &m.atmosphere,
+            &m.vehicle,
+            nav,
+            rtg,
+            &cfg.limits,
+            &cfg.solver,
+        );
+        let apply = match res.case {
+            ReplanCase::Converged | ReplanCase::LimitsBind => true,
+            ReplanCase::TargetOutOfReach => cfg.apply_out_of_reach,
+            ReplanCase::FallBack(_) => false,
+        };
+        let mut report = ReplanReport {
+            tick: self.ticks,
+            time_s: nav.time_s,
+            normalized_energy: e_hat,
+            range_to_go_m: if rtg.is_finite() { rtg } else { S::ZERO },
+            case: res.case,
+            predictor_calls: res.predictor_calls,
+            bank_rad: if res.bank_rad.is_finite() {
+                res.bank_rad
+            } else {
+                S::ZERO
+            },
+            predicted_range_m: res.prediction.map(|p| p.range_m),
+            predicted_peak_heat_flux_w_m2: res.prediction.map(|p| p.peak_heat_flux_w_m2),
+            predicted_peak_g_load: res.prediction.map(|p| p.peak_g_load),
+            applied: false,
+            nodes_replanned: 0,
+        };
+        if !apply || !res.bank_rad.is_finite() {
+            return (report, None);
+        }
+        let mut table = self.guidance.table().clone();
+        let bounds = table.bounds();
+        let mut count = 0_u8;
+        let mut i = 0_usize;
+        while i < table.len() {
+            let Some(node) = table.nodes().get(i).copied() else {
+                break;
+            };
+            if node.x < e_hat {
+                let signed = if node.sigma_rad < S::ZERO {
+                    -res.bank_rad
+                } else {
+                    res.bank_rad
+                };
+                if table.set_sigma(i, bounds.clamp_sigma(signed)).is_ok() {
+                    count = count.saturating_add(1);
+                }
+            }
+            i += 1;
+        }
+        if count == 0 {
+            return (report, None);
+        }
+        let old = self.guidance.table().clone();
+        if self.guidance.replace_table(table).is_ok() {
+            report.applied = true;
+            report.nodes_replanned = count;
+            (report, Some(old))
+        } else {
+            (report, None)
+        }
+    }
+
+    /// The wrapped guidance (command, attitude ramp, table in use, clock).
+    #[must_use]
+    pub fn guidance(&self) -> &Guidance<S> {
+        &self.guidance
+    }
+
+    /// The re-planning settings.
+    #[must_use]
+    pub fn config(&self) -> &ReplanningConfig<S> {
+        &self.config
+    }
+
+    /// The last re-plan report (`None` before the first).
+    #[must_use]
+    pub fn last_replan(&self) -> Option<ReplanReport<S>> {
+        self.last
+    }
+
+    /// Outcome counts since start.
+    #[must_use]
+    pub fn counts(&self) -> ReplanCounts {
+        self.counts
+    }
+
+    /// Range angle flown since the first accepted sample \[rad\] (onboard odometer).
+    #[must_use]
+    pub fn flown_range_angle_rad(&self) -> S {
+        self.flown_rad
+    }
+
+    /// Guidance ticks taken so far.
+    #[must_use]
+    pub fn ticks(&self) -> u32 {
+        self.ticks
+    }
+
+    /// Attitude at `time_s` \[s\] (see [`Guidance::attitude_at`]).
+    #[must_use]
+    pub fn attitude_at(&self, time_s: S) -> Command<S> {
+        self.guidance.attitude_at(time_s)
+    }
+
+    /// Time of the next tick \[s\] (see [`Guidance::next_tick_s`]).
+    #[must_use]
+    pub fn next_tick_s(&self) -> S {
+        self.guidance.next_tick_s()
+    }
+}
