@@ -62,9 +62,12 @@ pub const LIMIT_GRID: u8 = 16;
 /// attempt, the bisection, the limit grid).
 pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 4 + LIMIT_GRID;
 
-/// How far above the current radius a glide-mode prediction may start \[m\] (a vehicle with
-/// more lift than its equilibrium glide needs climbs to a higher equilibrium).
-pub const GLIDE_CLIMB_MARGIN_M: f64 = 20_000.0;
+/// How far above the current radius a glide-mode prediction may start \[m\]. A vehicle given
+/// more lift than its equilibrium glide needs climbs to a higher equilibrium: in an
+/// exponential atmosphere the equilibrium density at a given speed scales as `1/cos(sigma)`,
+/// so the interval `[f_min, 1]` spans `H_s ln(1/f_min)` of altitude (21.6 km for `f_min = 0.05`
+/// and `H_s = 7.2 km`); 40 km covers `f_min` down to 0.004.
+pub const GLIDE_CLIMB_MARGIN_M: f64 = 40_000.0;
 
 /// Which analytic prediction the solver uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

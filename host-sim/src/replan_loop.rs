@@ -88,7 +88,9 @@ impl AttitudeSource for ReplanLoop {
     }
 }
 
-/// The predictor's model: `planet`'s `mu` and radius (no rotation: the closed forms' planet),
+/// The predictor's model: `planet`'s `mu`, radius and rotation rate (the closed forms assume no
+/// rotation; the rate feeds the effective-gravity correction of
+/// [`PredictorModel::rotation_rate_rad_s`]),
 /// `atmosphere` (an exponential atmosphere; for US76 use e.g.
 /// [`crate::analytic::fit_us76`]) and the vehicle's polar at Mach `polar_mach`.
 ///
@@ -113,5 +115,6 @@ pub fn predictor_model(
             ref_radius_m: planet.radius_m + atmosphere.reference_altitude_m(),
         },
         vehicle: av.params(),
+        rotation_rate_rad_s: planet.rotation_rate_rad_s,
     })
 }

@@ -108,6 +108,41 @@ pub struct PredictorModel<S> {
     pub atmosphere: ExpAtmosphere<S>,
     /// Vehicle constants (parabolic polar).
     pub vehicle: VehicleParams<S>,
+    /// Planet rotation rate \[rad/s\] for the effective-gravity correction (0: none). The
+    /// closed forms assume a non-rotating planet; with a rate `Omega` each re-plan lowers the
+    /// gravitational parameter by the vertical apparent acceleration of the rotating frame
+    /// (Coriolis at the mean of the current and final speeds, plus centrifugal) at the current
+    /// position and heading: `mu_eff = mu - r^2 (2 Omega V_m cos(lat) sin(heading) cos(gamma) +
+    /// Omega^2 r cos^2(lat))`. A first-order correction; it ignores the later turn of the
+    /// heading by the bank and the change of latitude.
+    pub rotation_rate_rad_s: S,
+}
+
+impl<S: Real> PredictorModel<S> {
+    /// The planet the predictor uses at `nav` (see [`PredictorModel::rotation_rate_rad_s`]);
+    /// the model planet if the correction is zero, non-finite or would make `mu` non-positive.
+    #[must_use]
+    pub fn effective_planet(&self, nav: &NavState<S>, final_speed_m_s: S) -> Planet<S> {
+        let w = self.rotation_rate_rad_s;
+        if w == S::ZERO || !w.is_finite() {
+            return self.planet;
+        }
+        let r = nav.radius_m;
+        let cl = nav.latitude_rad.cos();
+        let v_mean = (nav.speed_m_s + final_speed_m_s.max(S::ZERO)).half();
+        let two = S::ONE + S::ONE;
+        let up = two * w * v_mean * cl * nav.heading_rad.sin() * nav.flight_path_angle_rad.cos()
+            + w * w * r * cl * cl;
+        let mu = self.planet.mu_m3_s2 - r * r * up;
+        if mu.is_finite() && mu > S::ZERO {
+            Planet {
+                mu_m3_s2: mu,
+                radius_m: self.planet.radius_m,
+            }
+        } else {
+            self.planet
+        }
+    }
 }
 
 /// Settings of [`ReplanningGuidance`].
@@ -386,8 +421,9 @@ impl<S: Real> ReplanningGuidance<S> {
             }
         }
         .unwrap_or(S::ZERO / S::ZERO);
+        let planet = m.effective_planet(nav, cfg.solver.predictor.final_speed_m_s);
         let res = replan(
-            &m.planet,
+            &planet,
             &m.atmosphere,
             &m.vehicle,
             nav,

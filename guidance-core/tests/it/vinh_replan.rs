@@ -2,7 +2,15 @@
 
 use crate::vinh_support::vehicles::{self, H_S, MU, R_EARTH, RHO0};
 use guidance_core::NavState;
-use guidance_core::replan::{PredictorMode, ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, replan};
+use guidance_core::energy::EnergyNormalizer;
+use guidance_core::guidance::{Command, GuidanceConfig};
+use guidance_core::interp::Interpolation;
+use guidance_core::nodes::{AngleBounds, Independent, NodeTable};
+use guidance_core::replan::{
+    MAX_PREDICTOR_CALLS, PredictorMode, PredictorModel, RangeTarget, ReplanCase, ReplanConfig,
+    ReplanFallBack, ReplanLimits, ReplanningConfig, ReplanningGuidance, TargetPoint, predict_glide,
+    range_to_go_m, replan,
+};
 use guidance_core::vinh::{
     EntryState, ExpAtmosphere, LiftControl, Planet, PredictorConfig, VehicleParams, VinhError,
     predict,
@@ -239,8 +247,531 @@ proptest! {
         let r = replan(&planet(), &atmosphere(), &srm(), &n, target, &ReplanLimits { heat_flux_w_m2: q, g_load: 5.0 }, &cfg);
         prop_assert!(r.vertical_fraction.is_finite() && r.bank_rad.is_finite());
         prop_assert!(r.predictor_calls <= 58);
+        prop_assert!(r.predictor_calls <= MAX_PREDICTOR_CALLS);
         if let Some(p) = r.prediction {
             prop_assert!(p.range_m.is_finite() && p.peak_heat_flux_w_m2.is_finite() && p.peak_g_load.is_finite());
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// ReplanningGuidance: the solver inside the guidance loop.
+// ---------------------------------------------------------------------------------------------
+
+const DEG: f64 = std::f64::consts::PI / 180.0;
+
+/// SRM glide entry of thesis sec. 9.2 (100 km, 7658.34 m/s, -0.056 deg), on the equator
+/// heading east.
+fn glide_nav(t: f64) -> NavState<f64> {
+    NavState {
+        time_s: t,
+        radius_m: R_EARTH + 100e3,
+        speed_m_s: 7658.34,
+        flight_path_angle_rad: -0.056 * DEG,
+        heading_rad: 90.0 * DEG,
+        latitude_rad: 0.0,
+        longitude_rad: 0.0,
+    }
+}
+
+fn model() -> PredictorModel<f64> {
+    PredictorModel {
+        planet: planet(),
+        atmosphere: atmosphere(),
+        vehicle: srm(),
+        rotation_rate_rad_s: 0.0,
+    }
+}
+
+fn glide_solver(mode: PredictorMode) -> ReplanConfig<f64> {
+    ReplanConfig {
+        min_vertical_fraction: 0.05,
+        tolerance_m: 1000.0,
+        max_iterations: 30,
+        mode,
+        ..config()
+    }
+}
+
+fn rcfg(target: RangeTarget<f64>, every: u16, mode: PredictorMode) -> ReplanningConfig<f64> {
+    ReplanningConfig {
+        every_n_ticks: every,
+        target,
+        limits: NO_LIMITS,
+        solver: glide_solver(mode),
+        model: model(),
+        apply_out_of_reach: false,
+    }
+}
+
+/// Energy table: E-hat 1.0 .. 0.0 with a negative bank on one node (sign convention kept).
+fn energy_table() -> NodeTable<f64> {
+    let rows = [
+        (1.0, 5.0, 10.0),
+        (0.8, 6.0, 40.0),
+        (0.6, 7.0, -50.0),
+        (0.4, 8.0, 60.0),
+        (0.0, 9.0, 0.0),
+    ];
+    NodeTable::from_deg(
+        Independent::NormalizedEnergy,
+        &rows,
+        AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0).unwrap(),
+    )
+    .unwrap()
+}
+
+/// E-hat = 1 at 100 km and 7700 m/s: the glide entry state is at E-hat 0.99 (below node 0).
+fn normalizer() -> EnergyNormalizer<f64> {
+    EnergyNormalizer::new(MU, R_EARTH, R_EARTH + 100e3, 7700.0).unwrap()
+}
+
+fn replanning(cfg: ReplanningConfig<f64>) -> ReplanningGuidance<f64> {
+    ReplanningGuidance::new(
+        GuidanceConfig::thesis_default(),
+        energy_table(),
+        Interpolation::Linear,
+        normalizer(),
+        Command::from_deg(5.0, 10.0).unwrap(),
+        cfg,
+    )
+    .unwrap()
+}
+
+fn glide_range_m(f: f64) -> f64 {
+    let lift = LiftControl {
+        lambda: 1.0,
+        vertical_fraction: f,
+    };
+    let n = glide_nav(0.0);
+    let s = EntryState {
+        radius_m: n.radius_m,
+        speed_m_s: n.speed_m_s,
+        flight_path_angle_rad: n.flight_path_angle_rad,
+    };
+    predict_glide(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &lift,
+        &s,
+        &config().predictor,
+    )
+    .unwrap()
+    .range_m
+}
+
+/// The first tick re-plans: with a target produced by the glide predictor at f = 0.6 the
+/// solver converges to sigma = acos(0.6); every remaining node (E-hat below the current 1.0)
+/// gets that magnitude with its own sign, the passed node and every angle of attack are kept.
+#[test]
+fn replanning_sets_the_remaining_nodes() {
+    let total = glide_range_m(0.6) / R_EARTH;
+    let mut g = replanning(rcfg(
+        RangeTarget::FlownRangeAngle { total_rad: total },
+        3,
+        PredictorMode::Glide,
+    ));
+    let before = g.guidance().table().clone();
+    let out = g.update(&glide_nav(0.0)).unwrap();
+    assert!(out.guidance.ticked);
+    let r = out.replan.expect("tick 0 re-plans");
+    assert_eq!(r.case, ReplanCase::Converged, "{r:?}");
+    assert!(r.applied);
+    assert_eq!(r.nodes_replanned, 4);
+    assert!((r.predicted_range_m.unwrap() - total * R_EARTH).abs() <= 1000.0);
+    assert!(
+        (r.bank_rad - 0.6f64.acos()).abs() < 0.5 * DEG,
+        "{}",
+        r.bank_rad / DEG
+    );
+    let after = g.guidance().table();
+    let (n0, b0) = (after.nodes()[0], before.nodes()[0]);
+    assert_eq!(n0, b0, "the passed node is kept");
+    for (a, b) in after.nodes().iter().zip(before.nodes()).skip(1) {
+        assert_eq!(a.x, b.x);
+        assert_eq!(a.alpha_rad, b.alpha_rad);
+        let want = if b.sigma_rad < 0.0 {
+            -r.bank_rad
+        } else {
+            r.bank_rad
+        };
+        assert_eq!(a.sigma_rad, want);
+    }
+    assert_eq!(g.counts().converged, 1);
+    assert_eq!(g.counts().applied, 1);
+}
+
+/// Re-plans run on ticks 0, N, 2N, ... of the 2 s clock, never between ticks.
+#[test]
+fn replanning_runs_every_n_ticks() {
+    let total = glide_range_m(0.6) / R_EARTH;
+    for every in [1_u16, 3, 4] {
+        let mut g = replanning(rcfg(
+            RangeTarget::FlownRangeAngle { total_rad: total },
+            every,
+            PredictorMode::Glide,
+        ));
+        let mut replan_ticks = vec![];
+        // Samples every 0.5 s for 30 s: ticks at 0, 2, ..., 30 s.
+        for k in 0..=60 {
+            let t = 0.5 * f64::from(k);
+            let out = g.update(&glide_nav(t)).unwrap();
+            if let Some(r) = out.replan {
+                assert!(out.guidance.ticked, "re-plan off a tick at {t}");
+                assert_eq!(r.time_s, t);
+                replan_ticks.push(r.tick);
+            }
+        }
+        let want: Vec<u32> = (0..16).filter(|k| k % u32::from(every) == 0).collect();
+        assert_eq!(replan_ticks, want, "every {every}");
+        assert_eq!(g.ticks(), 16);
+        assert_eq!(g.counts().replans as usize, want.len());
+    }
+}
+
+/// Out of the predictor's domain (final speed above the current speed: no glide reaches it):
+/// every re-plan is a reported fall-back and the stored table stays in use.
+#[test]
+fn replanning_falls_back_to_the_stored_profile() {
+    let mut cfg = rcfg(
+        RangeTarget::FlownRangeAngle { total_rad: 1.0 },
+        1,
+        PredictorMode::Auto,
+    );
+    cfg.solver.predictor.final_speed_m_s = 9000.0;
+    let mut g = replanning(cfg);
+    let stored = g.guidance().table().clone();
+    for k in 0..5 {
+        let out = g.update(&glide_nav(2.0 * f64::from(k))).unwrap();
+        let r = out.replan.unwrap();
+        assert!(
+            matches!(r.case, ReplanCase::FallBack(ReplanFallBack::OutOfDomain(_))),
+            "{r:?}"
+        );
+        assert!(!r.applied);
+        assert_eq!(r.nodes_replanned, 0);
+        assert!(r.predicted_range_m.is_none());
+    }
+    assert_eq!(g.guidance().table(), &stored);
+    assert_eq!(g.counts().fall_backs, 5);
+    assert_eq!(g.counts().applied, 0);
+}
+
+/// Mid-glide (the equilibrium-glide state at 70 km for cos(sigma) = 0.3) the skip closed form
+/// of the chain is out of domain; the chain mode falls back, the automatic mode switches to the
+/// glide prediction and converges.
+#[test]
+fn auto_mode_switches_to_the_glide_when_the_chain_is_out_of_domain() {
+    let eq = guidance_core::vinh::GlideSolution::new(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &LiftControl {
+            lambda: 1.0,
+            vertical_fraction: 0.3,
+        },
+        R_EARTH + 70e3,
+    )
+    .unwrap()
+    .imposed_entry();
+    let n = NavState {
+        radius_m: eq.radius_m,
+        speed_m_s: eq.speed_m_s,
+        flight_path_angle_rad: eq.flight_path_angle_rad,
+        ..glide_nav(0.0)
+    };
+    let s = EntryState {
+        radius_m: n.radius_m,
+        speed_m_s: n.speed_m_s,
+        flight_path_angle_rad: n.flight_path_angle_rad,
+    };
+    let lift = LiftControl {
+        lambda: 1.0,
+        vertical_fraction: 0.5,
+    };
+    let chain = predict(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &lift,
+        &s,
+        &config().predictor,
+    );
+    assert!(chain.is_err(), "{chain:?}");
+    let target = predict_glide(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &lift,
+        &s,
+        &config().predictor,
+    )
+    .unwrap()
+    .range_m;
+    let run = |mode| {
+        replan(
+            &planet(),
+            &atmosphere(),
+            &srm(),
+            &n,
+            target,
+            &NO_LIMITS,
+            &glide_solver(mode),
+        )
+    };
+    let c = run(PredictorMode::Chain);
+    assert!(matches!(
+        c.case,
+        ReplanCase::FallBack(ReplanFallBack::OutOfDomain(_))
+    ));
+    let a = run(PredictorMode::Auto);
+    assert_eq!(a.case, ReplanCase::Converged, "{a:?}");
+    assert!((a.prediction.unwrap().range_m - target).abs() <= 1000.0);
+    assert!(a.predictor_calls <= MAX_PREDICTOR_CALLS);
+    let g = run(PredictorMode::Glide);
+    assert_eq!(g.case, ReplanCase::Converged);
+    assert_eq!(g.vertical_fraction, a.vertical_fraction);
+    assert_eq!(a.predictor_calls, g.predictor_calls + 2);
+}
+
+/// Range to go to a point: quarter great circle along the equator, the sign flips when the
+/// target is behind, and a point target drives the solver like the equivalent range.
+#[test]
+fn range_to_go_to_a_point() {
+    let t = TargetPoint {
+        latitude_rad: 0.0,
+        longitude_rad: 90.0 * DEG,
+    };
+    let n = glide_nav(0.0);
+    let r = range_to_go_m(&n, &t, R_EARTH).unwrap();
+    assert!(
+        (r - R_EARTH * std::f64::consts::FRAC_PI_2).abs() < 1e-6,
+        "{r}"
+    );
+    let back = NavState {
+        heading_rad: 270.0 * DEG,
+        ..n
+    };
+    assert!((range_to_go_m(&back, &t, R_EARTH).unwrap() + r).abs() < 1e-6);
+    // North pole from the equator: pi/2 whatever the longitude; 45 deg off the heading.
+    let pole = TargetPoint {
+        latitude_rad: 90.0 * DEG,
+        longitude_rad: 123.0 * DEG,
+    };
+    let ne = NavState {
+        heading_rad: 45.0 * DEG,
+        ..n
+    };
+    let rp = range_to_go_m(&ne, &pole, R_EARTH).unwrap();
+    assert!((rp - R_EARTH * std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+    assert!(
+        range_to_go_m(
+            &NavState {
+                latitude_rad: f64::NAN,
+                ..n
+            },
+            &t,
+            R_EARTH
+        )
+        .is_none()
+    );
+    // A point target at the glide range along the heading gives the same solution as the
+    // equivalent flown-range target.
+    let theta = glide_range_m(0.6) / R_EARTH;
+    let point = TargetPoint {
+        latitude_rad: 0.0,
+        longitude_rad: theta,
+    };
+    let mut gp = replanning(rcfg(RangeTarget::Point(point), 1, PredictorMode::Glide));
+    let mut gr = replanning(rcfg(
+        RangeTarget::FlownRangeAngle { total_rad: theta },
+        1,
+        PredictorMode::Glide,
+    ));
+    let rp = gp.update(&glide_nav(0.0)).unwrap().replan.unwrap();
+    let rr = gr.update(&glide_nav(0.0)).unwrap().replan.unwrap();
+    assert!((rp.range_to_go_m - rr.range_to_go_m).abs() < 1e-3);
+    assert_eq!(rp.case, ReplanCase::Converged);
+    assert!((rp.bank_rad - rr.bank_rad).abs() < 1e-9);
+}
+
+/// The onboard odometer sums the great-circle steps between samples, and the range to go of a
+/// flown-range target shrinks by what was flown.
+#[test]
+fn odometer_accumulates_flown_range() {
+    let total = 0.5;
+    let mut g = replanning(rcfg(
+        RangeTarget::FlownRangeAngle { total_rad: total },
+        1,
+        PredictorMode::Glide,
+    ));
+    // Along the equator 0.001 rad per 2 s, then north 0.002 rad.
+    let mut lon = 0.0;
+    let mut lat = 0.0;
+    for k in 0..10 {
+        let n = NavState {
+            longitude_rad: lon,
+            latitude_rad: lat,
+            ..glide_nav(2.0 * f64::from(k))
+        };
+        let out = g.update(&n).unwrap();
+        let r = out.replan.unwrap();
+        let want = (total - g.flown_range_angle_rad()) * R_EARTH;
+        assert!((r.range_to_go_m - want).abs() < 1e-3);
+        if k < 5 {
+            lon += 0.001;
+        } else {
+            lat += 0.002;
+        }
+    }
+    let flown = g.flown_range_angle_rad();
+    assert!(
+        (flown - (5.0 * 0.001 + 4.0 * 0.002)).abs() < 1e-9,
+        "{flown}"
+    );
+}
+
+#[test]
+fn replanning_rejects_bad_config() {
+    let cfg = rcfg(
+        RangeTarget::FlownRangeAngle { total_rad: 1.0 },
+        0,
+        PredictorMode::Glide,
+    );
+    let mk = |table: NodeTable<f64>, cfg| {
+        ReplanningGuidance::new(
+            GuidanceConfig::thesis_default(),
+            table,
+            Interpolation::Linear,
+            normalizer(),
+            Command::from_deg(5.0, 10.0).unwrap(),
+            cfg,
+        )
+    };
+    assert!(mk(energy_table(), cfg).is_err());
+    let ok = ReplanningConfig {
+        every_n_ticks: 1,
+        ..cfg
+    };
+    assert!(mk(energy_table(), ok).is_ok());
+    assert!(mk(NodeTable::horus2b_reference().unwrap(), ok).is_err());
+    let nan = ReplanningConfig {
+        target: RangeTarget::Point(TargetPoint {
+            latitude_rad: f64::NAN,
+            longitude_rad: 0.0,
+        }),
+        ..ok
+    };
+    assert!(mk(energy_table(), nan).is_err());
+}
+
+fn any_f64() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        8 => -1e7..1e7f64,
+        1 => Just(f64::NAN),
+        1 => Just(f64::INFINITY),
+        1 => Just(f64::NEG_INFINITY),
+        1 => Just(0.0),
+    ]
+}
+
+fn nav_strategy() -> impl Strategy<Value = (f64, f64, f64, f64, f64, f64, f64)> {
+    (
+        prop_oneof![4 => 0.0..1e4f64, 1 => any_f64()],
+        prop_oneof![4 => (R_EARTH + 20e3)..(R_EARTH + 130e3), 1 => any_f64()],
+        prop_oneof![4 => 1000.0..11000.0f64, 1 => any_f64()],
+        prop_oneof![4 => -0.3..0.1f64, 1 => any_f64()],
+        prop_oneof![4 => -7.0..7.0f64, 1 => any_f64()],
+        prop_oneof![4 => -1.6..1.6f64, 1 => any_f64()],
+        prop_oneof![4 => -4.0..4.0f64, 1 => any_f64()],
+    )
+}
+
+fn mode_strategy() -> impl Strategy<Value = PredictorMode> {
+    prop_oneof![
+        Just(PredictorMode::Chain),
+        Just(PredictorMode::Glide),
+        Just(PredictorMode::Auto)
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    /// Random (also non-finite) navigation states through `ReplanningGuidance` in f64 and f32:
+    /// never a panic, every command finite and inside the table's bounds, at most
+    /// `MAX_PREDICTOR_CALLS` predictor calls per re-plan, every reported number finite.
+    #[test]
+    fn replanning_guidance_never_panics_never_nan(
+        navs in proptest::collection::vec(nav_strategy(), 1..6),
+        mode in mode_strategy(),
+        every in 1u16..3,
+        total in prop_oneof![4 => -1.0..3.0f64, 1 => Just(1e30)],
+        point in any::<bool>(),
+    ) {
+        let target = if point {
+            RangeTarget::Point(TargetPoint { latitude_rad: 0.3, longitude_rad: total })
+        } else {
+            RangeTarget::FlownRangeAngle { total_rad: total }
+        };
+        let mut g = replanning(rcfg(target, every, mode));
+        let mut g32 = ReplanningGuidance::<f32>::new(
+            GuidanceConfig::thesis_default(),
+            NodeTable::from_deg(Independent::NormalizedEnergy, &[(1.0, 5.0, 10.0), (0.6, 7.0, -50.0), (0.0, 9.0, 0.0)],
+                AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0).unwrap()).unwrap(),
+            Interpolation::NaturalCubic,
+            EnergyNormalizer::new(MU, R_EARTH, R_EARTH + 100e3, 7658.34).unwrap(),
+            Command::from_deg(5.0, 10.0).unwrap(),
+            ReplanningConfig {
+                every_n_ticks: every,
+                target: match target {
+                    RangeTarget::Point(p) => RangeTarget::Point(TargetPoint { latitude_rad: p.latitude_rad as f32, longitude_rad: p.longitude_rad as f32 }),
+                    RangeTarget::FlownRangeAngle { total_rad } => RangeTarget::FlownRangeAngle { total_rad: total_rad as f32 },
+                },
+                limits: ReplanLimits { heat_flux_w_m2: 1e9, g_load: 1e3 },
+                solver: ReplanConfig {
+                    lambda: 1.0, min_vertical_fraction: 0.05, max_vertical_fraction: 1.0,
+                    tolerance_m: 1000.0, max_iterations: 30,
+                    predictor: PredictorConfig { final_speed_m_s: 2500.0, max_skips: 4 }, mode,
+                },
+                model: PredictorModel {
+                    planet: Planet { mu_m3_s2: MU as f32, radius_m: R_EARTH as f32 },
+                    atmosphere: ExpAtmosphere { rho0_kg_m3: RHO0 as f32, scale_height_m: H_S as f32, ref_radius_m: R_EARTH as f32 },
+                    vehicle: { let v = srm(); VehicleParams { mass_kg: v.mass_kg as f32, reference_area_m2: v.reference_area_m2 as f32, cd0: v.cd0 as f32, k_polar: v.k_polar as f32, nose_radius_m: v.nose_radius_m as f32 } },
+                    rotation_rate_rad_s: if point { 7.292_115e-5 } else { 0.0 },
+                },
+                apply_out_of_reach: true,
+            },
+        ).unwrap();
+        let bounds = g.guidance().table().bounds();
+        for (t, r, v, gam, h, lat, lon) in navs {
+            let n = NavState { time_s: t, radius_m: r, speed_m_s: v, flight_path_angle_rad: gam, heading_rad: h, latitude_rad: lat, longitude_rad: lon };
+            if let Ok(out) = g.update(&n) {
+                let c = out.guidance.command;
+                prop_assert!(c.is_finite());
+                prop_assert!(bounds.alpha_ok(c.alpha_rad) && bounds.sigma_ok(c.sigma_rad));
+                if let Some(rep) = out.replan {
+                    prop_assert!(rep.predictor_calls <= MAX_PREDICTOR_CALLS);
+                    prop_assert!(rep.bank_rad.is_finite() && rep.range_to_go_m.is_finite());
+                    prop_assert!(rep.predicted_range_m.is_none_or(f64::is_finite));
+                }
+            }
+            let a = g.guidance().attitude_at(t);
+            prop_assert!(a.is_finite());
+            let n32 = NavState { time_s: t as f32, radius_m: r as f32, speed_m_s: v as f32, flight_path_angle_rad: gam as f32, heading_rad: h as f32, latitude_rad: lat as f32, longitude_rad: lon as f32 };
+            if let Ok(out) = g32.update(&n32) {
+                prop_assert!(out.guidance.command.is_finite());
+                if let Some(rep) = out.replan {
+                    prop_assert!(rep.predictor_calls <= MAX_PREDICTOR_CALLS);
+                    prop_assert!(rep.bank_rad.is_finite() && rep.range_to_go_m.is_finite());
+                }
+            }
+            prop_assert!(g32.guidance().attitude_at(t as f32).is_finite());
+            for tab in [g.guidance().table()] {
+                for node in tab.nodes() {
+                    prop_assert!(node.sigma_rad.is_finite() && bounds.sigma_ok(node.sigma_rad));
+                }
+            }
         }
     }
 }

@@ -114,6 +114,8 @@ impl AnalyticOutcome {
 }
 
 /// The runs of one compared case (for writing trajectories with [`write_case`]).
+///
+/// [`write_case`]: super::write_case
 #[derive(Clone, Debug)]
 pub struct CaseRuns {
     /// The analytical trajectory (`Err`: out of domain or failed).

@@ -175,6 +175,8 @@ pub type PointHook<'a> =
 ///
 /// # Errors
 /// As [`run_grid`], and `on_point`'s errors.
+///
+/// [`write_case`]: super::write_case
 pub fn run_grid_with(
     cfg: &CompareConfig,
     on_point: &mut PointHook<'_>,

@@ -5,6 +5,12 @@ use std::fmt::Write as _;
 use super::{AnalyticOutcome, CompareGrid, Fidelity};
 use crate::analytic::Phase;
 
+/// Fill colour of a cell at fraction `f` in [0, 1] of the map's largest |error|: white to red.
+fn shade(f: f64) -> String {
+    let gb = (255.0 * (1.0 - 0.85 * f)).round() as u8;
+    format!("rgb(255,{gb},{gb})")
+}
+
 fn xml_escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
@@ -89,8 +95,7 @@ pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Fidelity) -> String 
             }
             (_, Some(e)) => {
                 let f = (e.abs() / scale).clamp(0.0, 1.0);
-                let gb = (255.0 * (1.0 - 0.85 * f)).round() as u8;
-                (format!("rgb(255,{gb},{gb})"), format!("{e:+.2}"))
+                (shade(f), format!("{e:+.2}"))
             }
             (_, None) => ("url(#hatch)".to_string(), "n/a".to_string()),
         };
@@ -123,11 +128,11 @@ pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Fidelity) -> String 
     let steps = 5;
     for i in 0..=steps {
         let f = f64::from(i) / f64::from(steps);
-        let gb = (255.0 * (1.0 - 0.85 * f)).round() as u8;
+        let fill = shade(f);
         let ly = mt + 18.0 * f64::from(i);
         let _ = writeln!(
             s,
-            r##"<rect x="{lx:.1}" y="{ly:.1}" width="16" height="16" fill="rgb(255,{gb},{gb})" stroke="#555"/><text x="{:.1}" y="{:.1}">|err| {:.3} {unit}</text>"##,
+            r##"<rect x="{lx:.1}" y="{ly:.1}" width="16" height="16" fill="{fill}" stroke="#555"/><text x="{:.1}" y="{:.1}">|err| {:.3} {unit}</text>"##,
             lx + 22.0,
             ly + 12.0,
             f * scale

@@ -55,7 +55,6 @@ pub const GLIDE_METRICS_SPEED_END: [Metric; 3] = [
     rel("peak_heat_flux_kw_m2"),
 ];
 
-
 /// Error of `analytic` against `numerical` for `metric`: relative in % or absolute.
 #[must_use]
 pub fn metric_error(metric: &Metric, analytic: f64, numerical: f64) -> f64 {
@@ -161,23 +160,30 @@ fn first_fall_to(
     })
 }
 
+/// Why and when a run stopped, for the failure messages: `(stopped by Altitude at t = 12.3 s)`.
+fn stopped_by(res: &SimResult) -> String {
+    format!(
+        "(stopped by {:?} at t = {:.1} s)",
+        res.summary.termination, res.summary.flight_time_s
+    )
+}
+
 fn lerp(a: f64, b: f64, f: f64) -> f64 {
     a + f * (b - a)
 }
 
-pub(super) fn numerical_metrics(res: &SimResult, case: &Case, v_end: f64) -> Result<Vec<f64>, String> {
+pub(super) fn numerical_metrics(
+    res: &SimResult,
+    case: &Case,
+    v_end: f64,
+) -> Result<Vec<f64>, String> {
     match case {
         Case::Skip { .. } => {
             let exit = res
                 .samples
                 .iter()
                 .find(|s| s.kind == SampleKind::Exit)
-                .ok_or_else(|| {
-                    format!(
-                        "no atmosphere exit (stopped by {:?} at t = {:.1} s)",
-                        res.summary.termination, res.summary.flight_time_s
-                    )
-                })?;
+                .ok_or_else(|| format!("no atmosphere exit {}", stopped_by(res)))?;
             Ok(vec![
                 exit.state.speed_m_s,
                 exit.state.flight_path_angle_rad.to_degrees(),
@@ -196,10 +202,9 @@ pub(super) fn numerical_metrics(res: &SimResult, case: &Case, v_end: f64) -> Res
                 .filter(|_| res.summary.termination == TerminationReason::Altitude);
             let end = end.ok_or_else(|| {
                 format!(
-                    "did not reach {:.1} km (stopped by {:?} at t = {:.1} s)",
+                    "did not reach {:.1} km {}",
                     altitude_m / 1e3,
-                    res.summary.termination,
-                    res.summary.flight_time_s
+                    stopped_by(res)
                 )
             })?;
             Ok(vec![
@@ -214,10 +219,7 @@ pub(super) fn numerical_metrics(res: &SimResult, case: &Case, v_end: f64) -> Res
         } => {
             let (f, a, b) =
                 first_fall_to(&res.samples, |s| s.state.speed_m_s, v_end).ok_or_else(|| {
-                    format!(
-                        "speed did not fall to {v_end:.1} m/s (stopped by {:?} at t = {:.1} s)",
-                        res.summary.termination, res.summary.flight_time_s
-                    )
+                    format!("speed did not fall to {v_end:.1} m/s {}", stopped_by(res))
                 })?;
             let t = lerp(a.time_s, b.time_s, f);
             Ok(vec![

@@ -55,7 +55,6 @@ pub use metrics::{
 pub use numerical::numerical_run;
 pub use output::{write_case, write_grid};
 
-
 /// Which numerical environment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Fidelity {

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use super::{CaseRuns, CompareGrid, Fidelity, grid_csv, heat_map_svg};
 use crate::analytic::{self, AnalyticVehicle};
 use crate::report::{self, ReportError};
+use crate::sim::SimResult;
 
 /// Write `grid.csv` and one heat map per metric and environment flown
 /// (`<metric>_err_<environment>.svg`) into `dir` (created if needed), atomically.
@@ -45,41 +46,37 @@ pub fn write_case(
     vehicle: &AnalyticVehicle,
     scenario: &str,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    let lim = vehicle.limits;
-    let mut written = Vec::new();
     let planet_r = analytic::planet().radius_m;
-    if let Ok(a) = &runs.analytic {
-        let summary = report::summary_report(
-            &a.result,
-            scenario,
-            &vehicle.name,
-            &analytic::environment_label(&a.atmosphere),
-            planet_r,
-        );
-        written.extend(report::write_run(
-            &dir.join("analytic"),
-            &a.result,
+    // One run directory: the summary and the simulator's report files.
+    let write = |sub: &str, result: &SimResult, environment: &str| {
+        let summary =
+            report::summary_report(result, scenario, &vehicle.name, environment, planet_r);
+        report::write_run(
+            &dir.join(sub),
+            result,
             &summary,
-            lim.heat_flux_w_m2,
-            lim.g_load,
+            vehicle.limits.heat_flux_w_m2,
+            vehicle.limits.g_load,
+        )
+    };
+    let mut written = Vec::new();
+    if let Ok(a) = &runs.analytic {
+        written.extend(write(
+            "analytic",
+            &a.result,
+            &analytic::environment_label(&a.atmosphere),
         )?);
     }
     for (f, res, _) in &runs.numerical {
         if let Some(res) = res {
             let env = match f {
-                Fidelity::Simplified => "numerical: non-rotating sphere, central gravity, \
-                                         exponential atmosphere of the closed forms"
-                    .to_string(),
-                Fidelity::Full => "numerical: rotating sphere, US76, J2".to_string(),
+                Fidelity::Simplified => {
+                    "numerical: non-rotating sphere, central gravity, \
+                     exponential atmosphere of the closed forms"
+                }
+                Fidelity::Full => "numerical: rotating sphere, US76, J2",
             };
-            let summary = report::summary_report(res, scenario, &vehicle.name, &env, planet_r);
-            written.extend(report::write_run(
-                &dir.join(f.name()),
-                res,
-                &summary,
-                lim.heat_flux_w_m2,
-                lim.g_load,
-            )?);
+            written.extend(write(f.name(), res, env)?);
         }
     }
     Ok(written)

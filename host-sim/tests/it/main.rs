@@ -5,5 +5,5 @@ mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
-mod support;
 mod replan_loop;
+mod support;

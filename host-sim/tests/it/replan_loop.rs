@@ -6,10 +6,10 @@ use guidance_core::guidance::{Command, GuidanceConfig};
 use guidance_core::interp::Interpolation;
 use guidance_core::nodes::{AngleBounds, Independent, Node, NodeTable};
 use guidance_core::replan::{
-    PredictorMode, RangeTarget, ReplanCase, ReplanConfig, ReplanLimits, ReplanningConfig,
-    ReplanningGuidance, TargetPoint,
+    MAX_PREDICTOR_CALLS, PredictorMode, RangeTarget, ReplanCase, ReplanConfig, ReplanCounts,
+    ReplanFallBack, ReplanLimits, ReplanningConfig, ReplanningGuidance, TargetPoint,
 };
-use guidance_core::vinh::PredictorConfig;
+use guidance_core::vinh::{PredictorConfig, VinhError};
 use host_sim::dynamics::{Dynamics, SphericalState};
 use host_sim::env::{Environment, ExponentialAtmosphere};
 use host_sim::replan_loop::{ReplanLoop, predictor_model};
@@ -86,9 +86,13 @@ fn setup(density_factor: f64, dgamma_deg: f64) -> Setup {
     let veh = host_sim::vehicle::by_name("srm").unwrap();
     // Nominal entry defines E-hat = 1 for every run (the table is the same).
     let e0 = entry(0.0);
-    let energy =
-        EnergyNormalizer::new(env.planet.mu_m3_s2, env.planet.radius_m, e0.radius_m, e0.speed_m_s)
-            .unwrap();
+    let energy = EnergyNormalizer::new(
+        env.planet.mu_m3_s2,
+        env.planet.radius_m,
+        e0.radius_m,
+        e0.speed_m_s,
+    )
+    .unwrap();
     let mut cfg = SimConfig::new(entry(dgamma_deg));
     let a = env.atmosphere.state(50_000.0).speed_of_sound_m_s;
     cfg.termination.altitude_m = Some(15_000.0);
@@ -120,18 +124,24 @@ fn fly_stored(s: &Setup) -> SimResult {
     )
     .unwrap();
     let dynm = Dynamics::from_environment(&s.env, &s.veh);
-    simulate(dynm, CoreGuidance(g), &s.cfg, &mut |_, _| {}).unwrap().0
+    simulate(dynm, CoreGuidance(g), &s.cfg, &mut |_, _| {})
+        .unwrap()
+        .0
 }
 
-fn replanning_config(target: RangeTarget<f64>, every: u16, mode: PredictorMode) -> ReplanningConfig<f64> {
+fn replanning_config(
+    target: RangeTarget<f64>,
+    every: u16,
+    mode: PredictorMode,
+) -> ReplanningConfig<f64> {
     let veh = host_sim::vehicle::by_name("srm").unwrap();
     let p = host_sim::env::Planet::earth_non_rotating();
     ReplanningConfig {
         every_n_ticks: every,
         target,
         limits: ReplanLimits {
-            heat_flux_w_m2: 1e9,
-            g_load: 1e3,
+            heat_flux_w_m2: veh.limits.heat_flux_w_m2,
+            g_load: veh.limits.g_load,
         },
         solver: ReplanConfig {
             lambda: 1.0,
@@ -186,57 +196,273 @@ fn miss_m(r: &SimResult, t: &TargetPoint<f64>) -> f64 {
     a * host_sim::env::Planet::earth_non_rotating().radius_m
 }
 
+/// Flown range error [m] of a run against the target total range angle.
+fn flown_error_m(r: &SimResult, total_rad: f64) -> f64 {
+    (r.summary.flown_range_angle_rad - total_rad)
+        * host_sim::env::Planet::earth_non_rotating().radius_m
+}
+
+/// The re-plans of a run happened on guidance ticks 0, N, 2N, ... (2 s clock, t0 = 0), and
+/// only there; every report is consistent.
+fn check_rate(lp: &ReplanLoop, r: &SimResult, every: u16) {
+    let n = u64::from(every);
+    let ticks = r.summary.ticks;
+    assert_eq!(lp.reports.len() as u64, ticks.div_ceil(n), "ticks {ticks}");
+    for (i, rep) in lp.reports.iter().enumerate() {
+        assert_eq!(u64::from(rep.tick), i as u64 * n);
+        assert_eq!(rep.time_s, 2.0 * f64::from(rep.tick));
+        assert!(rep.predictor_calls <= MAX_PREDICTOR_CALLS);
+        match rep.case {
+            ReplanCase::FallBack(_) => {
+                assert!(!rep.applied && rep.predicted_range_m.is_none());
+            }
+            _ => assert!(rep.predicted_range_m.is_some_and(f64::is_finite)),
+        }
+    }
+    let c = lp.guidance.counts();
+    assert_eq!(c.replans as usize, lp.reports.len());
+    assert_eq!(
+        c.converged + c.out_of_reach + c.limits_bind + c.fall_backs,
+        c.replans
+    );
+}
+
+const EVERY: u16 = 5;
+
+/// SIL, simplified environment (thesis sec. 8.1.3: exponential atmosphere, central gravity,
+/// no rotation), SRM glide from 100 km. The target is the total flown range of the nominal
+/// flight with the stored profile, at the final speed. With an entry dispersion (flight-path
+/// angle 0.2 deg steeper; atmosphere 10 % denser than the predictor's model) the stored profile
+/// misses it by tens to hundreds of km; re-planning every 5 ticks (10 s) must cut the miss to
+/// less than a quarter. Measured (docs/VINH.md): -423 km -> 1.5 km and -28 km -> 2.8 km.
+#[test]
+fn replanning_cuts_the_range_error_of_entry_dispersions() {
+    let nominal = fly_stored(&setup(1.0, 0.0));
+    assert_eq!(nominal.summary.termination, TerminationReason::Mach);
+    let total = nominal.summary.flown_range_angle_rad;
+    let target = RangeTarget::FlownRangeAngle { total_rad: total };
+    for (density, dgamma_deg) in [(1.0, -0.2), (1.1, 0.0)] {
+        let s = setup(density, dgamma_deg);
+        let stored = fly_stored(&s);
+        let (re, lp) = fly_replanning(&s, replanning_config(target, EVERY, PredictorMode::Auto));
+        let (e_stored, e_replan) = (flown_error_m(&stored, total), flown_error_m(&re, total));
+        println!(
+            "density x{density}, gamma {dgamma_deg:+} deg: flown-range error stored {:.1} km, \
+             re-planned {:.1} km; {:?}",
+            e_stored / 1e3,
+            e_replan / 1e3,
+            lp.guidance.counts()
+        );
+        assert_eq!(re.summary.termination, TerminationReason::Mach);
+        assert!(
+            e_stored.abs() > 10e3,
+            "dispersion too small to test: {e_stored} m"
+        );
+        assert!(
+            e_replan.abs() < 0.25 * e_stored.abs(),
+            "re-planned {e_replan} m vs stored {e_stored} m"
+        );
+        check_rate(&lp, &re, EVERY);
+        let c = lp.guidance.counts();
+        assert!(c.applied > c.replans / 2, "{c:?}");
+        // The vehicle limits were in the solver and the flight respects them.
+        let lim = s.veh.limits;
+        assert!(re.summary.peak_heat_flux_w_m2.value <= lim.heat_flux_w_m2);
+        assert!(re.summary.peak_g_load.value <= lim.g_load);
+    }
+}
+
+/// Out of the predictor's domain the stored profile is flown and the case is reported:
+/// (a) a final speed above the entry speed puts every prediction out of domain: every re-plan
+/// is a reported fall-back and the flight is identical, sample for sample, to the stored
+/// profile alone; (b) the chain predictor (skip closed form first) is out of its domain for
+/// most mid-glide states: those re-plans are reported as fall-backs with the predictor's
+/// error, and nothing is applied at them.
+#[test]
+fn out_of_domain_predictions_fall_back_to_the_stored_profile() {
+    let s = setup(1.0, 0.0);
+    let stored = fly_stored(&s);
+    let mut rc = replanning_config(
+        RangeTarget::FlownRangeAngle {
+            total_rad: stored.summary.flown_range_angle_rad,
+        },
+        EVERY,
+        PredictorMode::Auto,
+    );
+    rc.solver.predictor.final_speed_m_s = 9000.0;
+    let (re, lp) = fly_replanning(&s, rc);
+    check_rate(&lp, &re, EVERY);
+    assert!(
+        lp.reports
+            .iter()
+            .all(|r| matches!(r.case, ReplanCase::FallBack(ReplanFallBack::OutOfDomain(_))))
+    );
+    assert_eq!(re.samples.len(), stored.samples.len());
+    for (a, b) in re.samples.iter().zip(&stored.samples) {
+        assert_eq!(a.time_s, b.time_s);
+        assert_eq!(a.attitude, b.attitude);
+        assert_eq!(a.state, b.state);
+    }
+    let (re, lp) = fly_replanning(
+        &s,
+        replanning_config(
+            RangeTarget::FlownRangeAngle {
+                total_rad: stored.summary.flown_range_angle_rad,
+            },
+            EVERY,
+            PredictorMode::Chain,
+        ),
+    );
+    check_rate(&lp, &re, EVERY);
+    let c = lp.guidance.counts();
+    println!("chain predictor: {c:?}");
+    assert!(c.fall_backs > 0, "{c:?}");
+    assert!(lp.reports.iter().any(|r| matches!(
+        r.case,
+        ReplanCase::FallBack(ReplanFallBack::OutOfDomain(VinhError::NotOscillatory))
+    )));
+}
+
+/// Full environment (US76, J2, rotating Earth) from the equator at `heading_deg`: the nominal
+/// flight's total flown range is the target; returns, per flight-path-angle dispersion, the
+/// flown-range errors [m] of the stored profile and of re-planning, and the re-plan counts.
+/// Predictor: exponential fit to US76 at 50/100 km, effective-gravity rotation correction.
+fn full_environment(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<(f64, f64, ReplanCounts)> {
+    let env = Environment::full();
+    let veh = host_sim::vehicle::by_name("srm").unwrap();
+    let e0 = entry(0.0);
+    let energy = EnergyNormalizer::new(
+        env.planet.mu_m3_s2,
+        env.planet.radius_m,
+        e0.radius_m,
+        e0.speed_m_s,
+    )
+    .unwrap();
+    let mk = |dg: f64| {
+        let mut cfg = SimConfig::new(SphericalState {
+            heading_rad: heading_deg * DEG,
+            ..entry(dg)
+        });
+        // Mach 8 is about 2.4 km/s at 30-50 km in US76 (the predictor's final speed is 2.5 km/s).
+        cfg.termination.altitude_m = Some(15_000.0);
+        cfg.termination.mach = Some(8.0);
+        cfg.termination.max_time_s = 5000.0;
+        cfg.tolerances.rtol = 1e-7;
+        cfg
+    };
+    let dynm = Dynamics::from_environment(&env, &veh);
+    let g = guidance_core::guidance::Guidance::new(
+        GuidanceConfig::thesis_default(),
+        stored_table(),
+        Interpolation::Linear,
+        energy,
+        initial(),
+    )
+    .unwrap();
+    let fly = |dg: f64| {
+        simulate(dynm, CoreGuidance(g.clone()), &mk(dg), &mut |_, _| {})
+            .unwrap()
+            .0
+    };
+    let total = fly(0.0).summary.flown_range_angle_rad;
+    let atm = host_sim::analytic::fit_us76(50e3, 100e3).unwrap();
+    let re = env.planet.radius_m;
+    dgammas_deg
+        .iter()
+        .map(|&dg| {
+            let stored = fly(dg);
+            let mut rc = replanning_config(
+                RangeTarget::FlownRangeAngle { total_rad: total },
+                EVERY,
+                PredictorMode::Auto,
+            );
+            rc.model = predictor_model(&veh, &atm, &env.planet, 20.0).unwrap();
+            let rg = ReplanningGuidance::new(
+                GuidanceConfig::thesis_default(),
+                stored_table(),
+                Interpolation::Linear,
+                energy,
+                initial(),
+                rc,
+            )
+            .unwrap();
+            let (r, lp) = simulate(dynm, ReplanLoop::new(rg), &mk(dg), &mut |_, _| {}).unwrap();
+            check_rate(&lp, &r, EVERY);
+            (
+                (stored.summary.flown_range_angle_rad - total) * re,
+                (r.summary.flown_range_angle_rad - total) * re,
+                lp.guidance.counts(),
+            )
+        })
+        .collect()
+}
+
+/// SIL, full environment, heading north from the equator: entry 0.2 deg steeper; re-planning
+/// must cut the flown-range miss of the stored profile to less than a quarter (measured:
+/// -430 km -> 12 km, docs/VINH.md).
+#[test]
+fn replanning_cuts_the_range_error_in_the_full_environment() {
+    let out = full_environment(0.0, &[-0.2]);
+    let (stored, replanned, counts) = out[0];
+    println!(
+        "full environment: stored {:.1} km, re-planned {:.1} km; {counts:?}",
+        stored / 1e3,
+        replanned / 1e3
+    );
+    assert!(stored.abs() > 10e3, "{stored}");
+    assert!(
+        replanned.abs() < 0.25 * stored.abs(),
+        "{replanned} vs {stored}"
+    );
+}
+
+/// Measurement for docs/VINH.md: full environment, headings 0/90/270 deg, flight-path-angle
+/// dispersions -0.2 and +0.1 deg.
+/// `cargo test -p host-sim --test it replan_loop::print_full_environment -- --ignored --nocapture`
 #[test]
 #[ignore]
-fn explore() {
-    let nom = setup(1.0, 0.0);
-    let t0 = std::time::Instant::now();
-    let rn = fly_stored(&nom);
-    println!(
-        "nominal: {:?} t={:.1} s, range {:.1} km, ({:?})",
-        rn.summary.termination,
-        rn.summary.flight_time_s,
-        rn.summary.range_angle_rad * 6378.137,
-        t0.elapsed()
-    );
-    let point = end_point(&rn);
-    let total = rn.summary.flown_range_angle_rad;
-    let mode = match std::env::var("MODE").as_deref() { Ok("chain") => PredictorMode::Chain, Ok("glide") => PredictorMode::Glide, _ => PredictorMode::Auto };
-    let use_point = std::env::var("POINT").is_ok();
-    let every: u16 = std::env::var("EVERY").ok().and_then(|v| v.parse().ok()).unwrap_or(5);
-    let target = if use_point { RangeTarget::Point(point) } else { RangeTarget::FlownRangeAngle { total_rad: total } };
-    let re = 6378.137;
-    for (df, dg) in [(1.0, 0.0), (1.1, 0.0), (0.9, 0.0), (1.0, -0.2), (1.0, 0.1)] {
-        let s = setup(df, dg);
-        let rs = fly_stored(&s);
-        let t0 = std::time::Instant::now();
-        let (rr, lp) = fly_replanning(&s, replanning_config(target, every, mode));
-        println!(
-            "df {df} dg {dg}: stored miss {:.1} km / flown {:.1} km ({:?}), replan miss {:.1} km / flown {:.1} km ({:?}, {:?}) odo {:.1}",
-            miss_m(&rs, &point) / 1e3,
-            (rs.summary.flown_range_angle_rad - total) * re,
-            rs.summary.termination,
-            miss_m(&rr, &point) / 1e3,
-            (rr.summary.flown_range_angle_rad - total) * re,
-            rr.summary.termination,
-            t0.elapsed(),
-            (lp.guidance.flown_range_angle_rad() - rr.summary.flown_range_angle_rad) * re,
-        );
-        println!("  counts {:?}", lp.guidance.counts());
-        for r in lp.reports.iter().step_by(10) {
+fn print_full_environment() {
+    for heading in [0.0, 90.0, 270.0] {
+        for (dg, (s, r, c)) in [-0.2, 0.1]
+            .iter()
+            .zip(full_environment(heading, &[-0.2, 0.1]))
+        {
             println!(
-                "  t {:.0} E {:.3} rtg {:.1} km case {:?} calls {} bank {:.1} pred {:?} applied {}",
-                r.time_s,
-                r.normalized_energy,
-                r.range_to_go_m / 1e3,
-                r.case,
-                r.predictor_calls,
-                r.bank_rad / DEG,
-                r.predicted_range_m.map(|x| (x / 1e3).round()),
-                r.applied
+                "| {heading} | {dg:+} | {:.1} | {:.1} | {} | {} | {} | {} |",
+                s / 1e3,
+                r / 1e3,
+                c.replans,
+                c.converged,
+                c.limits_bind + c.out_of_reach,
+                c.fall_backs
             );
         }
     }
-    let _ = ReplanCase::Converged;
-    let _ = TerminationReason::Mach;
+}
+
+/// Measurement: a *point* target (the nominal end point) with the same dispersions in the
+/// simplified environment. The SRM (L/D 2.27, bank only, no reversals) turns by tens of degrees,
+/// so the great-circle range to go is not what the planar predictor models; printed for
+/// docs/VINH.md, not asserted.
+/// `cargo test -p host-sim --test it replan_loop::print_point_target -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn print_point_target() {
+    let nominal = fly_stored(&setup(1.0, 0.0));
+    let point = end_point(&nominal);
+    for (density, dgamma_deg) in [(1.0, 0.0), (1.0, -0.2), (1.1, 0.0)] {
+        let s = setup(density, dgamma_deg);
+        let stored = fly_stored(&s);
+        let (re, lp) = fly_replanning(
+            &s,
+            replanning_config(RangeTarget::Point(point), EVERY, PredictorMode::Auto),
+        );
+        println!(
+            "density x{density}, gamma {dgamma_deg:+} deg: distance to the target point: stored \
+             {:.1} km, re-planned {:.1} km; {:?}",
+            miss_m(&stored, &point) / 1e3,
+            miss_m(&re, &point) / 1e3,
+            lp.guidance.counts()
+        );
+    }
 }

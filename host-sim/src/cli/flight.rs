@@ -1,0 +1,115 @@
+//! Flying a scenario: load its vehicle, build its environment and guidance, run the closed
+//! loop, and (for [`simulate_scenario`]) write the run directory.
+
+use std::path::{Path, PathBuf};
+
+use super::{CliError, Scenario, VehicleSpec, build_guidance};
+use crate::dynamics::Dynamics;
+use crate::env::Environment;
+use crate::report;
+use crate::sim::{self, SimConfig};
+use crate::vehicle::{self, Vehicle};
+
+/// Load the vehicle of a scenario.
+///
+/// # Errors
+/// [`CliError::Vehicle`] naming the file or name.
+pub fn load_vehicle(spec: &VehicleSpec) -> Result<Vehicle, CliError> {
+    Ok(match spec {
+        VehicleSpec::Name(n) => vehicle::by_name(n)?,
+        VehicleSpec::File(p) => vehicle::from_toml_file(p)?,
+    })
+}
+
+/// Result of [`simulate_scenario`].
+#[derive(Debug)]
+pub struct RunOutput {
+    /// The run.
+    pub result: sim::SimResult,
+    /// The summary written to summary.json.
+    pub summary: report::SummaryReport,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// A flown scenario with the models it used.
+pub struct Flight {
+    /// The run.
+    pub result: sim::SimResult,
+    /// The vehicle flown.
+    pub vehicle: Vehicle,
+    /// The environment flown in.
+    pub environment: Environment,
+}
+
+impl std::fmt::Debug for Flight {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Flight")
+            .field("summary", &self.result.summary)
+            .field("vehicle", &self.vehicle.name)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Fly a scenario closed-loop with `guidance-core`'s guidance (no files written).
+///
+/// # Errors
+/// [`CliError`] for vehicle, guidance or simulation failures.
+pub fn fly(
+    sc: &Scenario,
+    file: &str,
+    progress: &mut dyn FnMut(f64, f64),
+) -> Result<Flight, CliError> {
+    let vehicle = load_vehicle(&sc.vehicle)?;
+    let environment = sc.environment.build();
+    let source = build_guidance(sc, &environment.planet, file)?;
+    let mut cfg = SimConfig::new(sc.entry);
+    cfg.termination = sc.termination;
+    cfg.tolerances = sc.tolerances;
+    cfg.output_interval_s = sc.output_interval_s;
+    cfg.interface_altitude_m = sc.interface_altitude_m;
+    cfg.g_rate_window_s = sc.g_rate_window_s;
+    let dynm = Dynamics::from_environment(&environment, &vehicle);
+    let (result, _) = sim::simulate(dynm, source, &cfg, progress)?;
+    Ok(Flight {
+        result,
+        vehicle,
+        environment,
+    })
+}
+
+/// Fly a scenario and write its run directory.
+///
+/// # Errors
+/// [`CliError`] for vehicle, guidance, simulation or output failures.
+pub fn simulate_scenario(
+    sc: &Scenario,
+    file: &str,
+    out_dir: &Path,
+    progress: &mut dyn FnMut(f64, f64),
+) -> Result<RunOutput, CliError> {
+    let Flight {
+        result,
+        vehicle: veh,
+        environment: env,
+    } = fly(sc, file, progress)?;
+    let summary = report::summary_report(
+        &result,
+        &sc.name,
+        &veh.name,
+        &sc.environment.describe(),
+        env.planet.radius_m,
+    );
+    let files = report::write_run(
+        out_dir,
+        &result,
+        &summary,
+        veh.limits.heat_flux_w_m2,
+        veh.limits.g_load,
+    )?;
+    Ok(RunOutput {
+        result,
+        summary,
+        files,
+    })
+}

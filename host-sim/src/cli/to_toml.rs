@@ -1,0 +1,111 @@
+//! The scenario as TOML text (the inverse of [`parse_scenario`](super::parse_scenario)).
+
+use super::{Independent, InterpolationKind, Scenario, VehicleSpec};
+use crate::env::Planet;
+
+/// Rounding to 10 decimals for printing degree values (keeps 40.0 from printing as
+/// 39.99999999999999 after a radian round trip).
+trait Round10 {
+    fn r10(self) -> f64;
+}
+
+impl Round10 for f64 {
+    fn r10(self) -> f64 {
+        (self * 1e10).round() / 1e10
+    }
+}
+
+/// The scenario as TOML text (parses back to the same scenario, angles to 1e-10 deg).
+#[must_use]
+pub fn scenario_to_toml(sc: &Scenario) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let r = Planet::earth().radius_m;
+    let _ = writeln!(s, "name = {:?}", sc.name);
+    match &sc.vehicle {
+        VehicleSpec::Name(n) => {
+            let _ = writeln!(s, "vehicle = {n:?}");
+        }
+        VehicleSpec::File(p) => {
+            let _ = writeln!(s, "vehicle_file = {:?}", p.display().to_string());
+        }
+    }
+    let e = &sc.environment;
+    let _ = writeln!(
+        s,
+        "\n[environment]\natmosphere = {:?}\ngravity = {:?}\nrotating = {}",
+        e.atmosphere, e.gravity, e.rotating
+    );
+    let en = &sc.entry;
+    let _ = writeln!(
+        s,
+        "\n[entry]\naltitude_km = {:?}\nlongitude_deg = {:?}\nlatitude_deg = {:?}\nspeed_m_s = {:?}\nflight_path_angle_deg = {:?}\nheading_deg = {:?}",
+        ((en.radius_m - r) / 1e3).r10(),
+        en.longitude_rad.to_degrees().r10(),
+        en.latitude_rad.to_degrees().r10(),
+        en.speed_m_s,
+        en.flight_path_angle_rad.to_degrees().r10(),
+        en.heading_rad.to_degrees().r10()
+    );
+    let g = &sc.guidance;
+    let (interp, tension) = match g.interpolation {
+        InterpolationKind::Linear => ("linear", None),
+        InterpolationKind::NaturalCubic => ("natural-cubic", None),
+        InterpolationKind::Hermite { tension } => ("hermite", Some(tension)),
+    };
+    let _ = writeln!(
+        s,
+        "\n[guidance]\nindependent = {:?}\ninterpolation = {interp:?}",
+        match g.independent {
+            Independent::Time => "time",
+            Independent::Energy => "energy",
+        }
+    );
+    if let Some(t) = tension {
+        let _ = writeln!(s, "tension = {t:?}");
+    }
+    let _ = writeln!(
+        s,
+        "period_s = {:?}\nalpha_rate_deg_s = {:?}\nsigma_rate_deg_s = {:?}\ninitial_alpha_deg = {:?}\ninitial_sigma_deg = {:?}\nnodes = [",
+        g.period_s,
+        g.alpha_rate_rad_s.to_degrees().r10(),
+        g.sigma_rate_rad_s.to_degrees().r10(),
+        g.initial.alpha_rad.to_degrees().r10(),
+        g.initial.sigma_rad.to_degrees().r10()
+    );
+    for n in &g.nodes {
+        let _ = writeln!(
+            s,
+            "  [{:?}, {:?}, {:?}],",
+            n[0],
+            n[1].to_degrees().r10(),
+            n[2].to_degrees().r10()
+        );
+    }
+    s.push_str("]\n\n[termination]\n");
+    let t = &sc.termination;
+    if let Some(h) = t.altitude_m {
+        let _ = writeln!(s, "altitude_km = {:?}", h / 1e3);
+    }
+    if let Some(m) = t.mach {
+        let _ = writeln!(s, "mach = {m:?}");
+    }
+    if let Some(e) = t.normalized_energy {
+        let _ = writeln!(s, "normalized_energy = {e:?}");
+    }
+    let _ = writeln!(s, "max_time_s = {:?}", t.max_time_s);
+    let tl = &sc.tolerances;
+    let _ = writeln!(
+        s,
+        "\n[integrator]\nrtol = {:?}\nh_init_s = {:?}\nh_min_s = {:?}\nh_max_s = {:?}\nmax_steps = {}\nevent_time_tol_s = {:?}",
+        tl.rtol, tl.h_init, tl.h_min, tl.h_max, tl.max_steps, tl.event_time_tol_s
+    );
+    let _ = writeln!(
+        s,
+        "\n[monitors]\ninterface_altitude_km = {:?}\ng_rate_window_s = {:?}",
+        sc.interface_altitude_m / 1e3,
+        sc.g_rate_window_s
+    );
+    let _ = writeln!(s, "\n[output]\ninterval_s = {:?}", sc.output_interval_s);
+    s
+}
