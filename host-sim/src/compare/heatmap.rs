@@ -4,17 +4,12 @@ use std::fmt::Write as _;
 
 use super::{AnalyticOutcome, CompareGrid, Fidelity};
 use crate::analytic::Phase;
+use crate::report::xml_escape;
 
 /// Fill colour of a cell at fraction `f` in [0, 1] of the map's largest |error|: white to red.
 fn shade(f: f64) -> String {
     let gb = (255.0 * (1.0 - 0.85 * f)).round() as u8;
     format!("rgb(255,{gb},{gb})")
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }
 
 /// Heat map of the error of metric `m` against `fidelity` over the grid, as a standalone SVG:
