@@ -46,13 +46,19 @@
 //!   is consistent with the predictor.
 //!
 //! # Cost (worst case, bounded)
-//! An update without a re-plan costs what [`Guidance::update`] costs. An update with a re-plan
-//! adds: one E-hat evaluation, one great-circle angle (6 trig functions, one `atan2`, one square
-//! root), one solver call of at most [`super::MAX_ITERATIONS`]` + 2 + `[`super::LIMIT_GRID`]` = 58`
-//! predictor calls (each at most [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one
-//! glide), a copy of the table (at most [`crate::nodes::MAX_NODES`] nodes) and one
-//! interpolator rebuild. Measured host times are in `docs/VINH.md` ("Re-planning"). No
-//! allocation, no recursion, no panics.
+//! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
+//! angle (the odometer). An update with a re-plan adds: one E-hat evaluation, one range to go
+//! (a great-circle angle and a bearing: about 10 trig functions), one solver call of at most
+//! [`super::MAX_PREDICTOR_CALLS`]` = 60` predictor calls (58 outside
+//! [`super::PredictorMode::Auto`]; each chain call at most
+//! [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one glide), a copy of the table (at
+//! most [`crate::nodes::MAX_NODES`] nodes) and one interpolator rebuild. The worst case of one
+//! update is therefore `60 x` (the cost of the longest predictor call); measured host times
+//! are in `docs/VINH.md` ("Re-planning"). No allocation, no recursion, no panics.
+//!
+//! # Rotating planet
+//! The closed forms assume a non-rotating planet. [`PredictorModel::rotation_rate_rad_s`]
+//! enables a first-order effective-gravity correction (see there).
 
 use crate::energy::EnergyNormalizer;
 use crate::error::GuidanceError;
@@ -63,7 +69,8 @@ use crate::nodes::{Independent, NodeTable};
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
-use super::{ReplanCase, ReplanConfig, ReplanLimits, replan};
+use super::{ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, ReplanResult, replan};
+use crate::vinh::VinhError;
 
 /// Largest accepted [`ReplanningConfig::every_n_ticks`] (one re-plan per 65535 ticks, about
 /// 36 h at 2 s).
@@ -370,7 +377,7 @@ impl<S: Real> ReplanningGuidance<S> {
         let n = u32::from(self.config.every_n_ticks.max(1));
         let mut report = None;
         let mut previous = None;
-        if will_tick && self.ticks % n == 0 {
+        if will_tick && self.ticks.is_multiple_of(n) {
             let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
             let (r, old) = self.replan_now(nav, e_hat, flown);
             report = Some(r);
@@ -411,26 +418,34 @@ impl<S: Real> ReplanningGuidance<S> {
     ) -> (ReplanReport<S>, Option<NodeTable<S>>) {
         let cfg = &self.config;
         let m = &cfg.model;
-        // A non-finite range to go (only for a non-finite model radius) is passed on as NaN:
-        // the solver rejects it as a fall-back.
         let rtg = match cfg.target {
             RangeTarget::Point(p) => range_to_go_m(nav, &p, m.planet.radius_m),
             RangeTarget::FlownRangeAngle { total_rad } => {
                 let r = (total_rad - flown_rad) * m.planet.radius_m;
                 r.is_finite().then_some(r)
             }
-        }
-        .unwrap_or(S::ZERO / S::ZERO);
+        };
         let planet = m.effective_planet(nav, cfg.solver.predictor.final_speed_m_s);
-        let res = replan(
-            &planet,
-            &m.atmosphere,
-            &m.vehicle,
-            nav,
-            rtg,
-            &cfg.limits,
-            &cfg.solver,
-        );
+        let res = match rtg {
+            Some(rtg) => replan(
+                &planet,
+                &m.atmosphere,
+                &m.vehicle,
+                nav,
+                rtg,
+                &cfg.limits,
+                &cfg.solver,
+            ),
+            // Non-finite range to go (non-finite model radius or target sum): out of domain.
+            None => ReplanResult {
+                case: ReplanCase::FallBack(ReplanFallBack::OutOfDomain(VinhError::NonFiniteInput)),
+                vertical_fraction: S::ONE,
+                bank_rad: S::ZERO,
+                prediction: None,
+                predictor_calls: 0,
+            },
+        };
+        let rtg = rtg.unwrap_or(S::ZERO);
         let apply = match res.case {
             ReplanCase::Converged | ReplanCase::LimitsBind => true,
             ReplanCase::TargetOutOfReach => cfg.apply_out_of_reach,
@@ -440,7 +455,7 @@ impl<S: Real> ReplanningGuidance<S> {
             tick: self.ticks,
             time_s: nav.time_s,
             normalized_energy: e_hat,
-            range_to_go_m: if rtg.is_finite() { rtg } else { S::ZERO },
+            range_to_go_m: rtg,
             case: res.case,
             predictor_calls: res.predictor_calls,
             bank_rad: if res.bank_rad.is_finite() {

@@ -775,3 +775,69 @@ proptest! {
         }
     }
 }
+
+/// Glide-mode prediction (`predict_glide`) against numerical integration of the planar
+/// equations of motion (Dormand-Prince 5(4), rtol 1e-11, `vinh_support`), constant bank, from
+/// the SRM glide entry (100 km, 7658.34 m/s, -0.056 deg: the equilibrium for cos(sigma) = 1)
+/// to 2.5 km/s. For cos(sigma) < 1 the start is above the equilibrium of that bank: the
+/// vehicle sinks in a phugoid that the glide prediction (started at its equilibrium radius,
+/// the descent to it not modelled: zero range) does not contain. Checked: the thesis' <= 3 %
+/// at the equilibrium start; below it the prediction falls short (the missing descent) and the
+/// shortfall grows as the start moves away from the equilibrium (smaller cos(sigma)).
+/// Measured (docs/VINH.md): -10.3 % at 0.3, -3.2 % at 0.5, -0.9 % at 0.7, +0.6 % at 1.
+#[test]
+fn validate_dormand_prince_glide_predictor_range() {
+    use crate::vinh_support::dynamics::{Lift, eom_dim};
+    use crate::vinh_support::ode::{Settings, integrate};
+    let veh = vehicles::srm();
+    let n = glide_nav(0.0);
+    let mut errs = vec![];
+    for f in [0.3, 0.5, 0.7, 1.0] {
+        let sol = integrate(
+            eom_dim(
+                &veh,
+                Lift {
+                    lambda: 1.0,
+                    cos_bank: f,
+                },
+            ),
+            0.0,
+            [n.radius_m, n.speed_m_s, n.flight_path_angle_rad, 0.0],
+            50_000.0,
+            Settings::tight(5.0),
+            |_t, y| y[1] - 2500.0,
+        );
+        let (_, ye) = sol.event.expect("reaches 2.5 km/s");
+        let lift = LiftControl {
+            lambda: 1.0,
+            vertical_fraction: f,
+        };
+        let s = EntryState {
+            radius_m: n.radius_m,
+            speed_m_s: n.speed_m_s,
+            flight_path_angle_rad: n.flight_path_angle_rad,
+        };
+        let p = predict_glide(
+            &planet(),
+            &atmosphere(),
+            &srm(),
+            &lift,
+            &s,
+            &config().predictor,
+        )
+        .unwrap();
+        let err = (p.range_angle_rad - ye[3]) / ye[3];
+        println!(
+            "cos(sigma) {f}: predicted {:.2} deg, integrated {:.2} deg, error {:+.2} %",
+            p.range_angle_rad.to_degrees(),
+            ye[3].to_degrees(),
+            100.0 * err
+        );
+        errs.push(err);
+    }
+    // The thesis' glide claim (<= 3 %) applies at the imposed entry (cos(sigma) = 1).
+    assert!(errs[3].abs() < 0.03, "{errs:?}");
+    for w in errs[..3].windows(2) {
+        assert!(w[0] < 0.0 && w[0] < w[1], "{errs:?}");
+    }
+}

@@ -156,7 +156,7 @@ fn replanning_config(
             mode,
         },
         model: predictor_model(&veh, &ExponentialAtmosphere::earth(), &p, 20.0).unwrap(),
-        apply_out_of_reach: true,
+        apply_out_of_reach: false,
     }
 }
 
@@ -269,6 +269,29 @@ fn replanning_cuts_the_range_error_of_entry_dispersions() {
         let lim = s.veh.limits;
         assert!(re.summary.peak_heat_flux_w_m2.value <= lim.heat_flux_w_m2);
         assert!(re.summary.peak_g_load.value <= lim.g_load);
+    }
+}
+
+/// Measurement for docs/VINH.md: simplified environment, all dispersions.
+/// `cargo test -p host-sim --test it replan_loop::print_simplified_environment -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn print_simplified_environment() {
+    let total = fly_stored(&setup(1.0, 0.0)).summary.flown_range_angle_rad;
+    let target = RangeTarget::FlownRangeAngle { total_rad: total };
+    for (density, dgamma_deg) in [(1.0, 0.0), (1.1, 0.0), (0.9, 0.0), (1.0, -0.2), (1.0, 0.1)] {
+        let s = setup(density, dgamma_deg);
+        let stored = fly_stored(&s);
+        let (re, lp) = fly_replanning(&s, replanning_config(target, EVERY, PredictorMode::Auto));
+        let c = lp.guidance.counts();
+        println!(
+            "| density x{density}, gamma {dgamma_deg:+} deg | {:.1} | {:.1} | {} ({} / {}) |",
+            flown_error_m(&stored, total) / 1e3,
+            flown_error_m(&re, total) / 1e3,
+            c.replans,
+            c.converged,
+            c.fall_backs
+        );
     }
 }
 
