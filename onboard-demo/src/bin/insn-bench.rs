@@ -13,6 +13,7 @@ use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
 use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
 use guidance_core::interp::Interpolation;
 use guidance_core::nodes::NodeTable;
+use guidance_core::replan::{PredictorMode, ReplanConfig, ReplanLimits, replan};
 use guidance_core::vinh::glide::GlideSolution;
 use guidance_core::vinh::nondim::{
     EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
@@ -170,6 +171,122 @@ fn bench_closed_forms(c: &mut InsnCounter) -> bool {
     ok
 }
 
+/// Re-planning solves in `f32` (the case of guidance-core's `closed_forms` bench): one that
+/// converges, the solver's worst case (tolerance never met, heat-flux limit below every
+/// prediction: 58 predictor calls) and a glide-mode solve.
+fn bench_replan(c: &mut InsnCounter) -> bool {
+    let planet = Planet::<f32>::earth();
+    let atm = ExpAtmosphere::<f32>::earth();
+    let veh = srm();
+    let deg = core::f32::consts::PI / 180.0;
+    let nav = |h: f32, v: f32, g_deg: f32| NavState {
+        time_s: 0.0,
+        radius_m: 6_378_137.0 + h,
+        speed_m_s: v,
+        flight_path_angle_rad: g_deg * deg,
+        heading_rad: 0.0,
+        latitude_rad: 0.0,
+        longitude_rad: 0.0,
+    };
+    let predictor = PredictorConfig {
+        final_speed_m_s: 2_500.0,
+        max_skips: 4,
+    };
+    let solver = ReplanConfig {
+        lambda: 1.0,
+        min_vertical_fraction: 0.3,
+        max_vertical_fraction: 1.0,
+        tolerance_m: 1_000.0,
+        max_iterations: 40,
+        predictor,
+        mode: PredictorMode::Chain,
+    };
+    let limits = ReplanLimits {
+        heat_flux_w_m2: 1e9,
+        g_load: 1e3,
+    };
+    let start = nav(122e3, 7_000.0, -4.0);
+    let state = EntryState {
+        radius_m: start.radius_m,
+        speed_m_s: start.speed_m_s,
+        flight_path_angle_rad: start.flight_path_angle_rad,
+    };
+    let lift = LiftControl {
+        lambda: 1.0,
+        vertical_fraction: 0.7,
+    };
+    let Ok(target) = predict(&planet, &atm, &veh, &lift, &state, &predictor).map(|p| p.range_m)
+    else {
+        return false;
+    };
+    let mut calls = [0u8; 3];
+    let converged = c.ticks(|| {
+        let r = replan(
+            &planet,
+            &atm,
+            &veh,
+            &core::hint::black_box(start),
+            target,
+            &limits,
+            &solver,
+        );
+        calls[0] = r.predictor_calls;
+    });
+    let worst_solver = ReplanConfig {
+        tolerance_m: 1e-6,
+        ..solver
+    };
+    let worst_limits = ReplanLimits {
+        heat_flux_w_m2: 1.0,
+        g_load: 1e3,
+    };
+    let worst = c.ticks(|| {
+        let r = replan(
+            &planet,
+            &atm,
+            &veh,
+            &core::hint::black_box(start),
+            target,
+            &worst_limits,
+            &worst_solver,
+        );
+        calls[1] = r.predictor_calls;
+    });
+    let glide_solver = ReplanConfig {
+        mode: PredictorMode::Glide,
+        min_vertical_fraction: 0.05,
+        ..solver
+    };
+    let glide = c.ticks(|| {
+        let r = replan(
+            &planet,
+            &atm,
+            &veh,
+            &core::hint::black_box(nav(100e3, 7_658.34, -0.056)),
+            12_000e3,
+            &limits,
+            &glide_solver,
+        );
+        calls[2] = r.predictor_calls;
+    });
+    hprintln!(
+        "bench replan_converged_f32: {} insn/call ({} predictor calls)",
+        converged * INSN_PER_TICK,
+        calls[0]
+    );
+    hprintln!(
+        "bench replan_worst_case_f32: {} insn/call ({} predictor calls)",
+        worst * INSN_PER_TICK,
+        calls[1]
+    );
+    hprintln!(
+        "bench replan_glide_mode_f32: {} insn/call ({} predictor calls)",
+        glide * INSN_PER_TICK,
+        calls[2]
+    );
+    calls.iter().all(|&n| n > 0)
+}
+
 #[entry]
 fn main() -> ! {
     let Some(p) = cortex_m::Peripherals::take() else {
@@ -204,6 +321,7 @@ fn main() -> ! {
         },
     );
     ok &= bench_closed_forms(&mut c);
+    ok &= bench_replan(&mut c);
     onboard_demo::exit(ok)
 }
 
