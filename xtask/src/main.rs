@@ -197,6 +197,15 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push((
+        "guidance-core with defmt, no_std",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args(["build", "-p", "guidance-core", "--features", "defmt"])
+                .args(["--target", "thumbv7em-none-eabihf"]);
+            run(c, "guidance-core defmt build")
+        }),
+    ));
+    steps.push((
         "guidance-core unit tests with micromath",
         Box::new(|| {
             let mut c = cargo();
