@@ -32,6 +32,7 @@ pub mod energy;
 pub mod error;
 pub mod guidance;
 pub mod interp;
+pub mod link;
 pub mod math;
 pub mod monitor;
 pub mod nav;

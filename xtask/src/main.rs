@@ -31,9 +31,10 @@ const FIRMWARE_TARGETS: [(&str, &str); 2] = [
     ),
 ];
 
-const USAGE: &str = "usage: cargo xtask <test|firmware|bench-firmware|size|golden|setup> [--help]\n\
-  test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, size budget\n\
+const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|golden|setup> [--help]\n\
+  test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, PIL, size budget\n\
   firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
+  pil       fly the HORUS-2B reference mission with the firmware's guidance in QEMU, compare with SIL\n\
   bench-firmware  instruction counts of guidance-core on the M4F and M3 under QEMU -icount\n\
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
   golden    regenerate onboard-demo/src/golden.rs from the host run of the smoke scenario\n\
@@ -45,6 +46,7 @@ fn main() -> ExitCode {
         Some("test") => test(),
         Some("firmware") => setup().and_then(|()| firmware()),
         Some("size") => size(),
+        Some("pil") => setup().and_then(|()| pil()),
         Some("bench-firmware") => setup().and_then(|()| bench_firmware()),
         Some("golden") => golden::write(&root()),
         Some("setup") => setup(),
@@ -238,6 +240,7 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push(("firmware under QEMU", Box::new(firmware)));
+    steps.push(("PIL closed loop", Box::new(pil)));
     steps.push((
         "firmware instruction counter (calibrated run)",
         Box::new(bench_firmware),
@@ -318,6 +321,24 @@ fn firmware() -> Result<(), String> {
         )?;
     }
     Ok(())
+}
+
+/// Processor in the loop: build the `pil` firmware for the M4F and run host-sim's PIL test,
+/// which flies the HORUS-2B reference mission with it under QEMU and compares with SIL
+/// (`PIL_REQUIRED` turns the test's skip on a missing QEMU or ELF into a failure).
+fn pil() -> Result<(), String> {
+    let target = "thumbv7em-none-eabihf";
+    let elf = build_firmware(target)?.with_file_name("pil");
+    let mut c = cargo();
+    c.args(["test", "-p", "host-sim", "--test", "it", "--"])
+        .args([
+            "--exact",
+            "pil::pil_reference_mission_matches_sil",
+            "--nocapture",
+        ])
+        .env("PIL_ELF", &elf)
+        .env("PIL_REQUIRED", "1");
+    run(c, "PIL closed loop (host-sim test)")
 }
 
 /// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`.

@@ -122,6 +122,11 @@ pub struct SimulateArgs {
     /// Do not show a progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Processor in the loop: fly the HORUS-2B reference mission with the guidance of this
+    /// firmware ELF (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`).
+    /// Only with the default scenario, whose table the firmware has compiled in.
+    #[arg(long, value_name = "ELF", conflicts_with_all = ["scenario", "builtin"])]
+    pub pil: Option<PathBuf>,
 }
 
 /// Atmosphere model choice.
@@ -162,6 +167,9 @@ pub enum CliError {
     /// Output could not be written.
     #[error("{0}")]
     Report(#[from] report::ReportError),
+    /// Processor-in-the-loop run failed.
+    #[error("PIL: {0}")]
+    Pil(#[from] crate::pil::PilError),
     /// Analytical-vs-numerical comparison failed.
     #[error("{0}")]
     Compare(#[from] crate::compare::CompareError),

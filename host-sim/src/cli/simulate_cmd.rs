@@ -5,8 +5,52 @@ use std::io::{IsTerminal, Write};
 use std::path::Path;
 
 use super::{
-    CliError, Scenario, SimulateArgs, parse_scenario, scenario_to_toml, simulate_scenario,
+    CliError, RunOutput, Scenario, SimulateArgs, load_vehicle, parse_scenario, scenario_to_toml,
+    simulate_scenario,
 };
+use crate::{pil, report};
+
+/// Fly the reference mission in PIL with firmware `elf`, write the run directory and print
+/// the link statistics.
+fn pil_run(
+    sc: &Scenario,
+    elf: &Path,
+    dir: &Path,
+    out: &mut dyn Write,
+) -> Result<RunOutput, CliError> {
+    let started = std::time::Instant::now();
+    let (result, stats) = pil::fly_reference_pil(pil::PilConfig::new(elf.to_path_buf()))?;
+    let wall = started.elapsed().as_secs_f64();
+    writeln!(
+        out,
+        "PIL: {} frames with {} in {wall:.2} s ({:.0} frames/s)",
+        stats.frames,
+        elf.display(),
+        stats.frames as f64 / wall.max(1e-9)
+    )?;
+    let veh = load_vehicle(&sc.vehicle)?;
+    let env = sc.environment.build();
+    let name = format!("{} (PIL)", sc.name);
+    let summary = report::summary_report(
+        &result,
+        &name,
+        &veh.name,
+        &sc.environment.describe(),
+        env.planet.radius_m,
+    );
+    let files = report::write_run(
+        dir,
+        &result,
+        &summary,
+        veh.limits.heat_flux_w_m2,
+        veh.limits.g_load,
+    )?;
+    Ok(RunOutput {
+        result,
+        summary,
+        files,
+    })
+}
 
 /// Run `simulate` with arguments `a`, writing normal output to `out`.
 pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -33,10 +77,10 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         out.write_all(scenario_to_toml(&sc).as_bytes())?;
         return Ok(());
     }
-    let dir = a
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("runs").join(&sc.name));
+    let dir = a.out.clone().unwrap_or_else(|| {
+        let suffix = if a.pil.is_some() { "-pil" } else { "" };
+        Path::new("runs").join(format!("{}{suffix}", sc.name))
+    });
     let show = !a.quiet && std::io::stderr().is_terminal();
     let bar = if show {
         indicatif::ProgressBar::new_spinner()
@@ -51,9 +95,14 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         ));
         bar.tick();
     };
-    let res = simulate_scenario(&sc, &file, &dir, &mut progress);
-    bar.finish_and_clear();
-    let run = res?;
+    let run = if let Some(elf) = &a.pil {
+        bar.finish_and_clear();
+        pil_run(&sc, elf, &dir, out)?
+    } else {
+        let res = simulate_scenario(&sc, &file, &dir, &mut progress);
+        bar.finish_and_clear();
+        res?
+    };
     let s = &run.summary;
     writeln!(
         out,

@@ -5,5 +5,6 @@ mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
+mod pil;
 mod replan_loop;
 mod support;

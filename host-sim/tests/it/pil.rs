@@ -1,0 +1,225 @@
+//! Processor-in-the-loop: the HORUS-2B reference mission flown with the firmware's `f32`
+//! guidance in QEMU (`onboard-demo`'s `pil` binary) against the `f64` SIL run.
+//!
+//! Skipped (passes with a printed reason) when `qemu-system-arm` or the firmware ELF is absent,
+//! unless `PIL_REQUIRED` is set (as `cargo xtask test` does).
+//! The ELF is `$PIL_ELF`, else `<target dir>/thumbv7em-none-eabihf/firmware/pil`; `cargo xtask
+//! test` builds it and runs this test in its "PIL closed loop" step.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use guidance_core::NavState;
+use host_sim::dynamics::Attitude;
+use host_sim::pil::{
+    PilConfig, PilError, fly_reference, fly_reference_pil, fly_reference_sil,
+    reference_sil_guidance,
+};
+use host_sim::sim::{AttitudeSource, SimResult};
+
+fn elf() -> PathBuf {
+    if let Some(p) = std::env::var_os("PIL_ELF") {
+        return PathBuf::from(p);
+    }
+    let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(
+        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target"),
+        PathBuf::from,
+    );
+    target.join("thumbv7em-none-eabihf/firmware/pil")
+}
+
+/// SIL guidance with a constant offset `delta` [rad] added to both commanded angles.
+struct Offset(Box<dyn AttitudeSource>, f64);
+
+impl AttitudeSource for Offset {
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
+        self.0.tick(nav)
+    }
+    fn attitude_at(&self, time_s: f64) -> Attitude {
+        let a = self.0.attitude_at(time_s);
+        Attitude {
+            alpha_rad: a.alpha_rad + self.1,
+            sigma_rad: a.sigma_rad + self.1,
+        }
+    }
+    fn next_tick_s(&self) -> f64 {
+        self.0.next_tick_s()
+    }
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        self.0.next_kink_s(time_s)
+    }
+}
+
+/// (range angle [rad], peak heat flux [W/m^2], final speed [m/s], final latitude [rad],
+/// final longitude [rad], flight time [s]).
+fn metrics(r: &SimResult) -> [f64; 6] {
+    let last = r.samples.last().unwrap();
+    [
+        r.summary.range_angle_rad,
+        r.summary.peak_heat_flux_w_m2.value,
+        last.state.speed_m_s,
+        last.state.latitude_rad,
+        last.state.longitude_rad,
+        r.summary.flight_time_s,
+    ]
+}
+
+const NAMES: [&str; 6] = [
+    "range angle [rad]",
+    "peak heat flux [W/m^2]",
+    "final speed [m/s]",
+    "final latitude [rad]",
+    "final longitude [rad]",
+    "flight time [s]",
+];
+
+/// Attitude bound of f32 against f64 guidance on a time-indexed table (guidance.rs docs,
+/// "Precision"): e <= C u A + L r with C = 64 rounded operations, u = 2^-24, A = pi/2 rad
+/// (6.0e-6 rad), plus L r for a rate-limited run of at most 10 ticks, r = 1.2e-7 rad
+/// (1.2e-6 rad): 1e-5 rad after rounding up.
+const ATTITUDE_BOUND_RAD: f64 = 1e-5;
+
+/// The reference mission in PIL (f32 firmware guidance in QEMU) and in SIL (f64 in-process).
+///
+/// Bounds: (1) every sampled attitude within [`ATTITUDE_BOUND_RAD`] (derived above);
+/// (2) each outcome within twice the larger change that a constant offset of +-1e-5 rad on
+/// both angles causes in SIL (a first-order sensitivity measured here, the factor 2 covering
+/// a time-varying perturbation of the same size), scaled down linearly to the largest
+/// attitude difference actually observed, plus an integration floor of 1e-9 relative (rtol of
+/// the run).
+#[test]
+fn pil_reference_mission_matches_sil() {
+    let t0 = Instant::now();
+    let (pil, stats) = match fly_reference_pil(PilConfig::new(elf())) {
+        Ok(r) => r,
+        Err(e @ (PilError::QemuMissing(_) | PilError::ElfMissing(_)))
+            if std::env::var_os("PIL_REQUIRED").is_none() =>
+        {
+            println!("SKIPPED pil_reference_mission_matches_sil: {e}");
+            return;
+        }
+        Err(e) => panic!("PIL run failed: {e}"),
+    };
+    let wall = t0.elapsed().as_secs_f64();
+    println!(
+        "PIL: {} frames in {wall:.3} s wall ({:.0} frames/s overall; {:.1} us per round trip)",
+        stats.frames,
+        stats.frames as f64 / wall,
+        1e6 * stats.link_s / stats.frames as f64
+    );
+    let sil = fly_reference_sil().unwrap();
+    assert_eq!(pil.summary.termination, sil.summary.termination);
+    assert_eq!(pil.summary.ticks, sil.summary.ticks);
+    assert_eq!(stats.frames, sil.summary.ticks);
+    assert_eq!(pil.summary.skips, sil.summary.skips);
+
+    // Same samples: ticks at identical times, located events (interface crossing,
+    // termination) within 1e-4 s.
+    assert_eq!(pil.samples.len(), sil.samples.len());
+    let mut max_att = 0.0f64;
+    for (a, b) in pil.samples.iter().zip(&sil.samples) {
+        assert_eq!(a.kind, b.kind);
+        assert!(
+            (a.time_s - b.time_s).abs() < 1e-4,
+            "{} vs {}",
+            a.time_s,
+            b.time_s
+        );
+        max_att = max_att
+            .max((a.attitude.alpha_rad - b.attitude.alpha_rad).abs())
+            .max((a.attitude.sigma_rad - b.attitude.sigma_rad).abs());
+    }
+    println!("max attitude difference PIL - SIL: {max_att:.3e} rad (bound {ATTITUDE_BOUND_RAD:e})");
+    assert!(
+        max_att > 0.0,
+        "f32 firmware identical to f64: link not exercised?"
+    );
+    assert!(max_att <= ATTITUDE_BOUND_RAD);
+
+    let base = metrics(&sil);
+    let mut sens = [0.0f64; 6];
+    for delta in [ATTITUDE_BOUND_RAD, -ATTITUDE_BOUND_RAD] {
+        let (r, _) = fly_reference(Offset(reference_sil_guidance().unwrap(), delta)).unwrap();
+        for ((s, m), b) in sens.iter_mut().zip(metrics(&r)).zip(base) {
+            *s = s.max((m - b).abs());
+        }
+    }
+    for (((name, p), s), sens) in NAMES.iter().zip(metrics(&pil)).zip(base).zip(sens) {
+        let bound = 2.0 * sens * (max_att / ATTITUDE_BOUND_RAD) + 1e-9 * s.abs();
+        let diff = (p - s).abs();
+        println!("{name}: PIL {p:.9e} SIL {s:.9e} |diff| {diff:.2e} bound {bound:.2e}");
+        assert!(diff <= bound, "{name}: |PIL - SIL| = {diff:e} > {bound:e}");
+    }
+}
+
+/// A missing ELF is reported as such (and no FIFO directory is left behind).
+#[test]
+fn pil_names_a_missing_elf() {
+    let cfg = PilConfig::new(PathBuf::from("/nonexistent/pil-firmware.elf"));
+    let dir = cfg.fifo_dir.clone();
+    match fly_reference_pil(cfg) {
+        Err(PilError::ElfMissing(p)) => assert!(p.ends_with("pil-firmware.elf")),
+        Err(PilError::QemuMissing(q)) => println!("SKIPPED pil_names_a_missing_elf: {q} missing"),
+        other => panic!("expected ElfMissing, got {other:?}"),
+    }
+    assert!(!dir.exists());
+}
+
+/// Firmware that never opens the link (the smoke binary `onboard-demo`, which runs its own
+/// check and exits): the run fails with a timeout naming what it waited for, within the
+/// configured time, and cleans up its FIFOs.
+#[test]
+fn pil_times_out_instead_of_hanging() {
+    let smoke = elf().with_file_name("onboard-demo");
+    let mut cfg = PilConfig::new(smoke);
+    cfg.reply_timeout = std::time::Duration::from_secs(1);
+    let dir = cfg.fifo_dir.clone();
+    let t0 = Instant::now();
+    match fly_reference_pil(cfg) {
+        Err(PilError::Timeout(_, what)) => {
+            assert!(what.contains("FIFO"), "{what}");
+            assert!(t0.elapsed().as_secs_f64() < 5.0);
+        }
+        Err(e @ (PilError::QemuMissing(_) | PilError::ElfMissing(_))) => {
+            println!("SKIPPED pil_times_out_instead_of_hanging: {e}");
+        }
+        other => panic!("expected a timeout, got {other:?}"),
+    }
+    assert!(!dir.exists());
+}
+
+/// `host-sim simulate --pil ELF` names a missing ELF and refuses a scenario file.
+#[test]
+fn pil_cli_errors_are_named() {
+    let mut out = Vec::new();
+    let e = host_sim::cli::run(
+        [
+            "host-sim",
+            "simulate",
+            "--pil",
+            "/nonexistent/pil.elf",
+            "--quiet",
+        ],
+        &mut out,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("/nonexistent/pil.elf") || e.contains("QEMU is missing"),
+        "{e}"
+    );
+    let e = host_sim::cli::run(
+        [
+            "host-sim",
+            "simulate",
+            "--pil",
+            "x.elf",
+            "--scenario",
+            "s.toml",
+        ],
+        &mut out,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("--pil") && e.contains("--scenario"), "{e}");
+}
