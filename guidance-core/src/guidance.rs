@@ -8,13 +8,15 @@
 //!
 //! 1. `target = interpolate(x)`, with `x` the normalised energy of the sample (or its time, for
 //!    time-indexed tables); clamped into the angle bounds;
-//! 2. `start = attitude_at(t_k)` (the attitude the previous ramp reached, which equals the
-//!    previous command because every ramp completes within one period);
+//! 2. `start = attitude_at(t_s)`, the attitude the previous ramp has reached at the sample time
+//!    `t_s` (`t_s = t_k` when samples arrive on the ticks, as in the simulator and PIL);
 //! 3. `command = start + clamp(target - start, +-rate * period)` (see [`crate::rate`]).
 //!
 //! Between ticks the command is held. [`Guidance::attitude_at`] gives the attitude the vehicle
-//! is commanded to fly: from `start` at `t_k` it moves towards the held command at the rate
-//! limits and reaches it no later than `t_k + period`. It is continuous in time and never
+//! is commanded to fly: from `start` at the sample time `t_s` ([`Guidance::ramp_start_s`]) it
+//! moves towards the held command at the rate limits and reaches it no later than
+//! `t_s + period`. The new ramp starts where the old one was at `t_s`, so the attitude is
+//! continuous in time even when a sample arrives late (after its tick instant), and it never
 //! exceeds the rate limits, so a g-load rate computed from the simulated attitude sees no
 //! artificial steps.
 //!
@@ -22,8 +24,9 @@
 //! * If the sample time has passed several tick instants (a navigation gap), guidance
 //!   recomputes **once**, at the latest tick instant `<= nav.time_s`, with the *normal* per-
 //!   period step `rate * period`: missed ticks are not made up, the command converges over the
-//!   following ticks. This keeps both guarantees above (rate never exceeded, command reached
-//!   within one period).
+//!   following ticks. The ramp starts at the sample time from the attitude reached there, so
+//!   both guarantees above hold (rate never exceeded, command reached within one period of the
+//!   ramp start, attitude continuous).
 //! * A sample that is non-finite, unphysical (radius <= 0, speed < 0) or earlier than the last
 //!   tick is rejected with an error; nothing changes (the clock does not advance, the held
 //!   command and the ramp stay valid).
@@ -217,14 +220,16 @@ impl<S: Scalar> Guidance<S> {
             Independent::TimeS => nav.time_s,
         };
         let event = self.clock.poll(nav.time_s)?;
-        let ClockEvent::Tick { time_s: tick_s, .. } = event else {
+        let ClockEvent::Tick { .. } = event else {
             return Ok(GuidanceOutput {
                 command: self.command,
                 ticked: false,
                 independent_value: x,
             });
         };
-        let start = self.attitude_at(tick_s);
+        // Start the new ramp where the current one is at the sample time: a late sample (after
+        // its tick instant) must not back-date the ramp, which would make the attitude jump.
+        let start = self.attitude_at(nav.time_s);
         let target = self.interp.evaluate(x);
         let limited = limit_command(start, target, self.config.rates, self.config.period_s);
         let bounds = self.table.bounds();
@@ -238,7 +243,7 @@ impl<S: Scalar> Guidance<S> {
         }
         self.clock.commit(event);
         self.ramp_start = start;
-        self.ramp_start_s = Some(tick_s);
+        self.ramp_start_s = Some(nav.time_s);
         self.command = command;
         self.target = target;
         Ok(GuidanceOutput {
@@ -248,11 +253,12 @@ impl<S: Scalar> Guidance<S> {
         })
     }
 
-    /// Attitude at `time_s` \[s\]: from the attitude at the last tick it moves towards the held
-    /// command at the rate limits (a ramp) and equals the command from one period after the
-    /// tick on (from `time_s - t_k >= period` or `time_s >=` [`Guidance::next_tick_s`],
-    /// whichever comes first in floating point). Before the last tick it returns the attitude at the last tick; before the first
-    /// update, the initial attitude; for a NaN time, the held command.
+    /// Attitude at `time_s` \[s\]: from the attitude at the ramp start `t_s`
+    /// ([`Guidance::ramp_start_s`]) it moves towards the held command at the rate limits (a
+    /// ramp) and equals the command from one period after `t_s` on (for a ramp that started on
+    /// its tick, also from [`Guidance::next_tick_s`] on, whichever comes first in floating
+    /// point). Before `t_s` it returns the attitude at `t_s`; before the first update, the
+    /// initial attitude; for a NaN time, the held command.
     #[must_use]
     pub fn attitude_at(&self, time_s: S) -> Command<S> {
         let Some(t_k) = self.ramp_start_s else {
@@ -264,7 +270,9 @@ impl<S: Scalar> Guidance<S> {
         let dt = time_s - t_k;
         if dt <= S::ZERO {
             self.ramp_start
-        } else if dt >= self.config.period_s || time_s >= self.clock.next_tick_s() {
+        } else if dt >= self.config.period_s
+            || (Some(t_k) == self.clock.last_tick_s() && time_s >= self.clock.next_tick_s())
+        {
             self.command
         } else {
             limit_command(self.ramp_start, self.command, self.config.rates, dt)
@@ -280,6 +288,14 @@ impl<S: Scalar> Guidance<S> {
     /// Time of the last tick \[s\] (`None` before the first update).
     #[must_use]
     pub fn last_tick_s(&self) -> Option<S> {
+        self.clock.last_tick_s()
+    }
+
+    /// Start time of the current attitude ramp \[s\]: the sample time of the last tick update
+    /// (equal to [`Guidance::last_tick_s`] when samples arrive on the ticks; later for a late
+    /// sample). `None` before the first update.
+    #[must_use]
+    pub fn ramp_start_s(&self) -> Option<S> {
         self.ramp_start_s
     }
 
@@ -404,11 +420,43 @@ mod tests {
         assert!((g.attitude_at(601.0).sigma_rad - 15.0 * DEG).abs() < 1e-12);
         assert_eq!(g.attitude_at(602.0), g.command());
         assert_eq!(g.attitude_at(599.0).sigma_rad, 0.0);
+        // A late sample (0.5 s after the 602 s tick): the new ramp starts where the attitude is
+        // at the sample time (30 deg, the old ramp was complete), not back-dated to 602 s.
+        let before = g.attitude_at(602.5);
         g.update(&nav(602.5)).unwrap();
+        assert_eq!(g.attitude_at(602.5), before);
         assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
-        assert!((g.attitude_at(603.0).sigma_rad - 45.0 * DEG).abs() < 1e-12);
+        assert!((g.attitude_at(603.0).sigma_rad - 37.5 * DEG).abs() < 1e-12);
         assert_eq!(g.last_tick_s(), Some(602.0));
+        assert_eq!(g.ramp_start_s(), Some(602.5));
         assert_eq!(g.next_tick_s(), 604.0);
+        // The ramp is still running at the 604 s tick (37.5 + 15 * 1.5 = 52.5 deg): the next
+        // update continues from there, so the attitude stays continuous across that tick too.
+        let at_tick = g.attitude_at(604.0);
+        assert!((at_tick.sigma_rad - 52.5 * DEG).abs() < 1e-12);
+        g.update(&nav(604.0)).unwrap();
+        assert_eq!(g.attitude_at(604.0), at_tick);
+    }
+
+    /// Regression (review finding): a sample arriving late after a tick instant used to
+    /// back-date the ramp to the tick, so the attitude jumped at the sample time.
+    #[test]
+    fn late_sample_keeps_the_attitude_continuous() {
+        let mut g = reference::<f64>();
+        for &t in &[270.0, 272.0] {
+            g.update(&nav(t)).unwrap();
+        }
+        let before = g.attitude_at(275.9);
+        g.update(&nav(275.9)).unwrap();
+        let after = g.attitude_at(275.9);
+        assert!(
+            (after.sigma_rad - before.sigma_rad).abs() < 1e-12,
+            "{before:?} -> {after:?}"
+        );
+        assert!((after.alpha_rad - before.alpha_rad).abs() < 1e-12);
+        // and the ramp from there respects the bank rate
+        let later = g.attitude_at(276.4);
+        assert!((later.sigma_rad - after.sigma_rad).abs() <= 15.0 * DEG * 0.5 + 1e-12);
     }
 
     #[test]
@@ -439,7 +487,9 @@ mod tests {
         assert_eq!(g.last_tick_s(), Some(610.0));
         // One normal step only: 30 -> 59.8 deg (step 29.8 <= 30).
         assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
-        assert!((g.attitude_at(611.0).sigma_rad - 45.0 * DEG).abs() < 1e-12);
+        // The ramp starts at the sample time from the attitude reached there (30 deg).
+        assert!((g.attitude_at(611.0).sigma_rad - 30.0 * DEG).abs() < 1e-12);
+        assert!((g.attitude_at(612.0).sigma_rad - 45.0 * DEG).abs() < 1e-12);
     }
 
     /// A replaced table takes effect at the next tick; the held command is kept until then.

@@ -74,7 +74,7 @@ impl AttitudeSource for ReplanLoop {
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
         let g = self.guidance.guidance();
-        let Some(t_k) = g.last_tick_s() else {
+        let Some(t_k) = g.ramp_start_s() else {
             return f64::INFINITY;
         };
         let rates = g.config().rates;

@@ -93,7 +93,7 @@ impl AttitudeSource for CoreGuidance {
         self.0.next_tick_s()
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
-        let Some(t_k) = self.0.last_tick_s() else {
+        let Some(t_k) = self.0.ramp_start_s() else {
             return f64::INFINITY;
         };
         let rates = self.0.config().rates;

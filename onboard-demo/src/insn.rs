@@ -2,7 +2,7 @@
 //!
 //! With `-icount shift=0` QEMU advances its virtual clock by exactly 1 ns per executed
 //! instruction. SysTick, clocked from the CPU clock (`CLKSOURCE = 1`; 25 MHz on `mps2-an386`,
-//! 12 MHz on `lm3s6965evb`), then decrements once every `1e9 / f_cpu` instructions. A
+//! 12.5 MHz on `lm3s6965evb` under QEMU, as calibrated), then decrements once every `1e9 / f_cpu` instructions. A
 //! measurement runs the code `reps` times between two SysTick reads and converts ticks to
 //! instructions with the ratio calibrated against a loop of known length, so the result is the
 //! mean instruction count per call with a resolution of `ns_per_tick / reps` instructions.

@@ -97,6 +97,16 @@ fn have(program: &str, arg: &str) -> bool {
         .is_ok_and(|s| s.success())
 }
 
+/// Passwordless sudo is available.
+fn have_sudo() -> bool {
+    Command::new("sudo")
+        .args(["-n", "true"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
 fn is_root() -> bool {
     Command::new("id")
         .arg("-u")
@@ -111,17 +121,27 @@ fn setup() -> Result<(), String> {
         t.args(["target", "add"]).args(CORE_TARGETS);
         run(t, "rustup targets")?;
         let mut c = Command::new("rustup");
-        c.args(["component", "add", "clippy", "rustfmt", "llvm-tools"]);
+        c.args(["component", "add", "clippy", "rustfmt"]);
         run(c, "rustup components")?;
     } else {
         eprintln!("xtask: rustup not found; make sure targets {CORE_TARGETS:?} are installed");
     }
     if !have("qemu-system-arm", "--version") {
         let cmd = "apt-get update && apt-get install -y qemu-system-arm";
-        if is_root() && have("apt-get", "--version") {
+        let apt = have("apt-get", "--version");
+        if apt && is_root() {
             let mut c = Command::new("sh");
             c.args(["-c", &format!("DEBIAN_FRONTEND=noninteractive {cmd}")]);
             run(c, "install qemu-system-arm")?;
+        } else if apt && have_sudo() {
+            let mut c = Command::new("sudo");
+            c.args([
+                "-n",
+                "sh",
+                "-c",
+                &format!("DEBIAN_FRONTEND=noninteractive {cmd}"),
+            ]);
+            run(c, "install qemu-system-arm (sudo)")?;
         } else {
             return Err(format!(
                 "qemu-system-arm is missing; install it with: sudo sh -c '{cmd}'"

@@ -154,8 +154,8 @@ proptest! {
 
     /// The command is recomputed only at ticks t0 + k * 2 s (k from an integer counter) and held
     /// in between; tick-to-tick command changes respect the rate limits; the attitude ramp
-    /// between ticks never exceeds the rate limits, is continuous across ticks, and reaches the
-    /// command within one period.
+    /// never exceeds the rate limits, is continuous at every update (also for samples arriving
+    /// late after their tick instant), and reaches the command within one period.
     #[test]
     fn hold_and_ramp_respect_clock_and_rates(
         table in valid_table(), kind in kinds(),
@@ -195,15 +195,22 @@ proptest! {
                 let c = g.command();
                 prop_assert!((c.alpha_rad - prev_cmd.alpha_rad).abs() <= config.rates.alpha_rad_s * 2.0 + 1e-15);
                 prop_assert!((c.sigma_rad - prev_cmd.sigma_rad).abs() <= config.rates.sigma_rad_s * 2.0 + 1e-15);
-                // Continuity: the new ramp starts where the old one was at the tick instant.
-                prop_assert_eq!(g.attitude_at(tick), old.attitude_at(tick));
-                prop_assert_eq!(g.attitude_at(g.next_tick_s()), c);
-                prop_assert_eq!(g.attitude_at(tick + 1e9), c);
-                // Ramp: sample [tick - 0.5, tick + 2.5] and check the rate between samples.
-                let mut prev_a = g.attitude_at(tick - 0.5);
-                let mut prev_time = tick - 0.5;
+                // Continuity: the new ramp starts at the sample time, where the old one was then
+                // (samples here arrive up to 3.5 s late, after their tick instant).
+                prop_assert_eq!(g.ramp_start_s(), Some(t));
+                prop_assert_eq!(g.attitude_at(t), old.attitude_at(t));
+                // The command is reached within one period of the ramp start (and at the next
+                // tick when the sample arrived on its tick).
+                prop_assert_eq!(g.attitude_at(t + 2.0), c);
+                if t == tick {
+                    prop_assert_eq!(g.attitude_at(g.next_tick_s()), c);
+                }
+                prop_assert_eq!(g.attitude_at(t + 1e9), c);
+                // Ramp: sample [t - 0.5, t + 2.5] and check the rate between samples.
+                let mut prev_a = g.attitude_at(t - 0.5);
+                let mut prev_time = t - 0.5;
                 for i in 1..=60 {
-                    let ti = tick - 0.5 + f64::from(i) * 0.05;
+                    let ti = t - 0.5 + f64::from(i) * 0.05;
                     let a = g.attitude_at(ti);
                     let dt_i = ti - prev_time;
                     prop_assert!((a.alpha_rad - prev_a.alpha_rad).abs() <= config.rates.alpha_rad_s * dt_i + 1e-12);

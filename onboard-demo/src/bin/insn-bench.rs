@@ -6,6 +6,7 @@
 //! the calibration is off, so a wrong QEMU setting cannot produce plausible-looking numbers.
 #![no_std]
 #![no_main]
+#![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::hprintln;

@@ -14,6 +14,7 @@
 //! an end frame arrives, then exit 0. A link failure, panic or HardFault exits 1.
 #![no_std]
 #![no_main]
+#![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::{hprintln, nr};
