@@ -91,3 +91,42 @@ fn firmware_precision_agrees_with_f64() {
         worst.0, worst.1
     );
 }
+
+/// The golden values are not only what the code computes: on the reference-mission sequence
+/// they equal values worked out by hand from thesis eq. 2.3 (linear interpolation between the
+/// 264 s node, sigma = 0, and the 290 s node, sigma = 79.6 deg; alpha = 40 deg throughout).
+/// Samples are at t = 250 + i s and ticks every 2 s from 250 s; the bank change per tick
+/// (79.6 * 2 / 26 = 6.12 deg) is far below the 30 deg the rate limit allows, so the held
+/// command is the interpolated value at the tick, and the attitude equals it at the next tick.
+#[test]
+fn golden_matches_hand_computed_reference_mission_values() {
+    let deg = std::f64::consts::PI / 180.0;
+    for (t, sigma_deg) in [
+        (264.0, 0.0),
+        (266.0, 79.6 * 2.0 / 26.0),
+        (276.0, 79.6 * 12.0 / 26.0),
+        (290.0, 79.6),
+    ] {
+        let i = (t - 250.0) as usize;
+        let row = golden::F32[0][i];
+        let cmd_alpha = f64::from(row[2]);
+        let cmd_sigma = f64::from(row[3]);
+        assert!(
+            (cmd_alpha - 40.0 * deg).abs() < 1e-6,
+            "t = {t}: alpha {cmd_alpha}"
+        );
+        assert!(
+            (cmd_sigma - sigma_deg * deg).abs() < 2e-6,
+            "t = {t}: sigma {} deg, hand value {sigma_deg} deg",
+            cmd_sigma / deg
+        );
+        // At a tick the attitude starts from the previous command (two seconds earlier).
+        let prev_sigma_deg = (sigma_deg - 79.6 * 2.0 / 26.0).max(0.0);
+        let att_sigma = f64::from(row[1]);
+        assert!(
+            (att_sigma - prev_sigma_deg * deg).abs() < 2e-6,
+            "t = {t}: attitude {} deg, hand value {prev_sigma_deg} deg",
+            att_sigma / deg
+        );
+    }
+}
