@@ -10,7 +10,10 @@
 //!    time-indexed tables); clamped into the angle bounds;
 //! 2. `start = attitude_at(t_s)`, the attitude the previous ramp has reached at the sample time
 //!    `t_s` (`t_s = t_k` when samples arrive on the ticks, as in the simulator and PIL);
-//! 3. `command = start + clamp(target - start, +-rate * period)` (see [`crate::rate`]).
+//! 3. `command = start + clamp(target - start, +-rate * period)` (see [`crate::rate`]). The
+//!    commanded change per period is thus limited relative to the attitude at the sample time,
+//!    which is the previous command whenever the previous ramp had completed (always so when
+//!    samples arrive on their tick instants).
 //!
 //! Between ticks the command is held. [`Guidance::attitude_at`] gives the attitude the vehicle
 //! is commanded to fly: from `start` at the sample time `t_s` ([`Guidance::ramp_start_s`]) it
@@ -271,8 +274,11 @@ impl<S: Scalar> Guidance<S> {
         if dt <= S::ZERO {
             self.ramp_start
         } else if dt >= self.config.period_s
+            || time_s >= t_k + self.config.period_s
             || (Some(t_k) == self.clock.last_tick_s() && time_s >= self.clock.next_tick_s())
         {
+            // Complete one period after the ramp start, however the caller rounds that instant
+            // (`t_k + period` may exceed `t_k` by a hair less than `period`).
             self.command
         } else {
             limit_command(self.ramp_start, self.command, self.config.rates, dt)

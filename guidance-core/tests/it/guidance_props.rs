@@ -191,10 +191,17 @@ proptest! {
                     prop_assert_eq!(tick, t0);
                 }
                 started = true;
-                // Tick-to-tick change within rate * period.
+                // The commanded change is limited to rate * period relative to the attitude at
+                // the sample time, which is the previous command whenever the previous ramp had
+                // completed (always so for samples on their tick instant).
                 let c = g.command();
-                prop_assert!((c.alpha_rad - prev_cmd.alpha_rad).abs() <= config.rates.alpha_rad_s * 2.0 + 1e-15);
-                prop_assert!((c.sigma_rad - prev_cmd.sigma_rad).abs() <= config.rates.sigma_rad_s * 2.0 + 1e-15);
+                let start = old.attitude_at(t);
+                prop_assert!((c.alpha_rad - start.alpha_rad).abs() <= config.rates.alpha_rad_s * 2.0 + 1e-15);
+                prop_assert!((c.sigma_rad - start.sigma_rad).abs() <= config.rates.sigma_rad_s * 2.0 + 1e-15);
+                if start == prev_cmd {
+                    prop_assert!((c.alpha_rad - prev_cmd.alpha_rad).abs() <= config.rates.alpha_rad_s * 2.0 + 1e-15);
+                    prop_assert!((c.sigma_rad - prev_cmd.sigma_rad).abs() <= config.rates.sigma_rad_s * 2.0 + 1e-15);
+                }
                 // Continuity: the new ramp starts at the sample time, where the old one was then
                 // (samples here arrive up to 3.5 s late, after their tick instant).
                 prop_assert_eq!(g.ramp_start_s(), Some(t));
