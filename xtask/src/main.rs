@@ -218,7 +218,6 @@ fn test() -> Result<(), String> {
                 "--target",
                 "thumbv7em-none-eabihf",
             ]);
-            seed_property_tests(&mut c);
             run(c, "guidance-core micromath build")
         }),
     ));
@@ -252,6 +251,7 @@ fn test() -> Result<(), String> {
                 "micromath",
                 "--lib",
             ]);
+            seed_property_tests(&mut c);
             run(c, "guidance-core micromath tests")
         }),
     ));
