@@ -26,7 +26,7 @@ use guidance_core::link::{
 
 use crate::dynamics::{Attitude, Dynamics};
 use crate::env::Environment;
-use crate::sim::{self, AttitudeSource, SimConfig, SimResult, ramp_kink};
+use crate::sim::{self, AttitudeSource, SimResult, ramp_kink};
 
 /// Where the firmware ELF is looked for by default (relative to the workspace root).
 pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
@@ -460,16 +460,6 @@ fn reference_setup() -> Result<(crate::cli::Scenario, Environment, crate::vehicl
     Ok((sc, env, veh))
 }
 
-fn reference_config(sc: &crate::cli::Scenario) -> SimConfig {
-    let mut cfg = SimConfig::new(sc.entry);
-    cfg.termination = sc.termination;
-    cfg.tolerances = sc.tolerances;
-    cfg.output_interval_s = sc.output_interval_s;
-    cfg.interface_altitude_m = sc.interface_altitude_m;
-    cfg.g_rate_window_s = sc.g_rate_window_s;
-    cfg
-}
-
 /// The SIL guidance of the reference mission: `guidance-core`'s `Guidance<f64>` built from the
 /// default scenario (the same table, rates, period and initial attitude as the firmware).
 ///
@@ -488,7 +478,7 @@ pub fn reference_sil_guidance() -> Result<Box<dyn AttitudeSource>, String> {
 pub fn fly_reference<A: AttitudeSource>(source: A) -> Result<(SimResult, A), String> {
     let (sc, env, veh) = reference_setup()?;
     let dynm = Dynamics::from_environment(&env, &veh);
-    sim::simulate(dynm, source, &reference_config(&sc), &mut |_, _| {}).map_err(|e| e.to_string())
+    sim::simulate(dynm, source, &sc.sim_config(), &mut |_, _| {}).map_err(|e| e.to_string())
 }
 
 /// Fly the HORUS-2B reference mission in SIL (`f64` core guidance in-process).
@@ -509,8 +499,7 @@ pub fn fly_reference_pil(cfg: PilConfig) -> Result<(SimResult, PilStats), PilErr
     let (sc, env, veh) = reference_setup().map_err(|what| PilError::Firmware { seq: 0, what })?;
     let source = PilGuidance::start(cfg)?;
     let dynm = Dynamics::from_environment(&env, &veh);
-    let (result, source) = match sim::simulate(dynm, source, &reference_config(&sc), &mut |_, _| {})
-    {
+    let (result, source) = match sim::simulate(dynm, source, &sc.sim_config(), &mut |_, _| {}) {
         Ok(r) => r,
         Err(e) => return Err(PilError::Sim(e)),
     };

@@ -7,7 +7,7 @@ use super::{CliError, Scenario, VehicleSpec, build_guidance};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
 use crate::report;
-use crate::sim::{self, SimConfig};
+use crate::sim;
 use crate::vehicle::{self, Vehicle};
 
 /// Load the vehicle of a scenario.
@@ -63,14 +63,8 @@ pub fn fly(
     let vehicle = load_vehicle(&sc.vehicle)?;
     let environment = sc.environment.build();
     let source = build_guidance(sc, &environment.planet, file)?;
-    let mut cfg = SimConfig::new(sc.entry);
-    cfg.termination = sc.termination;
-    cfg.tolerances = sc.tolerances;
-    cfg.output_interval_s = sc.output_interval_s;
-    cfg.interface_altitude_m = sc.interface_altitude_m;
-    cfg.g_rate_window_s = sc.g_rate_window_s;
     let dynm = Dynamics::from_environment(&environment, &vehicle);
-    let (result, _) = sim::simulate(dynm, source, &cfg, progress)?;
+    let (result, _) = sim::simulate(dynm, source, &sc.sim_config(), progress)?;
     Ok(Flight {
         result,
         vehicle,
@@ -88,14 +82,28 @@ pub fn simulate_scenario(
     out_dir: &Path,
     progress: &mut dyn FnMut(f64, f64),
 ) -> Result<RunOutput, CliError> {
+    let flight = fly(sc, file, progress)?;
+    write_flight(sc, &sc.name, flight, out_dir)
+}
+
+/// Write the run directory of a flown scenario (`run_name` labels the summary).
+///
+/// # Errors
+/// [`CliError::Report`] if the files cannot be written.
+pub fn write_flight(
+    sc: &Scenario,
+    run_name: &str,
+    flight: Flight,
+    out_dir: &Path,
+) -> Result<RunOutput, CliError> {
     let Flight {
         result,
         vehicle: veh,
         environment: env,
-    } = fly(sc, file, progress)?;
+    } = flight;
     let summary = report::summary_report(
         &result,
-        &sc.name,
+        run_name,
         &veh.name,
         &sc.environment.describe(),
         env.planet.radius_m,

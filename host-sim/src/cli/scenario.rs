@@ -9,7 +9,7 @@ use crate::env::{
     Us76,
 };
 use crate::integrate::Tolerances;
-use crate::sim::Termination;
+use crate::sim::{SimConfig, Termination};
 
 /// Which node independent variable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -157,4 +157,19 @@ pub struct Scenario {
     pub interface_altitude_m: f64,
     /// Minimum window of the g-load-rate finite difference [s].
     pub g_rate_window_s: f64,
+}
+
+impl Scenario {
+    /// The simulator settings this scenario asks for (entry state, termination, tolerances,
+    /// output interval, interface altitude, g-load-rate window).
+    #[must_use]
+    pub fn sim_config(&self) -> SimConfig {
+        let mut cfg = SimConfig::new(self.entry);
+        cfg.termination = self.termination;
+        cfg.tolerances = self.tolerances;
+        cfg.output_interval_s = self.output_interval_s;
+        cfg.interface_altitude_m = self.interface_altitude_m;
+        cfg.g_rate_window_s = self.g_rate_window_s;
+        cfg
+    }
 }

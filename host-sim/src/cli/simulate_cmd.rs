@@ -5,10 +5,10 @@ use std::io::{IsTerminal, Write};
 use std::path::Path;
 
 use super::{
-    CliError, RunOutput, Scenario, SimulateArgs, load_vehicle, parse_scenario, scenario_to_toml,
-    simulate_scenario,
+    CliError, Flight, RunOutput, Scenario, SimulateArgs, load_vehicle, parse_scenario,
+    scenario_to_toml, simulate_scenario, write_flight,
 };
-use crate::{pil, report};
+use crate::pil;
 
 /// Fly the reference mission in PIL with firmware `elf`, write the run directory and print
 /// the link statistics.
@@ -28,28 +28,12 @@ fn pil_run(
         elf.display(),
         stats.frames as f64 / wall.max(1e-9)
     )?;
-    let veh = load_vehicle(&sc.vehicle)?;
-    let env = sc.environment.build();
-    let name = format!("{} (PIL)", sc.name);
-    let summary = report::summary_report(
-        &result,
-        &name,
-        &veh.name,
-        &sc.environment.describe(),
-        env.planet.radius_m,
-    );
-    let files = report::write_run(
-        dir,
-        &result,
-        &summary,
-        veh.limits.heat_flux_w_m2,
-        veh.limits.g_load,
-    )?;
-    Ok(RunOutput {
+    let flight = Flight {
         result,
-        summary,
-        files,
-    })
+        vehicle: load_vehicle(&sc.vehicle)?,
+        environment: sc.environment.build(),
+    };
+    write_flight(sc, &format!("{} (PIL)", sc.name), flight, dir)
 }
 
 /// Run `simulate` with arguments `a`, writing normal output to `out`.
