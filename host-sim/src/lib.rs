@@ -18,6 +18,7 @@ pub mod compare;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;
+pub mod optim;
 pub mod pil;
 pub mod replan_loop;
 pub mod report;

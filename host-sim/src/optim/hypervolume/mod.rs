@@ -1,0 +1,1 @@
+//! Exact hypervolume of a set of points (minimisation) with respect to a reference point.
