@@ -61,8 +61,10 @@ pub enum LinkError {
     BadChecksum,
     /// Unknown frame type byte.
     BadType,
-    /// Unknown status byte.
+    /// Unknown status byte, or a non-zero status in a nav or end frame.
     BadStatus,
+    /// An end frame whose payload is not all zero.
+    BadPayload,
     /// A payload value is NaN or infinite.
     NonFinite,
 }
@@ -74,7 +76,8 @@ impl core::fmt::Display for LinkError {
             LinkError::BadSync => "frame has a bad sync word",
             LinkError::BadChecksum => "frame checksum mismatch",
             LinkError::BadType => "unknown frame type",
-            LinkError::BadStatus => "unknown status code",
+            LinkError::BadStatus => "unknown status code, or a status in a nav or end frame",
+            LinkError::BadPayload => "end frame with a non-zero payload",
             LinkError::NonFinite => "frame carries a non-finite value",
         })
     }
@@ -352,6 +355,14 @@ pub fn decode(bytes: &[u8]) -> Result<Frame, LinkError> {
         return Err(LinkError::NonFinite);
     }
     let [a, b, c, d, e, f, g] = v;
+    // Only command frames carry a status; nav and end frames must say `Ok` (0), and an end frame
+    // carries no payload (all slots +0.0), as the layout above specifies.
+    if ty != FrameType::Command as u8 && status != LinkStatus::Ok.code() {
+        return Err(LinkError::BadStatus);
+    }
+    if ty == FrameType::End as u8 && v.iter().any(|x| x.to_bits() != 0) {
+        return Err(LinkError::BadPayload);
+    }
     match ty {
         1 => Ok(Frame::Nav(NavFrame {
             seq,
@@ -448,6 +459,36 @@ mod tests {
         b[PAYLOAD..PAYLOAD + 8].copy_from_slice(&f64::NAN.to_le_bytes());
         reseal(&mut b);
         assert_eq!(decode(&b), Err(LinkError::NonFinite));
+    }
+
+    /// Issue 8.7: nav and end frames carry no status (only command frames do) and an end frame
+    /// no payload; a frame that says otherwise is rejected even with a valid checksum.
+    #[test]
+    fn nav_and_end_frames_reject_a_status_or_payload() {
+        let reseal = |b: &mut [u8; FRAME_LEN]| {
+            let c = crc16_ccitt(&b[..CRC_AT]).to_le_bytes();
+            b[CRC_AT..].copy_from_slice(&c);
+        };
+        let mut nav = [0u8; FRAME_LEN];
+        encode(&nav_frame(), &mut nav).unwrap();
+        let mut end = [0u8; FRAME_LEN];
+        encode(&Frame::End(3), &mut end).unwrap();
+        assert_eq!(decode(&end), Ok(Frame::End(3)));
+        for base in [nav, end] {
+            for status in 1..=255u8 {
+                let mut b = base;
+                b[3] = status;
+                reseal(&mut b);
+                assert_eq!(decode(&b), Err(LinkError::BadStatus), "status {status}");
+            }
+        }
+        for slot in 0..SLOTS {
+            let mut b = end;
+            let at = PAYLOAD + 8 * slot;
+            b[at..at + 8].copy_from_slice(&(-0.0_f64).to_le_bytes());
+            reseal(&mut b);
+            assert_eq!(decode(&b), Err(LinkError::BadPayload), "slot {slot}");
+        }
     }
 
     #[test]
