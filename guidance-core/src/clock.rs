@@ -9,12 +9,33 @@
 //! several tick times (a gap in navigation data), it reports one tick at the *latest* tick time
 //! `<= t` together with the number of tick instants that were passed; guidance recomputes once
 //! (see [`crate::guidance`]). A time earlier than the last tick is rejected.
+//!
+//! The tick counter never saturates: once it reaches 2^31 the clock re-bases (`t0` moves to
+//! the current tick, the counter restarts at 0; the tick times are unchanged up to one
+//! rounding). Tick times never become infinite: they saturate at the scalar type's largest
+//! value. [`crate::guidance::Guidance`] also rejects implausible time jumps before they reach
+//! the clock ([`crate::plausibility`]).
+//!
+//! # Time range and resolution of each scalar type
+//! Times are absolute seconds in the scalar type, so their resolution falls with magnitude:
+//!
+//! | type | resolution at 1e3 s | at 1e5 s | at 1e7 s | usable range |
+//! |------|--------------------|----------|----------|--------------|
+//! | `f64` | 1.1e-13 s | 1.5e-11 s | 1.9e-9 s | any finite time |
+//! | `f32` | 6.1e-5 s | 7.8e-3 s | 1 s | tick times exact for `k < 2^24` with exact `t0` and period; sample-time rounding is visible beyond ~1e5 s (7.8 ms) |
+//! | `Fixed` (I32F32) | 2.3e-10 s | 2.3e-10 s | 2.3e-10 s | +-2^31 s (68 years); beyond it saturates |
+//!
+//! A flight that counts time from entry (a few thousand seconds) is far inside every range; a
+//! navigation system that stamps time since an old epoch should subtract the epoch before
+//! guidance sees it, especially in `f32`.
 
 use crate::error::GuidanceError;
 use crate::scalar::Scalar;
 
 /// Bound on the correction steps of the tick-index estimate in [`GuidanceClock::poll`].
 const MAX_CORRECTIONS: u32 = 4;
+/// Tick index at which the clock re-bases so the counter never saturates.
+const REBASE_AT: u32 = 1 << 31;
 
 /// What a poll of the clock found.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,10 +96,12 @@ impl<S: Scalar> GuidanceClock<S> {
         self.start_s
     }
 
-    /// Time of tick `k` \[s\]: `t0 + k * period` (`t0` = 0 before the start).
+    /// Time of tick `k` \[s\]: `t0 + k * period` (`t0` = 0 before the start), saturated at
+    /// the scalar type's largest value (never infinite).
     #[must_use]
     pub fn tick_time_s(&self, k: u32) -> S {
-        self.start_s.unwrap_or(S::ZERO) + S::from_f64(f64::from(k)) * self.period_s
+        let t = self.start_s.unwrap_or(S::ZERO) + S::from_f64(f64::from(k)) * self.period_s;
+        if t.is_finite() { t } else { S::MAX }
     }
 
     /// Time of the last tick taken \[s\] (`None` before the start).
@@ -158,7 +181,8 @@ impl<S: Scalar> GuidanceClock<S> {
     /// Record a tick returned by [`GuidanceClock::poll`] (a `Hold` changes nothing).
     pub fn commit(&mut self, event: ClockEvent<S>) {
         if let ClockEvent::Tick { index, time_s, .. } = event {
-            if self.start_s.is_none() {
+            if self.start_s.is_none() || index >= REBASE_AT {
+                // First tick, or re-base before the counter could saturate.
                 self.start_s = Some(time_s);
                 self.last_index = 0;
             } else {
@@ -236,6 +260,26 @@ mod tests {
             );
         }
         assert_eq!(ticks, 1000);
+    }
+
+    /// Issue 8.5: tick times never become infinite and the counter re-bases instead of
+    /// saturating.
+    #[test]
+    fn next_tick_is_finite_and_counter_rebases() {
+        let mut c = GuidanceClock::new(1e30_f32).unwrap();
+        step(&mut c, 3e38);
+        assert!(c.next_tick_s().is_finite());
+        let mut c = GuidanceClock::new(2.0_f64).unwrap();
+        step(&mut c, 0.0);
+        let t = 2.0 * f64::from(REBASE_AT) + 1.0;
+        let e = step(&mut c, t);
+        assert!(matches!(e, ClockEvent::Tick { index, .. } if index == REBASE_AT));
+        assert_eq!(c.last_tick_s(), Some(t - 1.0));
+        assert_eq!(c.next_tick_s(), t + 1.0);
+        assert!(matches!(
+            step(&mut c, t + 1.0),
+            ClockEvent::Tick { index: 1, .. }
+        ));
     }
 
     /// Huge times (saturated fixed point, f32 beyond 2^24 periods) terminate promptly and

@@ -19,6 +19,9 @@ pub enum GuidanceError {
     /// A time stamp did not advance: navigation time earlier than the last guidance tick, or a
     /// monitor sample not later than the previous one.
     NonIncreasingTime,
+    /// A navigation time stamp outside the plausibility window around the last accepted sample
+    /// (see [`crate::plausibility`]); it did not become the time reference.
+    ImplausibleTime,
 }
 
 impl From<NodeTableError> for GuidanceError {
@@ -37,6 +40,9 @@ impl core::fmt::Display for GuidanceError {
             GuidanceError::InvalidConfig => f.write_str("invalid guidance configuration"),
             GuidanceError::NodeTable(e) => write!(f, "node table rejected: {e:?}"),
             GuidanceError::NonIncreasingTime => f.write_str("time did not advance"),
+            GuidanceError::ImplausibleTime => {
+                f.write_str("navigation time outside the plausibility window")
+            }
         }
     }
 }

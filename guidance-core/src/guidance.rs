@@ -65,6 +65,7 @@ use crate::error::GuidanceError;
 use crate::interp::{Interpolation, Interpolator};
 use crate::nav::NavState;
 use crate::nodes::{Independent, NodeTable};
+use crate::plausibility::{TimeGate, TimeVerdict, TimeWindow};
 use crate::rate::limit_command;
 use crate::scalar::Scalar;
 
@@ -168,6 +169,10 @@ pub struct Guidance<S> {
     ramp_start: Command<S>,
     /// Time of the last tick \[s\] (`None` before the first).
     ramp_start_s: Option<S>,
+    /// Plausibility check of the sample times.
+    time_gate: TimeGate<S>,
+    /// Number of time-base re-synchronisations so far.
+    time_resyncs: u32,
 }
 
 impl<S: Scalar> Guidance<S> {
@@ -206,24 +211,41 @@ impl<S: Scalar> Guidance<S> {
             target: initial,
             ramp_start: initial,
             ramp_start_s: None,
+            time_gate: TimeGate::new(TimeWindow::for_period(config.period_s)),
+            time_resyncs: 0,
         })
     }
 
     /// Process one navigation sample. Recomputes the command only when `nav.time_s` has
     /// reached the next tick (`t0 + k * period`); otherwise returns the held command.
     ///
+    /// A sample whose time lies outside the plausibility window around the last accepted
+    /// sample ([`Guidance::time_window`], see [`crate::plausibility`]) is rejected and does not
+    /// become the time reference, so guidance recovers at the next good sample; a run of
+    /// consistent such samples re-synchronises the clock to the new time base (the new ramp then
+    /// starts from the held command).
+    ///
     /// # Errors
     /// [`GuidanceError::NonFiniteState`], [`GuidanceError::UnphysicalState`] (radius <= 0 or
-    /// speed < 0) or [`GuidanceError::NonIncreasingTime`] (time before the last tick). On error
-    /// nothing changes: the held command and the ramp remain valid.
+    /// speed < 0), [`GuidanceError::ImplausibleTime`] (outside the plausibility window) or
+    /// [`GuidanceError::NonIncreasingTime`] (time before the last tick). On error the held
+    /// command and the ramp remain valid and nothing changes, except that an implausible time
+    /// is counted towards a re-synchronisation.
     pub fn update(&mut self, nav: &NavState<S>) -> Result<GuidanceOutput<S>, GuidanceError> {
         nav.validate()?;
         let x = match self.table.independent() {
             Independent::NormalizedEnergy => self.energy.normalized(nav.radius_m, nav.speed_m_s)?,
             Independent::TimeS => nav.time_s,
         };
-        let event = self.clock.poll(nav.time_s)?;
+        let verdict = self.time_gate.screen(nav.time_s)?;
+        let clock = match verdict {
+            TimeVerdict::Accept => self.clock,
+            TimeVerdict::Resync => GuidanceClock::new(self.config.period_s)?,
+        };
+        let mut clock = clock;
+        let event = clock.poll(nav.time_s)?;
         let ClockEvent::Tick { .. } = event else {
+            self.time_gate.accept(nav.time_s);
             return Ok(GuidanceOutput {
                 command: self.command,
                 ticked: false,
@@ -232,7 +254,11 @@ impl<S: Scalar> Guidance<S> {
         };
         // Start the new ramp where the current one is at the sample time: a late sample (after
         // its tick instant) must not back-date the ramp, which would make the attitude jump.
-        let start = self.attitude_at(nav.time_s);
+        let start = match verdict {
+            TimeVerdict::Accept => self.attitude_at(nav.time_s),
+            // The old ramp's times mean nothing in the new time base: start from its end.
+            TimeVerdict::Resync => self.command,
+        };
         let target = self.interp.evaluate(x);
         let limited = limit_command(start, target, self.config.rates, self.config.period_s);
         let bounds = self.table.bounds();
@@ -244,7 +270,12 @@ impl<S: Scalar> Guidance<S> {
             // Unreachable with validated inputs; kept so that nothing non-finite is ever stored.
             return Err(GuidanceError::NonFiniteState);
         }
-        self.clock.commit(event);
+        clock.commit(event);
+        self.clock = clock;
+        self.time_gate.accept(nav.time_s);
+        if verdict == TimeVerdict::Resync {
+            self.time_resyncs = self.time_resyncs.saturating_add(1);
+        }
         self.ramp_start = start;
         self.ramp_start_s = Some(nav.time_s);
         self.command = command;
@@ -303,6 +334,28 @@ impl<S: Scalar> Guidance<S> {
     #[must_use]
     pub fn ramp_start_s(&self) -> Option<S> {
         self.ramp_start_s
+    }
+
+    /// The time plausibility window in use (default [`TimeWindow::for_period`]).
+    #[must_use]
+    pub fn time_window(&self) -> TimeWindow<S> {
+        self.time_gate.window()
+    }
+
+    /// Set the time plausibility window (see [`crate::plausibility`]).
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] as [`TimeWindow::validate`]; the old window stays.
+    pub fn set_time_window(&mut self, window: TimeWindow<S>) -> Result<(), GuidanceError> {
+        window.validate(self.config.period_s)?;
+        self.time_gate.set_window(window);
+        Ok(())
+    }
+
+    /// Number of re-synchronisations to a new time base so far.
+    #[must_use]
+    pub fn time_resyncs(&self) -> u32 {
+        self.time_resyncs
     }
 
     /// The held (rate-limited) command \[rad\].
@@ -482,6 +535,80 @@ mod tests {
         let mut bad = nav::<Fixed>(0.0);
         bad.radius_m = Fixed::ZERO / Fixed::ZERO;
         assert_eq!(gx.update(&bad), Err(GuidanceError::UnphysicalState));
+    }
+
+    /// Issue 8.5 (reproduced defect): one finite but wrong time stamp used to become the time
+    /// reference, so every later correct sample was rejected as `NonIncreasingTime` and the
+    /// command computed at the glitch was held for the rest of the flight.
+    fn glitch_then_recovery<S: Scalar>(glitch: f64) {
+        let mut g = reference::<S>();
+        for k in 0..5 {
+            g.update(&nav(264.0 + 2.0 * f64::from(k))).unwrap();
+        }
+        let before = g.clone();
+        assert_eq!(
+            g.update(&nav(glitch)),
+            Err(GuidanceError::ImplausibleTime),
+            "glitch {glitch}"
+        );
+        assert_eq!(g.command(), before.command());
+        assert_eq!(g.last_tick_s(), before.last_tick_s());
+        // The next good samples tick on the old clock and follow the profile.
+        for k in 5..20 {
+            let t = 264.0 + 2.0 * f64::from(k);
+            let out = g.update(&nav(t)).unwrap();
+            assert!(out.ticked, "t {t}");
+            assert_eq!(g.last_tick_s(), Some(S::from_f64(t)));
+        }
+        assert!(g.next_tick_s().is_finite());
+        assert_eq!(g.time_resyncs(), 0);
+    }
+
+    #[test]
+    fn time_glitch_does_not_freeze_guidance() {
+        for glitch in [1e4, 1e12, -1e12] {
+            glitch_then_recovery::<f64>(glitch);
+            glitch_then_recovery::<f32>(glitch);
+        }
+        glitch_then_recovery::<f64>(f64::MAX);
+        glitch_then_recovery::<f32>(f64::from(f32::MAX));
+        // Fixed point saturates at +-2^31 s; a glitch of 1e4 s is representable.
+        glitch_then_recovery::<Fixed>(1e4);
+        glitch_then_recovery::<Fixed>(1e12);
+    }
+
+    /// A real change of time base (a run of consistent samples far from the old one) is taken
+    /// after `resync_samples` samples; the attitude starts from the held command (no jump).
+    #[test]
+    fn consistent_new_time_base_resynchronises() {
+        let mut g = reference::<f64>();
+        g.update(&nav(600.0)).unwrap();
+        g.update(&nav(602.0)).unwrap();
+        let held = g.command();
+        assert_eq!(g.update(&nav(5e4)), Err(GuidanceError::ImplausibleTime));
+        assert_eq!(
+            g.update(&nav(5e4 + 2.0)),
+            Err(GuidanceError::ImplausibleTime)
+        );
+        let out = g.update(&nav(5e4 + 4.0)).unwrap();
+        assert!(out.ticked);
+        assert_eq!(g.time_resyncs(), 1);
+        assert_eq!(g.attitude_at(5e4 + 4.0), held);
+        assert_eq!(g.next_tick_s(), 5e4 + 6.0);
+        assert!(g.update(&nav(5e4 + 6.0)).unwrap().ticked);
+        // The window is configurable and validated.
+        let w = TimeWindow {
+            max_step_s: 1.0,
+            resync_samples: 3,
+        };
+        assert_eq!(g.set_time_window(w), Err(GuidanceError::InvalidConfig));
+        let w = TimeWindow {
+            max_step_s: 1e5,
+            resync_samples: 1,
+        };
+        g.set_time_window(w).unwrap();
+        assert_eq!(g.time_window(), w);
+        assert!(g.update(&nav(9e4)).unwrap().ticked);
     }
 
     #[test]

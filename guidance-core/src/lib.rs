@@ -37,6 +37,7 @@ pub mod math;
 pub mod monitor;
 pub mod nav;
 pub mod nodes;
+pub mod plausibility;
 pub mod rate;
 pub mod replan;
 pub mod scalar;

@@ -120,6 +120,8 @@ pub enum LinkStatus {
     NonIncreasingTime,
     /// The firmware received a frame it could not decode or did not expect.
     BadFrame,
+    /// [`GuidanceError::ImplausibleTime`].
+    ImplausibleTime,
 }
 
 impl LinkStatus {
@@ -131,6 +133,7 @@ impl LinkStatus {
             GuidanceError::UnphysicalState => LinkStatus::UnphysicalState,
             GuidanceError::NodeTable(_) => LinkStatus::NodeTable,
             GuidanceError::NonIncreasingTime => LinkStatus::NonIncreasingTime,
+            GuidanceError::ImplausibleTime => LinkStatus::ImplausibleTime,
             _ => LinkStatus::InvalidConfig,
         }
     }
@@ -146,6 +149,7 @@ impl LinkStatus {
             LinkStatus::InvalidConfig => Some(GuidanceError::InvalidConfig),
             LinkStatus::NodeTable => Some(GuidanceError::NodeTable(NodeTableError::TooFewNodes)),
             LinkStatus::NonIncreasingTime => Some(GuidanceError::NonIncreasingTime),
+            LinkStatus::ImplausibleTime => Some(GuidanceError::ImplausibleTime),
             LinkStatus::Ok | LinkStatus::NotTicked | LinkStatus::BadFrame => None,
         }
     }
@@ -160,6 +164,7 @@ impl LinkStatus {
             LinkStatus::NodeTable => 5,
             LinkStatus::NonIncreasingTime => 6,
             LinkStatus::BadFrame => 7,
+            LinkStatus::ImplausibleTime => 8,
         }
     }
 
@@ -173,6 +178,7 @@ impl LinkStatus {
             5 => LinkStatus::NodeTable,
             6 => LinkStatus::NonIncreasingTime,
             7 => LinkStatus::BadFrame,
+            8 => LinkStatus::ImplausibleTime,
             _ => return Err(LinkError::BadStatus),
         })
     }
@@ -507,6 +513,7 @@ mod tests {
             GuidanceError::UnphysicalState,
             GuidanceError::InvalidConfig,
             GuidanceError::NonIncreasingTime,
+            GuidanceError::ImplausibleTime,
         ] {
             assert_eq!(LinkStatus::from_error(e).to_error(), Some(e));
         }
@@ -560,7 +567,7 @@ mod tests {
 
     fn frame() -> impl Strategy<Value = Frame> {
         let vals = prop::array::uniform7(finite());
-        let status = 0u8..8;
+        let status = 0u8..9;
         (any::<u32>(), 0u8..3, status, vals).prop_map(|(seq, ty, st, v)| {
             let [a, b, c, d, e, f, g] = v;
             match ty {
