@@ -6,6 +6,7 @@
 //! * `cargo xtask size`      check the firmware's flash/RAM footprint against its budget
 //! * `cargo xtask golden`    regenerate the firmware's golden commands on the host
 //! * `cargo xtask setup`     install rustup targets/components and QEMU
+//! * `cargo xtask fuzz`      the seeded fuzz harness over the flight code (`guidance-fuzz`)
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
@@ -38,7 +39,9 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|g
   bench-firmware  instruction counts of guidance-core on the M4F and M3 under QEMU -icount\n\
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
   golden    regenerate onboard-demo/src/golden.rs from the host run of the smoke scenario\n\
-  setup     rustup targets and components, qemu-system-arm (apt-get when root)";
+  setup     rustup targets and components, qemu-system-arm (apt-get when root)
+  fuzz [--seconds N | --cases N] [--seed S] [--target T]  fuzz the flight code (node tables,
+            guidance with hostile times, frame decoder); default: the CI budget";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Some("bench-firmware") => setup().and_then(|()| bench_firmware()),
         Some("golden") => golden::write(&root()),
         Some("setup") => setup(),
+        Some("fuzz") => fuzz(args.get(1..).unwrap_or_default()),
         Some("--help" | "-h" | "help") => {
             println!("{USAGE}");
             Ok(())
@@ -162,6 +166,21 @@ fn seed_property_tests(c: &mut Command) {
     }
 }
 
+/// Seed and per-target case budget of the fuzz step of `cargo xtask test` (deterministic).
+const FUZZ_CI_ARGS: [&str; 4] = ["--seed", "20261130", "--cases", "20000"];
+
+/// Run the fuzz harness (release build); no arguments: the CI budget.
+fn fuzz(args: &[String]) -> Result<(), String> {
+    let mut c = cargo();
+    c.args(["run", "--release", "--quiet", "-p", "guidance-fuzz", "--"]);
+    if args.is_empty() {
+        c.args(FUZZ_CI_ARGS);
+    } else {
+        c.args(args);
+    }
+    run(c, "fuzz")
+}
+
 /// One check of `cargo xtask test`.
 type Step = Box<dyn Fn() -> Result<(), String>>;
 
@@ -194,6 +213,7 @@ fn test() -> Result<(), String> {
                 run(c, "cargo test")
             }),
         ),
+        ("fuzz (fixed seed and budget)", Box::new(|| fuzz(&[]))),
     ];
     for target in CORE_TARGETS {
         steps.push((
