@@ -68,38 +68,8 @@ use crate::nodes::{Independent, NodeTable};
 use crate::rate::limit_command;
 use crate::scalar::Scalar;
 
+pub use crate::command::Command;
 pub use crate::rate::RateLimits;
-
-/// Degrees to radians.
-const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
-
-/// An attitude command (or attitude) \[rad\].
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Command<S> {
-    /// Angle of attack \[rad\].
-    pub alpha_rad: S,
-    /// Bank angle \[rad\].
-    pub sigma_rad: S,
-}
-
-impl<S: Scalar> Command<S> {
-    /// Command from degrees (converted to radians); `None` if non-finite or not
-    /// representable in `S`.
-    #[must_use]
-    pub fn from_deg(alpha_deg: f64, sigma_deg: f64) -> Option<Self> {
-        Some(Self {
-            alpha_rad: S::from_f64_checked(alpha_deg * DEG_TO_RAD)?,
-            sigma_rad: S::from_f64_checked(sigma_deg * DEG_TO_RAD)?,
-        })
-    }
-
-    /// True if both angles are finite.
-    #[must_use]
-    pub fn is_finite(&self) -> bool {
-        self.alpha_rad.is_finite() && self.sigma_rad.is_finite()
-    }
-}
 
 /// Guidance configuration.
 #[derive(Clone, Copy, Debug, PartialEq)]

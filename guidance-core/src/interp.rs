@@ -55,8 +55,8 @@
 //! saturate (no panic: the output is still clamped into bounds, but the spline shape is then
 //! not meaningful).
 
+use crate::command::Command;
 use crate::error::GuidanceError;
-use crate::guidance::Command;
 use crate::nodes::{AngleBounds, MAX_NODES, NodeTable};
 use crate::scalar::Scalar;
 

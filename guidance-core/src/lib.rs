@@ -28,6 +28,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod clock;
+pub mod command;
 pub mod energy;
 pub mod error;
 pub mod guidance;
@@ -42,6 +43,7 @@ pub mod replan;
 pub mod scalar;
 pub mod vinh;
 
+pub use command::Command;
 pub use error::GuidanceError;
 pub use nav::NavState;
 pub use scalar::{Fixed, Real, Scalar};

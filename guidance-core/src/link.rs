@@ -32,8 +32,8 @@
 //! Decoding rejects a wrong length, sync word, checksum, type or status and any non-finite
 //! payload value, so nothing non-finite crosses the link.
 
+use crate::command::Command;
 use crate::error::{GuidanceError, NodeTableError};
-use crate::guidance::Command;
 use crate::nav::NavState;
 use crate::rate::{RateLimits, limit_command};
 

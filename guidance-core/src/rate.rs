@@ -11,8 +11,8 @@
 //! is 1-Lipschitz in the max norm: `|f(p, t) - f(p', t')| <= max(|p - p'|, |t - t'|)`. The
 //! precision analysis of [`crate::guidance`] relies on this.
 
+use crate::command::Command;
 use crate::error::GuidanceError;
-use crate::guidance::Command;
 use crate::scalar::Scalar;
 
 /// Degrees to radians.

@@ -1,3 +1,4 @@
 //! The workspace-level integration-test binary. Each module is one topic.
 
+mod core_layering;
 mod firmware_golden;
