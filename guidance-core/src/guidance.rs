@@ -64,7 +64,7 @@ use crate::energy::EnergyNormalizer;
 use crate::error::GuidanceError;
 use crate::interp::{Interpolation, Interpolator};
 use crate::nav::NavState;
-use crate::nodes::{Independent, NodeTable};
+use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeTable};
 use crate::rate::limit_command;
 use crate::scalar::Scalar;
 
@@ -109,6 +109,9 @@ impl<S: Scalar> Default for GuidanceConfig<S> {
     }
 }
 
+/// [`Guidance`] over a host-sized node table ([`HOST_NODE_CAPACITY`] nodes).
+pub type HostGuidance<S> = Guidance<S, HOST_NODE_CAPACITY>;
+
 /// Result of one [`Guidance::update`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -121,13 +124,14 @@ pub struct GuidanceOutput<S> {
     pub independent_value: S,
 }
 
-/// The guidance function (see the module docs).
+/// The guidance function (see the module docs), over a node table of capacity `N`
+/// ([`crate::nodes`]: 16 by default, [`HostGuidance`] for the host's 256).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Guidance<S> {
+pub struct Guidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     config: GuidanceConfig<S>,
-    table: NodeTable<S>,
-    interp: Interpolator<S>,
+    table: NodeTable<S, N>,
+    interp: Interpolator<S, N>,
     energy: EnergyNormalizer<S>,
     clock: GuidanceClock<S>,
     /// Held (rate-limited) command.
@@ -140,7 +144,7 @@ pub struct Guidance<S> {
     ramp_start_s: Option<S>,
 }
 
-impl<S: Scalar> Guidance<S> {
+impl<S: Scalar, const N: usize> Guidance<S, N> {
     /// Set up guidance. `energy` maps (r, V) to E-hat (used for energy-indexed tables);
     /// `initial` is the attitude at start \[rad\] (clamped into the table's bounds). The first
     /// call to [`Guidance::update`] is a tick.
@@ -150,7 +154,7 @@ impl<S: Scalar> Guidance<S> {
     /// `initial`.
     pub fn new(
         config: GuidanceConfig<S>,
-        table: NodeTable<S>,
+        table: NodeTable<S, N>,
         kind: Interpolation<S>,
         energy: EnergyNormalizer<S>,
         initial: Command<S>,
@@ -290,7 +294,7 @@ impl<S: Scalar> Guidance<S> {
 
     /// The node table in use.
     #[must_use]
-    pub fn table(&self) -> &NodeTable<S> {
+    pub fn table(&self) -> &NodeTable<S, N> {
         &self.table
     }
 
@@ -302,7 +306,7 @@ impl<S: Scalar> Guidance<S> {
 
     /// The interpolator in use.
     #[must_use]
-    pub fn interpolator(&self) -> &Interpolator<S> {
+    pub fn interpolator(&self) -> &Interpolator<S, N> {
         &self.interp
     }
 
@@ -313,7 +317,7 @@ impl<S: Scalar> Guidance<S> {
     ///
     /// # Errors
     /// As [`Interpolator::new`]; on error the old table stays in use.
-    pub fn replace_table(&mut self, table: NodeTable<S>) -> Result<(), GuidanceError> {
+    pub fn replace_table(&mut self, table: NodeTable<S, N>) -> Result<(), GuidanceError> {
         let interp = Interpolator::new(&table, self.interp.kind())?;
         self.interp = interp;
         self.table = table;
@@ -491,7 +495,7 @@ mod tests {
         let mk = |c: GuidanceConfig<f64>, init: Command<f64>| {
             Guidance::new(
                 c,
-                NodeTable::horus2b_reference().unwrap(),
+                NodeTable::<f64>::horus2b_reference().unwrap(),
                 Interpolation::Linear,
                 energy(),
                 init,
