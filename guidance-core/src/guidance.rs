@@ -65,7 +65,7 @@ use crate::error::GuidanceError;
 use crate::interp::{Interpolation, Interpolator};
 use crate::nav::NavState;
 use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeTable};
-use crate::rate::limit_command;
+use crate::rate::{RampEnd, limit_command, ramp_end};
 use crate::scalar::Scalar;
 
 pub use crate::command::Command;
@@ -279,6 +279,33 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
         self.ramp_start_s
     }
 
+    /// When the current attitude ramp reaches the held command, per angle \[s\]: from the
+    /// ramp start `t_s` ([`Guidance::ramp_start_s`]), `t_s + |command - start| / rate`
+    /// ([`crate::rate::ramp_end`]). [`Guidance::attitude_at`] also completes the ramp one period
+    /// after `t_s`; the two agree up to rounding, since a command never moves more than one
+    /// period's step. `None` before the first update.
+    ///
+    /// A simulator makes these instants integration breakpoints (the attitude history has a
+    /// kink there) instead of re-deriving the ramp; see also [`Guidance::next_ramp_kink_s`].
+    #[must_use]
+    pub fn ramp_end_s(&self) -> Option<RampEnd<S>> {
+        let t_s = self.ramp_start_s?;
+        Some(ramp_end(
+            self.ramp_start,
+            self.command,
+            self.config.rates,
+            t_s,
+        ))
+    }
+
+    /// The earliest end of a per-angle ramp strictly after `time_s` \[s\] (where one angle of
+    /// [`Guidance::attitude_at`] stops moving); `None` if there is none (before the first
+    /// update, or the ramp is complete by `time_s`).
+    #[must_use]
+    pub fn next_ramp_kink_s(&self, time_s: S) -> Option<S> {
+        self.ramp_end_s()?.next_after(time_s)
+    }
+
     /// The held (rate-limited) command \[rad\].
     #[must_use]
     pub fn command(&self) -> Command<S> {
@@ -358,7 +385,7 @@ mod tests {
     fn reference<S: Scalar>() -> Guidance<S> {
         Guidance::new(
             GuidanceConfig::thesis_default(),
-            NodeTable::horus2b_reference().unwrap(),
+            crate::missions::horus2b_reference().unwrap().table,
             Interpolation::Linear,
             energy(),
             Command::from_deg(40.0, 0.0).unwrap(),
@@ -388,7 +415,7 @@ mod tests {
     fn rate_limit_binds_and_ramp_is_continuous() {
         let mut g = Guidance::<f64>::new(
             GuidanceConfig::thesis_default(),
-            NodeTable::horus2b_reference().unwrap(),
+            crate::missions::horus2b_reference().unwrap().table,
             Interpolation::Linear,
             energy(),
             Command::from_deg(40.0, 0.0).unwrap(),
@@ -416,6 +443,28 @@ mod tests {
         assert!((at_tick.sigma_rad - 52.5 * DEG).abs() < 1e-12);
         g.update(&nav(604.0)).unwrap();
         assert_eq!(g.attitude_at(604.0), at_tick);
+    }
+
+    /// The ramp end is where `attitude_at` reaches the command, per angle.
+    #[test]
+    fn ramp_end_matches_attitude_at() {
+        let mut g = reference::<f64>();
+        assert_eq!(g.ramp_end_s(), None);
+        assert_eq!(g.next_ramp_kink_s(0.0), None);
+        g.update(&nav(600.0)).unwrap();
+        // Bank 0 -> 30 deg at 15 deg/s: 2 s; alpha does not move (ends at the ramp start).
+        let end = g.ramp_end_s().unwrap();
+        assert_eq!(end.alpha_s, 600.0);
+        assert!((end.sigma_s - 602.0).abs() < 1e-12);
+        assert_eq!(g.next_ramp_kink_s(600.0), Some(end.sigma_s));
+        assert_eq!(g.next_ramp_kink_s(602.0), None);
+        assert!(g.attitude_at(end.sigma_s - 1e-6).sigma_rad < g.command().sigma_rad);
+        assert_eq!(g.attitude_at(end.sigma_s), g.command());
+        // A late sample: the ramp (30 -> 59.8 deg, 1.987 s) starts at the sample time.
+        g.update(&nav(602.5)).unwrap();
+        let end = g.ramp_end_s().unwrap();
+        assert!((end.sigma_s - (602.5 + 29.8 / 15.0)).abs() < 1e-12);
+        assert_eq!(end.latest(), end.sigma_s);
     }
 
     /// Regression (review finding): a sample arriving late after a tick instant used to
@@ -495,7 +544,7 @@ mod tests {
         let mk = |c: GuidanceConfig<f64>, init: Command<f64>| {
             Guidance::new(
                 c,
-                NodeTable::<f64>::horus2b_reference().unwrap(),
+                crate::missions::horus2b_reference::<f64>().unwrap().table,
                 Interpolation::Linear,
                 energy(),
                 init,

@@ -35,6 +35,7 @@ pub mod guidance;
 pub mod interp;
 pub mod link;
 pub mod math;
+pub mod missions;
 pub mod monitor;
 pub mod nav;
 pub mod nodes;

@@ -237,18 +237,6 @@ pub enum NodeTableError {
     },
 }
 
-/// The HORUS-2B nominal guidance table of thesis eq. 2.3: rows `(t \[s\], alpha \[deg\],
-/// sigma \[deg\])`.
-pub const HORUS2B_REFERENCE_DEG: [(f64, f64, f64); 7] = [
-    (0.0, 40.0, 0.0),
-    (264.0, 40.0, 0.0),
-    (290.0, 40.0, 79.6),
-    (554.0, 40.0, 59.8),
-    (686.0, 40.0, 59.8),
-    (924.0, 40.0, 59.8),
-    (1319.0, 11.5, 54.0),
-];
-
 fn idx(i: usize) -> u16 {
     u16::try_from(i).unwrap_or(u16::MAX)
 }
@@ -334,17 +322,12 @@ impl<S: Scalar, const N: usize> NodeTable<S, N> {
         Self::new(independent, &nodes, bounds)
     }
 
-    /// The HORUS-2B nominal reference mission of thesis eq. 2.3 (time-indexed, 7 nodes),
-    /// with the thesis default bounds; rows as in [`HORUS2B_REFERENCE_DEG`].
+    /// The same nodes, independent variable and bounds in a table of capacity `M`.
     ///
     /// # Errors
-    /// Only if `S` cannot represent the values (never for `f32`, `f64`, `Fixed`).
-    pub fn horus2b_reference() -> Result<Self, NodeTableError> {
-        Self::from_deg(
-            Independent::TimeS,
-            &HORUS2B_REFERENCE_DEG,
-            AngleBounds::thesis_default(),
-        )
+    /// [`NodeTableError::TooManyNodes`] if the nodes do not fit `M`.
+    pub fn to_capacity<const M: usize>(&self) -> Result<NodeTable<S, M>, NodeTableError> {
+        NodeTable::new(self.independent, &self.nodes, self.bounds)
     }
 
     /// All nodes in flight order.
@@ -478,13 +461,22 @@ mod tests {
     }
 
     #[test]
-    fn reference_table_builds_in_all_types() {
-        assert_eq!(NodeTable::<f64>::horus2b_reference().unwrap().len(), 7);
-        assert_eq!(NodeTable::<f32>::horus2b_reference().unwrap().len(), 7);
-        let t = NodeTable::<Fixed>::horus2b_reference().unwrap();
-        assert_eq!(t.len(), 7);
-        assert_eq!(t.interior().len(), 5);
-        assert_eq!(t.nodes()[6].x, Fixed::from_f64(1319.0));
+    fn rows_build_in_all_types_and_change_capacity() {
+        let rows = [(0.0, 40.0, 0.0), (264.0, 40.0, 0.0), (1319.0, 11.5, 54.0)];
+        let b = AngleBounds::thesis_default();
+        let ti = Independent::TimeS;
+        assert_eq!(NodeTable::<f64>::from_deg(ti, &rows, b).unwrap().len(), 3);
+        let b32 = AngleBounds::thesis_default();
+        assert_eq!(NodeTable::<f32>::from_deg(ti, &rows, b32).unwrap().len(), 3);
+        let t = NodeTable::<Fixed>::from_deg(ti, &rows, AngleBounds::thesis_default()).unwrap();
+        assert_eq!(t.interior().len(), 1);
+        assert_eq!(t.nodes()[2].x, Fixed::from_f64(1319.0));
+        let wide: NodeTable<Fixed, 64> = t.to_capacity().unwrap();
+        assert_eq!(wide.nodes(), t.nodes());
+        assert_eq!(
+            t.to_capacity::<2>().unwrap_err(),
+            NodeTableError::TooManyNodes
+        );
     }
 
     #[test]

@@ -326,7 +326,9 @@ fn check_random_nav<S: Scalar>(
     kind: Interpolation<S>,
 ) -> Result<(), TestCaseError> {
     for table in [
-        NodeTable::<S>::horus2b_reference().unwrap(),
+        guidance_core::missions::horus2b_reference::<S>()
+            .unwrap()
+            .table,
         energy_table::<S>(),
     ] {
         let b = table.bounds();
@@ -535,9 +537,15 @@ fn f32_and_fixed_agree_with_f64() {
         for time in [true, false] {
             let (t64, t32, tx) = if time {
                 (
-                    NodeTable::<f64>::horus2b_reference().unwrap(),
-                    NodeTable::<f32>::horus2b_reference().unwrap(),
-                    NodeTable::<Fixed>::horus2b_reference().unwrap(),
+                    guidance_core::missions::horus2b_reference::<f64>()
+                        .unwrap()
+                        .table,
+                    guidance_core::missions::horus2b_reference::<f32>()
+                        .unwrap()
+                        .table,
+                    guidance_core::missions::horus2b_reference::<Fixed>()
+                        .unwrap()
+                        .table,
                 )
             } else {
                 (

@@ -707,7 +707,13 @@ fn replanning_rejects_bad_config() {
         ..cfg
     };
     assert!(mk(energy_table(), ok).is_ok());
-    assert!(mk(NodeTable::horus2b_reference().unwrap(), ok).is_err());
+    assert!(
+        mk(
+            guidance_core::missions::horus2b_reference().unwrap().table,
+            ok
+        )
+        .is_err()
+    );
     let nan = ReplanningConfig {
         target: RangeTarget::Point(TargetPoint {
             latitude_rad: f64::NAN,

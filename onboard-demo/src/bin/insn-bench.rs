@@ -10,10 +10,10 @@
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::hprintln;
-use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
+use guidance_core::energy::EARTH_RADIUS_M;
 use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
 use guidance_core::interp::Interpolation;
-use guidance_core::nodes::NodeTable;
+use guidance_core::missions::horus2b_reference;
 use guidance_core::replan::{PredictorMode, ReplanConfig, ReplanLimits, replan};
 use guidance_core::vinh::glide::GlideSolution;
 use guidance_core::vinh::nondim::{
@@ -50,17 +50,13 @@ fn nav(t: f64, speed: f64) -> NavState<Num> {
 }
 
 fn bench_guidance(c: &mut InsnCounter, name: &str, kind: Interpolation<Num>) -> bool {
-    let Ok(table) = NodeTable::<Num>::horus2b_reference() else {
+    let Ok(mission) = horus2b_reference::<Num>() else {
         return false;
     };
-    let Ok(energy) = EnergyNormalizer::<Num>::new(
-        EARTH_MU_M3_S2,
-        EARTH_RADIUS_M,
-        EARTH_RADIUS_M + 122_000.0,
-        7435.5,
-    ) else {
+    let Ok(energy) = mission.earth_energy_normalizer() else {
         return false;
     };
+    let table = mission.table;
     let initial = Command {
         alpha_rad: Num::from_f64(0.6981),
         sigma_rad: Num::ZERO,

@@ -6,9 +6,10 @@
 //! `<dir>` is the semihosting command line (QEMU `-append DIR`, read with `SYS_GET_CMDLINE`;
 //! its last word), or else the build-time `PIL_FIFO_DIR`, or else `/tmp/reentry-pil`.
 //!
-//! Guidance: `Guidance<f32>` with the HORUS-2B reference node table compiled in
-//! (`NodeTable::horus2b_reference`: time-indexed, thesis eq. 2.3, thesis default bounds),
-//! linear interpolation, the thesis 2 s period and rate limits, initial attitude 40 deg / 0 deg.
+//! Guidance: `Guidance<f32>` of the HORUS-2B reference mission compiled in
+//! (`guidance_core::missions::horus2b_reference`: time-indexed table of thesis eq. 2.3, thesis
+//! bounds, linear interpolation, 2 s period, rate limits, initial attitude 40 deg / 0 deg; E-hat
+//! of the thesis' spherical Earth), the same mission host-sim flies in SIL.
 //!
 //! Loop: read a nav frame, `update`, answer with a command frame (same sequence number) until
 //! an end frame arrives, then exit 0. A link failure, panic or HardFault exits 1.
@@ -18,11 +19,9 @@
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::{hprintln, nr};
-use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
-use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
-use guidance_core::interp::Interpolation;
+use guidance_core::guidance::{Command, Guidance};
 use guidance_core::link::{CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode};
-use guidance_core::nodes::NodeTable;
+use guidance_core::missions::horus2b_reference;
 use guidance_core::{NavState, Scalar};
 
 /// Default FIFO directory when the command line names none.
@@ -153,24 +152,14 @@ fn answer(g: &Guidance<f32>, seq: u32, status: LinkStatus) -> CommandFrame {
 }
 
 fn run() -> Result<u32, &'static str> {
-    let table = NodeTable::<f32>::horus2b_reference().map_err(|_| "node table rejected")?;
-    // Time-indexed table: the energy normaliser is required but unused (HORUS-2B entry).
-    let energy = EnergyNormalizer::<f32>::new(
-        EARTH_MU_M3_S2,
-        EARTH_RADIUS_M,
-        EARTH_RADIUS_M + 122_000.0,
-        7435.5,
-    )
-    .map_err(|_| "energy normaliser rejected")?;
-    let initial = Command::<f32>::from_deg(40.0, 0.0).ok_or("initial attitude")?;
-    let mut g = Guidance::new(
-        GuidanceConfig::thesis_default(),
-        table,
-        Interpolation::Linear,
-        energy,
-        initial,
-    )
-    .map_err(|_| "guidance rejected its configuration")?;
+    let mission = horus2b_reference::<f32>().map_err(|_| "reference mission rejected")?;
+    // Time-indexed table: the energy normaliser is required but unused.
+    let energy = mission
+        .earth_energy_normalizer()
+        .map_err(|_| "energy normaliser rejected")?;
+    let mut g = mission
+        .guidance(energy)
+        .map_err(|_| "guidance rejected its configuration")?;
 
     let mut dir = [0u8; PATH_MAX];
     let dir_len = match cmdline_dir(&mut dir) {
