@@ -55,7 +55,7 @@ impl PilConfig {
         let n = N.fetch_add(1, Ordering::Relaxed);
         Self {
             elf,
-            qemu: "qemu-system-arm".into(),
+            qemu: onboard_spec::machines::QEMU_SYSTEM.into(),
             fifo_dir: std::env::temp_dir().join(format!("reentry-pil-{}-{n}", std::process::id())),
             reply_timeout: Duration::from_secs(10),
             qemu_timeout_s: 600,
@@ -222,8 +222,7 @@ impl PilGuidance {
         let child = Command::new("timeout")
             .arg(me.cfg.qemu_timeout_s.to_string())
             .arg(&me.cfg.qemu)
-            .args(["-cpu", "cortex-m4", "-machine", "mps2-an386", "-nographic"])
-            .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+            .args(onboard_spec::machines::PIL_MACHINE.qemu_args())
             .arg(&me.cfg.elf)
             .arg("-append")
             .arg(&me.cfg.fifo_dir)

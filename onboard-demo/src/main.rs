@@ -2,7 +2,7 @@
 //!
 //! Smoke mode (this binary): flies the scenario of [`scenario`] through the core's `Guidance`
 //! and compares every command with the golden values computed on the host
-//! (`golden.rs`, written by `cargo xtask golden`). It exits through semihosting with status 0
+//! (`onboard_spec::golden`, written by `cargo xtask golden`). It exits through semihosting with status 0
 //! only if all match; a panic or HardFault exits with status 1.
 //!
 //! * `thumbv7em-none-eabihf` (QEMU `mps2-an386`, Cortex-M4F): guidance in `f32` on the FPU;
@@ -18,7 +18,7 @@
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::hprintln;
 
-use onboard_demo::{golden, scenario};
+use onboard_spec::{golden, scenario};
 
 #[cfg(target_abi = "eabihf")]
 type Num = f32;

@@ -2,3 +2,4 @@
 
 mod core_layering;
 mod firmware_golden;
+mod qemu_runners;
