@@ -168,20 +168,27 @@ fn test() -> Result<(), String> {
             }),
         ),
         (
-            "clippy (host crates)",
+            "clippy (workspace, host)",
             Box::new(|| {
                 let mut c = cargo();
-                c.args(["clippy", "--all-targets", "--", "-D", "warnings"]);
+                c.args([
+                    "clippy",
+                    "--workspace",
+                    "--all-targets",
+                    "--",
+                    "-D",
+                    "warnings",
+                ]);
                 run(c, "clippy host")
             }),
         ),
         (
-            "host tests",
+            "host tests (workspace)",
             Box::new(|| {
                 let mut c = cargo();
-                c.args(["test"]);
+                c.args(["test", "--workspace"]);
                 seed_property_tests(&mut c);
-                run(c, "cargo test")
+                run(c, "cargo test --workspace")
             }),
         ),
     ];
