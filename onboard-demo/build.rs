@@ -1,8 +1,13 @@
 //! Puts the workspace-root `memory.x` on the linker search path and links with
-//! cortex-m-rt's `link.x` (as `-Tlink.x` on every target kind, so tests link too).
+//! cortex-m-rt's `link.x` (as `-Tlink.x` on every target kind, so tests link too), for
+//! firmware targets (`target_os = "none"`) only: a host build of this package is empty.
 use std::{env, fs, path::PathBuf};
 
 fn main() {
+    println!("cargo:rerun-if-changed=build.rs");
+    if env::var("CARGO_CFG_TARGET_OS").as_deref() != Ok("none") {
+        return;
+    }
     let out = PathBuf::from(env::var_os("OUT_DIR").unwrap_or_default());
     let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").unwrap_or_default());
     let memory = manifest.join("..").join("memory.x");

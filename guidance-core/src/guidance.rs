@@ -64,43 +64,13 @@ use crate::energy::EnergyNormalizer;
 use crate::error::GuidanceError;
 use crate::interp::{Interpolation, Interpolator};
 use crate::nav::NavState;
-use crate::nodes::{Independent, NodeTable};
+use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeTable};
 use crate::plausibility::{TimeGate, TimeVerdict, TimeWindow};
-use crate::rate::limit_command;
+use crate::rate::{RampEnd, limit_command, ramp_end};
 use crate::scalar::Scalar;
 
+pub use crate::command::Command;
 pub use crate::rate::RateLimits;
-
-/// Degrees to radians.
-const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
-
-/// An attitude command (or attitude) \[rad\].
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Command<S> {
-    /// Angle of attack \[rad\].
-    pub alpha_rad: S,
-    /// Bank angle \[rad\].
-    pub sigma_rad: S,
-}
-
-impl<S: Scalar> Command<S> {
-    /// Command from degrees (converted to radians); `None` if non-finite or not
-    /// representable in `S`.
-    #[must_use]
-    pub fn from_deg(alpha_deg: f64, sigma_deg: f64) -> Option<Self> {
-        Some(Self {
-            alpha_rad: S::from_f64_checked(alpha_deg * DEG_TO_RAD)?,
-            sigma_rad: S::from_f64_checked(sigma_deg * DEG_TO_RAD)?,
-        })
-    }
-
-    /// True if both angles are finite.
-    #[must_use]
-    pub fn is_finite(&self) -> bool {
-        self.alpha_rad.is_finite() && self.sigma_rad.is_finite()
-    }
-}
 
 /// Guidance configuration.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -140,6 +110,9 @@ impl<S: Scalar> Default for GuidanceConfig<S> {
     }
 }
 
+/// [`Guidance`] over a host-sized node table ([`HOST_NODE_CAPACITY`] nodes).
+pub type HostGuidance<S> = Guidance<S, HOST_NODE_CAPACITY>;
+
 /// Result of one [`Guidance::update`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -152,13 +125,14 @@ pub struct GuidanceOutput<S> {
     pub independent_value: S,
 }
 
-/// The guidance function (see the module docs).
+/// The guidance function (see the module docs), over a node table of capacity `N`
+/// ([`crate::nodes`]: 16 by default, [`HostGuidance`] for the host's 256).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Guidance<S> {
+pub struct Guidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     config: GuidanceConfig<S>,
-    table: NodeTable<S>,
-    interp: Interpolator<S>,
+    table: NodeTable<S, N>,
+    interp: Interpolator<S, N>,
     energy: EnergyNormalizer<S>,
     clock: GuidanceClock<S>,
     /// Held (rate-limited) command.
@@ -175,7 +149,7 @@ pub struct Guidance<S> {
     time_resyncs: u32,
 }
 
-impl<S: Scalar> Guidance<S> {
+impl<S: Scalar, const N: usize> Guidance<S, N> {
     /// Set up guidance. `energy` maps (r, V) to E-hat (used for energy-indexed tables);
     /// `initial` is the attitude at start \[rad\] (clamped into the table's bounds). The first
     /// call to [`Guidance::update`] is a tick.
@@ -185,7 +159,7 @@ impl<S: Scalar> Guidance<S> {
     /// `initial`.
     pub fn new(
         config: GuidanceConfig<S>,
-        table: NodeTable<S>,
+        table: NodeTable<S, N>,
         kind: Interpolation<S>,
         energy: EnergyNormalizer<S>,
         initial: Command<S>,
@@ -358,6 +332,33 @@ impl<S: Scalar> Guidance<S> {
         self.time_resyncs
     }
 
+    /// When the current attitude ramp reaches the held command, per angle \[s\]: from the
+    /// ramp start `t_s` ([`Guidance::ramp_start_s`]), `t_s + |command - start| / rate`
+    /// ([`crate::rate::ramp_end`]). [`Guidance::attitude_at`] also completes the ramp one period
+    /// after `t_s`; the two agree up to rounding, since a command never moves more than one
+    /// period's step. `None` before the first update.
+    ///
+    /// A simulator makes these instants integration breakpoints (the attitude history has a
+    /// kink there) instead of re-deriving the ramp; see also [`Guidance::next_ramp_kink_s`].
+    #[must_use]
+    pub fn ramp_end_s(&self) -> Option<RampEnd<S>> {
+        let t_s = self.ramp_start_s?;
+        Some(ramp_end(
+            self.ramp_start,
+            self.command,
+            self.config.rates,
+            t_s,
+        ))
+    }
+
+    /// The earliest end of a per-angle ramp strictly after `time_s` \[s\] (where one angle of
+    /// [`Guidance::attitude_at`] stops moving); `None` if there is none (before the first
+    /// update, or the ramp is complete by `time_s`).
+    #[must_use]
+    pub fn next_ramp_kink_s(&self, time_s: S) -> Option<S> {
+        self.ramp_end_s()?.next_after(time_s)
+    }
+
     /// The held (rate-limited) command \[rad\].
     #[must_use]
     pub fn command(&self) -> Command<S> {
@@ -373,7 +374,7 @@ impl<S: Scalar> Guidance<S> {
 
     /// The node table in use.
     #[must_use]
-    pub fn table(&self) -> &NodeTable<S> {
+    pub fn table(&self) -> &NodeTable<S, N> {
         &self.table
     }
 
@@ -385,7 +386,7 @@ impl<S: Scalar> Guidance<S> {
 
     /// The interpolator in use.
     #[must_use]
-    pub fn interpolator(&self) -> &Interpolator<S> {
+    pub fn interpolator(&self) -> &Interpolator<S, N> {
         &self.interp
     }
 
@@ -396,7 +397,7 @@ impl<S: Scalar> Guidance<S> {
     ///
     /// # Errors
     /// As [`Interpolator::new`]; on error the old table stays in use.
-    pub fn replace_table(&mut self, table: NodeTable<S>) -> Result<(), GuidanceError> {
+    pub fn replace_table(&mut self, table: NodeTable<S, N>) -> Result<(), GuidanceError> {
         let interp = Interpolator::new(&table, self.interp.kind())?;
         self.interp = interp;
         self.table = table;
@@ -437,7 +438,7 @@ mod tests {
     fn reference<S: Scalar>() -> Guidance<S> {
         Guidance::new(
             GuidanceConfig::thesis_default(),
-            NodeTable::horus2b_reference().unwrap(),
+            crate::missions::horus2b_reference().unwrap().table,
             Interpolation::Linear,
             energy(),
             Command::from_deg(40.0, 0.0).unwrap(),
@@ -467,7 +468,7 @@ mod tests {
     fn rate_limit_binds_and_ramp_is_continuous() {
         let mut g = Guidance::<f64>::new(
             GuidanceConfig::thesis_default(),
-            NodeTable::horus2b_reference().unwrap(),
+            crate::missions::horus2b_reference().unwrap().table,
             Interpolation::Linear,
             energy(),
             Command::from_deg(40.0, 0.0).unwrap(),
@@ -495,6 +496,28 @@ mod tests {
         assert!((at_tick.sigma_rad - 52.5 * DEG).abs() < 1e-12);
         g.update(&nav(604.0)).unwrap();
         assert_eq!(g.attitude_at(604.0), at_tick);
+    }
+
+    /// The ramp end is where `attitude_at` reaches the command, per angle.
+    #[test]
+    fn ramp_end_matches_attitude_at() {
+        let mut g = reference::<f64>();
+        assert_eq!(g.ramp_end_s(), None);
+        assert_eq!(g.next_ramp_kink_s(0.0), None);
+        g.update(&nav(600.0)).unwrap();
+        // Bank 0 -> 30 deg at 15 deg/s: 2 s; alpha does not move (ends at the ramp start).
+        let end = g.ramp_end_s().unwrap();
+        assert_eq!(end.alpha_s, 600.0);
+        assert!((end.sigma_s - 602.0).abs() < 1e-12);
+        assert_eq!(g.next_ramp_kink_s(600.0), Some(end.sigma_s));
+        assert_eq!(g.next_ramp_kink_s(602.0), None);
+        assert!(g.attitude_at(end.sigma_s - 1e-6).sigma_rad < g.command().sigma_rad);
+        assert_eq!(g.attitude_at(end.sigma_s), g.command());
+        // A late sample: the ramp (30 -> 59.8 deg, 1.987 s) starts at the sample time.
+        g.update(&nav(602.5)).unwrap();
+        let end = g.ramp_end_s().unwrap();
+        assert!((end.sigma_s - (602.5 + 29.8 / 15.0)).abs() < 1e-12);
+        assert_eq!(end.latest(), end.sigma_s);
     }
 
     /// Regression (review finding): a sample arriving late after a tick instant used to
@@ -648,7 +671,7 @@ mod tests {
         let mk = |c: GuidanceConfig<f64>, init: Command<f64>| {
             Guidance::new(
                 c,
-                NodeTable::horus2b_reference().unwrap(),
+                crate::missions::horus2b_reference::<f64>().unwrap().table,
                 Interpolation::Linear,
                 energy(),
                 init,

@@ -55,9 +55,9 @@
 //! saturate (no panic: the output is still clamped into bounds, but the spline shape is then
 //! not meaningful).
 
+use crate::command::Command;
 use crate::error::GuidanceError;
-use crate::guidance::Command;
-use crate::nodes::{AngleBounds, MAX_NODES, NodeTable};
+use crate::nodes::{AngleBounds, DEFAULT_NODE_CAPACITY, NodeTable};
 use crate::scalar::Scalar;
 
 /// Which interpolant to use between nodes.
@@ -75,23 +75,24 @@ pub enum Interpolation<S> {
     },
 }
 
-/// Interpolator over one node table. Copies the nodes and precomputes the spline tangents.
+/// Interpolator over one node table of capacity `N`. Copies the nodes and precomputes the
+/// spline tangents (seven arrays of `N` values, inline).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Interpolator<S> {
+pub struct Interpolator<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     kind: Interpolation<S>,
     /// False for energy tables: keys are `-x`.
     increasing: bool,
     len: usize,
     /// Increasing keys (`x` or `-x`), flight order.
-    keys: [S; MAX_NODES],
-    alpha: [S; MAX_NODES],
-    sigma: [S; MAX_NODES],
+    keys: [S; N],
+    alpha: [S; N],
+    sigma: [S; N],
     /// Per segment: tangents at the segment start/end in segment units \[rad\].
-    alpha_t0: [S; MAX_NODES],
-    alpha_t1: [S; MAX_NODES],
-    sigma_t0: [S; MAX_NODES],
-    sigma_t1: [S; MAX_NODES],
+    alpha_t0: [S; N],
+    alpha_t1: [S; N],
+    sigma_t0: [S; N],
+    sigma_t1: [S; N],
     bounds: AngleBounds<S>,
 }
 
@@ -110,12 +111,12 @@ fn put<S: Scalar>(a: &mut [S], i: usize, v: S) {
     }
 }
 
-impl<S: Scalar> Interpolator<S> {
+impl<S: Scalar, const N: usize> Interpolator<S, N> {
     /// Build the interpolator for `table` (copied) and precompute the spline tangents.
     ///
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for a non-finite tension or one outside `\[0, 1\]`.
-    pub fn new(table: &NodeTable<S>, kind: Interpolation<S>) -> Result<Self, GuidanceError> {
+    pub fn new(table: &NodeTable<S, N>, kind: Interpolation<S>) -> Result<Self, GuidanceError> {
         if let Interpolation::CardinalHermite { tension } = kind
             && !(tension.is_finite() && tension >= S::ZERO && tension <= S::ONE)
         {
@@ -126,13 +127,13 @@ impl<S: Scalar> Interpolator<S> {
             kind,
             increasing,
             len: table.len(),
-            keys: [S::ZERO; MAX_NODES],
-            alpha: [S::ZERO; MAX_NODES],
-            sigma: [S::ZERO; MAX_NODES],
-            alpha_t0: [S::ZERO; MAX_NODES],
-            alpha_t1: [S::ZERO; MAX_NODES],
-            sigma_t0: [S::ZERO; MAX_NODES],
-            sigma_t1: [S::ZERO; MAX_NODES],
+            keys: [S::ZERO; N],
+            alpha: [S::ZERO; N],
+            sigma: [S::ZERO; N],
+            alpha_t0: [S::ZERO; N],
+            alpha_t1: [S::ZERO; N],
+            sigma_t0: [S::ZERO; N],
+            sigma_t1: [S::ZERO; N],
             bounds: table.bounds(),
         };
         for (i, n) in table.nodes().iter().enumerate() {
@@ -143,14 +144,14 @@ impl<S: Scalar> Interpolator<S> {
         match kind {
             Interpolation::Linear => {}
             Interpolation::NaturalCubic => {
-                natural_tangents(
+                natural_tangents::<S, N>(
                     &out.keys,
                     &out.alpha,
                     out.len,
                     &mut out.alpha_t0,
                     &mut out.alpha_t1,
                 );
-                natural_tangents(
+                natural_tangents::<S, N>(
                     &out.keys,
                     &out.sigma,
                     out.len,
@@ -328,7 +329,13 @@ fn cardinal_tangents<S: Scalar>(
 }
 
 /// Natural cubic spline segment tangents via the Thomas algorithm (see module docs).
-fn natural_tangents<S: Scalar>(keys: &[S], p: &[S], n: usize, t0: &mut [S], t1: &mut [S]) {
+fn natural_tangents<S: Scalar, const N: usize>(
+    keys: &[S],
+    p: &[S],
+    n: usize,
+    t0: &mut [S],
+    t1: &mut [S],
+) {
     if n < 2 {
         return;
     }
@@ -336,16 +343,16 @@ fn natural_tangents<S: Scalar>(keys: &[S], p: &[S], n: usize, t0: &mut [S], t1: 
     let three = two + S::ONE;
     let span = at(keys, n - 1) - at(keys, 0);
     // Normalised spacings hn_j in (0, 1] and divided differences d_j per unit u.
-    let mut hn = [S::ZERO; MAX_NODES];
-    let mut d = [S::ZERO; MAX_NODES];
+    let mut hn = [S::ZERO; N];
+    let mut d = [S::ZERO; N];
     for j in 0..n - 1 {
         let h = (at(keys, j + 1) - at(keys, j)) / span;
         put(&mut hn, j, h);
         put(&mut d, j, (at(p, j + 1) - at(p, j)) / h);
     }
     // Forward sweep: c' (modified super-diagonal) and r' (modified right-hand side).
-    let mut cp = [S::ZERO; MAX_NODES];
-    let mut rp = [S::ZERO; MAX_NODES];
+    let mut cp = [S::ZERO; N];
+    let mut rp = [S::ZERO; N];
     // Row 0: 2 s_0 + 1 s_1 = 3 d_0.
     put(&mut cp, 0, S::ONE / two);
     put(&mut rp, 0, three * at(&d, 0) / two);
@@ -384,7 +391,7 @@ mod tests {
     use crate::scalar::Fixed;
 
     fn table(ind: Independent, pts: &[(f64, f64, f64)]) -> NodeTable<f64> {
-        let nodes: heapless::Vec<Node<f64>, MAX_NODES> = pts
+        let nodes: heapless::Vec<Node<f64>, DEFAULT_NODE_CAPACITY> = pts
             .iter()
             .map(|&(x, a, s)| Node {
                 x,
@@ -587,7 +594,7 @@ mod tests {
             sigma_min_rad: -3.0,
             ..AngleBounds::thesis_default()
         };
-        let tw = NodeTable::new(Independent::TimeS, t.nodes(), wide).unwrap();
+        let tw = NodeTable::<f64>::new(Independent::TimeS, t.nodes(), wide).unwrap();
         let i = Interpolator::new(&tw, Interpolation::NaturalCubic).unwrap();
         assert!((0..=4000).any(|k| i.evaluate(f64::from(k) * 0.01).sigma_rad > ninety + 1e-3));
     }

@@ -28,12 +28,14 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod clock;
+pub mod command;
 pub mod energy;
 pub mod error;
 pub mod guidance;
 pub mod interp;
 pub mod link;
 pub mod math;
+pub mod missions;
 pub mod monitor;
 pub mod nav;
 pub mod nodes;
@@ -43,6 +45,7 @@ pub mod replan;
 pub mod scalar;
 pub mod vinh;
 
+pub use command::Command;
 pub use error::GuidanceError;
 pub use nav::NavState;
 pub use scalar::{Fixed, Real, Scalar};

@@ -32,10 +32,10 @@
 //! Decoding rejects a wrong length, sync word, checksum, type or status and any non-finite
 //! payload value, so nothing non-finite crosses the link.
 
+use crate::command::Command;
 use crate::error::{GuidanceError, NodeTableError};
-use crate::guidance::Command;
 use crate::nav::NavState;
-use crate::rate::{RateLimits, limit_command};
+use crate::rate::{RampEnd, RateLimits, limit_command, ramp_end};
 
 /// Length of every frame \[bytes\].
 pub const FRAME_LEN: usize = 66;
@@ -226,6 +226,13 @@ impl CommandFrame {
         } else {
             limit_command(self.ramp_start, self.command, self.rates, dt)
         }
+    }
+
+    /// When the ramp of [`CommandFrame::attitude_at`] reaches the command, per angle \[s\]
+    /// (the firmware's `Guidance::ramp_end_s`, from the frame).
+    #[must_use]
+    pub fn ramp_end(&self) -> RampEnd<f64> {
+        ramp_end(self.ramp_start, self.command, self.rates, self.tick_time_s)
     }
 }
 
@@ -525,8 +532,7 @@ mod tests {
         use crate::energy::EnergyNormalizer;
         use crate::guidance::{Guidance, GuidanceConfig};
         use crate::interp::Interpolation;
-        use crate::nodes::NodeTable;
-        let table = NodeTable::<f64>::horus2b_reference().unwrap();
+        let table = crate::missions::horus2b_reference::<f64>().unwrap().table;
         let energy = EnergyNormalizer::new(3.986e14, 6.378e6, 6.5e6, 7435.5).unwrap();
         let init = Command::from_deg(40.0, 0.0).unwrap();
         let mut g = Guidance::new(
@@ -552,6 +558,7 @@ mod tests {
                 ramp_start: g.attitude_at(t_k),
                 rates: g.config().rates,
             };
+            assert_eq!(Some(cf.ramp_end()), g.ramp_end_s(), "tick {k}");
             for j in 0..=8 {
                 let t = t_k + 0.25 * f64::from(j);
                 let (a, b) = (cf.attitude_at(t), g.attitude_at(t));

@@ -1,8 +1,8 @@
 //! Guidance node tables (thesis sec. 3.7, eq. 3.102-3.103, and sec. 4.2.1, eq. 4.7).
 //!
 //! A node is `{x, alpha, sigma}`: the value `x` of the independent variable and the commanded
-//! angle of attack and bank angle there \[rad\]. A [`NodeTable`] holds between 2 and
-//! [`MAX_NODES`] nodes in *flight order*:
+//! angle of attack and bank angle there \[rad\]. A [`NodeTable`] holds between 2 and its
+//! capacity `N` nodes in *flight order*:
 //!
 //! * [`Independent::NormalizedEnergy`]: `x` is E-hat \[-\] (see [`crate::energy`]), which falls
 //!   during unpowered flight, so `x` must be strictly *decreasing* node to node;
@@ -18,12 +18,31 @@
 //! nodes plus free interior nodes, and [`NodeTable::interior`] returns the free ones.
 //! (The thesis also restricts the optimiser's interior E-hat to 0.1..0.95; that is a bound of the
 //! optimisation problem, not of a valid table, and is not enforced here.)
+//!
+//! # Capacity
+//! The capacity `N` is a const generic, storage is inline (no allocation):
+//! `NodeTable<S>` holds at most [`DEFAULT_NODE_CAPACITY`]` = 16` nodes (the thesis uses at most
+//! 8; this is what the firmware carries), [`HostNodeTable`] (`N = `[`HOST_NODE_CAPACITY`]`
+//! = 256`) takes a profile exported from an optimal-control solver as is. More nodes than `N`
+//! is [`NodeTableError::TooManyNodes`]. [`crate::interp::Interpolator`],
+//! [`crate::guidance::Guidance`] and the re-planning guidance carry the same `N`.
 
 use crate::scalar::Scalar;
 use heapless::Vec;
 
-/// Largest number of nodes a table can hold (the thesis uses at most 8).
-pub const MAX_NODES: usize = 16;
+/// Default node capacity of a [`NodeTable`] (the thesis uses at most 8 nodes): what the
+/// firmware carries.
+pub const DEFAULT_NODE_CAPACITY: usize = 16;
+
+/// The default capacity under its historical name (equal to [`DEFAULT_NODE_CAPACITY`]).
+pub const MAX_NODES: usize = DEFAULT_NODE_CAPACITY;
+
+/// Node capacity for host use ([`HostNodeTable`]): room for a profile exported from an
+/// optimal-control solver.
+pub const HOST_NODE_CAPACITY: usize = 256;
+
+/// A node table with the host capacity ([`HOST_NODE_CAPACITY`] nodes).
+pub type HostNodeTable<S> = NodeTable<S, HOST_NODE_CAPACITY>;
 
 /// Degrees to radians, in `f64` (for the `*_deg` constructors).
 const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
@@ -179,76 +198,65 @@ fn clamp_finite<S: Scalar>(v: S, lo: S, hi: S) -> S {
 }
 
 /// Why a node table (or a change to one) was rejected. Indices are node indices in flight
-/// order (saturated at 255).
+/// order (saturated at 65535).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum NodeTableError {
     /// Fewer than two nodes.
     TooFewNodes,
-    /// More than [`MAX_NODES`] nodes.
+    /// More nodes than the table's capacity `N` (or a capacity below 2).
     TooManyNodes,
     /// A value of node `index` is NaN or infinite.
     NonFinite {
         /// Offending node.
-        index: u8,
+        index: u16,
     },
     /// Node `index` does not strictly continue the flight-order monotonicity of `x`
     /// (time increasing, E-hat decreasing) relative to node `index - 1`.
     NotMonotone {
         /// Offending node.
-        index: u8,
+        index: u16,
     },
     /// The angle of attack of node `index` lies outside the bounds.
     AlphaOutOfBounds {
         /// Offending node.
-        index: u8,
+        index: u16,
     },
     /// The bank angle of node `index` lies outside the bounds.
     SigmaOutOfBounds {
         /// Offending node.
-        index: u8,
+        index: u16,
     },
     /// The bounds are non-finite or have `min > max`.
     InvalidBounds,
     /// A node index passed to a setter does not exist.
     IndexOutOfRange {
         /// Requested index.
-        index: u8,
+        index: u16,
     },
 }
 
-/// The HORUS-2B nominal guidance table of thesis eq. 2.3: rows `(t \[s\], alpha \[deg\],
-/// sigma \[deg\])`.
-pub const HORUS2B_REFERENCE_DEG: [(f64, f64, f64); 7] = [
-    (0.0, 40.0, 0.0),
-    (264.0, 40.0, 0.0),
-    (290.0, 40.0, 79.6),
-    (554.0, 40.0, 59.8),
-    (686.0, 40.0, 59.8),
-    (924.0, 40.0, 59.8),
-    (1319.0, 11.5, 54.0),
-];
-
-fn idx(i: usize) -> u8 {
-    u8::try_from(i).unwrap_or(u8::MAX)
+fn idx(i: usize) -> u16 {
+    u16::try_from(i).unwrap_or(u16::MAX)
 }
 
-/// A validated guidance table (thesis eq. 3.103 / 4.7), nodes in flight order.
+/// A validated guidance table (thesis eq. 3.103 / 4.7), nodes in flight order; at most `N`
+/// nodes (see "Capacity" in the module docs).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct NodeTable<S> {
+pub struct NodeTable<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     independent: Independent,
-    nodes: Vec<Node<S>, MAX_NODES>,
+    nodes: Vec<Node<S>, N>,
     bounds: AngleBounds<S>,
 }
 
-impl<S: Scalar> NodeTable<S> {
+impl<S: Scalar, const N: usize> NodeTable<S, N> {
     /// Build and validate a table. Nodes in flight order: time strictly increasing, normalised
     /// energy strictly decreasing. Angles in radians.
     ///
     /// # Errors
-    /// [`NodeTableError`]: too few/many nodes, invalid bounds, or the first offending node
+    /// [`NodeTableError`]: too few nodes or more than `N`, invalid bounds, or the first offending node
     /// (non-finite, not monotone, angle out of bounds), checked node by node in order.
     pub fn new(
         independent: Independent,
@@ -259,7 +267,7 @@ impl<S: Scalar> NodeTable<S> {
             return Err(NodeTableError::TooFewNodes);
         }
         bounds.validate()?;
-        let mut stored: Vec<Node<S>, MAX_NODES> = Vec::new();
+        let mut stored: Vec<Node<S>, N> = Vec::new();
         let mut prev: Option<S> = None;
         for (i, n) in nodes.iter().enumerate() {
             check_node(n, i, prev, independent, &bounds)?;
@@ -278,8 +286,7 @@ impl<S: Scalar> NodeTable<S> {
     /// Validation as for [`NodeTable::new`]; indices in errors count the first node as 0.
     ///
     /// # Errors
-    /// As [`NodeTable::new`]; [`NodeTableError::TooManyNodes`] if `interior.len() + 2 >
-    /// MAX_NODES`.
+    /// As [`NodeTable::new`]; [`NodeTableError::TooManyNodes`] if `interior.len() + 2 > N`.
     pub fn with_fixed_ends(
         independent: Independent,
         first: Node<S>,
@@ -287,7 +294,7 @@ impl<S: Scalar> NodeTable<S> {
         last: Node<S>,
         bounds: AngleBounds<S>,
     ) -> Result<Self, NodeTableError> {
-        let mut all: Vec<Node<S>, MAX_NODES> = Vec::new();
+        let mut all: Vec<Node<S>, N> = Vec::new();
         all.push(first).map_err(|_| NodeTableError::TooManyNodes)?;
         for n in interior {
             all.push(*n).map_err(|_| NodeTableError::TooManyNodes)?;
@@ -307,7 +314,7 @@ impl<S: Scalar> NodeTable<S> {
         rows: &[(f64, f64, f64)],
         bounds: AngleBounds<S>,
     ) -> Result<Self, NodeTableError> {
-        let mut nodes: Vec<Node<S>, MAX_NODES> = Vec::new();
+        let mut nodes: Vec<Node<S>, N> = Vec::new();
         for (i, &(x, a, s)) in rows.iter().enumerate() {
             let n = Node::from_deg(x, a, s).ok_or(NodeTableError::NonFinite { index: idx(i) })?;
             nodes.push(n).map_err(|_| NodeTableError::TooManyNodes)?;
@@ -315,17 +322,12 @@ impl<S: Scalar> NodeTable<S> {
         Self::new(independent, &nodes, bounds)
     }
 
-    /// The HORUS-2B nominal reference mission of thesis eq. 2.3 (time-indexed, 7 nodes),
-    /// with the thesis default bounds; rows as in [`HORUS2B_REFERENCE_DEG`].
+    /// The same nodes, independent variable and bounds in a table of capacity `M`.
     ///
     /// # Errors
-    /// Only if `S` cannot represent the values (never for `f32`, `f64`, `Fixed`).
-    pub fn horus2b_reference() -> Result<Self, NodeTableError> {
-        Self::from_deg(
-            Independent::TimeS,
-            &HORUS2B_REFERENCE_DEG,
-            AngleBounds::thesis_default(),
-        )
+    /// [`NodeTableError::TooManyNodes`] if the nodes do not fit `M`.
+    pub fn to_capacity<const M: usize>(&self) -> Result<NodeTable<S, M>, NodeTableError> {
+        NodeTable::new(self.independent, &self.nodes, self.bounds)
     }
 
     /// All nodes in flight order.
@@ -358,7 +360,7 @@ impl<S: Scalar> NodeTable<S> {
         self.bounds
     }
 
-    /// Number of nodes (2..=[`MAX_NODES`]).
+    /// Number of nodes (2..=`N`).
     #[must_use]
     pub fn len(&self) -> usize {
         self.nodes.len()
@@ -459,13 +461,22 @@ mod tests {
     }
 
     #[test]
-    fn reference_table_builds_in_all_types() {
-        assert_eq!(NodeTable::<f64>::horus2b_reference().unwrap().len(), 7);
-        assert_eq!(NodeTable::<f32>::horus2b_reference().unwrap().len(), 7);
-        let t = NodeTable::<Fixed>::horus2b_reference().unwrap();
-        assert_eq!(t.len(), 7);
-        assert_eq!(t.interior().len(), 5);
-        assert_eq!(t.nodes()[6].x, Fixed::from_f64(1319.0));
+    fn rows_build_in_all_types_and_change_capacity() {
+        let rows = [(0.0, 40.0, 0.0), (264.0, 40.0, 0.0), (1319.0, 11.5, 54.0)];
+        let b = AngleBounds::thesis_default();
+        let ti = Independent::TimeS;
+        assert_eq!(NodeTable::<f64>::from_deg(ti, &rows, b).unwrap().len(), 3);
+        let b32 = AngleBounds::thesis_default();
+        assert_eq!(NodeTable::<f32>::from_deg(ti, &rows, b32).unwrap().len(), 3);
+        let t = NodeTable::<Fixed>::from_deg(ti, &rows, AngleBounds::thesis_default()).unwrap();
+        assert_eq!(t.interior().len(), 1);
+        assert_eq!(t.nodes()[2].x, Fixed::from_f64(1319.0));
+        let wide: NodeTable<Fixed, 64> = t.to_capacity().unwrap();
+        assert_eq!(wide.nodes(), t.nodes());
+        assert_eq!(
+            t.to_capacity::<2>().unwrap_err(),
+            NodeTableError::TooManyNodes
+        );
     }
 
     #[test]
@@ -473,11 +484,11 @@ mod tests {
         let b = AngleBounds::thesis_default();
         let e = Independent::NormalizedEnergy;
         assert_eq!(
-            NodeTable::new(e, &[n(1.0, 1.0, 1.0)], b),
+            NodeTable::<f64>::new(e, &[n(1.0, 1.0, 1.0)], b),
             Err(NodeTableError::TooFewNodes)
         );
         assert_eq!(
-            NodeTable::new(
+            NodeTable::<f64>::new(
                 e,
                 &[n(1.0, 1.0, 1.0), n(0.5, 1.0, 1.0), n(0.5, 1.0, 1.0)],
                 b
@@ -486,19 +497,19 @@ mod tests {
         );
         // Energy must decrease; time must increase.
         assert_eq!(
-            NodeTable::new(Independent::TimeS, &[n(1.0, 1.0, 1.0), n(0.5, 1.0, 1.0)], b),
+            NodeTable::<f64>::new(Independent::TimeS, &[n(1.0, 1.0, 1.0), n(0.5, 1.0, 1.0)], b),
             Err(NodeTableError::NotMonotone { index: 1 })
         );
         assert_eq!(
-            NodeTable::new(e, &[n(1.0, 1.0, 1.0), n(0.5, 46.0, 1.0)], b),
+            NodeTable::<f64>::new(e, &[n(1.0, 1.0, 1.0), n(0.5, 46.0, 1.0)], b),
             Err(NodeTableError::AlphaOutOfBounds { index: 1 })
         );
         assert_eq!(
-            NodeTable::new(e, &[n(1.0, 1.0, -0.1), n(0.5, 4.0, 1.0)], b),
+            NodeTable::<f64>::new(e, &[n(1.0, 1.0, -0.1), n(0.5, 4.0, 1.0)], b),
             Err(NodeTableError::SigmaOutOfBounds { index: 0 })
         );
         assert_eq!(
-            NodeTable::new(e, &[n(1.0, 1.0, 1.0), n(f64::NAN, 4.0, 1.0)], b),
+            NodeTable::<f64>::new(e, &[n(1.0, 1.0, 1.0), n(f64::NAN, 4.0, 1.0)], b),
             Err(NodeTableError::NonFinite { index: 1 })
         );
         assert!(Node::<f64>::from_deg(f64::NAN, 1.0, 1.0).is_none());
@@ -512,7 +523,7 @@ mod tests {
         let mut bad = b;
         bad.alpha_max_rad = f64::NAN;
         assert_eq!(
-            NodeTable::new(e, &[n(1.0, 1.0, 1.0), n(0.5, 4.0, 1.0)], bad),
+            NodeTable::<f64>::new(e, &[n(1.0, 1.0, 1.0), n(0.5, 4.0, 1.0)], bad),
             Err(NodeTableError::InvalidBounds)
         );
         let many = [n(1.0, 1.0, 1.0); MAX_NODES + 1];
@@ -521,16 +532,16 @@ mod tests {
             ..many[i]
         });
         assert_eq!(
-            NodeTable::new(e, &many, b),
+            NodeTable::<f64>::new(e, &many, b),
             Err(NodeTableError::TooManyNodes)
         );
-        assert!(NodeTable::new(e, &many[..MAX_NODES], b).is_ok());
+        assert!(NodeTable::<f64>::new(e, &many[..MAX_NODES], b).is_ok());
     }
 
     #[test]
     fn fixed_ends_and_setters() {
         let b = AngleBounds::thesis_default();
-        let t = NodeTable::with_fixed_ends(
+        let t = NodeTable::<f64>::with_fixed_ends(
             Independent::NormalizedEnergy,
             n(1.0, 40.0, 0.0),
             &[n(0.8, 30.0, 50.0), n(0.4, 20.0, 60.0)],
@@ -557,7 +568,7 @@ mod tests {
         );
         assert_eq!(t2.nodes()[1].sigma_rad, 0.5);
         // Interior node out of order is reported with its index in the full table.
-        let e = NodeTable::with_fixed_ends(
+        let e = NodeTable::<f64>::with_fixed_ends(
             Independent::NormalizedEnergy,
             n(1.0, 40.0, 0.0),
             &[n(0.8, 30.0, 50.0), n(0.9, 20.0, 60.0)],

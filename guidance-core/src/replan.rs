@@ -47,8 +47,9 @@
 mod replanning;
 
 pub use replanning::{
-    MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts, ReplanReport, ReplanningConfig,
-    ReplanningGuidance, ReplanningOutput, TargetPoint, range_to_go_m,
+    HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
+    ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,
+    range_to_go_m,
 };
 
 use crate::nav::NavState;

@@ -26,7 +26,7 @@ use guidance_core::link::{
 
 use crate::dynamics::{Attitude, Dynamics};
 use crate::env::Environment;
-use crate::sim::{self, AttitudeSource, SimResult, ramp_kink};
+use crate::sim::{self, AttitudeSource, SimResult};
 
 /// Where the firmware ELF is looked for by default (relative to the workspace root).
 pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
@@ -55,7 +55,7 @@ impl PilConfig {
         let n = N.fetch_add(1, Ordering::Relaxed);
         Self {
             elf,
-            qemu: "qemu-system-arm".into(),
+            qemu: onboard_spec::machines::QEMU_SYSTEM.into(),
             fifo_dir: std::env::temp_dir().join(format!("reentry-pil-{}-{n}", std::process::id())),
             reply_timeout: Duration::from_secs(10),
             qemu_timeout_s: 600,
@@ -99,6 +99,9 @@ pub enum PilError {
         /// The status or frame received.
         what: String,
     },
+    /// The reference mission the firmware flies could not be set up on the host.
+    #[error("reference mission: {0}")]
+    Mission(guidance_core::GuidanceError),
     /// The simulation around the firmware failed.
     #[error("simulation: {0}")]
     Sim(#[from] sim::SimError),
@@ -121,8 +124,10 @@ pub struct PilGuidance {
     replies: Option<Receiver<Result<[u8; FRAME_LEN], String>>>,
     last: Option<CommandFrame>,
     next_tick_s: f64,
-    /// The firmware's guidance period \[s\] (the thesis 2 s compiled into the `pil` binary).
+    /// The firmware's guidance period \[s\] and initial attitude: those of the reference
+    /// mission compiled into the `pil` binary (`guidance_core::missions::horus2b_reference`).
     period_s: f64,
+    initial: Attitude,
     seq: u32,
     stats: PilStats,
     /// The first error, kept typed (the loop only sees its message).
@@ -196,6 +201,8 @@ impl PilGuidance {
             path: cfg.fifo_dir.clone(),
             reason: format!("cannot create the FIFO directory: {e}"),
         })?;
+        let mission =
+            guidance_core::missions::horus2b_reference::<f64>().map_err(PilError::Mission)?;
         let mut me = Self {
             cfg,
             child: None,
@@ -203,7 +210,8 @@ impl PilGuidance {
             replies: None,
             last: None,
             next_tick_s: 0.0,
-            period_s: 2.0,
+            period_s: mission.config.period_s,
+            initial: attitude(mission.initial),
             seq: 0,
             stats: PilStats::default(),
             error: None,
@@ -214,8 +222,7 @@ impl PilGuidance {
         let child = Command::new("timeout")
             .arg(me.cfg.qemu_timeout_s.to_string())
             .arg(&me.cfg.qemu)
-            .args(["-cpu", "cortex-m4", "-machine", "mps2-an386", "-nographic"])
-            .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+            .args(onboard_spec::machines::PIL_MACHINE.qemu_args())
             .arg(&me.cfg.elf)
             .arg("-append")
             .arg(&me.cfg.fifo_dir)
@@ -426,27 +433,17 @@ impl AttitudeSource for PilGuidance {
     fn attitude_at(&self, time_s: f64) -> Attitude {
         match &self.last {
             Some(c) => attitude(c.attitude_at(time_s)),
-            // Before the first tick: the firmware's initial attitude (40 deg, 0 deg).
-            None => Attitude {
-                alpha_rad: 40f64.to_radians(),
-                sigma_rad: 0.0,
-            },
+            // Before the first tick: the firmware's initial attitude.
+            None => self.initial,
         }
     }
     fn next_tick_s(&self) -> f64 {
         self.next_tick_s
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
-        let Some(c) = &self.last else {
-            return f64::INFINITY;
-        };
-        ramp_kink(
-            time_s,
-            c.tick_time_s,
-            attitude(c.ramp_start),
-            attitude(c.command),
-            (c.rates.alpha_rad_s, c.rates.sigma_rad_s),
-        )
+        self.last
+            .and_then(|c| c.ramp_end().next_after(time_s))
+            .unwrap_or(f64::INFINITY)
     }
 }
 

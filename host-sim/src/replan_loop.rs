@@ -20,7 +20,7 @@ use guidance_core::vinh::{ExpAtmosphere, Planet as VinhPlanet};
 use crate::analytic::{AnalyticError, AnalyticVehicle};
 use crate::dynamics::Attitude;
 use crate::env::{ExponentialAtmosphere, Planet};
-use crate::sim::{AttitudeSource, ramp_kink};
+use crate::sim::AttitudeSource;
 use crate::vehicle::Vehicle;
 
 /// [`ReplanningGuidance`] in the closed loop, with the re-plan reports of the run.
@@ -73,18 +73,10 @@ impl AttitudeSource for ReplanLoop {
         self.guidance.next_tick_s()
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
-        let g = self.guidance.guidance();
-        let Some(t_k) = g.ramp_start_s() else {
-            return f64::INFINITY;
-        };
-        let rates = g.config().rates;
-        ramp_kink(
-            time_s,
-            t_k,
-            attitude_of(g.attitude_at(t_k)),
-            attitude_of(g.command()),
-            (rates.alpha_rad_s, rates.sigma_rad_s),
-        )
+        self.guidance
+            .guidance()
+            .next_ramp_kink_s(time_s)
+            .unwrap_or(f64::INFINITY)
     }
 }
 

@@ -93,17 +93,7 @@ impl AttitudeSource for CoreGuidance {
         self.0.next_tick_s()
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
-        let Some(t_k) = self.0.ramp_start_s() else {
-            return f64::INFINITY;
-        };
-        let rates = self.0.config().rates;
-        ramp_kink(
-            time_s,
-            t_k,
-            attitude_of(self.0.attitude_at(t_k)),
-            attitude_of(self.0.command()),
-            (rates.alpha_rad_s, rates.sigma_rad_s),
-        )
+        self.0.next_ramp_kink_s(time_s).unwrap_or(f64::INFINITY)
     }
 }
 

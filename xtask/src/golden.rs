@@ -1,15 +1,10 @@
 //! `cargo xtask golden`: run the firmware's smoke scenario on the host and write the golden
-//! commands the firmware compares itself against (`onboard-demo/src/golden.rs`).
+//! commands the firmware compares itself against (`onboard-spec/src/golden.rs`).
 
 use std::path::Path;
 
 use guidance_core::{Fixed, Scalar};
-
-#[path = "../../onboard-demo/src/scenario.rs"]
-#[allow(dead_code)]
-mod scenario;
-
-use scenario::{Row, SAMPLES, SEQUENCES};
+use onboard_spec::scenario::{self, Row, SAMPLES, SEQUENCES};
 
 fn rows<S: Scalar>() -> Result<[[Row<S>; SAMPLES]; SEQUENCES], String> {
     let zero = Row {
@@ -53,19 +48,18 @@ pub fn render() -> Result<String, String> {
          //! `scenario.rs`. Generated: do not edit. The workspace test\n\
          //! `firmware_golden_is_current` fails when this file is stale.\n\n",
     );
-    text += "#[cfg_attr(not(target_abi = \"eabihf\"), allow(dead_code))]\n";
     text += &table("F32", "f32", &f32_rows, |v: f32| format!("{v:?}"));
-    text += "\n#[cfg_attr(target_abi = \"eabihf\", allow(dead_code))]\n";
+    text += "\n";
     text += &table("FIXED_BITS", "i64", &fixed_rows, |v: Fixed| {
         format!("{}", v.to_bits())
     });
     Ok(text)
 }
 
-/// Write `onboard-demo/src/golden.rs` atomically.
+/// Write `onboard-spec/src/golden.rs` atomically.
 pub fn write(root: &Path) -> Result<(), String> {
     let text = render()?;
-    let path = root.join("onboard-demo").join("src").join("golden.rs");
+    let path = root.join("onboard-spec").join("src").join("golden.rs");
     let tmp = path.with_extension("rs.tmp");
     std::fs::write(&tmp, text).map_err(|e| format!("{}: {e}", tmp.display()))?;
     std::fs::rename(&tmp, &path).map_err(|e| format!("{}: {e}", path.display()))?;

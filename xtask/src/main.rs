@@ -10,6 +10,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
+use onboard_spec::machines::{MACHINES, PIL_MACHINE, QEMU_SYSTEM, QemuMachine, RUNNER_TIMEOUT_S};
+
 mod elf;
 mod golden;
 
@@ -20,28 +22,16 @@ const CORE_TARGETS: [&str; 3] = [
     "thumbv7em-none-eabihf",
 ];
 
-/// Firmware images run under QEMU: (target, machine description).
-const FIRMWARE_TARGETS: [(&str, &str); 2] = [
-    (
-        "thumbv7em-none-eabihf",
-        "mps2-an386, Cortex-M4F, f32 guidance",
-    ),
-    (
-        "thumbv7m-none-eabi",
-        "lm3s6965evb, Cortex-M3 without FPU, fixed-point guidance",
-    ),
-];
-
 const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|golden|setup> [--help]\n\
   test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, PIL, size budget\n\
   firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
   pil       fly the HORUS-2B reference mission with the firmware's guidance in QEMU, compare with SIL\n\
   bench-firmware  instruction counts of guidance-core on the M4F and M3 under QEMU -icount\n\
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
-  golden    regenerate onboard-demo/src/golden.rs from the host run of the smoke scenario\n\
-  setup     rustup targets and components, qemu-system-arm (apt-get when root)
-  fuzz [--seconds N | --cases N] [--seed S] [--target T]  fuzz the flight code (node tables,
-            guidance with hostile times, frame decoder); default: the CI budget";
+  golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
+  setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
+  fuzz      fuzz the flight code (node tables, guidance with hostile times, frame decoder):\n\
+            [--seconds N per target | --cases N] [--seed S] [--target T]; default: the CI budget";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -130,7 +120,7 @@ fn setup() -> Result<(), String> {
     } else {
         eprintln!("xtask: rustup not found; make sure targets {CORE_TARGETS:?} are installed");
     }
-    if !have("qemu-system-arm", "--version") {
+    if !have(QEMU_SYSTEM, "--version") {
         let cmd = "apt-get update && apt-get install -y qemu-system-arm";
         let apt = have("apt-get", "--version");
         if apt && is_root() {
@@ -197,20 +187,27 @@ fn test() -> Result<(), String> {
             }),
         ),
         (
-            "clippy (host crates)",
+            "clippy (workspace, host)",
             Box::new(|| {
                 let mut c = cargo();
-                c.args(["clippy", "--all-targets", "--", "-D", "warnings"]);
+                c.args([
+                    "clippy",
+                    "--workspace",
+                    "--all-targets",
+                    "--",
+                    "-D",
+                    "warnings",
+                ]);
                 run(c, "clippy host")
             }),
         ),
         (
-            "host tests",
+            "host tests (workspace)",
             Box::new(|| {
                 let mut c = cargo();
-                c.args(["test"]);
+                c.args(["test", "--workspace"]);
                 seed_property_tests(&mut c);
-                run(c, "cargo test")
+                run(c, "cargo test --workspace")
             }),
         ),
         ("fuzz (fixed seed and budget)", Box::new(|| fuzz(&[]))),
@@ -339,38 +336,25 @@ fn build_firmware(target: &str) -> Result<PathBuf, String> {
     Ok(firmware_elf(target))
 }
 
-fn qemu(target: &str, elf: &Path, icount: bool) -> Command {
-    let (cpu, board) = if target.starts_with("thumbv7em") {
-        ("cortex-m4", "mps2-an386")
-    } else {
-        ("cortex-m3", "lm3s6965evb")
-    };
+/// QEMU on `machine` (the table of `onboard_spec::machines`) running `elf`, under `timeout`.
+fn qemu(machine: &QemuMachine, elf: &Path, icount: bool) -> Command {
     let mut q = Command::new("timeout");
-    q.args([
-        "120",
-        "qemu-system-arm",
-        "-cpu",
-        cpu,
-        "-machine",
-        board,
-        "-nographic",
-    ])
-    .args(["-semihosting-config", "enable=on,target=native"]);
+    q.args([RUNNER_TIMEOUT_S, QEMU_SYSTEM]);
     if icount {
         q.args(["-icount", "shift=0"]);
     }
-    q.arg("-kernel").arg(elf);
+    q.args(machine.qemu_args()).arg(elf);
     q
 }
 
 /// Build and run the smoke firmware under QEMU on each machine; it exits 0 only if its
 /// commands match the golden values computed on the host.
 fn firmware() -> Result<(), String> {
-    for (target, machine) in FIRMWARE_TARGETS {
-        let elf = build_firmware(target)?;
+    for m in &MACHINES {
+        let elf = build_firmware(m.target)?;
         run(
-            qemu(target, &elf, false),
-            &format!("QEMU smoke firmware on {machine}"),
+            qemu(m, &elf, false),
+            &format!("QEMU smoke firmware on {}", m.description),
         )?;
     }
     Ok(())
@@ -380,8 +364,7 @@ fn firmware() -> Result<(), String> {
 /// which flies the HORUS-2B reference mission with it under QEMU and compares with SIL
 /// (`PIL_REQUIRED` turns the test's skip on a missing QEMU or ELF into a failure).
 fn pil() -> Result<(), String> {
-    let target = "thumbv7em-none-eabihf";
-    let elf = build_firmware(target)?.with_file_name("pil");
+    let elf = build_firmware(PIL_MACHINE.target)?.with_file_name("pil");
     let mut c = cargo();
     c.args(["test", "-p", "host-sim", "--test", "it", "--"])
         .args([
@@ -396,13 +379,16 @@ fn pil() -> Result<(), String> {
 
 /// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`.
 fn bench_firmware() -> Result<(), String> {
-    for (target, machine) in FIRMWARE_TARGETS {
-        build_firmware(target)?;
-        let elf = firmware_elf(target).with_file_name("insn-bench");
-        eprintln!("xtask: instruction counts on {machine} ({target}):");
+    for m in &MACHINES {
+        build_firmware(m.target)?;
+        let elf = firmware_elf(m.target).with_file_name("insn-bench");
+        eprintln!(
+            "xtask: instruction counts on {} ({}):",
+            m.description, m.target
+        );
         run(
-            qemu(target, &elf, true),
-            &format!("insn-bench on {machine}"),
+            qemu(m, &elf, true),
+            &format!("insn-bench on {}", m.description),
         )?;
     }
     Ok(())
@@ -433,7 +419,8 @@ fn size() -> Result<(), String> {
     let text = std::fs::read_to_string(&budget_file)
         .map_err(|e| format!("{}: cannot read: {e}", budget_file.display()))?;
     let mut over = Vec::new();
-    for (target, _) in FIRMWARE_TARGETS {
+    for m in &MACHINES {
+        let target = m.target;
         let elf = build_firmware(target)?;
         let bytes = std::fs::read(&elf).map_err(|e| format!("{}: {e}", elf.display()))?;
         let fp = elf::footprint(&bytes).map_err(|e| format!("{}: {e}", elf.display()))?;

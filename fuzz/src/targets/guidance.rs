@@ -94,7 +94,7 @@ struct Case<'a> {
 impl Case<'_> {
     fn fly<S: Scalar>(&self) -> Result<(), String> {
         let ty = core::any::type_name::<S>();
-        let table = if self.energy_indexed {
+        let table: NodeTable<S> = if self.energy_indexed {
             NodeTable::from_deg(
                 Independent::NormalizedEnergy,
                 &[
@@ -106,10 +106,12 @@ impl Case<'_> {
                 ],
                 AngleBounds::thesis_default(),
             )
+            .map_err(|e| format!("{ty}: fixture table rejected: {e:?}"))?
         } else {
-            NodeTable::horus2b_reference()
-        }
-        .map_err(|e| format!("{ty}: fixture table rejected: {e:?}"))?;
+            guidance_core::missions::horus2b_reference::<S>()
+                .map_err(|e| format!("{ty}: reference mission rejected: {e:?}"))?
+                .table
+        };
         let kind = match self.kind {
             0 => Interpolation::Linear,
             1 => Interpolation::NaturalCubic,

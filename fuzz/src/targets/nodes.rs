@@ -70,7 +70,7 @@ fn check<S: Scalar + core::fmt::Debug>(
             sigma_rad: S::from_f64(s),
         })
         .collect();
-    let Ok(table) = NodeTable::new(independent, &nodes, bounds) else {
+    let Ok(table) = NodeTable::<S>::new(independent, &nodes, bounds) else {
         return Ok(());
     };
     let b = table.bounds();

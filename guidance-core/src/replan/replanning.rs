@@ -52,7 +52,7 @@
 //! [`super::MAX_PREDICTOR_CALLS`]` = 60` predictor calls (58 outside
 //! [`super::PredictorMode::Auto`]; each chain call at most
 //! [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one glide), a copy of the table (at
-//! most [`crate::nodes::MAX_NODES`] nodes) and one interpolator rebuild. The worst case of one
+//! most `N` nodes, the table's capacity) and one interpolator rebuild. The worst case of one
 //! update is therefore `60 x` (the cost of the longest predictor call); measured host times
 //! are in `docs/VINH.md` ("Re-planning"). No allocation, no recursion, no panics.
 //!
@@ -65,7 +65,7 @@ use crate::error::GuidanceError;
 use crate::guidance::{Command, Guidance, GuidanceConfig, GuidanceOutput};
 use crate::interp::Interpolation;
 use crate::nav::NavState;
-use crate::nodes::{Independent, NodeTable};
+use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeTable};
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
@@ -198,7 +198,7 @@ pub struct ReplanReport<S> {
     /// True if the table was replaced.
     pub applied: bool,
     /// Number of nodes whose bank angle was set (0 if not applied).
-    pub nodes_replanned: u8,
+    pub nodes_replanned: u16,
 }
 
 /// Counts of re-plan outcomes since start (saturating).
@@ -248,11 +248,15 @@ pub struct ReplanningOutput<S> {
     pub replan: Option<ReplanReport<S>>,
 }
 
-/// [`Guidance`] (energy-indexed table) with periodic onboard re-planning (module docs).
+/// [`ReplanningGuidance`] over a host-sized node table ([`HOST_NODE_CAPACITY`] nodes).
+pub type HostReplanningGuidance<S> = ReplanningGuidance<S, HOST_NODE_CAPACITY>;
+
+/// [`Guidance`] (energy-indexed table of capacity `N`, see [`crate::nodes`]) with periodic
+/// onboard re-planning (module docs).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ReplanningGuidance<S> {
-    guidance: Guidance<S>,
+pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
+    guidance: Guidance<S, N>,
     energy: EnergyNormalizer<S>,
     config: ReplanningConfig<S>,
     ticks: u32,
@@ -316,7 +320,7 @@ pub fn range_to_go_m<S: Real>(
     r.is_finite().then_some(r)
 }
 
-impl<S: Real> ReplanningGuidance<S> {
+impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
     /// Set up: the arguments up to `initial` are those of [`Guidance::new`] (the table must be
     /// energy-indexed); `config` the re-planning settings.
     ///
@@ -325,7 +329,7 @@ impl<S: Real> ReplanningGuidance<S> {
     /// `every_n_ticks == 0`, or a non-finite target.
     pub fn new(
         guidance_config: GuidanceConfig<S>,
-        table: NodeTable<S>,
+        table: NodeTable<S, N>,
         kind: Interpolation<S>,
         energy: EnergyNormalizer<S>,
         initial: Command<S>,
@@ -415,7 +419,7 @@ impl<S: Real> ReplanningGuidance<S> {
         nav: &NavState<S>,
         e_hat: S,
         flown_rad: S,
-    ) -> (ReplanReport<S>, Option<NodeTable<S>>) {
+    ) -> (ReplanReport<S>, Option<NodeTable<S, N>>) {
         let cfg = &self.config;
         let m = &cfg.model;
         let rtg = match cfg.target {
@@ -474,7 +478,7 @@ impl<S: Real> ReplanningGuidance<S> {
         }
         let mut table = self.guidance.table().clone();
         let bounds = table.bounds();
-        let mut count = 0_u8;
+        let mut count = 0_u16;
         let mut i = 0_usize;
         while i < table.len() {
             let Some(node) = table.nodes().get(i).copied() else {
@@ -507,7 +511,7 @@ impl<S: Real> ReplanningGuidance<S> {
 
     /// The wrapped guidance (command, attitude ramp, table in use, clock).
     #[must_use]
-    pub fn guidance(&self) -> &Guidance<S> {
+    pub fn guidance(&self) -> &Guidance<S, N> {
         &self.guidance
     }
 

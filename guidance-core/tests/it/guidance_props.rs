@@ -247,12 +247,12 @@ proptest! {
         let ind = if time { Independent::TimeS } else { Independent::NormalizedEnergy };
         let b = AngleBounds::<f64>::thesis_default();
         let nodes: Vec<Node<f64>> = rows.iter().map(|&(x, a, s)| Node { x, alpha_rad: a, sigma_rad: s }).collect();
-        let got = NodeTable::new(ind, &nodes, b);
+        let got = NodeTable::<f64>::new(ind, &nodes, b);
         // Reference (the specification, written independently of nodes.rs).
         let expected = || -> Result<(), NodeTableError> {
             if nodes.len() < 2 { return Err(NodeTableError::TooFewNodes); }
             for (i, n) in nodes.iter().enumerate() {
-                let index = i as u8;
+                let index = i as u16;
                 if i >= MAX_NODES { return Err(NodeTableError::TooManyNodes); }
                 if !(n.x.is_finite() && n.alpha_rad.is_finite() && n.sigma_rad.is_finite()) {
                     return Err(NodeTableError::NonFinite { index });
@@ -326,7 +326,9 @@ fn check_random_nav<S: Scalar>(
     kind: Interpolation<S>,
 ) -> Result<(), TestCaseError> {
     for table in [
-        NodeTable::<S>::horus2b_reference().unwrap(),
+        guidance_core::missions::horus2b_reference::<S>()
+            .unwrap()
+            .table,
         energy_table::<S>(),
     ] {
         let b = table.bounds();
@@ -535,9 +537,15 @@ fn f32_and_fixed_agree_with_f64() {
         for time in [true, false] {
             let (t64, t32, tx) = if time {
                 (
-                    NodeTable::<f64>::horus2b_reference().unwrap(),
-                    NodeTable::<f32>::horus2b_reference().unwrap(),
-                    NodeTable::<Fixed>::horus2b_reference().unwrap(),
+                    guidance_core::missions::horus2b_reference::<f64>()
+                        .unwrap()
+                        .table,
+                    guidance_core::missions::horus2b_reference::<f32>()
+                        .unwrap()
+                        .table,
+                    guidance_core::missions::horus2b_reference::<Fixed>()
+                        .unwrap()
+                        .table,
                 )
             } else {
                 (

@@ -5,11 +5,11 @@ use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
 use guidance_core::guidance::{Command, GuidanceConfig};
 use guidance_core::interp::Interpolation;
-use guidance_core::nodes::{AngleBounds, Independent, NodeTable};
+use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, NodeTable};
 use guidance_core::replan::{
-    MAX_PREDICTOR_CALLS, PredictorMode, PredictorModel, RangeTarget, ReplanCase, ReplanConfig,
-    ReplanFallBack, ReplanLimits, ReplanningConfig, ReplanningGuidance, TargetPoint, predict_glide,
-    range_to_go_m, replan,
+    HostReplanningGuidance, MAX_PREDICTOR_CALLS, PredictorMode, PredictorModel, RangeTarget,
+    ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, ReplanningConfig, ReplanningGuidance,
+    TargetPoint, predict_glide, range_to_go_m, replan,
 };
 use guidance_core::vinh::{
     EntryState, ExpAtmosphere, LiftControl, Planet, PredictorConfig, VehicleParams, VinhError,
@@ -402,6 +402,58 @@ fn replanning_sets_the_remaining_nodes() {
     assert_eq!(g.counts().applied, 1);
 }
 
+/// Re-planning works on a host-sized table (256 energy nodes): every node below the current
+/// E-hat gets the solved bank magnitude with its own sign (far more than the 16 the firmware
+/// table holds).
+#[test]
+fn replanning_with_a_host_sized_table() {
+    let rows: Vec<(f64, f64, f64)> = (0..256)
+        .map(|i| {
+            let e = 1.0 - f64::from(i) / 255.0;
+            let sign = if i % 7 == 3 { -1.0 } else { 1.0 };
+            (e, 5.0 + 4.0 * (1.0 - e), sign * (10.0 + 50.0 * (1.0 - e)))
+        })
+        .collect();
+    let table: HostNodeTable<f64> = NodeTable::from_deg(
+        Independent::NormalizedEnergy,
+        &rows,
+        AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0).unwrap(),
+    )
+    .unwrap();
+    let total = glide_range_m(0.6) / R_EARTH;
+    let mut g: HostReplanningGuidance<f64> = ReplanningGuidance::new(
+        GuidanceConfig::thesis_default(),
+        table.clone(),
+        Interpolation::Linear,
+        normalizer(),
+        Command::from_deg(5.0, 10.0).unwrap(),
+        rcfg(
+            RangeTarget::FlownRangeAngle { total_rad: total },
+            3,
+            PredictorMode::Glide,
+        ),
+    )
+    .unwrap();
+    let out = g.update(&glide_nav(0.0)).unwrap();
+    let r = out.replan.expect("tick 0 re-plans");
+    assert_eq!(r.case, ReplanCase::Converged, "{r:?}");
+    let e_hat = out.guidance.independent_value;
+    let below = table.nodes().iter().filter(|n| n.x < e_hat).count();
+    assert!(below > 200, "{below}");
+    assert_eq!(usize::from(r.nodes_replanned), below);
+    for (a, b) in g.guidance().table().nodes().iter().zip(table.nodes()) {
+        let want = if b.x >= e_hat {
+            b.sigma_rad
+        } else if b.sigma_rad < 0.0 {
+            -r.bank_rad
+        } else {
+            r.bank_rad
+        };
+        assert_eq!(a.sigma_rad, want);
+        assert_eq!((a.x, a.alpha_rad), (b.x, b.alpha_rad));
+    }
+}
+
 /// Re-plans run on ticks 0, N, 2N, ... of the 2 s clock, never between ticks.
 #[test]
 fn replanning_runs_every_n_ticks() {
@@ -655,7 +707,13 @@ fn replanning_rejects_bad_config() {
         ..cfg
     };
     assert!(mk(energy_table(), ok).is_ok());
-    assert!(mk(NodeTable::horus2b_reference().unwrap(), ok).is_err());
+    assert!(
+        mk(
+            guidance_core::missions::horus2b_reference().unwrap().table,
+            ok
+        )
+        .is_err()
+    );
     let nan = ReplanningConfig {
         target: RangeTarget::Point(TargetPoint {
             latitude_rad: f64::NAN,

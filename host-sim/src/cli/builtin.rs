@@ -1,55 +1,71 @@
 //! Built-in scenarios: the HORUS-2B reference mission (the default) and the SRM glide.
 
-use super::scenario::node_to_rad;
-use super::{EnvSpec, GuidanceSpec, Independent, InterpolationKind, Scenario, VehicleSpec};
+use guidance_core::interp::Interpolation;
+use guidance_core::missions::{Mission, horus2b_reference};
+use guidance_core::nodes::Independent as CoreIndependent;
+
+use super::{
+    EnvSpec, GuidanceSpec, Independent, InterpolationKind, Scenario, VehicleSpec, guidance_bounds,
+};
 use crate::dynamics::{Attitude, SphericalState};
 use crate::env::Planet;
 use crate::sim::{SimConfig, Termination};
 
-/// HORUS-2B reference guidance nodes (thesis eq. 2.3): `[t_s, alpha_deg, sigma_deg]`.
-pub const HORUS_REFERENCE_NODES: [[f64; 3]; 7] = [
-    [0.0, 40.0, 0.0],
-    [264.0, 40.0, 0.0],
-    [290.0, 40.0, 79.6],
-    [554.0, 40.0, 59.8],
-    [686.0, 40.0, 59.8],
-    [924.0, 40.0, 59.8],
-    [1319.0, 11.5, 54.0],
-];
+/// The guidance of a core mission as a scenario's guidance settings (same values, SI).
+fn guidance_of(m: &Mission<f64>) -> GuidanceSpec {
+    GuidanceSpec {
+        independent: match m.table.independent() {
+            CoreIndependent::TimeS => Independent::Time,
+            CoreIndependent::NormalizedEnergy => Independent::Energy,
+        },
+        interpolation: match m.interpolation {
+            Interpolation::Linear => InterpolationKind::Linear,
+            Interpolation::NaturalCubic => InterpolationKind::NaturalCubic,
+            Interpolation::CardinalHermite { tension } => InterpolationKind::Hermite { tension },
+        },
+        period_s: m.config.period_s,
+        alpha_rate_rad_s: m.config.rates.alpha_rad_s,
+        sigma_rate_rad_s: m.config.rates.sigma_rad_s,
+        initial: Attitude {
+            alpha_rad: m.initial.alpha_rad,
+            sigma_rad: m.initial.sigma_rad,
+        },
+        nodes: m
+            .table
+            .nodes()
+            .iter()
+            .map(|n| [n.x, n.alpha_rad, n.sigma_rad])
+            .collect(),
+        bounds: m.table.bounds(),
+    }
+}
 
 impl Default for Scenario {
-    /// The HORUS-2B reference mission (thesis sec. 2.2 and 7.4): full environment, time
-    /// nodes of eq. 2.3 with linear interpolation, entry state of table 2.1, terminated at
-    /// 25 km altitude.
+    /// The HORUS-2B reference mission (thesis sec. 2.2 and 7.4): its guidance and entry
+    /// interface from `guidance_core::missions::horus2b_reference` (time nodes of eq. 2.3,
+    /// linear interpolation, thesis bounds, period and rates; entry state of table 2.1), full
+    /// environment, terminated at 25 km altitude.
     fn default() -> Self {
         let planet = Planet::earth();
+        // f64 represents every value of the mission: this cannot fail (tested).
+        let mission = horus2b_reference::<f64>().expect("HORUS-2B reference mission in f64");
+        let e = mission.entry;
         let entry = SphericalState {
-            radius_m: planet.radius_m + 122_000.0,
-            longitude_rad: (-106.7f64).to_radians(),
-            latitude_rad: (-22.3f64).to_radians(),
-            speed_m_s: 7435.5,
-            flight_path_angle_rad: (-1.43f64).to_radians(),
-            heading_rad: 70.75f64.to_radians(),
+            radius_m: planet.radius_m + e.altitude_m,
+            longitude_rad: e.longitude_rad,
+            latitude_rad: e.latitude_rad,
+            speed_m_s: e.speed_m_s,
+            flight_path_angle_rad: e.flight_path_angle_rad,
+            heading_rad: e.heading_rad,
         };
         // Integrator, output and monitor settings: the simulator's defaults.
         let sim = SimConfig::new(entry);
         Self {
-            name: "horus-2b-reference".into(),
+            name: mission.name.into(),
             vehicle: VehicleSpec::Name("horus-2b".into()),
             environment: EnvSpec::full(),
             entry,
-            guidance: GuidanceSpec {
-                independent: Independent::Time,
-                interpolation: InterpolationKind::Linear,
-                period_s: 2.0,
-                alpha_rate_rad_s: 5f64.to_radians(),
-                sigma_rate_rad_s: 15f64.to_radians(),
-                initial: Attitude {
-                    alpha_rad: 40f64.to_radians(),
-                    sigma_rad: 0.0,
-                },
-                nodes: HORUS_REFERENCE_NODES.iter().map(node_to_rad).collect(),
-            },
+            guidance: guidance_of(&mission),
             termination: Termination {
                 altitude_m: Some(25_000.0),
                 mach: None,
@@ -113,6 +129,7 @@ impl Scenario {
                     [0.4, 0.0, 60.0 * d],
                     [0.0, 0.0, 0.0],
                 ],
+                bounds: guidance_bounds(),
             },
             termination: Termination {
                 altitude_m: Some(25_000.0),
@@ -122,5 +139,32 @@ impl Scenario {
             },
             ..Self::default()
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The built-in reference scenario is the core's mission, thesis bounds included; the
+    /// SRM glide and scenario files keep the host's two-sided bank bounds.
+    #[test]
+    fn default_scenario_is_the_core_mission() {
+        let m = horus2b_reference::<f64>().unwrap();
+        let sc = Scenario::default();
+        assert_eq!(sc.name, m.name);
+        assert_eq!(sc.guidance, guidance_of(&m));
+        assert_eq!(sc.guidance.bounds, m.table.bounds());
+        assert_eq!(sc.guidance.bounds.sigma_min_rad, 0.0);
+        assert_eq!(sc.guidance.nodes.len(), 7);
+        assert_eq!(
+            sc.guidance.nodes[2],
+            [290.0, 40f64.to_radians(), 79.6f64.to_radians()]
+        );
+        assert_eq!(sc.entry.speed_m_s, 7435.5);
+        assert_eq!(sc.entry.radius_m, Planet::earth().radius_m + 122_000.0);
+        assert_eq!(Scenario::srm_glide().guidance.bounds, guidance_bounds());
+        let parsed = super::super::parse_scenario("", "empty.toml", std::path::Path::new("."));
+        assert_eq!(parsed.unwrap().guidance.bounds, guidance_bounds());
     }
 }

@@ -61,8 +61,8 @@ pub fn build_guidance(
         Independent::Time => CoreIndependent::TimeS,
         Independent::Energy => CoreIndependent::NormalizedEnergy,
     };
-    let table = NodeTable::new(independent, &nodes, guidance_bounds())
-        .map_err(|e| gerr("nodes", e.into()))?;
+    let table =
+        NodeTable::new(independent, &nodes, g.bounds).map_err(|e| gerr("nodes", e.into()))?;
     let kind = match g.interpolation {
         InterpolationKind::Linear => Interpolation::Linear,
         InterpolationKind::NaturalCubic => Interpolation::NaturalCubic,
@@ -84,8 +84,9 @@ pub fn build_guidance(
     Ok(Box::new(sim::CoreGuidance(guidance)))
 }
 
-/// Angle bounds of scenario guidance: alpha 0..45 deg (thesis sec. 4.2.1), sigma -90..90 deg
-/// (the thesis' 0..90 deg with banking to either side allowed in 3-D).
+/// Angle bounds of scenario-file guidance: alpha 0..45 deg (thesis sec. 4.2.1), sigma
+/// -90..90 deg (the thesis' 0..90 deg with banking to either side allowed in 3-D). The
+/// built-in HORUS-2B mission keeps the thesis bounds of `guidance_core::missions`.
 #[must_use]
 pub fn guidance_bounds() -> AngleBounds<f64> {
     let d = std::f64::consts::PI / 180.0;

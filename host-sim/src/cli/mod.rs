@@ -73,7 +73,6 @@ use clap::{Parser, Subcommand, ValueEnum};
 
 use crate::{report, sim, vehicle};
 
-pub use builtin::HORUS_REFERENCE_NODES;
 pub use flight::{Flight, RunOutput, fly, load_vehicle, simulate_scenario, write_flight};
 pub use guidance::{build_guidance, guidance_bounds};
 pub use parse::parse_scenario;

@@ -43,6 +43,8 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
         ],
     )?;
     let mut sc = Scenario::default();
+    // Files may bank to either side (3-D); the built-in mission keeps the thesis bounds.
+    sc.guidance.bounds = super::guidance_bounds();
     if let Some(n) = f.string(&doc, "", "name")? {
         if n.is_empty() || n.contains(['/', '\\']) || n == "." || n == ".." {
             return Err(f.err(

@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+use guidance_core::nodes::AngleBounds;
+
 use crate::dynamics::{Attitude, SphericalState};
 use crate::env::{
     Atmosphere, CentralGravity, Environment, ExponentialAtmosphere, Gravity, J2Gravity, Planet,
@@ -51,6 +53,9 @@ pub struct GuidanceSpec {
     pub initial: Attitude,
     /// Nodes `[x, alpha_rad, sigma_rad]` in flight order.
     pub nodes: Vec<[f64; 3]>,
+    /// Angle bounds the nodes and commands are held to \[rad\]: the mission's for a built-in
+    /// scenario, [`super::guidance_bounds`] for a scenario file.
+    pub bounds: AngleBounds<f64>,
 }
 
 /// Environment choice.

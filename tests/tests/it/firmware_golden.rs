@@ -1,17 +1,10 @@
-//! The firmware's golden outputs (`onboard-demo/src/golden.rs`) are what the host computes
-//! today from the same scenario (`onboard-demo/src/scenario.rs`), and the reduced-precision
+//! The firmware's golden outputs (`onboard_spec::golden`) are what the host computes
+//! today from the same scenario (`onboard_spec::scenario`), and the reduced-precision
 //! runs the firmware does (f32 on the M4F, fixed point on the M3) agree with f64.
 
 use guidance_core::{Fixed, Scalar};
-
-#[path = "../../../onboard-demo/src/scenario.rs"]
-#[allow(dead_code)]
-mod scenario;
-
-#[path = "../../../onboard-demo/src/golden.rs"]
-mod golden;
-
-use scenario::{Row, SAMPLES, SEQUENCES};
+use onboard_spec::golden;
+use onboard_spec::scenario::{self, Row, SAMPLES, SEQUENCES};
 
 fn rows<S: Scalar>() -> [[Row<S>; SAMPLES]; SEQUENCES] {
     let zero = Row {

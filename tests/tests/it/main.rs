@@ -1,3 +1,5 @@
 //! The workspace-level integration-test binary. Each module is one topic.
 
+mod core_layering;
 mod firmware_golden;
+mod qemu_runners;

@@ -3,17 +3,19 @@
 //!
 //! Two guidance sequences, each `SAMPLES` navigation samples 1 s apart (so the 2 s clock ticks
 //! on every other sample and holds in between):
-//! 1. the HORUS-2B reference mission of thesis eq. 2.3 (time-indexed, linear interpolation),
+//! 1. the HORUS-2B reference mission (`guidance_core::missions::horus2b_reference`: thesis
+//!    eq. 2.3, time-indexed, linear interpolation),
 //!    sampled across the bank-angle step between 264 s and 290 s;
 //! 2. an energy-indexed table with a cardinal Hermite spline on a synthetic fast deceleration,
 //!    so that the bank-rate limit binds.
 //!
 //! One sample in each sequence is non-finite: guidance must reject it and keep its command.
 
-use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
-use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
+use guidance_core::energy::EARTH_RADIUS_M;
+use guidance_core::guidance::Guidance;
 use guidance_core::interp::Interpolation;
-use guidance_core::nodes::{AngleBounds, Independent, Node, NodeTable};
+use guidance_core::missions::{HORUS2B_ENTRY, horus2b_reference};
+use guidance_core::nodes::{Independent, Node, NodeTable};
 use guidance_core::{GuidanceError, NavState, Scalar};
 
 /// Navigation samples per sequence.
@@ -37,8 +39,6 @@ pub struct Row<S> {
 }
 
 const DEG: f64 = core::f64::consts::PI / 180.0;
-const ENTRY_ALTITUDE_M: f64 = 122_000.0;
-const ENTRY_SPEED_M_S: f64 = 7435.5;
 
 fn node<S: Scalar>(x: f64, alpha_deg: f64, sigma_deg: f64) -> Node<S> {
     Node {
@@ -53,10 +53,10 @@ fn nav<S: Scalar>(t: f64, altitude_m: f64, speed_m_s: f64) -> NavState<S> {
         time_s: S::from_f64(t),
         radius_m: S::from_f64(EARTH_RADIUS_M + altitude_m),
         speed_m_s: S::from_f64(speed_m_s),
-        flight_path_angle_rad: S::from_f64(-1.43 * DEG),
-        heading_rad: S::from_f64(70.75 * DEG),
-        latitude_rad: S::from_f64(-22.3 * DEG),
-        longitude_rad: S::from_f64(-106.7 * DEG),
+        flight_path_angle_rad: S::from_f64(HORUS2B_ENTRY.flight_path_angle_rad),
+        heading_rad: S::from_f64(HORUS2B_ENTRY.heading_rad),
+        latitude_rad: S::from_f64(HORUS2B_ENTRY.latitude_rad),
+        longitude_rad: S::from_f64(HORUS2B_ENTRY.longitude_rad),
     }
 }
 
@@ -71,8 +71,8 @@ fn sequence<S: Scalar>(
         let t = t0 + k;
         let mut state = nav::<S>(
             t,
-            ENTRY_ALTITUDE_M - 150.0 * k,
-            ENTRY_SPEED_M_S - speed_step_m_s * k,
+            HORUS2B_ENTRY.altitude_m - 150.0 * k,
+            HORUS2B_ENTRY.speed_m_s - speed_step_m_s * k,
         );
         if i == BAD_SAMPLE {
             // A corrupted sample: radius 0/0 is NaN in floating point and 0 in fixed point
@@ -102,39 +102,14 @@ fn sequence<S: Scalar>(
 /// Any guidance error (none is expected: the test fails if one occurs), or
 /// `InvalidConfig` if the corrupted sample was accepted.
 pub fn run<S: Scalar>(out: &mut [[Row<S>; SAMPLES]; SEQUENCES]) -> Result<(), GuidanceError> {
-    let bounds = AngleBounds::thesis_default();
-    let energy = EnergyNormalizer::<S>::new(
-        EARTH_MU_M3_S2,
-        EARTH_RADIUS_M,
-        EARTH_RADIUS_M + ENTRY_ALTITUDE_M,
-        ENTRY_SPEED_M_S,
-    )?;
-    let config = GuidanceConfig::thesis_default();
-    let initial = Command {
-        alpha_rad: S::from_f64(40.0 * DEG),
-        sigma_rad: S::ZERO,
-    };
-
-    // Sequence 1: HORUS-2B reference mission, thesis eq. 2.3.
-    let reference = [
-        node::<S>(0.0, 40.0, 0.0),
-        node(264.0, 40.0, 0.0),
-        node(290.0, 40.0, 79.6),
-        node(554.0, 40.0, 59.8),
-        node(686.0, 40.0, 59.8),
-        node(924.0, 40.0, 59.8),
-        node(1319.0, 11.5, 54.0),
-    ];
-    let table = NodeTable::new(Independent::TimeS, &reference, bounds)?;
+    // Sequence 1: the HORUS-2B reference mission as the firmware flies it (thesis eq. 2.3).
+    let mission = horus2b_reference::<S>()?;
+    let energy = mission.earth_energy_normalizer()?;
     let [first, second] = out;
-    sequence(
-        Guidance::new(config, table, Interpolation::Linear, energy, initial)?,
-        250.0,
-        2.0,
-        first,
-    )?;
+    sequence(mission.guidance(energy)?, 250.0, 2.0, first)?;
 
-    // Sequence 2: energy-indexed, cardinal Hermite, fast synthetic deceleration.
+    // Sequence 2: energy-indexed, cardinal Hermite, fast synthetic deceleration; the mission's
+    // period, rates, bounds, initial attitude and entry (E-hat = 1).
     let energy_nodes = [
         node::<S>(1.0, 40.0, 0.0),
         node(0.9, 38.0, 75.0),
@@ -142,12 +117,13 @@ pub fn run<S: Scalar>(out: &mut [[Row<S>; SAMPLES]; SEQUENCES]) -> Result<(), Gu
         node(0.5, 20.0, 60.0),
         node(0.1, 11.5, 54.0),
     ];
+    let bounds = mission.table.bounds();
     let table = NodeTable::new(Independent::NormalizedEnergy, &energy_nodes, bounds)?;
     let kind = Interpolation::CardinalHermite {
         tension: S::from_f64(0.5),
     };
     sequence(
-        Guidance::new(config, table, kind, energy, initial)?,
+        Guidance::new(mission.config, table, kind, energy, mission.initial)?,
         0.0,
         90.0,
         second,

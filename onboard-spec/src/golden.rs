@@ -2,7 +2,6 @@
 //! `scenario.rs`. Generated: do not edit. The workspace test
 //! `firmware_golden_is_current` fails when this file is stale.
 
-#[cfg_attr(not(target_abi = "eabihf"), allow(dead_code))]
 /// Host-computed rows (alpha, sigma, command alpha, command sigma) [f32].
 pub const F32: [[[f32; 4]; 48]; 2] = [
     [
@@ -107,7 +106,6 @@ pub const F32: [[[f32; 4]; 48]; 2] = [
     ],
 ];
 
-#[cfg_attr(target_abi = "eabihf", allow(dead_code))]
 /// Host-computed rows (alpha, sigma, command alpha, command sigma) [i64].
 pub const FIXED_BITS: [[[i64; 4]; 48]; 2] = [
     [

@@ -1,0 +1,53 @@
+//! The attitude command (angle of attack, bank angle) that every stage of the guidance path
+//! produces and consumes. A leaf module: it depends on nothing but [`crate::scalar`], so
+//! [`crate::interp`], [`crate::rate`], [`crate::link`] and [`crate::guidance`] can all use it
+//! without importing each other.
+
+use crate::scalar::Scalar;
+
+/// Degrees to radians.
+const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
+
+/// An attitude command (or attitude) \[rad\].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Command<S> {
+    /// Angle of attack \[rad\].
+    pub alpha_rad: S,
+    /// Bank angle \[rad\].
+    pub sigma_rad: S,
+}
+
+impl<S: Scalar> Command<S> {
+    /// Command from degrees (converted to radians); `None` if non-finite or not
+    /// representable in `S`.
+    #[must_use]
+    pub fn from_deg(alpha_deg: f64, sigma_deg: f64) -> Option<Self> {
+        Some(Self {
+            alpha_rad: S::from_f64_checked(alpha_deg * DEG_TO_RAD)?,
+            sigma_rad: S::from_f64_checked(sigma_deg * DEG_TO_RAD)?,
+        })
+    }
+
+    /// True if both angles are finite.
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        self.alpha_rad.is_finite() && self.sigma_rad.is_finite()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Fixed;
+
+    #[test]
+    fn from_deg_converts_and_rejects() {
+        let c = Command::<f64>::from_deg(40.0, -90.0).unwrap();
+        assert_eq!(c.alpha_rad, 40.0_f64.to_radians());
+        assert_eq!(c.sigma_rad, (-90.0_f64).to_radians());
+        assert!(c.is_finite());
+        assert!(Command::<f64>::from_deg(f64::NAN, 0.0).is_none());
+        assert!(Command::<Fixed>::from_deg(1e15, 0.0).is_none());
+    }
+}
