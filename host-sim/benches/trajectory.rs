@@ -6,7 +6,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use host_sim::cli::{Scenario, fly};
+use host_sim::scenario::{Scenario, fly};
 
 fn bench_scenario(c: &mut Criterion, sc: &Scenario) {
     let once = fly(sc, "bench", &mut |_, _| {}).expect("scenario flies");

@@ -21,6 +21,7 @@
 //! `Q = integral q dt` [J/m^2] and flown range angle `theta = integral V cos(gamma)/r dt`
 //! [rad] (eq. 3.15).
 
+use guidance_core::guidance::Command;
 use nalgebra::Vector3;
 
 use crate::env::{Atmosphere, Environment, Gravity, Planet};
@@ -31,15 +32,6 @@ pub const G0_M_S2: f64 = guidance_core::monitor::G0_M_S2;
 
 /// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
 pub const STATE_LEN: usize = 8;
-
-/// Commanded aerodynamic attitude.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Attitude {
-    /// Angle of attack [rad].
-    pub alpha_rad: f64,
-    /// Bank angle [rad].
-    pub sigma_rad: f64,
-}
 
 /// Inertial Cartesian state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -251,7 +243,7 @@ impl<'a> Dynamics<'a> {
 
     /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s`.
     #[must_use]
-    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Attitude) -> FlightConditions {
+    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Command<f64>) -> FlightConditions {
         let atm = self.atmosphere.state(altitude_m);
         let rho = atm.density_kg_m3.max(0.0);
         let mach = if atm.speed_of_sound_m_s > 0.0 {
@@ -284,7 +276,7 @@ impl<'a> Dynamics<'a> {
 
     /// Conditions at an integrated Cartesian state `y` (see [`STATE_LEN`]).
     #[must_use]
-    pub fn conditions_at(&self, y: &[f64; STATE_LEN], att: Attitude) -> FlightConditions {
+    pub fn conditions_at(&self, y: &[f64; STATE_LEN], att: Command<f64>) -> FlightConditions {
         let r = Vector3::new(y[0], y[1], y[2]);
         let v = Vector3::new(y[3], y[4], y[5]);
         let v_rel = v - self.omega().cross(&r);
@@ -297,7 +289,7 @@ impl<'a> Dynamics<'a> {
     pub fn cartesian_rhs(
         &self,
         y: &[f64; STATE_LEN],
-        att: Attitude,
+        att: Command<f64>,
     ) -> ([f64; STATE_LEN], FlightConditions) {
         let r = Vector3::new(y[0], y[1], y[2]);
         let v = Vector3::new(y[3], y[4], y[5]);
@@ -327,7 +319,7 @@ impl<'a> Dynamics<'a> {
     /// Time derivative of the planet-relative spherical state `[r, tau, delta, V, gamma, chi]`
     /// (eq. 3.13 with the ERRATA fixes, gravity split into radial and northward components).
     #[must_use]
-    pub fn spherical_rhs(&self, s: &[f64; 6], att: Attitude) -> [f64; 6] {
+    pub fn spherical_rhs(&self, s: &[f64; 6], att: Command<f64>) -> [f64; 6] {
         let [r, tau, delta, v, gamma, chi] = *s;
         let w = self.planet.rotation_rate_rad_s;
         let (up, _east, north) = local_axes(tau, delta);

@@ -4,7 +4,8 @@
 //! environment models ([`env`]: atmosphere, gravity, planet), vehicles ([`vehicle`]),
 //! 3-DOF dynamics ([`dynamics`]), integrators ([`integrate`]), the closed-loop harness that
 //! flies the core's own `Guidance` at its fixed 2 s clock ([`sim`]), the analytical simulator
-//! ([`analytic`]), reports ([`report`]) and the CLI ([`cli`]).
+//! ([`analytic`]), the mission definition ([`scenario`]), reports ([`report`]) and the CLI
+//! ([`cli`], which nothing else in the library imports).
 //!
 //! Units: SI and radians inside; degrees and km only at the edges (CLI, files, plots).
 #![deny(missing_docs)]
@@ -22,5 +23,6 @@ pub mod optim;
 pub mod pil;
 pub mod replan_loop;
 pub mod report;
+pub mod scenario;
 pub mod sim;
 pub mod vehicle;

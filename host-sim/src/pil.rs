@@ -12,10 +12,11 @@
 //! [`PilConfig::reply_timeout`] (a reader thread with a channel), and on any failure QEMU is
 //! killed and the FIFOs are removed (also on drop).
 
+use guidance_core::guidance::Command;
 use std::fs::{File, OpenOptions};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Stdio};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
@@ -24,9 +25,11 @@ use guidance_core::link::{
     CommandFrame, FRAME_LEN, Frame, LinkError, LinkStatus, NavFrame, decode, encode,
 };
 
-use crate::dynamics::{Attitude, Dynamics};
+use crate::dynamics::Dynamics;
 use crate::env::Environment;
+use crate::scenario::{Scenario, ScenarioError, build_guidance};
 use crate::sim::{self, AttitudeSource, SimResult, ramp_kink};
+use crate::vehicle::Vehicle;
 
 /// Where the firmware ELF is looked for by default (relative to the workspace root).
 pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
@@ -102,6 +105,9 @@ pub enum PilError {
     /// The simulation around the firmware failed.
     #[error("simulation: {0}")]
     Sim(#[from] sim::SimError),
+    /// The reference mission could not be set up (e.g. its vehicle did not load).
+    #[error("reference mission: {0}")]
+    Scenario(#[from] ScenarioError),
 }
 
 /// Counters of one PIL run.
@@ -130,7 +136,7 @@ pub struct PilGuidance {
 }
 
 fn mkfifo(path: &Path) -> Result<(), PilError> {
-    let out = Command::new("mkfifo")
+    let out = std::process::Command::new("mkfifo")
         .arg(path)
         .output()
         .map_err(|e| PilError::Fifo {
@@ -180,7 +186,7 @@ impl PilGuidance {
     /// [`PilError::QemuMissing`], [`PilError::ElfMissing`], [`PilError::Fifo`],
     /// [`PilError::Qemu`] or [`PilError::Timeout`]; QEMU is stopped and the FIFOs removed.
     pub fn start(cfg: PilConfig) -> Result<Self, PilError> {
-        let ok = Command::new(&cfg.qemu)
+        let ok = std::process::Command::new(&cfg.qemu)
             .arg("--version")
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -211,7 +217,7 @@ impl PilGuidance {
         let (nav_path, cmd_path) = me.paths();
         mkfifo(&nav_path)?;
         mkfifo(&cmd_path)?;
-        let child = Command::new("timeout")
+        let child = std::process::Command::new("timeout")
             .arg(me.cfg.qemu_timeout_s.to_string())
             .arg(&me.cfg.qemu)
             .args(["-cpu", "cortex-m4", "-machine", "mps2-an386", "-nographic"])
@@ -371,7 +377,7 @@ fn stop(child: &mut Child) {
     if matches!(child.try_wait(), Ok(Some(_))) {
         return;
     }
-    let _ = Command::new("kill")
+    let _ = std::process::Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .stderr(Stdio::null())
         .status();
@@ -401,8 +407,8 @@ impl Drop for PilGuidance {
     }
 }
 
-fn attitude(c: guidance_core::guidance::Command<f64>) -> Attitude {
-    Attitude {
+fn attitude(c: guidance_core::guidance::Command<f64>) -> Command<f64> {
+    Command {
         alpha_rad: c.alpha_rad,
         sigma_rad: c.sigma_rad,
     }
@@ -423,11 +429,11 @@ impl AttitudeSource for PilGuidance {
             }
         }
     }
-    fn attitude_at(&self, time_s: f64) -> Attitude {
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
         match &self.last {
             Some(c) => attitude(c.attitude_at(time_s)),
             // Before the first tick: the firmware's initial attitude (40 deg, 0 deg).
-            None => Attitude {
+            None => Command {
                 alpha_rad: 40f64.to_radians(),
                 sigma_rad: 0.0,
             },
@@ -451,12 +457,11 @@ impl AttitudeSource for PilGuidance {
 }
 
 /// The HORUS-2B reference mission's models and settings (the default scenario, full
-/// environment), as flown by SIL and PIL; `Err` names a vehicle that cannot be loaded.
-fn reference_setup() -> Result<(crate::cli::Scenario, Environment, crate::vehicle::Vehicle), String>
-{
-    let sc = crate::cli::Scenario::default();
+/// environment), as flown by SIL and PIL.
+fn reference_setup() -> Result<(Scenario, Environment, Vehicle), ScenarioError> {
+    let sc = Scenario::default();
     let env = sc.environment.build();
-    let veh = crate::cli::load_vehicle(&sc.vehicle).map_err(|e| e.to_string())?;
+    let veh = sc.vehicle.load()?;
     Ok((sc, env, veh))
 }
 
@@ -464,28 +469,37 @@ fn reference_setup() -> Result<(crate::cli::Scenario, Environment, crate::vehicl
 /// default scenario (the same table, rates, period and initial attitude as the firmware).
 ///
 /// # Errors
-/// A message naming the failure.
-pub fn reference_sil_guidance() -> Result<Box<dyn AttitudeSource>, String> {
+/// [`ScenarioError`] if the reference mission cannot be set up.
+pub fn reference_sil_guidance() -> Result<sim::CoreGuidance, ScenarioError> {
     let (sc, env, _) = reference_setup()?;
-    crate::cli::build_guidance(&sc, &env.planet, "(built-in)").map_err(|e| e.to_string())
+    Ok(sim::CoreGuidance(build_guidance(
+        &sc,
+        &env.planet,
+        "(built-in)",
+    )?))
 }
 
 /// Fly the HORUS-2B reference mission (default scenario: full environment, HORUS-2B vehicle,
 /// its termination, tolerances and output settings) with any attitude source.
 ///
 /// # Errors
-/// A message naming the failure.
-pub fn fly_reference<A: AttitudeSource>(source: A) -> Result<(SimResult, A), String> {
+/// [`ScenarioError`] naming the failure.
+pub fn fly_reference<A: AttitudeSource>(source: A) -> Result<(SimResult, A), ScenarioError> {
     let (sc, env, veh) = reference_setup()?;
     let dynm = Dynamics::from_environment(&env, &veh);
-    sim::simulate(dynm, source, &sc.sim_config(), &mut |_, _| {}).map_err(|e| e.to_string())
+    Ok(sim::simulate(
+        dynm,
+        source,
+        &sc.sim_config(),
+        &mut |_, _| {},
+    )?)
 }
 
 /// Fly the HORUS-2B reference mission in SIL (`f64` core guidance in-process).
 ///
 /// # Errors
-/// A message naming the failure.
-pub fn fly_reference_sil() -> Result<SimResult, String> {
+/// [`ScenarioError`] naming the failure.
+pub fn fly_reference_sil() -> Result<SimResult, ScenarioError> {
     Ok(fly_reference(reference_sil_guidance()?)?.0)
 }
 
@@ -496,19 +510,10 @@ pub fn fly_reference_sil() -> Result<SimResult, String> {
 /// # Errors
 /// [`PilError`] naming what failed; QEMU is stopped and the FIFOs are removed in every case.
 pub fn fly_reference_pil(cfg: PilConfig) -> Result<(SimResult, PilStats), PilError> {
-    let (sc, env, veh) = reference_setup().map_err(|what| PilError::Firmware { seq: 0, what })?;
+    let (sc, env, veh) = reference_setup()?;
     let source = PilGuidance::start(cfg)?;
     let dynm = Dynamics::from_environment(&env, &veh);
-    let (result, source) = match sim::simulate(dynm, source, &sc.sim_config(), &mut |_, _| {}) {
-        Ok(r) => r,
-        Err(e) => return Err(PilError::Sim(e)),
-    };
-    if let Some(e) = &source.error {
-        return Err(PilError::Firmware {
-            seq: source.seq,
-            what: e.clone(),
-        });
-    }
+    let (result, source) = sim::simulate(dynm, source, &sc.sim_config(), &mut |_, _| {})?;
     let stats = source.finish()?;
     Ok((result, stats))
 }

@@ -18,7 +18,6 @@ use guidance_core::replan::{PredictorModel, ReplanReport, ReplanningGuidance};
 use guidance_core::vinh::{ExpAtmosphere, Planet as VinhPlanet};
 
 use crate::analytic::{AnalyticError, AnalyticVehicle};
-use crate::dynamics::Attitude;
 use crate::env::{ExponentialAtmosphere, Planet};
 use crate::sim::{AttitudeSource, ramp_kink};
 use crate::vehicle::Vehicle;
@@ -43,8 +42,8 @@ impl ReplanLoop {
     }
 }
 
-fn attitude_of(c: Command<f64>) -> Attitude {
-    Attitude {
+fn attitude_of(c: Command<f64>) -> Command<f64> {
+    Command {
         alpha_rad: c.alpha_rad,
         sigma_rad: c.sigma_rad,
     }
@@ -66,7 +65,7 @@ impl AttitudeSource for ReplanLoop {
             ))
         }
     }
-    fn attitude_at(&self, time_s: f64) -> Attitude {
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
         attitude_of(self.guidance.attitude_at(time_s))
     }
     fn next_tick_s(&self) -> f64 {

@@ -20,7 +20,7 @@ use guidance_core::guidance::{Command, Guidance};
 use guidance_core::monitor::GLoadRateMonitor;
 use serde::Serialize;
 
-use crate::dynamics::{Attitude, Dynamics, FlightConditions, STATE_LEN, SphericalState};
+use crate::dynamics::{Dynamics, FlightConditions, STATE_LEN, SphericalState};
 use crate::integrate::{Direction, IntegrateError, OdeProblem, Rkf45, Stats, Tolerances};
 
 /// A source of commanded attitude: the guidance seam of the closed loop.
@@ -30,8 +30,8 @@ pub trait AttitudeSource {
     /// # Errors
     /// A message when the guidance rejects the state.
     fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String>;
-    /// Attitude at time `time_s` [s] between ticks (continuous).
-    fn attitude_at(&self, time_s: f64) -> Attitude;
+    /// Command<f64> at time `time_s` [s] between ticks (continuous).
+    fn attitude_at(&self, time_s: f64) -> Command<f64>;
     /// Time of the next tick [s]; `f64::INFINITY` for none.
     fn next_tick_s(&self) -> f64;
     /// The next time after `time_s` at which [`AttitudeSource::attitude_at`] has a kink (a
@@ -46,13 +46,13 @@ pub trait AttitudeSource {
 
 /// Constant attitude, never ticks (open loop).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FixedAttitude(pub Attitude);
+pub struct FixedAttitude(pub Command<f64>);
 
 impl AttitudeSource for FixedAttitude {
     fn tick(&mut self, _nav: &NavState<f64>) -> Result<(), String> {
         Ok(())
     }
-    fn attitude_at(&self, _time_s: f64) -> Attitude {
+    fn attitude_at(&self, _time_s: f64) -> Command<f64> {
         self.0
     }
     fn next_tick_s(&self) -> f64 {
@@ -66,8 +66,8 @@ impl AttitudeSource for FixedAttitude {
 #[derive(Clone, Debug)]
 pub struct CoreGuidance(pub Guidance<f64>);
 
-fn attitude_of(c: Command<f64>) -> Attitude {
-    Attitude {
+fn attitude_of(c: Command<f64>) -> Command<f64> {
+    Command {
         alpha_rad: c.alpha_rad,
         sigma_rad: c.sigma_rad,
     }
@@ -86,7 +86,7 @@ impl AttitudeSource for CoreGuidance {
             ))
         }
     }
-    fn attitude_at(&self, time_s: f64) -> Attitude {
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
         attitude_of(self.0.attitude_at(time_s))
     }
     fn next_tick_s(&self) -> f64 {
@@ -130,8 +130,8 @@ pub struct HostSchedule {
     alpha_rate: f64,
     sigma_rate: f64,
     energy: EnergyNormalizer<f64>,
-    command: Attitude,
-    at_tick: Attitude,
+    command: Command<f64>,
+    at_tick: Command<f64>,
     tick_time: f64,
     ticks: u64,
 }
@@ -148,7 +148,7 @@ impl HostSchedule {
         period_s: f64,
         rates_rad_s: (f64, f64),
         energy: EnergyNormalizer<f64>,
-        initial: Attitude,
+        initial: Command<f64>,
     ) -> Result<Self, String> {
         if nodes.is_empty() || nodes.iter().flatten().any(|v| !v.is_finite()) {
             return Err("node table must be non-empty and finite".into());
@@ -176,7 +176,7 @@ impl HostSchedule {
         })
     }
 
-    fn interpolate(&self, x: f64) -> Attitude {
+    fn interpolate(&self, x: f64) -> Command<f64> {
         // Work on an increasing abscissa.
         let key = |n: &[f64; 3]| match self.index {
             ScheduleIndex::Time => n[0],
@@ -188,7 +188,7 @@ impl HostSchedule {
         };
         let first = self.nodes[0];
         let last = self.nodes[self.nodes.len() - 1];
-        let pick = |n: [f64; 3]| Attitude {
+        let pick = |n: [f64; 3]| Command {
             alpha_rad: n[1],
             sigma_rad: n[2],
         };
@@ -202,7 +202,7 @@ impl HostSchedule {
             let (a, b) = (w[0], w[1]);
             if xk <= key(&b) {
                 let f = (xk - key(&a)) / (key(&b) - key(&a));
-                return Attitude {
+                return Command {
                     alpha_rad: a[1] + f * (b[1] - a[1]),
                     sigma_rad: a[2] + f * (b[2] - a[2]),
                 };
@@ -228,7 +228,7 @@ impl AttitudeSource for HostSchedule {
         };
         let target = self.interpolate(x);
         let now = self.attitude_at(nav.time_s);
-        self.command = Attitude {
+        self.command = Command {
             alpha_rad: step_towards(
                 self.command.alpha_rad,
                 target.alpha_rad,
@@ -246,9 +246,9 @@ impl AttitudeSource for HostSchedule {
         Ok(())
     }
 
-    fn attitude_at(&self, time_s: f64) -> Attitude {
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
         let dt = (time_s - self.tick_time).max(0.0);
-        Attitude {
+        Command {
             alpha_rad: step_towards(
                 self.at_tick.alpha_rad,
                 self.command.alpha_rad,
@@ -284,8 +284,8 @@ impl AttitudeSource for HostSchedule {
 pub fn ramp_kink(
     time_s: f64,
     tick_time: f64,
-    at_tick: Attitude,
-    command: Attitude,
+    at_tick: Command<f64>,
+    command: Command<f64>,
     rates: (f64, f64),
 ) -> f64 {
     let ta = tick_time + (command.alpha_rad - at_tick.alpha_rad).abs() / rates.0;
@@ -412,8 +412,8 @@ pub struct Sample {
     pub time_s: f64,
     /// Planet-relative spherical state.
     pub state: SphericalState,
-    /// Attitude [rad].
-    pub attitude: Attitude,
+    /// Command<f64> [rad].
+    pub attitude: Command<f64>,
     /// Flight conditions (altitude, density, Mach, forces, heat flux, g-load).
     pub conditions: FlightConditions,
     /// Heat load so far [J/m^2].
@@ -958,7 +958,7 @@ mod tests {
 
     #[test]
     fn ramp_kinks() {
-        let a = |x: f64, y: f64| Attitude {
+        let a = |x: f64, y: f64| Command {
             alpha_rad: x,
             sigma_rad: y,
         };

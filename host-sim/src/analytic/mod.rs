@@ -17,7 +17,7 @@
 //!   ([`SkipSolution::peak_heat_flux`], [`GlideSolution::peak_heat_flux`], ...); their times
 //!   are interpolated in range angle. The g-load rate is the largest finite difference between
 //!   samples (the closed forms are smooth, so this is a lower bound of a real vehicle's).
-//! * Attitude: the samples carry the bank angle; the angle of attack is 0 (the closed forms,
+//! * Command<f64>: the samples carry the bank angle; the angle of attack is 0 (the closed forms,
 //!   and the constant-`C_L` polar vehicle of the comparison runs, are parameterised by `C_L`).
 //! * Termination: the glide ends at an altitude or a speed ([`GlideEnd`]) and is reported as
 //!   [`TerminationReason::Altitude`] or [`TerminationReason::Mach`] (the speed of sound of the

@@ -2,10 +2,11 @@
 //! (time and heat load by quadrature over range angle, peak times interpolated in range angle).
 
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::guidance::Command;
 use guidance_core::vinh;
 
 use super::{AnalyticVehicle, LiftSetting, Placement};
-use crate::dynamics::{Attitude, FlightConditions, SphericalState};
+use crate::dynamics::{FlightConditions, SphericalState};
 use crate::env::{Atmosphere, ExponentialAtmosphere, Planet};
 use crate::sim::{
     Peak, Sample, SampleKind, SimResult, Summary, TerminationReason, Violations, great_circle,
@@ -104,7 +105,7 @@ impl Ctx<'_> {
             first.speed,
         )
         .ok();
-        let attitude = Attitude {
+        let attitude = Command {
             alpha_rad: 0.0,
             sigma_rad: self.lift.bank_rad,
         };

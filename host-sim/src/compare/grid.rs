@@ -2,7 +2,7 @@
 //! definition ([`CompareConfig`]), running ([`run_grid`]) and result ([`CompareGrid`]).
 
 use super::{
-    AnalyticOutcome, Case, CaseRuns, CompareError, Fidelity, Metric, NumericalSettings, Outcome,
+    AnalyticOutcome, Case, CaseRuns, CompareError, Metric, NumericalSettings, Outcome, Preset,
     compare_case, metric_error, setting,
 };
 use crate::analytic::{self, AnalyticVehicle, GlideEnd, LiftSetting, Phase, Placement};
@@ -44,7 +44,7 @@ pub struct CompareConfig {
     /// Start position and heading.
     pub placement: Placement,
     /// Numerical environments to fly.
-    pub fidelities: Vec<Fidelity>,
+    pub fidelities: Vec<Preset>,
     /// Numerical settings.
     pub numerical: NumericalSettings,
     /// Samples per analytical trajectory.
@@ -77,10 +77,10 @@ pub struct GridPoint {
 impl GridPoint {
     /// Outcome of one environment.
     #[must_use]
-    pub fn outcome(&self, fidelity: Fidelity) -> &Outcome {
+    pub fn outcome(&self, fidelity: Preset) -> &Outcome {
         match fidelity {
-            Fidelity::Simplified => &self.simplified,
-            Fidelity::Full => &self.full,
+            Preset::Simplified => &self.simplified,
+            Preset::Full => &self.full,
         }
     }
 }
@@ -107,7 +107,7 @@ pub struct CompareGrid {
 impl CompareGrid {
     /// Error of metric `m` at `point` against `fidelity`, if both sides have values.
     #[must_use]
-    pub fn error(&self, point: &GridPoint, m: usize, fidelity: Fidelity) -> Option<f64> {
+    pub fn error(&self, point: &GridPoint, m: usize, fidelity: Preset) -> Option<f64> {
         let metric = self.metrics.get(m)?;
         let a = *point.analytic.values()?.get(m)?;
         let n = *point.outcome(fidelity).values()?.get(m)?;
@@ -116,7 +116,7 @@ impl CompareGrid {
 
     /// Largest |error| of metric `m` against `fidelity` over the compared points.
     #[must_use]
-    pub fn max_abs_error(&self, m: usize, fidelity: Fidelity) -> Option<f64> {
+    pub fn max_abs_error(&self, m: usize, fidelity: Preset) -> Option<f64> {
         self.points
             .iter()
             .filter_map(|p| self.error(p, m, fidelity))

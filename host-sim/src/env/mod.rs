@@ -18,6 +18,28 @@ pub use atmosphere::{Atmosphere, AtmosphereState, ExponentialAtmosphere, Us76};
 pub use gravity::{CentralGravity, Gravity, J2Gravity};
 pub use planet::Planet;
 
+/// The environment presets: the one list, used by scenarios and by the analytical comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// Non-rotating sphere, central gravity, an exponential atmosphere (the closed forms'
+    /// assumptions, thesis sec. 8.1.3).
+    Simplified,
+    /// Rotating sphere, US76, central + J2 gravity (thesis sec. 7.4).
+    Full,
+}
+
+impl Preset {
+    /// Short name for files, columns and scenario files.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Simplified => "simplified",
+            Preset::Full => "full",
+        }
+    }
+}
+
 /// A complete environment: planet, atmosphere and gravity model.
 pub struct Environment {
     /// Planet (radius, rotation, constants).

@@ -3,14 +3,15 @@
 
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
-use host_sim::dynamics::{Attitude, Dynamics, SphericalState};
+use guidance_core::guidance::Command;
+use host_sim::dynamics::{Dynamics, SphericalState};
 use host_sim::sim::{
     AttitudeSource, FixedAttitude, HostSchedule, SampleKind, ScheduleIndex, SimConfig,
     TerminationReason, simulate,
 };
 
-use host_sim::cli::{Scenario, build_guidance};
 use host_sim::env::Environment;
+use host_sim::scenario::{Scenario, build_guidance};
 
 use crate::support::{Central, ExpAtmo, MU, RE, planet, vehicle};
 
@@ -31,8 +32,8 @@ fn entry(v: f64, gamma_deg: f64) -> SphericalState {
     }
 }
 
-fn deg(a: f64, s: f64) -> Attitude {
-    Attitude {
+fn deg(a: f64, s: f64) -> Command<f64> {
+    Command {
         alpha_rad: a.to_radians(),
         sigma_rad: s.to_radians(),
     }
@@ -49,7 +50,7 @@ impl<A: AttitudeSource> AttitudeSource for Recorder<A> {
         self.navs.push(*nav);
         self.inner.tick(nav)
     }
-    fn attitude_at(&self, t: f64) -> Attitude {
+    fn attitude_at(&self, t: f64) -> Command<f64> {
         self.inner.attitude_at(t)
     }
     fn next_tick_s(&self) -> f64 {
@@ -328,7 +329,7 @@ fn horus_reference(rtol: f64) -> (host_sim::sim::SimResult, host_sim::sim::SimRe
     cfg.termination = sc.termination;
     cfg.tolerances = sc.tolerances;
     cfg.tolerances.rtol = rtol;
-    let core = build_guidance(&sc, &env.planet, "test").unwrap();
+    let core = host_sim::sim::CoreGuidance(build_guidance(&sc, &env.planet, "test").unwrap());
     let (a, _) = simulate(dynm, core, &cfg, &mut |_, _| {}).unwrap();
     let host = HostSchedule::new(
         ScheduleIndex::Time,
@@ -414,7 +415,7 @@ fn core_guidance_and_host_schedule_agree_on_energy_nodes() {
     let dynm = Dynamics::from_environment(&env, &veh);
     let mut cfg = SimConfig::new(sc.entry);
     cfg.termination = sc.termination;
-    let core = build_guidance(&sc, &env.planet, "test").unwrap();
+    let core = host_sim::sim::CoreGuidance(build_guidance(&sc, &env.planet, "test").unwrap());
     let (a, _) = simulate(dynm, core, &cfg, &mut |_, _| {}).unwrap();
     let host = HostSchedule::new(
         ScheduleIndex::NormalizedEnergy,

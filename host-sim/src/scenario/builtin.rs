@@ -1,9 +1,13 @@
 //! Built-in scenarios: the HORUS-2B reference mission (the default) and the SRM glide.
 
-use super::scenario::node_to_rad;
-use super::{EnvSpec, GuidanceSpec, Independent, InterpolationKind, Scenario, VehicleSpec};
-use crate::dynamics::{Attitude, SphericalState};
-use crate::env::Planet;
+use guidance_core::guidance::Command;
+use guidance_core::nodes::Independent;
+
+use super::{
+    EnvSpec, GuidanceSpec, InterpolationKind, Scenario, ScenarioError, VehicleSpec, node_to_rad,
+};
+use crate::dynamics::SphericalState;
+use crate::env::{Planet, Preset};
 use crate::sim::{SimConfig, Termination};
 
 /// HORUS-2B reference guidance nodes (thesis eq. 2.3): `[t_s, alpha_deg, sigma_deg]`.
@@ -36,15 +40,15 @@ impl Default for Scenario {
         Self {
             name: "horus-2b-reference".into(),
             vehicle: VehicleSpec::Name("horus-2b".into()),
-            environment: EnvSpec::full(),
+            environment: EnvSpec::preset(Preset::Full),
             entry,
             guidance: GuidanceSpec {
-                independent: Independent::Time,
+                independent: Independent::TimeS,
                 interpolation: InterpolationKind::Linear,
                 period_s: 2.0,
                 alpha_rate_rad_s: 5f64.to_radians(),
                 sigma_rate_rad_s: 15f64.to_radians(),
-                initial: Attitude {
+                initial: Command {
                     alpha_rad: 40f64.to_radians(),
                     sigma_rad: 0.0,
                 },
@@ -75,6 +79,17 @@ impl Scenario {
         }
     }
 
+    /// A built-in scenario by name, or an error listing the known names.
+    ///
+    /// # Errors
+    /// [`ScenarioError::UnknownBuiltin`].
+    pub fn try_builtin(name: &str) -> Result<Self, ScenarioError> {
+        Self::builtin(name).ok_or_else(|| ScenarioError::UnknownBuiltin {
+            name: name.to_string(),
+            known: Self::BUILTIN.join(", "),
+        })
+    }
+
     /// Names accepted by [`Scenario::builtin`].
     pub const BUILTIN: [&'static str; 2] = ["horus-2b-reference", "srm-glide"];
 
@@ -88,7 +103,7 @@ impl Scenario {
         Self {
             name: "srm-glide".into(),
             vehicle: VehicleSpec::Name("srm".into()),
-            environment: EnvSpec::simplified(),
+            environment: EnvSpec::preset(Preset::Simplified),
             entry: SphericalState {
                 radius_m: planet.radius_m + 100_000.0,
                 longitude_rad: 0.0,
@@ -98,12 +113,12 @@ impl Scenario {
                 heading_rad: 90.0 * d,
             },
             guidance: GuidanceSpec {
-                independent: Independent::Energy,
+                independent: Independent::NormalizedEnergy,
                 interpolation: InterpolationKind::Linear,
                 period_s: 2.0,
                 alpha_rate_rad_s: 5.0 * d,
                 sigma_rate_rad_s: 15.0 * d,
-                initial: Attitude {
+                initial: Command {
                     alpha_rad: 0.0,
                     sigma_rad: 0.0,
                 },

@@ -2,39 +2,23 @@
 //! loop's attitude source.
 
 use guidance_core::energy::EnergyNormalizer;
-use guidance_core::guidance::{Command as CoreCommand, Guidance, GuidanceConfig, RateLimits};
+use guidance_core::guidance::{Guidance, GuidanceConfig, RateLimits};
 use guidance_core::interp::Interpolation;
-use guidance_core::nodes::{AngleBounds, Independent as CoreIndependent, Node, NodeTable};
+use guidance_core::nodes::{AngleBounds, Node, NodeTable};
 
-use super::{CliError, Independent, InterpolationKind, Scenario};
-use crate::dynamics::Attitude;
+use super::{InterpolationKind, Scenario, ScenarioError};
 use crate::env::Planet;
-use crate::sim::{self, AttitudeSource};
-
-impl AttitudeSource for Box<dyn AttitudeSource> {
-    fn tick(&mut self, nav: &guidance_core::NavState<f64>) -> Result<(), String> {
-        (**self).tick(nav)
-    }
-    fn attitude_at(&self, time_s: f64) -> Attitude {
-        (**self).attitude_at(time_s)
-    }
-    fn next_tick_s(&self) -> f64 {
-        (**self).next_tick_s()
-    }
-    fn next_kink_s(&self, time_s: f64) -> f64 {
-        (**self).next_kink_s(time_s)
-    }
-}
 
 /// Build the guidance of a scenario: `guidance-core`'s flight [`Guidance`] in `f64`.
 ///
 /// # Errors
-/// [`CliError::Scenario`] when the guidance rejects its configuration.
+/// [`ScenarioError::Guidance`] or [`ScenarioError::Entry`] when the core rejects the
+/// configuration (`file` names the scenario).
 pub fn build_guidance(
     sc: &Scenario,
     planet: &Planet,
     file: &str,
-) -> Result<Box<dyn AttitudeSource>, CliError> {
+) -> Result<Guidance<f64>, ScenarioError> {
     let g = &sc.guidance;
     let energy = EnergyNormalizer::<f64>::new(
         planet.mu_m3_s2,
@@ -42,12 +26,16 @@ pub fn build_guidance(
         sc.entry.radius_m,
         sc.entry.speed_m_s,
     )
-    .map_err(|e| CliError::Scenario(format!("{file}: entry state: {e}")))?;
-    let gerr = |what: &str, e: guidance_core::GuidanceError| {
-        CliError::Scenario(format!(
-            "{file}: field `guidance.{what}`: rejected by guidance-core: {e}"
-        ))
-    };
+    .map_err(|source| ScenarioError::Entry {
+        file: file.to_string(),
+        source,
+    })?;
+    let gerr =
+        |field: &'static str, source: guidance_core::GuidanceError| ScenarioError::Guidance {
+            file: file.to_string(),
+            field,
+            source,
+        };
     let nodes: Vec<Node<f64>> = g
         .nodes
         .iter()
@@ -57,11 +45,7 @@ pub fn build_guidance(
             sigma_rad: n[2],
         })
         .collect();
-    let independent = match g.independent {
-        Independent::Time => CoreIndependent::TimeS,
-        Independent::Energy => CoreIndependent::NormalizedEnergy,
-    };
-    let table = NodeTable::new(independent, &nodes, guidance_bounds())
+    let table = NodeTable::new(g.independent, &nodes, guidance_bounds())
         .map_err(|e| gerr("nodes", e.into()))?;
     let kind = match g.interpolation {
         InterpolationKind::Linear => Interpolation::Linear,
@@ -75,13 +59,7 @@ pub fn build_guidance(
             sigma_rad_s: g.sigma_rate_rad_s,
         },
     };
-    let initial = CoreCommand {
-        alpha_rad: g.initial.alpha_rad,
-        sigma_rad: g.initial.sigma_rad,
-    };
-    let guidance = Guidance::new(config, table, kind, energy, initial)
-        .map_err(|e| gerr("interpolation", e))?;
-    Ok(Box::new(sim::CoreGuidance(guidance)))
+    Guidance::new(config, table, kind, energy, g.initial).map_err(|e| gerr("interpolation", e))
 }
 
 /// Angle bounds of scenario guidance: alpha 0..45 deg (thesis sec. 4.2.1), sigma -90..90 deg

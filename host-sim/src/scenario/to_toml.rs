@@ -1,6 +1,8 @@
 //! The scenario as TOML text (the inverse of [`parse_scenario`](super::parse_scenario)).
 
-use super::{Independent, InterpolationKind, Scenario, VehicleSpec};
+use guidance_core::nodes::Independent;
+
+use super::{InterpolationKind, Scenario, VehicleSpec};
 use crate::env::Planet;
 
 /// Rounding to 10 decimals for printing degree values (keeps 40.0 from printing as
@@ -34,7 +36,9 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
     let _ = writeln!(
         s,
         "\n[environment]\natmosphere = {:?}\ngravity = {:?}\nrotating = {}",
-        e.atmosphere, e.gravity, e.rotating
+        e.atmosphere.as_str(),
+        e.gravity.as_str(),
+        e.rotating
     );
     let en = &sc.entry;
     let _ = writeln!(
@@ -57,8 +61,8 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
         s,
         "\n[guidance]\nindependent = {:?}\ninterpolation = {interp:?}",
         match g.independent {
-            Independent::Time => "time",
-            Independent::Energy => "energy",
+            Independent::TimeS => "time",
+            Independent::NormalizedEnergy => "energy",
         }
     );
     if let Some(t) = tension {

@@ -3,11 +3,34 @@
 
 use std::path::PathBuf;
 
-use super::{
-    AnalyticOutcome, CompareConfig, CompareError, Fidelity, GridKind, NumericalSettings,
-    run_grid_with, setting, write_case, write_grid,
-};
 use crate::analytic::{self, AnalyticVehicle, GlideEnd, Placement};
+use crate::compare::{
+    AnalyticOutcome, CompareConfig, CompareError, GridKind, NumericalSettings, run_grid_with,
+    write_case, write_grid,
+};
+use crate::env::Preset;
+
+fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> CompareError {
+    CompareError::setting(field, value, reason)
+}
+
+/// A numerical environment of `compare` (the library's [`Preset`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EnvArg {
+    /// Non-rotating sphere, central gravity, the closed forms' exponential atmosphere.
+    Simplified,
+    /// Rotating sphere, US76, central + J2 gravity.
+    Full,
+}
+
+impl From<EnvArg> for Preset {
+    fn from(a: EnvArg) -> Self {
+        match a {
+            EnvArg::Simplified => Preset::Simplified,
+            EnvArg::Full => Preset::Full,
+        }
+    }
+}
 
 /// Which closed form the `compare` subcommand maps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -67,7 +90,7 @@ pub struct CompareCliArgs {
         value_delimiter = ',',
         default_value = "simplified,full"
     )]
-    pub environments: Vec<Fidelity>,
+    pub environments: Vec<EnvArg>,
     /// Start latitude [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub latitude_deg: f64,
@@ -107,7 +130,7 @@ fn finite_arg(field: &'static str, v: f64) -> Result<f64, CompareError> {
 ///
 /// # Errors
 /// [`CompareError`] naming the argument and value (or the vehicle file, field and value).
-pub fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareError> {
+pub(super) fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareError> {
     let veh = crate::vehicle::load(&a.vehicle)?;
     let vehicle = AnalyticVehicle::from_vehicle(&veh, a.polar_mach)?;
     let [h1, h2] = a.fit_altitudes_km[..] else {
@@ -171,7 +194,7 @@ pub fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareErro
             longitude_rad: finite_arg("--longitude-deg", a.longitude_deg)?.to_radians(),
             heading_rad: finite_arg("--heading-deg", a.heading_deg)?.to_radians(),
         },
-        fidelities: a.environments.clone(),
+        fidelities: a.environments.iter().map(|&e| e.into()).collect(),
         numerical: NumericalSettings {
             rtol: a.rtol,
             output_interval_s: a.output_interval_s,
@@ -187,7 +210,7 @@ pub fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareErro
 ///
 /// # Errors
 /// [`CompareError`] naming the argument and value, or the path that could not be written.
-pub fn run_cli(
+pub(super) fn run(
     a: &CompareCliArgs,
     out: &mut dyn std::io::Write,
 ) -> Result<Vec<PathBuf>, CompareError> {
