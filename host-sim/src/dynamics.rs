@@ -32,6 +32,10 @@ pub const G0_M_S2: f64 = guidance_core::monitor::G0_M_S2;
 
 /// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
 pub const STATE_LEN: usize = 8;
+/// Slot of the heat load `Q` \[J/m^2\] in the integrated state.
+pub const HEAT_LOAD_SLOT: usize = 6;
+/// Slot of the flown range angle `theta` \[rad\] in the integrated state.
+pub const FLOWN_RANGE_SLOT: usize = 7;
 
 /// Inertial Cartesian state.
 #[derive(Clone, Copy, Debug, PartialEq)]

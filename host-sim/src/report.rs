@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::sim::{Peak, Sample, SampleKind, SimResult, TerminationReason, Violations};
+use crate::sim::{Peak, Sample, SampleKind, SimResult, TerminationReason};
 
 /// Output failures (always naming the path).
 #[derive(Debug, thiserror::Error)]
@@ -127,6 +127,28 @@ impl PeakOut {
     }
 }
 
+/// Constraint violations (eq. 4.9-4.11) as written to summary.json: `guidance-core`'s
+/// [`Violations`](guidance_core::monitor::Violations), field for field.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ViolationsOut {
+    /// Heat flux p_q.
+    pub heat_flux: f64,
+    /// g-load p_g.
+    pub g_load: f64,
+    /// g-load rate p_gdot.
+    pub g_load_rate: f64,
+}
+
+impl From<guidance_core::monitor::Violations<f64>> for ViolationsOut {
+    fn from(v: guidance_core::monitor::Violations<f64>) -> Self {
+        Self {
+            heat_flux: v.heat_flux,
+            g_load: v.g_load,
+            g_load_rate: v.g_load_rate,
+        }
+    }
+}
+
 /// Final state in report units.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct FinalState {
@@ -182,7 +204,7 @@ pub struct SummaryReport {
     /// Interface crossing times [s] and kinds.
     pub interface_crossings: Vec<(f64, SampleKind)>,
     /// Constraint violations, eq. 4.9-4.11.
-    pub violations: Violations,
+    pub violations: ViolationsOut,
     /// Final state.
     pub final_state: FinalState,
     /// RHS evaluations.
@@ -244,7 +266,7 @@ pub fn summary_report(
         exits: s.exits,
         skips: s.skips,
         interface_crossings: s.interface_crossings_s.clone(),
-        violations: s.violations,
+        violations: s.violations.into(),
         final_state,
         rhs_evals: s.rhs_evals,
         accepted_steps: s.accepted_steps,

@@ -9,8 +9,7 @@ use super::{AnalyticVehicle, LiftSetting, Placement};
 use crate::dynamics::{FlightConditions, SphericalState};
 use crate::env::{Atmosphere, ExponentialAtmosphere, Planet};
 use crate::sim::{
-    Peak, Sample, SampleKind, SimResult, Summary, TerminationReason, Violations, great_circle,
-    violation,
+    Peak, Sample, SampleKind, SimResult, Summary, TerminationReason, great_circle, violations,
 };
 
 /// One planar point of a closed form.
@@ -192,11 +191,7 @@ impl Ctx<'_> {
             exits: 0,
             skips: 0,
             interface_crossings_s: Vec::new(),
-            violations: Violations {
-                heat_flux: violation(peak_heat.value, lim.heat_flux_w_m2),
-                g_load: violation(peak_g_load.value, lim.g_load),
-                g_load_rate: violation(g_rate.value, lim.g_load_rate_per_s),
-            },
+            violations: violations(peak_heat, peak_g_load, g_rate, lim),
             rhs_evals: 0,
             accepted_steps: 0,
             rejected_steps: 0,

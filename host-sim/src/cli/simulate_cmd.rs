@@ -93,7 +93,8 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         indicatif::ProgressBar::hidden()
     };
     let max_t = sc.termination.max_time_s;
-    let mut progress = |t: f64, h: f64| {
+    let mut progress = |p: crate::sim::Progress| {
+        let (t, h) = (p.time_s, p.altitude_m);
         bar.set_message(format!(
             "t = {t:7.1} s (max {max_t:.0} s), h = {:6.2} km",
             h / 1e3

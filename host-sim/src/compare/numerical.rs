@@ -44,7 +44,7 @@ pub fn numerical_run(
         alpha_rad: 0.0,
         sigma_rad: lift.bank_rad,
     });
-    let (res, _) = simulate(dynm, source, &cfg, &mut |_, _| {})?;
+    let (res, _) = simulate(dynm, source, &cfg, &mut |_| {})?;
     Ok(res)
 }
 

@@ -47,11 +47,11 @@ impl std::fmt::Debug for Flight {
 pub fn fly(
     sc: &Scenario,
     file: &str,
-    progress: &mut dyn FnMut(f64, f64),
+    progress: &mut dyn FnMut(sim::Progress),
 ) -> Result<Flight, ScenarioError> {
     let vehicle = sc.vehicle.load()?;
     let environment = sc.environment.build();
-    let source = sim::CoreGuidance(build_guidance(sc, &environment.planet, file)?);
+    let source = sim::CoreGuidance::new(build_guidance(sc, &environment.planet, file)?);
     let dynm = Dynamics::from_environment(&environment, &vehicle);
     let (result, _) = sim::simulate(dynm, source, &sc.sim_config(), progress)?;
     Ok(Flight {
@@ -69,7 +69,7 @@ pub fn simulate_scenario(
     sc: &Scenario,
     file: &str,
     out_dir: &Path,
-    progress: &mut dyn FnMut(f64, f64),
+    progress: &mut dyn FnMut(sim::Progress),
 ) -> Result<RunOutput, ScenarioError> {
     let flight = fly(sc, file, progress)?;
     write_flight(sc, &sc.name, flight, out_dir)

@@ -321,7 +321,7 @@ fn runs_are_deterministic() {
     let mut outs = vec![];
     for k in 0..2 {
         let out = dir.join(format!("run{k}"));
-        host_sim::scenario::simulate_scenario(&sc, "tiny.toml", &out, &mut |_, _| {}).unwrap();
+        host_sim::scenario::simulate_scenario(&sc, "tiny.toml", &out, &mut |_| {}).unwrap();
         outs.push((
             std::fs::read(out.join("trajectory.csv")).unwrap(),
             std::fs::read(out.join("summary.json")).unwrap(),
@@ -360,7 +360,7 @@ proptest::proptest! {
             }
             Ok(sc) => {
                 // Flies (or fails cleanly) without panicking.
-                let _ = host_sim::scenario::fly(&sc, "p.toml", &mut |_, _| {});
+                let _ = host_sim::scenario::fly(&sc, "p.toml", &mut |_| {});
             }
         }
         // Garbage after a valid key is a syntax error naming the file.

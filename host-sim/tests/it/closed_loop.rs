@@ -4,16 +4,16 @@
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
 use guidance_core::guidance::Command;
+use guidance_core::nodes::Independent;
 use host_sim::dynamics::{Dynamics, SphericalState};
 use host_sim::sim::{
-    AttitudeSource, FixedAttitude, HostSchedule, SampleKind, ScheduleIndex, SimConfig,
-    TerminationReason, simulate,
+    AttitudeSource, FixedAttitude, SampleKind, SimConfig, TerminationReason, simulate,
 };
 
 use host_sim::env::Environment;
 use host_sim::scenario::{Scenario, build_guidance};
 
-use crate::support::{Central, ExpAtmo, MU, RE, planet, vehicle};
+use crate::support::{Central, ExpAtmo, HostSchedule, MU, RE, planet, vehicle};
 
 const ATM: ExpAtmo = ExpAtmo {
     rho0: 1.225,
@@ -46,7 +46,8 @@ struct Recorder<A> {
 }
 
 impl<A: AttitudeSource> AttitudeSource for Recorder<A> {
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
+    type Error = A::Error;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), A::Error> {
         self.navs.push(*nav);
         self.inner.tick(nav)
     }
@@ -71,7 +72,7 @@ fn time_schedule(e: &SphericalState, nodes: Vec<[f64; 3]>) -> HostSchedule {
         .map(|[t, a, s]| [t, a.to_radians(), s.to_radians()])
         .collect();
     HostSchedule::new(
-        ScheduleIndex::Time,
+        Independent::TimeS,
         nodes,
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -103,7 +104,7 @@ fn guidance_ticks_are_landed_on_exactly() {
         ),
         navs: vec![],
     };
-    let (res, src) = simulate(dynm, src, &cfg, &mut |_, _| {}).unwrap();
+    let (res, src) = simulate(dynm, src, &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::MaxTime);
     assert_eq!(src.navs.len(), 151, "ticks at 0, 2, ..., 300 s");
     for (k, nav) in src.navs.iter().enumerate() {
@@ -148,7 +149,7 @@ fn skip_exit_and_reentry_are_located() {
     cfg.termination.altitude_m = Some(60_000.0);
     cfg.tolerances.event_time_tol_s = 1e-7;
     let src = FixedAttitude(deg(40.0, 0.0));
-    let (res, _) = simulate(dynm, src, &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, src, &cfg, &mut |_| {}).unwrap();
     let s = &res.summary;
     println!("{s:?}");
     assert!(s.exits >= 1 && s.skips >= 1, "expected a skip: {s:?}");
@@ -176,7 +177,7 @@ fn skip_exit_and_reentry_are_located() {
     let mut cfg2 = cfg;
     cfg2.output_interval_s = 0.05;
     cfg2.termination.max_time_s = t_reentry + 1.0;
-    let (res2, _) = simulate(dynm, FixedAttitude(deg(40.0, 0.0)), &cfg2, &mut |_, _| {}).unwrap();
+    let (res2, _) = simulate(dynm, FixedAttitude(deg(40.0, 0.0)), &cfg2, &mut |_| {}).unwrap();
     let pts: Vec<(f64, f64)> = res2
         .samples
         .iter()
@@ -214,7 +215,7 @@ fn heat_load_matches_quadrature_of_heat_flux() {
     let mut cfg = SimConfig::new(e);
     cfg.output_interval_s = 0.1;
     cfg.termination.max_time_s = 600.0;
-    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 45.0)), &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 45.0)), &cfg, &mut |_| {}).unwrap();
     let mut q = 0.0;
     for w in res.samples.windows(2) {
         q += 0.5
@@ -256,7 +257,7 @@ fn energy_indexed_nodes_and_energy_termination() {
         [0.3, 20f64.to_radians(), 40f64.to_radians()],
     ];
     let sched = HostSchedule::new(
-        ScheduleIndex::NormalizedEnergy,
+        Independent::NormalizedEnergy,
         nodes,
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -268,7 +269,7 @@ fn energy_indexed_nodes_and_energy_termination() {
     cfg.termination.altitude_m = None;
     cfg.termination.normalized_energy = Some(0.5);
     cfg.termination.max_time_s = 5000.0;
-    let (res, _) = simulate(dynm, sched, &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, sched, &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::NormalizedEnergy);
     let last = res.samples.last().unwrap();
     assert!(
@@ -329,10 +330,10 @@ fn horus_reference(rtol: f64) -> (host_sim::sim::SimResult, host_sim::sim::SimRe
     cfg.termination = sc.termination;
     cfg.tolerances = sc.tolerances;
     cfg.tolerances.rtol = rtol;
-    let core = host_sim::sim::CoreGuidance(build_guidance(&sc, &env.planet, "test").unwrap());
-    let (a, _) = simulate(dynm, core, &cfg, &mut |_, _| {}).unwrap();
+    let core = host_sim::sim::CoreGuidance::new(build_guidance(&sc, &env.planet, "test").unwrap());
+    let (a, _) = simulate(dynm, core, &cfg, &mut |_| {}).unwrap();
     let host = HostSchedule::new(
-        ScheduleIndex::Time,
+        Independent::TimeS,
         sc.guidance.nodes.clone(),
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -346,7 +347,7 @@ fn horus_reference(rtol: f64) -> (host_sim::sim::SimResult, host_sim::sim::SimRe
         sc.guidance.initial,
     )
     .unwrap();
-    let (b, _) = simulate(dynm, host, &cfg, &mut |_, _| {}).unwrap();
+    let (b, _) = simulate(dynm, host, &cfg, &mut |_| {}).unwrap();
     (a, b)
 }
 
@@ -415,10 +416,10 @@ fn core_guidance_and_host_schedule_agree_on_energy_nodes() {
     let dynm = Dynamics::from_environment(&env, &veh);
     let mut cfg = SimConfig::new(sc.entry);
     cfg.termination = sc.termination;
-    let core = host_sim::sim::CoreGuidance(build_guidance(&sc, &env.planet, "test").unwrap());
-    let (a, _) = simulate(dynm, core, &cfg, &mut |_, _| {}).unwrap();
+    let core = host_sim::sim::CoreGuidance::new(build_guidance(&sc, &env.planet, "test").unwrap());
+    let (a, _) = simulate(dynm, core, &cfg, &mut |_| {}).unwrap();
     let host = HostSchedule::new(
-        ScheduleIndex::NormalizedEnergy,
+        Independent::NormalizedEnergy,
         sc.guidance.nodes.clone(),
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -432,7 +433,7 @@ fn core_guidance_and_host_schedule_agree_on_energy_nodes() {
         sc.guidance.initial,
     )
     .unwrap();
-    let (b, _) = simulate(dynm, host, &cfg, &mut |_, _| {}).unwrap();
+    let (b, _) = simulate(dynm, host, &cfg, &mut |_| {}).unwrap();
     assert_eq!(a.summary.termination, TerminationReason::Altitude);
     assert_eq!(a.samples.len(), b.samples.len());
     let mut max_ds: f64 = 0.0;
@@ -470,7 +471,7 @@ fn mach_and_ground_terminations() {
     cfg.termination.altitude_m = None;
     cfg.termination.mach = Some(5.0);
     cfg.termination.max_time_s = 5000.0;
-    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 50.0)), &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 50.0)), &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::Mach);
     let m = res.samples.last().unwrap().conditions.mach;
     assert!(m <= 5.0 && m > 5.0 - 1e-5, "Mach at end {m}");
@@ -483,7 +484,7 @@ fn mach_and_ground_terminations() {
     };
     let mut cfg = SimConfig::new(entry(7000.0, -30.0));
     cfg.termination.altitude_m = None;
-    let (res, _) = simulate(dynm, FixedAttitude(deg(0.0, 0.0)), &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, FixedAttitude(deg(0.0, 0.0)), &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::Ground);
     let h = res.samples.last().unwrap().conditions.altitude_m;
     assert!(h <= 0.0 && h > -1e-2, "altitude at end {h}");

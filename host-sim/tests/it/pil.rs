@@ -32,7 +32,8 @@ fn elf() -> PathBuf {
 struct Offset(host_sim::sim::CoreGuidance, f64);
 
 impl AttitudeSource for Offset {
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
+    type Error = host_sim::sim::TickError;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error> {
         self.0.tick(nav)
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {

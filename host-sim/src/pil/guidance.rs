@@ -1,123 +1,20 @@
-//! Processor-in-the-loop (PIL): the closed loop flies the firmware's guidance running in QEMU.
-//!
-//! [`PilGuidance`] is an [`AttitudeSource`]: at every 2 s tick it sends the navigation state to
-//! the firmware (`onboard-demo`'s `pil` binary, `f32` guidance with the HORUS-2B reference
-//! table compiled in) as a `guidance_core::link` [`NavFrame`] and waits for the
-//! [`CommandFrame`]; between ticks it reproduces the rate-limited ramp from that frame
-//! ([`CommandFrame::attitude_at`]). The frames go through two named FIFOs,
-//! `<dir>/nav` and `<dir>/cmd`, that the firmware opens through semihosting; `<dir>` is passed
-//! to the firmware as QEMU's `-append` command line.
-//!
-//! Nothing hangs: QEMU runs under `timeout`, opening the FIFOs and every answer wait at most
-//! [`PilConfig::reply_timeout`] (a reader thread with a channel), and on any failure QEMU is
-//! killed and the FIFOs are removed (also on drop).
+//! [`PilGuidance`]: QEMU running the firmware, the FIFO link, and the closed loop's attitude
+//! source that talks to it.
 
-use guidance_core::guidance::Command;
 use std::fs::{File, OpenOptions};
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Child, Stdio};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use guidance_core::NavState;
-use guidance_core::link::{
-    CommandFrame, FRAME_LEN, Frame, LinkError, LinkStatus, NavFrame, decode, encode,
-};
+use guidance_core::guidance::Command;
+use guidance_core::link::{CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode};
 
-use crate::dynamics::Dynamics;
-use crate::env::Environment;
-use crate::scenario::{Scenario, ScenarioError, build_guidance};
-use crate::sim::{self, AttitudeSource, SimResult, ramp_kink};
-use crate::vehicle::Vehicle;
-
-/// Where the firmware ELF is looked for by default (relative to the workspace root).
-pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
-
-/// PIL settings.
-#[derive(Clone, Debug)]
-pub struct PilConfig {
-    /// Firmware ELF (`onboard-demo`'s `pil` binary for `thumbv7em-none-eabihf`).
-    pub elf: PathBuf,
-    /// QEMU program.
-    pub qemu: String,
-    /// Directory created for the FIFOs (removed afterwards); must not exist.
-    pub fifo_dir: PathBuf,
-    /// Longest wait for the firmware to open a FIFO or answer one frame.
-    pub reply_timeout: Duration,
-    /// Wall-time limit of the whole QEMU run (`timeout`) \[s\].
-    pub qemu_timeout_s: u32,
-}
-
-impl PilConfig {
-    /// Settings for `elf` with a FIFO directory unique to this process and call.
-    #[must_use]
-    pub fn new(elf: PathBuf) -> Self {
-        use std::sync::atomic::{AtomicU32, Ordering};
-        static N: AtomicU32 = AtomicU32::new(0);
-        let n = N.fetch_add(1, Ordering::Relaxed);
-        Self {
-            elf,
-            qemu: "qemu-system-arm".into(),
-            fifo_dir: std::env::temp_dir().join(format!("reentry-pil-{}-{n}", std::process::id())),
-            reply_timeout: Duration::from_secs(10),
-            qemu_timeout_s: 600,
-        }
-    }
-}
-
-/// PIL failures; each names what failed.
-#[derive(Debug, thiserror::Error)]
-pub enum PilError {
-    /// QEMU is not installed.
-    #[error("`{0} --version` failed: QEMU is missing (install qemu-system-arm)")]
-    QemuMissing(String),
-    /// The firmware ELF is missing.
-    #[error(
-        "firmware ELF {0} not found (build it: cargo build -p onboard-demo --profile firmware --target thumbv7em-none-eabihf)"
-    )]
-    ElfMissing(PathBuf),
-    /// Creating, opening or using a FIFO failed.
-    #[error("FIFO {path}: {reason}")]
-    Fifo {
-        /// The FIFO.
-        path: PathBuf,
-        /// What went wrong.
-        reason: String,
-    },
-    /// QEMU could not be started or failed.
-    #[error("QEMU: {0}")]
-    Qemu(String),
-    /// The firmware did not answer in time.
-    #[error("timeout after {0:?} waiting for {1}")]
-    Timeout(Duration, &'static str),
-    /// A received frame was malformed.
-    #[error("bad frame from the firmware: {0}")]
-    Link(LinkError),
-    /// The firmware answered with an error status or an unexpected frame.
-    #[error("firmware answered frame {seq} with {what}")]
-    Firmware {
-        /// Sequence number of the nav frame.
-        seq: u32,
-        /// The status or frame received.
-        what: String,
-    },
-    /// The simulation around the firmware failed.
-    #[error("simulation: {0}")]
-    Sim(#[from] sim::SimError),
-    /// The reference mission could not be set up (e.g. its vehicle did not load).
-    #[error("reference mission: {0}")]
-    Scenario(#[from] ScenarioError),
-}
-
-/// Counters of one PIL run.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PilStats {
-    /// Nav/command round trips.
-    pub frames: u64,
-    /// Total time spent waiting for answers (write + read) \[s\].
-    pub link_s: f64,
-}
+use super::fifo::{mkfifo, open_fifo};
+use super::{PilConfig, PilError, PilStats};
+use crate::sim::{AttitudeSource, ramp_kink};
 
 /// The firmware in QEMU as the closed loop's attitude source (see the module docs).
 pub struct PilGuidance {
@@ -131,52 +28,6 @@ pub struct PilGuidance {
     period_s: f64,
     seq: u32,
     stats: PilStats,
-    /// The first error, kept typed (the loop only sees its message).
-    error: Option<String>,
-}
-
-fn mkfifo(path: &Path) -> Result<(), PilError> {
-    let out = std::process::Command::new("mkfifo")
-        .arg(path)
-        .output()
-        .map_err(|e| PilError::Fifo {
-            path: path.into(),
-            reason: format!("cannot run mkfifo: {e}"),
-        })?;
-    if out.status.success() {
-        Ok(())
-    } else {
-        Err(PilError::Fifo {
-            path: path.into(),
-            reason: format!(
-                "mkfifo failed: {}",
-                String::from_utf8_lossy(&out.stderr).trim()
-            ),
-        })
-    }
-}
-
-/// Open `path` (read or write) in a thread; wait at most `timeout`. A blocked open is released
-/// by opening the FIFO read-write ourselves.
-fn open_fifo(path: &Path, write: bool, timeout: Duration) -> Result<File, PilError> {
-    let (tx, rx) = mpsc::channel();
-    let p = path.to_path_buf();
-    std::thread::spawn(move || {
-        let r = OpenOptions::new().read(!write).write(write).open(&p);
-        let _ = tx.send(r);
-    });
-    match rx.recv_timeout(timeout) {
-        Ok(Ok(f)) => Ok(f),
-        Ok(Err(e)) => Err(PilError::Fifo {
-            path: path.into(),
-            reason: format!("cannot open: {e}"),
-        }),
-        Err(_) => {
-            // Unblock the opener thread (a read-write open of a FIFO never blocks on Linux).
-            let _unblock = OpenOptions::new().read(true).write(true).open(path);
-            Err(PilError::Timeout(timeout, "the firmware to open its FIFOs"))
-        }
-    }
 }
 
 impl PilGuidance {
@@ -212,7 +63,6 @@ impl PilGuidance {
             period_s: 2.0,
             seq: 0,
             stats: PilStats::default(),
-            error: None,
         };
         let (nav_path, cmd_path) = me.paths();
         mkfifo(&nav_path)?;
@@ -407,31 +257,17 @@ impl Drop for PilGuidance {
     }
 }
 
-fn attitude(c: guidance_core::guidance::Command<f64>) -> Command<f64> {
-    Command {
-        alpha_rad: c.alpha_rad,
-        sigma_rad: c.sigma_rad,
-    }
-}
-
 impl AttitudeSource for PilGuidance {
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
-        match self.exchange(nav) {
-            Ok(c) => {
-                self.next_tick_s = c.tick_time_s + self.period_s;
-                self.last = Some(c);
-                Ok(())
-            }
-            Err(e) => {
-                let msg = format!("PIL: {e}");
-                self.error.get_or_insert_with(|| msg.clone());
-                Err(msg)
-            }
-        }
+    type Error = PilError;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), PilError> {
+        let c = self.exchange(nav)?;
+        self.next_tick_s = c.tick_time_s + self.period_s;
+        self.last = Some(c);
+        Ok(())
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
         match &self.last {
-            Some(c) => attitude(c.attitude_at(time_s)),
+            Some(c) => c.attitude_at(time_s),
             // Before the first tick: the firmware's initial attitude (40 deg, 0 deg).
             None => Command {
                 alpha_rad: 40f64.to_radians(),
@@ -449,71 +285,9 @@ impl AttitudeSource for PilGuidance {
         ramp_kink(
             time_s,
             c.tick_time_s,
-            attitude(c.ramp_start),
-            attitude(c.command),
+            c.ramp_start,
+            c.command,
             (c.rates.alpha_rad_s, c.rates.sigma_rad_s),
         )
     }
-}
-
-/// The HORUS-2B reference mission's models and settings (the default scenario, full
-/// environment), as flown by SIL and PIL.
-fn reference_setup() -> Result<(Scenario, Environment, Vehicle), ScenarioError> {
-    let sc = Scenario::default();
-    let env = sc.environment.build();
-    let veh = sc.vehicle.load()?;
-    Ok((sc, env, veh))
-}
-
-/// The SIL guidance of the reference mission: `guidance-core`'s `Guidance<f64>` built from the
-/// default scenario (the same table, rates, period and initial attitude as the firmware).
-///
-/// # Errors
-/// [`ScenarioError`] if the reference mission cannot be set up.
-pub fn reference_sil_guidance() -> Result<sim::CoreGuidance, ScenarioError> {
-    let (sc, env, _) = reference_setup()?;
-    Ok(sim::CoreGuidance(build_guidance(
-        &sc,
-        &env.planet,
-        "(built-in)",
-    )?))
-}
-
-/// Fly the HORUS-2B reference mission (default scenario: full environment, HORUS-2B vehicle,
-/// its termination, tolerances and output settings) with any attitude source.
-///
-/// # Errors
-/// [`ScenarioError`] naming the failure.
-pub fn fly_reference<A: AttitudeSource>(source: A) -> Result<(SimResult, A), ScenarioError> {
-    let (sc, env, veh) = reference_setup()?;
-    let dynm = Dynamics::from_environment(&env, &veh);
-    Ok(sim::simulate(
-        dynm,
-        source,
-        &sc.sim_config(),
-        &mut |_, _| {},
-    )?)
-}
-
-/// Fly the HORUS-2B reference mission in SIL (`f64` core guidance in-process).
-///
-/// # Errors
-/// [`ScenarioError`] naming the failure.
-pub fn fly_reference_sil() -> Result<SimResult, ScenarioError> {
-    Ok(fly_reference(reference_sil_guidance()?)?.0)
-}
-
-/// Fly the HORUS-2B reference mission in PIL: the firmware (`cfg.elf`, with the same reference
-/// table, rates, period and initial attitude compiled in) computes every command. Returns the
-/// same [`SimResult`] as SIL, plus the link counters.
-///
-/// # Errors
-/// [`PilError`] naming what failed; QEMU is stopped and the FIFOs are removed in every case.
-pub fn fly_reference_pil(cfg: PilConfig) -> Result<(SimResult, PilStats), PilError> {
-    let (sc, env, veh) = reference_setup()?;
-    let source = PilGuidance::start(cfg)?;
-    let dynm = Dynamics::from_environment(&env, &veh);
-    let (result, source) = sim::simulate(dynm, source, &sc.sim_config(), &mut |_, _| {})?;
-    let stats = source.finish()?;
-    Ok((result, stats))
 }
