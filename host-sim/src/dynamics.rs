@@ -24,7 +24,7 @@
 use guidance_core::guidance::Command;
 use nalgebra::Vector3;
 
-use crate::env::{Atmosphere, Environment, Gravity, Planet};
+use crate::env::{Atmosphere, ChapmanHeatFlux, Environment, Gravity, Planet};
 use crate::vehicle::Vehicle;
 
 /// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1); `guidance-core`'s value.
@@ -153,13 +153,6 @@ pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> 
     }
 }
 
-/// Chapman stagnation-point heat flux [W/m^2] (thesis eq. 2.2, n = 0.5, m = 3.15, cold
-/// wall): `guidance-core`'s monitor function (0 for zero density or invalid input).
-#[must_use]
-pub fn chapman_heat_flux_w_m2(density_kg_m3: f64, speed_m_s: f64, nose_radius_m: f64) -> f64 {
-    guidance_core::monitor::chapman_heat_flux_w_m2(density_kg_m3, speed_m_s, nose_radius_m)
-}
-
 /// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlightConditions {
@@ -199,6 +192,8 @@ pub struct Dynamics<'a> {
     pub gravity: &'a dyn Gravity,
     /// Vehicle.
     pub vehicle: &'a Vehicle,
+    /// Chapman heat-flux constants.
+    pub heat_flux: ChapmanHeatFlux,
 }
 
 impl std::fmt::Debug for Dynamics<'_> {
@@ -238,6 +233,7 @@ impl<'a> Dynamics<'a> {
             atmosphere: env.atmosphere.as_ref(),
             gravity: env.gravity.as_ref(),
             vehicle,
+            heat_flux: env.heat_flux,
         }
     }
 
@@ -273,7 +269,9 @@ impl<'a> Dynamics<'a> {
             cd,
             lift_n: lift,
             drag_n: drag,
-            heat_flux_w_m2: chapman_heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
+            heat_flux_w_m2: self
+                .heat_flux
+                .heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
             g_load: guidance_core::monitor::g_load(lift, drag, self.vehicle.mass_kg),
         }
     }

@@ -55,7 +55,7 @@ fn pil_run(
     )?;
     let flight = Flight {
         result,
-        vehicle: sc.vehicle.load()?,
+        vehicle: sc.load_vehicle()?,
         environment: sc.environment.build(),
     };
     Ok(write_flight(

@@ -3,9 +3,11 @@
 //! ([`ExponentialAtmosphere`]); thesis sec. 3.6.2.
 
 pub mod exponential;
+pub mod table;
 pub mod us76;
 
 pub use exponential::{ExponentialAtmosphere, ExponentialAtmosphereError};
+pub use table::{TableAtmosphereError, TabulatedAtmosphere};
 pub use us76::Us76;
 
 /// Atmospheric state at one altitude.

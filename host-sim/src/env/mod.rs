@@ -12,10 +12,15 @@
 
 pub mod atmosphere;
 pub mod gravity;
+pub mod heat_flux;
 pub mod planet;
 
-pub use atmosphere::{Atmosphere, AtmosphereState, ExponentialAtmosphere, Us76};
+pub use atmosphere::{
+    Atmosphere, AtmosphereState, ExponentialAtmosphere, TableAtmosphereError, TabulatedAtmosphere,
+    Us76,
+};
 pub use gravity::{CentralGravity, Gravity, J2Gravity};
+pub use heat_flux::{ChapmanHeatFlux, HeatFluxError};
 pub use planet::Planet;
 
 /// The environment presets: the one list, used by scenarios and by the analytical comparison.
@@ -48,6 +53,8 @@ pub struct Environment {
     pub atmosphere: Box<dyn Atmosphere>,
     /// Gravity model.
     pub gravity: Box<dyn Gravity>,
+    /// Chapman heat-flux constants (default: the thesis', [`ChapmanHeatFlux::thesis`]).
+    pub heat_flux: ChapmanHeatFlux,
 }
 
 impl Environment {
@@ -59,6 +66,7 @@ impl Environment {
             planet,
             atmosphere: Box::new(Us76::new()),
             gravity: Box::new(J2Gravity::from_planet(&planet)),
+            heat_flux: ChapmanHeatFlux::thesis(),
         }
     }
 
@@ -70,6 +78,7 @@ impl Environment {
             planet,
             atmosphere: Box::new(atmosphere),
             gravity: Box::new(CentralGravity::from_planet(&planet)),
+            heat_flux: ChapmanHeatFlux::thesis(),
         }
     }
 
@@ -87,6 +96,7 @@ impl Environment {
             planet,
             atmosphere,
             gravity,
+            heat_flux: ChapmanHeatFlux::thesis(),
         }
     }
 }

@@ -37,6 +37,19 @@ impl Planet {
         }
     }
 
+    /// Rotating spherical Mars (NASA Mars fact sheet): mu = 4.2828e13 m^3/s^2, volumetric
+    /// mean radius 3389.5 km, J2 = 1.96045e-3, sidereal day 24.6229 h (omega = 7.0882e-5
+    /// rad/s).
+    #[must_use]
+    pub fn mars() -> Self {
+        Self {
+            mu_m3_s2: 4.282_8e13,
+            radius_m: 3_389_500.0,
+            rotation_rate_rad_s: std::f64::consts::TAU / (24.6229 * 3600.0),
+            j2: 1.960_45e-3,
+        }
+    }
+
     /// Non-rotating spherical Earth (same mu, R and J2; omega = 0), as in the analytical
     /// solutions and the thesis' "simplified" numerical environment (sec. 8.1.3).
     #[must_use]

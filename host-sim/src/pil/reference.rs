@@ -14,7 +14,7 @@ use super::{PilConfig, PilError, PilGuidance, PilStats};
 fn reference_setup() -> Result<(Scenario, Environment, Vehicle), ScenarioError> {
     let sc = Scenario::default();
     let env = sc.environment.build();
-    let veh = sc.vehicle.load()?;
+    let veh = sc.load_vehicle()?;
     Ok((sc, env, veh))
 }
 

@@ -64,6 +64,7 @@ impl Default for Scenario {
             output_interval_s: sim.output_interval_s,
             interface_altitude_m: sim.interface_altitude_m,
             g_rate_window_s: sim.g_rate_window_s,
+            nose_radius_m: None,
         }
     }
 }

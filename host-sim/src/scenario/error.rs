@@ -63,6 +63,14 @@ pub enum ScenarioError {
         /// The core's error.
         source: GuidanceError,
     },
+    /// The tabulated atmosphere could not be read.
+    #[error("{file}: field `environment.table.file`: {source}")]
+    Atmosphere {
+        /// Scenario file.
+        file: String,
+        /// The table's error (names the CSV file, line and value).
+        source: crate::env::TableAtmosphereError,
+    },
     /// The vehicle could not be loaded.
     #[error(transparent)]
     Vehicle(#[from] VehicleFileError),

@@ -57,6 +57,8 @@ pub struct ScenarioFile {
     pub monitors: Option<MonitorsFile>,
     /// `[output]`.
     pub output: Option<OutputFile>,
+    /// `[heat_flux]`.
+    pub heat_flux: Option<HeatFluxFile>,
 }
 
 /// `[environment]`: a preset, then single models.
@@ -71,6 +73,76 @@ pub struct EnvironmentFile {
     pub gravity: Option<GravityKind>,
     /// Rotating planet.
     pub rotating: Option<bool>,
+    /// `[environment.planet]`.
+    pub planet: Option<PlanetFile>,
+    /// `[environment.exponential]`: parameters of the exponential atmosphere.
+    pub exponential: Option<ExponentialFile>,
+    /// `[environment.table]`: the tabulated atmosphere.
+    pub table: Option<TableFile>,
+}
+
+/// Planet presets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PlanetPreset {
+    /// Spherical Earth ([`crate::env::Planet::earth`]).
+    Earth,
+    /// Spherical Mars ([`crate::env::Planet::mars`]).
+    Mars,
+}
+
+/// `[environment.planet]`: a preset, then single constants.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanetFile {
+    /// Preset the constants start from (default: Earth).
+    pub preset: Option<PlanetPreset>,
+    /// Sphere radius \[m\].
+    pub radius_m: Option<Num>,
+    /// Gravitational parameter \[m^3/s^2\].
+    pub mu_m3_s2: Option<Num>,
+    /// Second zonal harmonic \[-\].
+    pub j2: Option<Num>,
+    /// Rotation rate \[rad/s\] (used when `rotating = true`).
+    pub rotation_rate_rad_s: Option<Num>,
+}
+
+/// `[environment.exponential]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExponentialFile {
+    /// Density at the reference altitude \[kg/m^3\].
+    pub rho0_kg_m3: Option<Num>,
+    /// Scale height \[m\].
+    pub scale_height_m: Option<Num>,
+}
+
+/// `[environment.table]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TableFile {
+    /// CSV file, relative to the scenario file.
+    pub file: String,
+    /// Gas constant \[J/(kg K)\] (default: air, 287.05).
+    pub gas_constant_j_kg_k: Option<Num>,
+    /// Heat-capacity ratio \[-\] (default 1.4).
+    pub heat_capacity_ratio: Option<Num>,
+}
+
+/// `[heat_flux]`: Chapman constants and the nose radius.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeatFluxFile {
+    /// Coefficient c* \[W/m^2 * m^0.5\].
+    pub coefficient: Option<Num>,
+    /// Reference density \[kg/m^3\].
+    pub reference_density_kg_m3: Option<Num>,
+    /// Reference speed \[m/s\].
+    pub reference_speed_m_s: Option<Num>,
+    /// Speed exponent \[-\].
+    pub speed_exponent: Option<Num>,
+    /// Nose radius \[m\] (replaces the vehicle's).
+    pub nose_radius_m: Option<Num>,
 }
 
 /// `[entry]`: the entry state.

@@ -49,7 +49,7 @@ pub fn fly(
     file: &str,
     progress: &mut dyn FnMut(sim::Progress),
 ) -> Result<Flight, ScenarioError> {
-    let vehicle = sc.vehicle.load()?;
+    let vehicle = sc.load_vehicle()?;
     let environment = sc.environment.build();
     let source = sim::CoreGuidance::new(build_guidance(sc, &environment.planet, file)?);
     let dynm = Dynamics::from_environment(&environment, &vehicle);

@@ -17,7 +17,28 @@
 //!
 //! [environment]
 //! preset = "full"                 # full: US76, J2, rotating; simplified: exponential, central
-//! # atmosphere = "us76" | "exponential"; gravity = "j2" | "central"; rotating = true
+//! # atmosphere = "us76" | "exponential" | "table"; gravity = "j2" | "central"; rotating = true
+//!
+//! [environment.planet]            # optional: preset = "earth" | "mars", then constants
+//! radius_m = 6378137.0
+//! mu_m3_s2 = 3.986004418e14
+//! j2 = 1.0826267e-3
+//! rotation_rate_rad_s = 7.292115e-5   # used when rotating = true
+//!
+//! # [environment.exponential]     # with atmosphere = "exponential"
+//! # rho0_kg_m3 = 1.225
+//! # scale_height_m = 7200.0
+//! # [environment.table]           # with atmosphere = "table": CSV altitude, density,
+//! # file = "atmosphere.csv"       # temperature or speed of sound (see env::TabulatedAtmosphere)
+//! # gas_constant_j_kg_k = 287.05
+//! # heat_capacity_ratio = 1.4
+//!
+//! [heat_flux]                     # Chapman q = c*/sqrt(R_N) sqrt(rho/rho_ref) (V/V_ref)^m
+//! coefficient = 1.1097e8          # c* [W/m^2 m^0.5]
+//! reference_density_kg_m3 = 1.225
+//! reference_speed_m_s = 7905.4
+//! speed_exponent = 3.15
+//! # nose_radius_m = 0.8           # replaces the vehicle's
 //!
 //! [entry]
 //! altitude_km = 122.0
@@ -47,7 +68,7 @@
 //! h_min_s = 1e-9
 //! h_max_s = 20.0
 //! max_steps = 2000000
-//! event_time_tol_s = 1e-6
+//! event_time_tol_s = 1e-6        # event-location time tolerance
 //!
 //! [monitors]
 //! interface_altitude_km = 100.0   # exit/re-entry (skip) detection
@@ -67,14 +88,15 @@ mod resolve_guidance;
 mod to_toml;
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use guidance_core::guidance::Command;
 use guidance_core::nodes::Independent;
 
 use crate::dynamics::SphericalState;
 use crate::env::{
-    Atmosphere, CentralGravity, Environment, ExponentialAtmosphere, Gravity, J2Gravity, Planet,
-    Preset, Us76,
+    Atmosphere, CentralGravity, ChapmanHeatFlux, Environment, ExponentialAtmosphere, Gravity,
+    J2Gravity, Planet, Preset, TabulatedAtmosphere, Us76,
 };
 use crate::integrate::Tolerances;
 use crate::sim::{SimConfig, Termination};
@@ -125,8 +147,10 @@ pub struct GuidanceSpec {
 pub enum AtmosphereKind {
     /// U.S. Standard Atmosphere 1976.
     Us76,
-    /// Exponential atmosphere, rho0 = 1.225 kg/m^3, H = 7.2 km.
+    /// Exponential atmosphere (default rho0 = 1.225 kg/m^3, H = 7.2 km).
     Exponential,
+    /// Tabulated atmosphere from a CSV file.
+    Table,
 }
 
 impl AtmosphereKind {
@@ -136,6 +160,7 @@ impl AtmosphereKind {
         match self {
             Self::Us76 => "us76",
             Self::Exponential => "exponential",
+            Self::Table => "table",
         }
     }
 }
@@ -161,60 +186,113 @@ impl GravityKind {
     }
 }
 
-/// Environment of a scenario.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// A tabulated atmosphere of a scenario: the file it came from and the table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AtmosphereTable {
+    /// CSV file (as resolved against the scenario file's folder).
+    pub file: PathBuf,
+    /// The table.
+    pub model: Arc<TabulatedAtmosphere>,
+}
+
+/// The atmosphere of a scenario, with its parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AtmosphereSpec {
+    /// U.S. Standard Atmosphere 1976.
+    Us76,
+    /// Exponential atmosphere.
+    Exponential(ExponentialAtmosphere),
+    /// Tabulated atmosphere.
+    Table(AtmosphereTable),
+}
+
+impl AtmosphereSpec {
+    /// The kind, as named in scenario files.
+    #[must_use]
+    pub fn kind(&self) -> AtmosphereKind {
+        match self {
+            Self::Us76 => AtmosphereKind::Us76,
+            Self::Exponential(_) => AtmosphereKind::Exponential,
+            Self::Table(_) => AtmosphereKind::Table,
+        }
+    }
+}
+
+/// Environment of a scenario: planet, atmosphere, gravity, rotation, heat-flux constants.
+#[derive(Clone, Debug, PartialEq)]
 pub struct EnvSpec {
+    /// Planet constants (its rotation rate is used when [`EnvSpec::rotating`]).
+    pub planet: Planet,
     /// Atmosphere model.
-    pub atmosphere: AtmosphereKind,
+    pub atmosphere: AtmosphereSpec,
     /// Gravity model.
     pub gravity: GravityKind,
     /// Rotating planet.
     pub rotating: bool,
+    /// Chapman heat-flux constants.
+    pub heat_flux: ChapmanHeatFlux,
 }
 
 impl EnvSpec {
-    /// The models of an environment preset.
+    /// The models of an environment preset (Earth, thesis heat-flux constants).
     #[must_use]
     pub fn preset(p: Preset) -> Self {
-        match p {
-            Preset::Full => Self {
-                atmosphere: AtmosphereKind::Us76,
-                gravity: GravityKind::J2,
-                rotating: true,
-            },
-            Preset::Simplified => Self {
-                atmosphere: AtmosphereKind::Exponential,
-                gravity: GravityKind::Central,
-                rotating: false,
-            },
+        let (atmosphere, gravity, rotating) = match p {
+            Preset::Full => (AtmosphereSpec::Us76, GravityKind::J2, true),
+            Preset::Simplified => (
+                AtmosphereSpec::Exponential(ExponentialAtmosphere::earth()),
+                GravityKind::Central,
+                false,
+            ),
+        };
+        Self {
+            planet: Planet::earth(),
+            atmosphere,
+            gravity,
+            rotating,
+            heat_flux: ChapmanHeatFlux::thesis(),
+        }
+    }
+
+    /// The planet flown: [`EnvSpec::planet`], without rotation unless [`EnvSpec::rotating`].
+    #[must_use]
+    pub fn effective_planet(&self) -> Planet {
+        if self.rotating {
+            self.planet
+        } else {
+            self.planet.without_rotation()
         }
     }
 
     /// Build the environment.
     #[must_use]
     pub fn build(&self) -> Environment {
-        let planet = if self.rotating {
-            Planet::earth()
-        } else {
-            Planet::earth_non_rotating()
-        };
-        let atmosphere: Box<dyn Atmosphere> = match self.atmosphere {
-            AtmosphereKind::Exponential => Box::new(ExponentialAtmosphere::earth()),
-            AtmosphereKind::Us76 => Box::new(Us76::new()),
+        let planet = self.effective_planet();
+        let atmosphere: Box<dyn Atmosphere> = match &self.atmosphere {
+            AtmosphereSpec::Us76 => Box::new(Us76::new()),
+            AtmosphereSpec::Exponential(e) => Box::new(*e),
+            AtmosphereSpec::Table(t) => Box::new(t.model.as_ref().clone()),
         };
         let gravity: Box<dyn Gravity> = match self.gravity {
             GravityKind::Central => Box::new(CentralGravity::from_planet(&planet)),
             GravityKind::J2 => Box::new(J2Gravity::from_planet(&planet)),
         };
-        Environment::new(planet, atmosphere, gravity)
+        let mut env = Environment::new(planet, atmosphere, gravity);
+        env.heat_flux = self.heat_flux;
+        env
     }
 
     /// One-line description for reports.
     #[must_use]
     pub fn describe(&self) -> String {
+        let body = if self.planet == Planet::earth() {
+            "Earth".to_string()
+        } else {
+            format!("planet (R = {} km)", self.planet.radius_m / 1e3)
+        };
         format!(
-            "{} atmosphere, {} gravity, {} spherical Earth",
-            self.atmosphere.as_str(),
+            "{} atmosphere, {} gravity, {} spherical {body}",
+            self.atmosphere.kind().as_str(),
             self.gravity.as_str(),
             if self.rotating {
                 "rotating"
@@ -270,9 +348,26 @@ pub struct Scenario {
     pub interface_altitude_m: f64,
     /// Minimum window of the g-load-rate finite difference \[s\].
     pub g_rate_window_s: f64,
+    /// Nose radius replacing the vehicle's \[m\] (`[heat_flux] nose_radius_m`).
+    pub nose_radius_m: Option<f64>,
 }
 
 impl Scenario {
+    /// The scenario's vehicle: loaded through [`VehicleSpec::load`], with the scenario's
+    /// nose radius if it sets one.
+    ///
+    /// # Errors
+    /// [`crate::vehicle::VehicleFileError`] naming the file or name.
+    pub fn load_vehicle(
+        &self,
+    ) -> Result<crate::vehicle::Vehicle, crate::vehicle::VehicleFileError> {
+        let mut v = self.vehicle.load()?;
+        if let Some(rn) = self.nose_radius_m {
+            v.nose_radius_m = rn;
+        }
+        Ok(v)
+    }
+
     /// The simulator settings this scenario asks for (entry state, termination, tolerances,
     /// output interval, interface altitude, g-load-rate window).
     #[must_use]

@@ -90,6 +90,7 @@ fn guidance_ticks_are_landed_on_exactly() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let mut cfg = SimConfig::new(e);
@@ -142,6 +143,7 @@ fn skip_exit_and_reentry_are_located() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7500.0, -1.5);
     let mut cfg = SimConfig::new(e);
@@ -210,6 +212,7 @@ fn heat_load_matches_quadrature_of_heat_flux() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let mut cfg = SimConfig::new(e);
@@ -249,6 +252,7 @@ fn energy_indexed_nodes_and_energy_termination() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let nodes = vec![
@@ -465,6 +469,7 @@ fn mach_and_ground_terminations() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let mut cfg = SimConfig::new(e);
@@ -480,6 +485,7 @@ fn mach_and_ground_terminations() {
     let ball = vehicle(500.0, 1.0, 0.0, 1.0);
     let dynm = Dynamics {
         vehicle: &ball,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
         ..dynm
     };
     let mut cfg = SimConfig::new(entry(7000.0, -30.0));

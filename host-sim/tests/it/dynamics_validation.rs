@@ -279,6 +279,7 @@ fn cartesian_and_spherical_formulations_agree() {
         atmosphere: &atm,
         gravity: &J2Grav,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let att = Command {
         alpha_rad: 30f64.to_radians(),
@@ -338,6 +339,7 @@ fn rotation_terms_matter_in_the_comparison() {
         atmosphere: &atm,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let still = Dynamics {
         planet: planet(false),
@@ -371,6 +373,7 @@ fn validate_kepler_radial_ballistic_arc_fig_8_8_setting() {
         atmosphere: &atm,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let r0 = RE + 100_001.0;
     let v0 = 3000.0;
@@ -475,6 +478,7 @@ fn ballistic_entry(radius: f64, gravity: &dyn Gravity, ve: f64, ge: f64, h_s: f6
         atmosphere: &atm,
         gravity,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let s0 = SphericalState {
         radius_m: radius + 122_000.0,

@@ -8,4 +8,5 @@ mod env_validation;
 mod layering;
 mod pil;
 mod replan_loop;
+mod scenario_files;
 mod support;
