@@ -19,7 +19,7 @@
 //!
 //! The integrated state (see [`STATE_LEN`]) is position (3), velocity (3), heat load
 //! `Q = integral q dt` [J/m^2] and flown range angle `theta = integral V cos(gamma)/r dt`
-//! [rad] (eq. 3.15).
+//! \[rad\] (eq. 3.15).
 
 use guidance_core::guidance::Command;
 use nalgebra::Vector3;
@@ -40,7 +40,7 @@ pub const FLOWN_RANGE_SLOT: usize = 7;
 /// Inertial Cartesian state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CartesianState {
-    /// Position in the inertial frame [m].
+    /// Position in the inertial frame \[m\].
     pub position_m: Vector3<f64>,
     /// Inertial velocity [m/s].
     pub velocity_m_s: Vector3<f64>,
@@ -49,17 +49,17 @@ pub struct CartesianState {
 /// Planet-relative spherical state (thesis eq. 3.4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphericalState {
-    /// Distance from the planet centre r [m].
+    /// Distance from the planet centre r \[m\].
     pub radius_m: f64,
-    /// Longitude tau [rad], positive east.
+    /// Longitude tau \[rad\], positive east.
     pub longitude_rad: f64,
-    /// Geocentric latitude delta [rad].
+    /// Geocentric latitude delta \[rad\].
     pub latitude_rad: f64,
     /// Planet-relative speed V [m/s].
     pub speed_m_s: f64,
-    /// Planet-relative flight-path angle gamma [rad].
+    /// Planet-relative flight-path angle gamma \[rad\].
     pub flight_path_angle_rad: f64,
-    /// Planet-relative heading chi [rad], clockwise from north.
+    /// Planet-relative heading chi \[rad\], clockwise from north.
     pub heading_rad: f64,
 }
 
@@ -108,7 +108,7 @@ fn local_axes(tau: f64, delta: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>
     )
 }
 
-/// Planet-relative spherical state -> inertial Cartesian state at time `t_s` [s].
+/// Planet-relative spherical state -> inertial Cartesian state at time `t_s` \[s\].
 #[must_use]
 pub fn spherical_to_cartesian(s: &SphericalState, planet: &Planet, t_s: f64) -> CartesianState {
     let (up, east, north) = local_axes(s.longitude_rad, s.latitude_rad);
@@ -124,7 +124,7 @@ pub fn spherical_to_cartesian(s: &SphericalState, planet: &Planet, t_s: f64) -> 
     }
 }
 
-/// Inertial Cartesian state at time `t_s` [s] -> planet-relative spherical state.
+/// Inertial Cartesian state at time `t_s` \[s\] -> planet-relative spherical state.
 /// Longitude is wrapped to (-pi, pi], heading to [0, 2 pi).
 #[must_use]
 pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> SphericalState {
@@ -156,7 +156,7 @@ pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> 
 /// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlightConditions {
-    /// Altitude above the sphere [m].
+    /// Altitude above the sphere \[m\].
     pub altitude_m: f64,
     /// Air density [kg/m^3].
     pub density_kg_m3: f64,
@@ -165,15 +165,15 @@ pub struct FlightConditions {
     /// Mach number [-] (airspeed over the local speed of sound; 0 where the model has no
     /// speed of sound).
     pub mach: f64,
-    /// Dynamic pressure [Pa].
+    /// Dynamic pressure \[Pa\].
     pub dynamic_pressure_pa: f64,
     /// Lift coefficient [-].
     pub cl: f64,
     /// Drag coefficient [-].
     pub cd: f64,
-    /// Lift [N].
+    /// Lift \[N\].
     pub lift_n: f64,
-    /// Drag [N].
+    /// Drag \[N\].
     pub drag_n: f64,
     /// Chapman stagnation heat flux [W/m^2].
     pub heat_flux_w_m2: f64,

@@ -100,7 +100,7 @@ pub trait OdeProblem<const N: usize> {
 pub struct Tolerances {
     /// Relative tolerance [-].
     pub rtol: f64,
-    /// Initial step [s] (or unit of the independent variable).
+    /// Initial step \[s\] (or unit of the independent variable).
     pub h_init: f64,
     /// Smallest step allowed; needing a smaller one is an error (the landing step on a
     /// breakpoint may be shorter).
@@ -109,7 +109,7 @@ pub struct Tolerances {
     pub h_max: f64,
     /// Maximum number of step attempts over the life of the integrator.
     pub max_steps: u64,
-    /// Width of the final bracket of an event crossing [s].
+    /// Width of the final bracket of an event crossing \[s\].
     pub event_time_tol_s: f64,
 }
 
@@ -173,19 +173,19 @@ pub struct Stats {
 pub enum IntegrateError {
     /// The error control asked for a step below `h_min`.
     StepTooSmall {
-        /// Time [s] where it happened.
+        /// Time \[s\] where it happened.
         t: f64,
         /// The step that was asked for.
         h: f64,
     },
     /// More than `max_steps` step attempts.
     MaxSteps {
-        /// Time [s] reached.
+        /// Time \[s\] reached.
         t: f64,
     },
     /// The right-hand side or the state became NaN or infinite.
     NonFinite {
-        /// Time [s] of the step start.
+        /// Time \[s\] of the step start.
         t: f64,
     },
     /// The problem declared more than [`MAX_EVENTS`] events.
@@ -222,9 +222,9 @@ impl std::error::Error for IntegrateError {}
 pub struct EventHit {
     /// Index of the event function.
     pub index: usize,
-    /// Upper end of the final bracket (just past the crossing) [s].
+    /// Upper end of the final bracket (just past the crossing) \[s\].
     pub time: f64,
-    /// Width of the final bracket [s].
+    /// Width of the final bracket \[s\].
     pub bracket: f64,
 }
 

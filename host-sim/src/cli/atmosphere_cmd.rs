@@ -22,7 +22,7 @@ pub struct AtmosphereArgs {
     /// Model.
     #[arg(long, value_enum, default_value = "us76")]
     pub model: AtmosphereModel,
-    /// Altitudes [km] (default 0, 10, ..., 120).
+    /// Altitudes (km) (default 0, 10, ..., 120).
     #[arg(value_name = "ALTITUDE_KM", allow_negative_numbers = true)]
     pub altitudes_km: Vec<f64>,
 }

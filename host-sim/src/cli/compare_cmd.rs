@@ -50,7 +50,7 @@ pub struct CompareCliArgs {
     /// Closed form to compare.
     #[arg(long, value_enum, default_value = "glide")]
     pub phase: CliPhase,
-    /// Glide: entry altitudes [km] (grid x axis), comma-separated.
+    /// Glide: entry altitudes (km) (grid x axis), comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "70,80,90,100,110")]
     pub altitudes_km: Vec<f64>,
     /// Skip: entry speeds [m/s] (grid x axis), comma-separated.
@@ -60,10 +60,10 @@ pub struct CompareCliArgs {
         default_value = "7000,7500,8000,9000,10000"
     )]
     pub speeds_m_s: Vec<f64>,
-    /// Skip: entry altitude [km] (also the exit altitude).
+    /// Skip: entry altitude (km) (also the exit altitude).
     #[arg(long, default_value_t = 100.0)]
     pub altitude_km: f64,
-    /// Skip: entry flight-path angle [deg] (negative: descending).
+    /// Skip: entry flight-path angle (deg) (negative: descending).
     #[arg(long, default_value_t = -3.0, allow_negative_numbers = true)]
     pub gamma_deg: f64,
     /// Vertical lift coefficients C_L cos(sigma) [-] (grid y axis), comma-separated. Bank-only
@@ -71,7 +71,7 @@ pub struct CompareCliArgs {
     /// values from 0.3 to 1 times the maximum (trim C_L, or C_L at maximum L/D).
     #[arg(long, value_delimiter = ',')]
     pub cl_vertical: Vec<f64>,
-    /// Glide: end at this altitude [km] instead of a speed.
+    /// Glide: end at this altitude (km) instead of a speed.
     #[arg(long, conflicts_with = "end_speed_fraction")]
     pub end_altitude_km: Option<f64>,
     /// Glide: end at this fraction of the imposed entry speed [-].
@@ -80,7 +80,7 @@ pub struct CompareCliArgs {
     /// Mach number at which a tabulated drag polar is taken [-].
     #[arg(long, default_value_t = crate::analytic::DEFAULT_POLAR_MACH)]
     pub polar_mach: f64,
-    /// Two altitudes [km] through which the exponential atmosphere is fitted to US76.
+    /// Two altitudes (km) through which the exponential atmosphere is fitted to US76.
     #[arg(long, value_delimiter = ',', num_args = 1, default_value = "50,100")]
     pub fit_altitudes_km: Vec<f64>,
     /// Numerical environments to fly, comma-separated.
@@ -91,29 +91,29 @@ pub struct CompareCliArgs {
         default_value = "simplified,full"
     )]
     pub environments: Vec<EnvArg>,
-    /// Start latitude [deg].
+    /// Start latitude (deg).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub latitude_deg: f64,
-    /// Start longitude [deg].
+    /// Start longitude (deg).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub longitude_deg: f64,
-    /// Start heading [deg], clockwise from north.
+    /// Start heading (deg), clockwise from north.
     #[arg(long, default_value_t = 90.0, allow_negative_numbers = true)]
     pub heading_deg: f64,
     /// Integrator relative tolerance [-].
     #[arg(long, default_value_t = 1e-8)]
     pub rtol: f64,
-    /// Numerical sample interval [s].
+    /// Numerical sample interval (s).
     #[arg(long, default_value_t = 1.0)]
     pub output_interval_s: f64,
     /// Samples per analytical trajectory.
     #[arg(long, default_value_t = crate::analytic::DEFAULT_POINTS)]
     pub points: usize,
     /// Also write every point's trajectories (analytic/, simplified/, full/ run directories
-    /// under point_<i>/).
+    /// under `point_<i>/`).
     #[arg(long)]
     pub trajectories: bool,
-    /// Output directory (default: runs/compare-<vehicle>-<phase>/).
+    /// Output directory (default: `runs/compare-<vehicle>-<phase>/`).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 }

@@ -16,7 +16,7 @@ pub struct SimulateArgs {
     /// Scenario TOML file (default: built-in HORUS-2B reference mission).
     #[arg(long, value_name = "FILE")]
     pub scenario: Option<PathBuf>,
-    /// Output directory (default: runs/<scenario-name>/).
+    /// Output directory (default: `runs/<scenario-name>/`).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Built-in scenario instead of a file: horus-2b-reference (default) or srm-glide.

@@ -26,7 +26,7 @@ pub enum Case {
     },
     /// Glide from this altitude (entry speed and flight-path angle imposed) to `end`.
     Glide {
-        /// Entry altitude [m].
+        /// Entry altitude \[m\].
         entry_altitude_m: f64,
         /// Where the trajectory starts on the sphere.
         placement: Placement,

@@ -14,16 +14,16 @@ use crate::env::ExponentialAtmosphere;
 pub enum GridKind {
     /// Skips at a fixed entry altitude and flight-path angle over entry speeds.
     Skip {
-        /// Entry altitude [m] (also the exit altitude).
+        /// Entry altitude \[m\] (also the exit altitude).
         entry_altitude_m: f64,
-        /// Entry flight-path angle [rad] (negative).
+        /// Entry flight-path angle \[rad\] (negative).
         flight_path_angle_rad: f64,
         /// Entry speeds [m/s] (grid x axis).
         entry_speeds_m_s: Vec<f64>,
     },
     /// Glides over entry altitudes (grid x axis); speed and angle are imposed by the method.
     Glide {
-        /// Entry altitudes [m].
+        /// Entry altitudes \[m\].
         entry_altitudes_m: Vec<f64>,
         /// End of each glide.
         end: GlideEnd,
@@ -54,7 +54,7 @@ pub struct CompareConfig {
 /// One grid point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridPoint {
-    /// Grid x value (entry speed [m/s] or entry altitude [m]).
+    /// Grid x value (entry speed [m/s] or entry altitude \[m\]).
     pub x: f64,
     /// Vertical lift coefficient [-].
     pub cl_vertical: f64,
@@ -62,9 +62,9 @@ pub struct GridPoint {
     pub lift: LiftSetting,
     /// `lambda = C_L / C_L*` [-].
     pub lambda: f64,
-    /// Entry speed [m/s] and flight-path angle [rad] flown (glide: imposed; NaN out of domain).
+    /// Entry speed [m/s] and flight-path angle \[rad\] flown (glide: imposed; NaN out of domain).
     pub entry_speed_m_s: f64,
-    /// Entry flight-path angle [rad].
+    /// Entry flight-path angle \[rad\].
     pub entry_gamma_rad: f64,
     /// Closed form.
     pub analytic: AnalyticOutcome,
@@ -92,7 +92,7 @@ pub struct CompareGrid {
     pub phase: Phase,
     /// Metrics, in value order.
     pub metrics: Vec<Metric>,
-    /// Grid x values (entry speeds [m/s] or altitudes [m]).
+    /// Grid x values (entry speeds [m/s] or altitudes \[m\]).
     pub xs: Vec<f64>,
     /// Vertical lift coefficients [-].
     pub cl_vertical: Vec<f64>,

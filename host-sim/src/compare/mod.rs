@@ -17,9 +17,9 @@
 //!
 //! Metrics and their errors (analytical minus numerical):
 //! * skip (entry -> return to the entry altitude): exit speed [%], exit flight-path angle
-//!   [deg], deepest altitude [km], peak heat flux [%], range angle to the exit [%];
+//!   \[deg\], deepest altitude \[km\], peak heat flux [%], range angle to the exit [%];
 //! * glide (imposed entry -> end): range angle [%], final speed [%] (end at an altitude) or final
-//!   altitude [km] (end at a speed), peak heat flux [%].
+//!   altitude \[km\] (end at a speed), peak heat flux [%].
 //!
 //! The range angle of both is the flown range angle `integral V cos(gamma)/r dt` (eq. 3.15),
 //! the quantity the closed forms give. Points where the closed form is out of its domain are
@@ -59,9 +59,9 @@ pub use output::{write_case, write_grid};
 pub struct NumericalSettings {
     /// RKF4(5) relative tolerance [-].
     pub rtol: f64,
-    /// Sample interval [s] (the deepest altitude and speed crossings are read from samples).
+    /// Sample interval \[s\] (the deepest altitude and speed crossings are read from samples).
     pub output_interval_s: f64,
-    /// Time limit of a glide run [s].
+    /// Time limit of a glide run \[s\].
     pub max_time_s: f64,
 }
 

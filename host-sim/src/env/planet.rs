@@ -12,7 +12,7 @@
 pub struct Planet {
     /// Gravitational parameter mu [m^3/s^2].
     pub mu_m3_s2: f64,
-    /// Radius of the sphere [m]; altitude is measured from it.
+    /// Radius of the sphere \[m\]; altitude is measured from it.
     pub radius_m: f64,
     /// Rotation rate about +z [rad/s]; 0 for a non-rotating planet.
     pub rotation_rate_rad_s: f64,
@@ -75,13 +75,13 @@ impl Planet {
         self.rotation_rate_rad_s != 0.0
     }
 
-    /// Radial distance [m] of a point at `altitude_m` above the sphere.
+    /// Radial distance \[m\] of a point at `altitude_m` above the sphere.
     #[must_use]
     pub fn radius_at_altitude_m(&self, altitude_m: f64) -> f64 {
         self.radius_m + altitude_m
     }
 
-    /// Altitude [m] above the sphere of a point at radial distance `r_m`.
+    /// Altitude \[m\] above the sphere of a point at radial distance `r_m`.
     #[must_use]
     pub fn altitude_m(&self, r_m: f64) -> f64 {
         r_m - self.radius_m

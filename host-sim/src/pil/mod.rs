@@ -1,10 +1,10 @@
 //! Processor-in-the-loop (PIL): the closed loop flies the firmware's guidance running in QEMU.
 //!
-//! [`PilGuidance`] is an [`AttitudeSource`]: at every 2 s tick it sends the navigation state to
+//! [`PilGuidance`] is an [`AttitudeSource`](crate::sim::AttitudeSource): at every 2 s tick it sends the navigation state to
 //! the firmware (`onboard-demo`'s `pil` binary, `f32` guidance with the HORUS-2B reference
-//! table compiled in) as a `guidance_core::link` [`NavFrame`] and waits for the
-//! [`CommandFrame`]; between ticks it reproduces the rate-limited ramp from that frame
-//! ([`CommandFrame::attitude_at`]). The frames go through two named FIFOs,
+//! table compiled in) as a `guidance_core::link` [`NavFrame`](guidance_core::link::NavFrame) and waits for the
+//! [`CommandFrame`](guidance_core::link::CommandFrame); between ticks it reproduces the rate-limited ramp from that frame
+//! ([`CommandFrame::attitude_at`](guidance_core::link::CommandFrame::attitude_at)). The frames go through two named FIFOs,
 //! `<dir>/nav` and `<dir>/cmd`, that the firmware opens through semihosting; `<dir>` is passed
 //! to the firmware as QEMU's `-append` command line.
 //!

@@ -9,7 +9,7 @@ use crate::sim::{Peak, SampleKind, SimResult, TerminationReason};
 pub struct PeakOut {
     /// Value (unit in the field name of the owner).
     pub value: f64,
-    /// Time of the peak [s].
+    /// Time of the peak \[s\].
     pub time_s: f64,
 }
 
@@ -47,17 +47,17 @@ impl From<guidance_core::monitor::Violations<f64>> for ViolationsOut {
 /// Final state in report units.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct FinalState {
-    /// Altitude [km].
+    /// Altitude \[km\].
     pub altitude_km: f64,
-    /// Longitude [deg].
+    /// Longitude \[deg\].
     pub longitude_deg: f64,
-    /// Latitude [deg].
+    /// Latitude \[deg\].
     pub latitude_deg: f64,
     /// Planet-relative speed [m/s].
     pub speed_m_s: f64,
-    /// Flight-path angle [deg].
+    /// Flight-path angle \[deg\].
     pub gamma_deg: f64,
-    /// Heading [deg].
+    /// Heading \[deg\].
     pub heading_deg: f64,
     /// Mach number [-].
     pub mach: f64,
@@ -76,13 +76,13 @@ pub struct SummaryReport {
     pub environment: String,
     /// Why the run stopped.
     pub termination: TerminationReason,
-    /// Flight time [s].
+    /// Flight time \[s\].
     pub flight_time_s: f64,
-    /// Great-circle range angle entry -> end [deg].
+    /// Great-circle range angle entry -> end \[deg\].
     pub range_angle_deg: f64,
-    /// Great-circle range over the sphere [km].
+    /// Great-circle range over the sphere \[km\].
     pub range_km: f64,
-    /// Integral of V cos(gamma)/r (eq. 3.15) [deg].
+    /// Integral of V cos(gamma)/r (eq. 3.15) \[deg\].
     pub flown_range_angle_deg: f64,
     /// Heat load [MJ/m^2].
     pub heat_load_mj_m2: f64,
@@ -96,7 +96,7 @@ pub struct SummaryReport {
     pub exits: u32,
     /// Skips (exit followed by re-entry).
     pub skips: u32,
-    /// Interface crossing times [s] and kinds.
+    /// Interface crossing times \[s\] and kinds.
     pub interface_crossings: Vec<(f64, SampleKind)>,
     /// Constraint violations, eq. 4.9-4.11.
     pub violations: ViolationsOut,

@@ -1,7 +1,7 @@
 //! The mission definition: vehicle, environment, entry state, guidance, termination,
 //! integrator, monitors and output.
 //!
-//! A scenario file (TOML) is read into the serde structs of [`file`] (unknown fields
+//! A scenario file (TOML) is read into the serde structs of [`file`](mod@file) (unknown fields
 //! rejected), then resolved into a [`Scenario`] (SI units, radians, typed choices) with every
 //! value range-checked; every error names the file, the field and the value
 //! ([`ScenarioError`]). [`Scenario::default`] is the HORUS-2B reference mission and
@@ -135,7 +135,7 @@ pub struct GuidanceSpec {
     pub alpha_rate_rad_s: f64,
     /// Bank-angle rate limit \[rad/s\].
     pub sigma_rate_rad_s: f64,
-    /// Command<f64> at t = 0 \[rad\].
+    /// Attitude at t = 0 \[rad\].
     pub initial: Command<f64>,
     /// Nodes `[x, alpha_rad, sigma_rad]` in flight order.
     pub nodes: Vec<[f64; 3]>,

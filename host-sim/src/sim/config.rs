@@ -8,13 +8,13 @@ use super::SimError;
 /// Termination conditions (each optional except the time limit).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Termination {
-    /// Stop when the altitude falls below this [m].
+    /// Stop when the altitude falls below this \[m\].
     pub altitude_m: Option<f64>,
     /// Stop when the Mach number falls below this [-].
     pub mach: Option<f64>,
     /// Stop when the normalised energy falls below this [-].
     pub normalized_energy: Option<f64>,
-    /// Stop at this mission time [s].
+    /// Stop at this mission time \[s\].
     pub max_time_s: f64,
 }
 
@@ -38,11 +38,11 @@ pub struct SimConfig {
     pub termination: Termination,
     /// Integrator settings.
     pub tolerances: Tolerances,
-    /// Trajectory output interval [s]; 0 records at guidance ticks (and events) only.
+    /// Trajectory output interval \[s\]; 0 records at guidance ticks (and events) only.
     pub output_interval_s: f64,
-    /// Atmospheric interface altitude for exit/re-entry events [m] (thesis: 100 km).
+    /// Atmospheric interface altitude for exit/re-entry events \[m\] (thesis: 100 km).
     pub interface_altitude_m: f64,
-    /// Minimum window for the finite-difference g-load rate [s].
+    /// Minimum window for the finite-difference g-load rate \[s\].
     pub g_rate_window_s: f64,
 }
 

@@ -26,17 +26,17 @@ pub enum TerminationReason {
 /// One trajectory sample (SI units, radians).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
-    /// Mission time [s].
+    /// Mission time \[s\].
     pub time_s: f64,
     /// Planet-relative spherical state.
     pub state: SphericalState,
-    /// Attitude [rad].
+    /// Attitude \[rad\].
     pub attitude: Command<f64>,
     /// Flight conditions (altitude, density, Mach, forces, heat flux, g-load).
     pub conditions: FlightConditions,
     /// Heat load so far [J/m^2].
     pub heat_load_j_m2: f64,
-    /// Flown range angle so far [rad].
+    /// Flown range angle so far \[rad\].
     pub flown_range_rad: f64,
     /// Normalised energy [-].
     pub normalized_energy: f64,
@@ -65,7 +65,7 @@ pub enum SampleKind {
 pub struct Peak {
     /// The peak value.
     pub value: f64,
-    /// When [s].
+    /// When \[s\].
     pub time_s: f64,
 }
 
@@ -83,11 +83,11 @@ impl Peak {
 pub struct Summary {
     /// Why the run stopped.
     pub termination: TerminationReason,
-    /// Flight time [s].
+    /// Flight time \[s\].
     pub flight_time_s: f64,
-    /// Great-circle angle between entry and final position (planet-fixed) [rad].
+    /// Great-circle angle between entry and final position (planet-fixed) \[rad\].
     pub range_angle_rad: f64,
-    /// Integral of V cos(gamma) / r dt (eq. 3.15) [rad].
+    /// Integral of V cos(gamma) / r dt (eq. 3.15) \[rad\].
     pub flown_range_angle_rad: f64,
     /// Heat load, integral of the Chapman heat flux [J/m^2].
     pub heat_load_j_m2: f64,
@@ -96,14 +96,14 @@ pub struct Summary {
     /// Peak g-load [-].
     pub peak_g_load: Peak,
     /// Peak |g-load rate| [1/s]: finite differences (core `GLoadRateMonitor`) of the g-load
-    /// at accepted steps at least [`SimConfig::g_rate_window_s`] apart. Steps end on every
+    /// at accepted steps at least [`SimConfig::g_rate_window_s`](super::SimConfig::g_rate_window_s) apart. Steps end on every
     /// tick and ramp end, so the short attitude ramps after each tick are resolved.
     pub peak_g_load_rate_per_s: Peak,
     /// Atmosphere exits (rising through the interface).
     pub exits: u32,
     /// Skips: exits followed by a re-entry.
     pub skips: u32,
-    /// Times of exits and re-entries [s].
+    /// Times of exits and re-entries \[s\].
     pub interface_crossings_s: Vec<(f64, SampleKind)>,
     /// Constraint violations (eq. 4.9-4.11): 0 if within the limit, else peak / limit.
     pub violations: Violations<f64>,
@@ -147,7 +147,7 @@ pub struct SimResult {
     pub summary: Summary,
 }
 
-/// Great-circle angle between two positions [rad].
+/// Great-circle angle between two positions \[rad\].
 #[must_use]
 pub fn great_circle(a: &SphericalState, b: &SphericalState) -> f64 {
     let (sa, ca) = a.latitude_rad.sin_cos();

@@ -74,7 +74,7 @@ const NAMES: [&str; 6] = [
     "flight time [s]",
 ];
 
-/// Command<f64> bound of f32 against f64 guidance on a time-indexed table (guidance.rs docs,
+/// Attitude bound of f32 against f64 guidance on a time-indexed table (guidance.rs docs,
 /// "Precision"): e <= C u A + L r with C = 64 rounded operations, u = 2^-24, A = pi/2 rad
 /// (6.0e-6 rad), plus L r for a rate-limited run of at most 10 ticks, r = 1.2e-7 rad
 /// (1.2e-6 rad): 1e-5 rad after rounding up.
