@@ -131,7 +131,7 @@ impl Tolerances {
     ///
     /// # Errors
     /// A message naming the offending setting and its value.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), ToleranceError> {
         let pos = [
             ("rtol", self.rtol),
             ("h_init", self.h_init),
@@ -139,22 +139,43 @@ impl Tolerances {
             ("h_max", self.h_max),
             ("event_time_tol_s", self.event_time_tol_s),
         ];
-        for (name, v) in pos {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name} = {v}: must be finite and > 0"));
+        for (field, value) in pos {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ToleranceError {
+                    field,
+                    value,
+                    reason: "must be finite and > 0",
+                });
             }
         }
         if self.h_min > self.h_max {
-            return Err(format!(
-                "h_min = {} > h_max = {}: must be <= h_max",
-                self.h_min, self.h_max
-            ));
+            return Err(ToleranceError {
+                field: "h_min",
+                value: self.h_min,
+                reason: "must be <= h_max",
+            });
         }
         if self.max_steps == 0 {
-            return Err("max_steps = 0: must be > 0".into());
+            return Err(ToleranceError {
+                field: "max_steps",
+                value: 0.0,
+                reason: "must be > 0",
+            });
         }
         Ok(())
     }
+}
+
+/// An integrator setting out of range.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("invalid integrator setting `{field}` = {value}: {reason}")]
+pub struct ToleranceError {
+    /// Setting name.
+    pub field: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// What is required.
+    pub reason: &'static str,
 }
 
 /// Work counters of an integrator.

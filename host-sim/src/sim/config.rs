@@ -69,11 +69,11 @@ impl SimConfig {
     }
 }
 
-fn cfg_err(field: &'static str, value: f64, reason: &str) -> SimError {
+fn cfg_err(field: &'static str, value: f64, reason: &'static str) -> SimError {
     SimError::Config {
         field,
-        value: value.to_string(),
-        reason: reason.into(),
+        value,
+        reason,
     }
 }
 
@@ -161,11 +161,7 @@ pub fn validate_config(cfg: &SimConfig, planet_radius_m: f64) -> Result<(), SimE
             "must be finite",
         ));
     }
-    cfg.tolerances.validate().map_err(|m| SimError::Config {
-        field: "integrator",
-        value: String::new(),
-        reason: m,
-    })?;
+    cfg.tolerances.validate()?;
     Ok(())
 }
 

@@ -1,6 +1,8 @@
 //! [`SimError`]: why a closed-loop run failed.
 
-use crate::integrate::IntegrateError;
+use guidance_core::GuidanceError;
+
+use crate::integrate::{IntegrateError, ToleranceError};
 
 /// Simulation failures.
 #[derive(Debug, thiserror::Error)]
@@ -11,10 +13,16 @@ pub enum SimError {
         /// Setting name.
         field: &'static str,
         /// Its value.
-        value: String,
+        value: f64,
         /// Why it is rejected.
-        reason: String,
+        reason: &'static str,
     },
+    /// An integrator setting out of range.
+    #[error(transparent)]
+    Tolerances(#[from] ToleranceError),
+    /// The entry state defines no normalised energy (the core's error).
+    #[error("invalid entry state: {0}")]
+    Entry(GuidanceError),
     /// The integrator failed.
     #[error("integration failed: {0}")]
     Integration(#[from] IntegrateError),

@@ -133,11 +133,7 @@ pub fn simulate<A: AttitudeSource>(
         cfg.entry.radius_m,
         cfg.entry.speed_m_s,
     )
-    .map_err(|e| SimError::Config {
-        field: "entry",
-        value: format!("{:?}", cfg.entry),
-        reason: e.to_string(),
-    })?;
+    .map_err(SimError::Entry)?;
     let mut lp = Loop {
         dynm,
         source,
