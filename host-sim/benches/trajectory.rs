@@ -6,10 +6,10 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use host_sim::cli::{Scenario, fly};
+use host_sim::scenario::{Scenario, fly};
 
 fn bench_scenario(c: &mut Criterion, sc: &Scenario) {
-    let once = fly(sc, "bench", &mut |_, _| {}).expect("scenario flies");
+    let once = fly(sc, "bench", &mut |_| {}).expect("scenario flies");
     let s = &once.result.summary;
     println!(
         "{}: {} RHS evaluations per trajectory ({} accepted, {} rejected steps, {} ticks, {:.1} s flight)",
@@ -17,7 +17,7 @@ fn bench_scenario(c: &mut Criterion, sc: &Scenario) {
     );
     c.bench_function(&format!("trajectory/{}", sc.name), |b| {
         b.iter(|| {
-            let f = fly(black_box(sc), "bench", &mut |_, _| {}).expect("scenario flies");
+            let f = fly(black_box(sc), "bench", &mut |_| {}).expect("scenario flies");
             black_box(f.result.summary.heat_load_j_m2)
         });
     });

@@ -19,11 +19,12 @@
 //!
 //! The integrated state (see [`STATE_LEN`]) is position (3), velocity (3), heat load
 //! `Q = integral q dt` [J/m^2] and flown range angle `theta = integral V cos(gamma)/r dt`
-//! [rad] (eq. 3.15).
+//! \[rad\] (eq. 3.15).
 
+use guidance_core::guidance::Command;
 use nalgebra::Vector3;
 
-use crate::env::{Atmosphere, Environment, Gravity, Planet};
+use crate::env::{Atmosphere, ChapmanHeatFlux, Environment, Gravity, Planet};
 use crate::vehicle::Vehicle;
 
 /// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1); `guidance-core`'s value.
@@ -31,20 +32,15 @@ pub const G0_M_S2: f64 = guidance_core::monitor::G0_M_S2;
 
 /// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
 pub const STATE_LEN: usize = 8;
-
-/// Commanded aerodynamic attitude.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Attitude {
-    /// Angle of attack [rad].
-    pub alpha_rad: f64,
-    /// Bank angle [rad].
-    pub sigma_rad: f64,
-}
+/// Slot of the heat load `Q` \[J/m^2\] in the integrated state.
+pub const HEAT_LOAD_SLOT: usize = 6;
+/// Slot of the flown range angle `theta` \[rad\] in the integrated state.
+pub const FLOWN_RANGE_SLOT: usize = 7;
 
 /// Inertial Cartesian state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CartesianState {
-    /// Position in the inertial frame [m].
+    /// Position in the inertial frame \[m\].
     pub position_m: Vector3<f64>,
     /// Inertial velocity [m/s].
     pub velocity_m_s: Vector3<f64>,
@@ -53,17 +49,17 @@ pub struct CartesianState {
 /// Planet-relative spherical state (thesis eq. 3.4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphericalState {
-    /// Distance from the planet centre r [m].
+    /// Distance from the planet centre r \[m\].
     pub radius_m: f64,
-    /// Longitude tau [rad], positive east.
+    /// Longitude tau \[rad\], positive east.
     pub longitude_rad: f64,
-    /// Geocentric latitude delta [rad].
+    /// Geocentric latitude delta \[rad\].
     pub latitude_rad: f64,
     /// Planet-relative speed V [m/s].
     pub speed_m_s: f64,
-    /// Planet-relative flight-path angle gamma [rad].
+    /// Planet-relative flight-path angle gamma \[rad\].
     pub flight_path_angle_rad: f64,
-    /// Planet-relative heading chi [rad], clockwise from north.
+    /// Planet-relative heading chi \[rad\], clockwise from north.
     pub heading_rad: f64,
 }
 
@@ -112,7 +108,7 @@ fn local_axes(tau: f64, delta: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>
     )
 }
 
-/// Planet-relative spherical state -> inertial Cartesian state at time `t_s` [s].
+/// Planet-relative spherical state -> inertial Cartesian state at time `t_s` \[s\].
 #[must_use]
 pub fn spherical_to_cartesian(s: &SphericalState, planet: &Planet, t_s: f64) -> CartesianState {
     let (up, east, north) = local_axes(s.longitude_rad, s.latitude_rad);
@@ -128,7 +124,7 @@ pub fn spherical_to_cartesian(s: &SphericalState, planet: &Planet, t_s: f64) -> 
     }
 }
 
-/// Inertial Cartesian state at time `t_s` [s] -> planet-relative spherical state.
+/// Inertial Cartesian state at time `t_s` \[s\] -> planet-relative spherical state.
 /// Longitude is wrapped to (-pi, pi], heading to [0, 2 pi).
 #[must_use]
 pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> SphericalState {
@@ -157,17 +153,10 @@ pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> 
     }
 }
 
-/// Chapman stagnation-point heat flux [W/m^2] (thesis eq. 2.2, n = 0.5, m = 3.15, cold
-/// wall): `guidance-core`'s monitor function (0 for zero density or invalid input).
-#[must_use]
-pub fn chapman_heat_flux_w_m2(density_kg_m3: f64, speed_m_s: f64, nose_radius_m: f64) -> f64 {
-    guidance_core::monitor::chapman_heat_flux_w_m2(density_kg_m3, speed_m_s, nose_radius_m)
-}
-
 /// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlightConditions {
-    /// Altitude above the sphere [m].
+    /// Altitude above the sphere \[m\].
     pub altitude_m: f64,
     /// Air density [kg/m^3].
     pub density_kg_m3: f64,
@@ -176,15 +165,15 @@ pub struct FlightConditions {
     /// Mach number [-] (airspeed over the local speed of sound; 0 where the model has no
     /// speed of sound).
     pub mach: f64,
-    /// Dynamic pressure [Pa].
+    /// Dynamic pressure \[Pa\].
     pub dynamic_pressure_pa: f64,
     /// Lift coefficient [-].
     pub cl: f64,
     /// Drag coefficient [-].
     pub cd: f64,
-    /// Lift [N].
+    /// Lift \[N\].
     pub lift_n: f64,
-    /// Drag [N].
+    /// Drag \[N\].
     pub drag_n: f64,
     /// Chapman stagnation heat flux [W/m^2].
     pub heat_flux_w_m2: f64,
@@ -203,6 +192,8 @@ pub struct Dynamics<'a> {
     pub gravity: &'a dyn Gravity,
     /// Vehicle.
     pub vehicle: &'a Vehicle,
+    /// Chapman heat-flux constants.
+    pub heat_flux: ChapmanHeatFlux,
 }
 
 impl std::fmt::Debug for Dynamics<'_> {
@@ -242,6 +233,7 @@ impl<'a> Dynamics<'a> {
             atmosphere: env.atmosphere.as_ref(),
             gravity: env.gravity.as_ref(),
             vehicle,
+            heat_flux: env.heat_flux,
         }
     }
 
@@ -251,7 +243,7 @@ impl<'a> Dynamics<'a> {
 
     /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s`.
     #[must_use]
-    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Attitude) -> FlightConditions {
+    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Command<f64>) -> FlightConditions {
         let atm = self.atmosphere.state(altitude_m);
         let rho = atm.density_kg_m3.max(0.0);
         let mach = if atm.speed_of_sound_m_s > 0.0 {
@@ -277,14 +269,16 @@ impl<'a> Dynamics<'a> {
             cd,
             lift_n: lift,
             drag_n: drag,
-            heat_flux_w_m2: chapman_heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
+            heat_flux_w_m2: self
+                .heat_flux
+                .heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
             g_load: guidance_core::monitor::g_load(lift, drag, self.vehicle.mass_kg),
         }
     }
 
     /// Conditions at an integrated Cartesian state `y` (see [`STATE_LEN`]).
     #[must_use]
-    pub fn conditions_at(&self, y: &[f64; STATE_LEN], att: Attitude) -> FlightConditions {
+    pub fn conditions_at(&self, y: &[f64; STATE_LEN], att: Command<f64>) -> FlightConditions {
         let r = Vector3::new(y[0], y[1], y[2]);
         let v = Vector3::new(y[3], y[4], y[5]);
         let v_rel = v - self.omega().cross(&r);
@@ -297,7 +291,7 @@ impl<'a> Dynamics<'a> {
     pub fn cartesian_rhs(
         &self,
         y: &[f64; STATE_LEN],
-        att: Attitude,
+        att: Command<f64>,
     ) -> ([f64; STATE_LEN], FlightConditions) {
         let r = Vector3::new(y[0], y[1], y[2]);
         let v = Vector3::new(y[3], y[4], y[5]);
@@ -327,7 +321,7 @@ impl<'a> Dynamics<'a> {
     /// Time derivative of the planet-relative spherical state `[r, tau, delta, V, gamma, chi]`
     /// (eq. 3.13 with the ERRATA fixes, gravity split into radial and northward components).
     #[must_use]
-    pub fn spherical_rhs(&self, s: &[f64; 6], att: Attitude) -> [f64; 6] {
+    pub fn spherical_rhs(&self, s: &[f64; 6], att: Command<f64>) -> [f64; 6] {
         let [r, tau, delta, v, gamma, chi] = *s;
         let w = self.planet.rotation_rate_rad_s;
         let (up, _east, north) = local_axes(tau, delta);

@@ -100,7 +100,7 @@ pub trait OdeProblem<const N: usize> {
 pub struct Tolerances {
     /// Relative tolerance [-].
     pub rtol: f64,
-    /// Initial step [s] (or unit of the independent variable).
+    /// Initial step \[s\] (or unit of the independent variable).
     pub h_init: f64,
     /// Smallest step allowed; needing a smaller one is an error (the landing step on a
     /// breakpoint may be shorter).
@@ -109,7 +109,7 @@ pub struct Tolerances {
     pub h_max: f64,
     /// Maximum number of step attempts over the life of the integrator.
     pub max_steps: u64,
-    /// Width of the final bracket of an event crossing [s].
+    /// Width of the final bracket of an event crossing \[s\].
     pub event_time_tol_s: f64,
 }
 
@@ -131,7 +131,7 @@ impl Tolerances {
     ///
     /// # Errors
     /// A message naming the offending setting and its value.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), ToleranceError> {
         let pos = [
             ("rtol", self.rtol),
             ("h_init", self.h_init),
@@ -139,22 +139,43 @@ impl Tolerances {
             ("h_max", self.h_max),
             ("event_time_tol_s", self.event_time_tol_s),
         ];
-        for (name, v) in pos {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name} = {v}: must be finite and > 0"));
+        for (field, value) in pos {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ToleranceError {
+                    field,
+                    value,
+                    reason: "must be finite and > 0",
+                });
             }
         }
         if self.h_min > self.h_max {
-            return Err(format!(
-                "h_min = {} > h_max = {}: must be <= h_max",
-                self.h_min, self.h_max
-            ));
+            return Err(ToleranceError {
+                field: "h_min",
+                value: self.h_min,
+                reason: "must be <= h_max",
+            });
         }
         if self.max_steps == 0 {
-            return Err("max_steps = 0: must be > 0".into());
+            return Err(ToleranceError {
+                field: "max_steps",
+                value: 0.0,
+                reason: "must be > 0",
+            });
         }
         Ok(())
     }
+}
+
+/// An integrator setting out of range.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("invalid integrator setting `{field}` = {value}: {reason}")]
+pub struct ToleranceError {
+    /// Setting name.
+    pub field: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// What is required.
+    pub reason: &'static str,
 }
 
 /// Work counters of an integrator.
@@ -173,19 +194,19 @@ pub struct Stats {
 pub enum IntegrateError {
     /// The error control asked for a step below `h_min`.
     StepTooSmall {
-        /// Time [s] where it happened.
+        /// Time \[s\] where it happened.
         t: f64,
         /// The step that was asked for.
         h: f64,
     },
     /// More than `max_steps` step attempts.
     MaxSteps {
-        /// Time [s] reached.
+        /// Time \[s\] reached.
         t: f64,
     },
     /// The right-hand side or the state became NaN or infinite.
     NonFinite {
-        /// Time [s] of the step start.
+        /// Time \[s\] of the step start.
         t: f64,
     },
     /// The problem declared more than [`MAX_EVENTS`] events.
@@ -222,9 +243,9 @@ impl std::error::Error for IntegrateError {}
 pub struct EventHit {
     /// Index of the event function.
     pub index: usize,
-    /// Upper end of the final bracket (just past the crossing) [s].
+    /// Upper end of the final bracket (just past the crossing) \[s\].
     pub time: f64,
-    /// Width of the final bracket [s].
+    /// Width of the final bracket \[s\].
     pub bracket: f64,
 }
 

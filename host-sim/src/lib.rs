@@ -1,16 +1,15 @@
 //! # host-sim
 //!
 //! Host-side (std) re-entry simulation around `guidance-core`:
-//! environment models ([`env`]: atmosphere, gravity, planet), vehicles ([`vehicle`]),
+//! environment models ([`env`](mod@env): atmosphere, gravity, planet), vehicles ([`vehicle`]),
 //! 3-DOF dynamics ([`dynamics`]), integrators ([`integrate`]), the closed-loop harness that
 //! flies the core's own `Guidance` at its fixed 2 s clock ([`sim`]), the analytical simulator
-//! ([`analytic`]), reports ([`report`]) and the CLI ([`cli`]).
+//! ([`analytic`]), the mission definition ([`scenario`]), reports ([`report`]) and the CLI
+//! ([`cli`], which nothing else in the library imports).
 //!
 //! Units: SI and radians inside; degrees and km only at the edges (CLI, files, plots).
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
-// Units are written in brackets in the docs ("[m/s]"), which rustdoc would read as links.
-#![allow(rustdoc::broken_intra_doc_links)]
 
 pub mod analytic;
 pub mod cli;
@@ -22,5 +21,6 @@ pub mod optim;
 pub mod pil;
 pub mod replan_loop;
 pub mod report;
+pub mod scenario;
 pub mod sim;
 pub mod vehicle;

@@ -1,10 +1,11 @@
 //! Closed loop with onboard re-planning: `guidance-core`'s [`ReplanningGuidance`] (the flight
 //! [`guidance_core::guidance::Guidance`] plus the analytic predictor-corrector of
-//! `guidance_core::replan`) as an [`AttitudeSource`] of [`crate::sim::simulate`], at the
-//! guidance's own 2 s clock, like [`crate::sim::CoreGuidance`].
+//! `guidance_core::replan`) as an attitude source of [`crate::sim::simulate`], at the
+//! guidance's own 2 s clock, through the same adapter as [`crate::sim::CoreGuidance`]
+//! ([`GuidanceSource`]).
 //!
-//! Every re-plan report is recorded ([`ReplanLoop::reports`]) so a run can be checked for the
-//! re-planning rate, the cases that happened and the predictor calls used.
+//! Every re-plan report is recorded ([`GuidanceSource::reports`]) so a run can be checked for
+//! the re-planning rate, the cases that happened and the predictor calls used.
 //!
 //! [`predictor_model`] builds the predictor's model of the world from a simulator vehicle and an
 //! exponential atmosphere, with the same conventions as the analytical simulator
@@ -12,73 +13,17 @@
 //! trim-only vehicle (the SRM capsule) the polar with the trim point at maximum L/D
 //! (`lambda = 1`, steered by bank only).
 
-use guidance_core::NavState;
-use guidance_core::guidance::Command;
-use guidance_core::replan::{PredictorModel, ReplanReport, ReplanningGuidance};
+use guidance_core::replan::{PredictorModel, ReplanningGuidance};
 use guidance_core::vinh::{ExpAtmosphere, Planet as VinhPlanet};
 
 use crate::analytic::{AnalyticError, AnalyticVehicle};
-use crate::dynamics::Attitude;
 use crate::env::{ExponentialAtmosphere, Planet};
-use crate::sim::AttitudeSource;
+use crate::sim::GuidanceSource;
 use crate::vehicle::Vehicle;
 
-/// [`ReplanningGuidance`] in the closed loop, with the re-plan reports of the run.
-#[derive(Clone, Debug)]
-pub struct ReplanLoop {
-    /// The flight guidance with re-planning.
-    pub guidance: ReplanningGuidance<f64>,
-    /// Every re-plan of the run, in order.
-    pub reports: Vec<ReplanReport<f64>>,
-}
-
-impl ReplanLoop {
-    /// Wrap a configured [`ReplanningGuidance`].
-    #[must_use]
-    pub fn new(guidance: ReplanningGuidance<f64>) -> Self {
-        Self {
-            guidance,
-            reports: Vec::new(),
-        }
-    }
-}
-
-fn attitude_of(c: Command<f64>) -> Attitude {
-    Attitude {
-        alpha_rad: c.alpha_rad,
-        sigma_rad: c.sigma_rad,
-    }
-}
-
-impl AttitudeSource for ReplanLoop {
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
-        let out = self.guidance.update(nav).map_err(|e| e.to_string())?;
-        if let Some(r) = out.replan {
-            self.reports.push(r);
-        }
-        if out.guidance.ticked {
-            Ok(())
-        } else {
-            Err(format!(
-                "guidance did not tick at t = {} s (next tick {} s)",
-                nav.time_s,
-                self.guidance.next_tick_s()
-            ))
-        }
-    }
-    fn attitude_at(&self, time_s: f64) -> Attitude {
-        attitude_of(self.guidance.attitude_at(time_s))
-    }
-    fn next_tick_s(&self) -> f64 {
-        self.guidance.next_tick_s()
-    }
-    fn next_kink_s(&self, time_s: f64) -> f64 {
-        self.guidance
-            .guidance()
-            .next_ramp_kink_s(time_s)
-            .unwrap_or(f64::INFINITY)
-    }
-}
+/// [`ReplanningGuidance`] in the closed loop (the simulator's one guidance adapter), with the
+/// re-plan reports of the run in [`GuidanceSource::reports`].
+pub type ReplanLoop = GuidanceSource<ReplanningGuidance<f64>>;
 
 /// The predictor's model: `planet`'s `mu`, radius and rotation rate (the closed forms assume no
 /// rotation; the rate feeds the effective-gravity correction of

@@ -248,6 +248,15 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push((
+        "host-sim docs (rustdoc -D warnings)",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args(["doc", "-p", "host-sim", "--no-deps"]);
+            c.env("RUSTDOCFLAGS", "-D warnings");
+            run(c, "host-sim docs")
+        }),
+    ));
+    steps.push((
         "guidance-core with defmt, no_std",
         Box::new(|| {
             let mut c = cargo();

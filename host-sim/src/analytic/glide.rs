@@ -12,7 +12,7 @@ use crate::dynamics::SphericalState;
 use crate::env::ExponentialAtmosphere;
 use crate::sim::TerminationReason;
 
-/// Equilibrium glide starting at `entry_altitude_m` [m] at `placement`, with the entry speed and
+/// Equilibrium glide starting at `entry_altitude_m` \[m\] at `placement`, with the entry speed and
 /// flight-path angle imposed by the method (eq. 3.78/3.79), constant lift `lift`, to `end`;
 /// `points` samples evenly spaced in `u = V^2/(g_E r_E)`.
 ///

@@ -77,7 +77,7 @@ pub use vehicle::{AnalyticVehicle, LiftSetting};
 /// Mach number at which a tabulated drag polar is taken by default (hypersonic; HORUS-2B's
 /// table 8.1 polar at Mach 20).
 pub const DEFAULT_POLAR_MACH: f64 = 20.0;
-/// Default altitudes [m] through which the exponential atmosphere is fitted to US76 (the band
+/// Default altitudes \[m\] through which the exponential atmosphere is fitted to US76 (the band
 /// of a capsule glide or skip from 100 km).
 pub const DEFAULT_FIT_ALTITUDES_M: (f64, f64) = (50_000.0, 100_000.0);
 /// Default number of trajectory samples.
@@ -127,7 +127,7 @@ fn setting(field: &'static str, value: f64, reason: &'static str) -> AnalyticErr
     }
 }
 
-/// The exponential atmosphere through the US76 densities at `h1_m` and `h2_m` [m].
+/// The exponential atmosphere through the US76 densities at `h1_m` and `h2_m` \[m\].
 ///
 /// # Errors
 /// As [`ExponentialAtmosphere::fitted_to`] (e.g. equal altitudes, non-positive density).
@@ -159,9 +159,9 @@ fn vinh_atmosphere(a: &ExponentialAtmosphere, p: &Planet) -> ExpAtmosphere<f64> 
 /// How a glide ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GlideEnd {
-    /// At this altitude [m] (below the glide start).
+    /// At this altitude \[m\] (below the glide start).
     Altitude {
-        /// Final altitude [m].
+        /// Final altitude \[m\].
         altitude_m: f64,
     },
     /// At this fraction of the imposed entry speed [-], in (0, 1).
@@ -190,7 +190,7 @@ pub struct AnalyticRun {
     pub phase: Phase,
     /// Entry state (for the glide: the state imposed by eq. 3.78/3.79).
     pub entry: SphericalState,
-    /// Lowest altitude [m] (skip: the closed form's deepest point; glide: the end).
+    /// Lowest altitude \[m\] (skip: the closed form's deepest point; glide: the end).
     pub deepest_altitude_m: f64,
     /// Lift setting flown.
     pub lift: LiftSetting,

@@ -8,11 +8,11 @@ use crate::dynamics::SphericalState;
 /// Where the planar trajectory starts on the sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
-    /// Latitude [rad].
+    /// Latitude \[rad\].
     pub latitude_rad: f64,
-    /// Longitude [rad].
+    /// Longitude \[rad\].
     pub longitude_rad: f64,
-    /// Heading [rad], clockwise from north.
+    /// Heading \[rad\], clockwise from north.
     pub heading_rad: f64,
 }
 

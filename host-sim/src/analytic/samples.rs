@@ -2,14 +2,14 @@
 //! (time and heat load by quadrature over range angle, peak times interpolated in range angle).
 
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::guidance::Command;
 use guidance_core::vinh;
 
 use super::{AnalyticVehicle, LiftSetting, Placement};
-use crate::dynamics::{Attitude, FlightConditions, SphericalState};
+use crate::dynamics::{FlightConditions, SphericalState};
 use crate::env::{Atmosphere, ExponentialAtmosphere, Planet};
 use crate::sim::{
-    Peak, Sample, SampleKind, SimResult, Summary, TerminationReason, Violations, great_circle,
-    violation,
+    Peak, Sample, SampleKind, SimResult, Summary, TerminationReason, great_circle, violations,
 };
 
 /// One planar point of a closed form.
@@ -104,7 +104,7 @@ impl Ctx<'_> {
             first.speed,
         )
         .ok();
-        let attitude = Attitude {
+        let attitude = Command {
             alpha_rad: 0.0,
             sigma_rad: self.lift.bank_rad,
         };
@@ -191,11 +191,7 @@ impl Ctx<'_> {
             exits: 0,
             skips: 0,
             interface_crossings_s: Vec::new(),
-            violations: Violations {
-                heat_flux: violation(peak_heat.value, lim.heat_flux_w_m2),
-                g_load: violation(peak_g_load.value, lim.g_load),
-                g_load_rate: violation(g_rate.value, lim.g_load_rate_per_s),
-            },
+            violations: violations(peak_heat, peak_g_load, g_rate, lim),
             rhs_evals: 0,
             accepted_steps: 0,
             rejected_steps: 0,

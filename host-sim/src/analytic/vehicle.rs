@@ -12,11 +12,11 @@ use crate::vehicle::{DragPolar, PolarAerodynamics, Vehicle, VehicleLimits};
 pub struct AnalyticVehicle {
     /// Name (for reports).
     pub name: String,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass_kg: f64,
     /// Reference area [m^2].
     pub reference_area_m2: f64,
-    /// Nose radius [m].
+    /// Nose radius \[m\].
     pub nose_radius_m: f64,
     /// Drag polar `C_D = C_D0 + K C_L^2`.
     pub polar: DragPolar,
@@ -31,7 +31,7 @@ pub struct AnalyticVehicle {
 pub struct LiftSetting {
     /// Total lift coefficient `C_L` [-].
     pub cl: f64,
-    /// Bank angle `sigma` [rad] (0: lift up).
+    /// Bank angle `sigma` \[rad\] (0: lift up).
     pub bank_rad: f64,
 }
 

@@ -2,8 +2,30 @@
 
 use std::io::Write;
 
-use super::{AtmosphereArgs, AtmosphereModel, CliError};
+use clap::ValueEnum;
+
+use super::CliError;
 use crate::env::{Atmosphere, ExponentialAtmosphere, Us76};
+
+/// Atmosphere model choice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum AtmosphereModel {
+    /// U.S. Standard Atmosphere 1976.
+    Us76,
+    /// Exponential, rho0 = 1.225 kg/m^3, H = 7.2 km.
+    Exponential,
+}
+
+/// Arguments of `atmosphere`.
+#[derive(Debug, clap::Args)]
+pub struct AtmosphereArgs {
+    /// Model.
+    #[arg(long, value_enum, default_value = "us76")]
+    pub model: AtmosphereModel,
+    /// Altitudes (km) (default 0, 10, ..., 120).
+    #[arg(value_name = "ALTITUDE_KM", allow_negative_numbers = true)]
+    pub altitudes_km: Vec<f64>,
+}
 
 /// Run `atmosphere` with arguments `a`, writing the CSV to `out`.
 pub(super) fn run(a: AtmosphereArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -22,9 +44,11 @@ pub(super) fn run(a: AtmosphereArgs, out: &mut dyn Write) -> Result<(), CliError
     )?;
     for h in alts {
         if !h.is_finite() || !(-5.0..=1000.0).contains(&h) {
-            return Err(CliError::Scenario(format!(
-                "command line: argument `ALTITUDE_KM` = {h}: must be within [-5, 1000] km"
-            )));
+            return Err(CliError::Argument {
+                field: "ALTITUDE_KM",
+                value: h.to_string(),
+                reason: "must be within [-5, 1000] km",
+            });
         }
         let st = model.state(h * 1e3);
         writeln!(

@@ -2,13 +2,38 @@
 //! print the one-line summary.
 
 use std::io::{IsTerminal, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use super::{
-    CliError, Flight, RunOutput, Scenario, SimulateArgs, load_vehicle, parse_scenario,
-    scenario_to_toml, simulate_scenario, write_flight,
-};
+use super::CliError;
 use crate::pil;
+use crate::scenario::{
+    Flight, RunOutput, Scenario, read_scenario, scenario_to_toml, simulate_scenario, write_flight,
+};
+
+/// Arguments of `simulate`.
+#[derive(Debug, clap::Args)]
+pub struct SimulateArgs {
+    /// Scenario TOML file (default: built-in HORUS-2B reference mission).
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
+    /// Output directory (default: `runs/<scenario-name>/`).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Built-in scenario instead of a file: horus-2b-reference (default) or srm-glide.
+    #[arg(long, value_name = "NAME", conflicts_with = "scenario")]
+    pub builtin: Option<String>,
+    /// Print the scenario (default or loaded) as TOML and exit without simulating.
+    #[arg(long)]
+    pub print_scenario: bool,
+    /// Do not show a progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Processor in the loop: fly the HORUS-2B reference mission with the guidance of this
+    /// firmware ELF (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`).
+    /// Only with the default scenario, whose table the firmware has compiled in.
+    #[arg(long, value_name = "ELF", conflicts_with_all = ["scenario", "builtin"])]
+    pub pil: Option<PathBuf>,
+}
 
 /// Fly the reference mission in PIL with firmware `elf`, write the run directory and print
 /// the link statistics.
@@ -30,31 +55,27 @@ fn pil_run(
     )?;
     let flight = Flight {
         result,
-        vehicle: load_vehicle(&sc.vehicle)?,
+        vehicle: sc.load_vehicle()?,
         environment: sc.environment.build(),
     };
-    write_flight(sc, &format!("{} (PIL)", sc.name), flight, dir)
+    Ok(write_flight(
+        sc,
+        &format!("{} (PIL)", sc.name),
+        flight,
+        dir,
+    )?)
 }
 
 /// Run `simulate` with arguments `a`, writing normal output to `out`.
 pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (sc, file) = match &a.scenario {
-        Some(p) => {
-            let file = p.display().to_string();
-            let text = std::fs::read_to_string(p)
-                .map_err(|e| CliError::Scenario(format!("{file}: cannot read: {e}")))?;
-            let base = p.parent().unwrap_or(Path::new("."));
-            (parse_scenario(&text, &file, base)?, file)
-        }
+        Some(p) => (read_scenario(p)?, p.display().to_string()),
         None => {
             let name = a.builtin.as_deref().unwrap_or("horus-2b-reference");
-            let sc = Scenario::builtin(name).ok_or_else(|| {
-                CliError::Scenario(format!(
-                    "command line: option `--builtin` = {name:?}: unknown scenario (known: {})",
-                    Scenario::BUILTIN.join(", ")
-                ))
-            })?;
-            (sc, format!("(built-in scenario {name})"))
+            (
+                Scenario::try_builtin(name)?,
+                format!("(built-in scenario {name})"),
+            )
         }
     };
     if a.print_scenario {
@@ -72,7 +93,8 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         indicatif::ProgressBar::hidden()
     };
     let max_t = sc.termination.max_time_s;
-    let mut progress = |t: f64, h: f64| {
+    let mut progress = |p: crate::sim::Progress| {
+        let (t, h) = (p.time_s, p.altitude_m);
         bar.set_message(format!(
             "t = {t:7.1} s (max {max_t:.0} s), h = {:6.2} km",
             h / 1e3

@@ -6,8 +6,8 @@ use guidance_core::vinh::VinhError;
 use super::metrics::{analytic_metrics, numerical_metrics};
 use super::numerical::energy_below_speed;
 use super::{
-    CompareError, Fidelity, GLIDE_METRICS_ALTITUDE_END, GLIDE_METRICS_SPEED_END, Metric,
-    NumericalSettings, SKIP_METRICS, numerical_run,
+    CompareError, GLIDE_METRICS_ALTITUDE_END, GLIDE_METRICS_SPEED_END, Metric, NumericalSettings,
+    Preset, SKIP_METRICS, numerical_run,
 };
 use crate::analytic::{
     self, AnalyticError, AnalyticRun, AnalyticVehicle, GlideEnd, LiftSetting, Placement,
@@ -26,7 +26,7 @@ pub enum Case {
     },
     /// Glide from this altitude (entry speed and flight-path angle imposed) to `end`.
     Glide {
-        /// Entry altitude [m].
+        /// Entry altitude \[m\].
         entry_altitude_m: f64,
         /// Where the trajectory starts on the sphere.
         placement: Placement,
@@ -123,7 +123,7 @@ pub struct CaseRuns {
     /// Analytical metrics.
     pub analytic_outcome: AnalyticOutcome,
     /// Numerical runs: simplified, full (`None`: not flown).
-    pub numerical: [(Fidelity, Option<SimResult>, Outcome); 2],
+    pub numerical: [(Preset, Option<SimResult>, Outcome); 2],
 }
 
 /// Run one case: the closed form, then (if it is in domain) the numerical runs requested.
@@ -136,7 +136,7 @@ pub fn compare_case(
     lift: &LiftSetting,
     atmosphere: &ExponentialAtmosphere,
     case: &Case,
-    fidelities: &[Fidelity],
+    fidelities: &[Preset],
     settings: &NumericalSettings,
     points: usize,
 ) -> Result<CaseRuns, CompareError> {
@@ -158,8 +158,8 @@ pub fn compare_case(
     };
     let not_run = || {
         [
-            (Fidelity::Simplified, None, Outcome::NotRun),
-            (Fidelity::Full, None, Outcome::NotRun),
+            (Preset::Simplified, None, Outcome::NotRun),
+            (Preset::Full, None, Outcome::NotRun),
         ]
     };
     let run = match run {
@@ -190,7 +190,7 @@ pub fn compare_case(
         } => entry.speed_m_s * fraction,
         _ => 0.0,
     };
-    let fly = |fidelity: Fidelity| -> (Option<SimResult>, Outcome) {
+    let fly = |fidelity: Preset| -> (Option<SimResult>, Outcome) {
         let attempt = |termination: Termination| {
             numerical_run(
                 vehicle,

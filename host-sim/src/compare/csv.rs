@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::{CompareGrid, Fidelity};
+use super::{CompareGrid, Preset};
 
 fn cell(v: Option<f64>) -> String {
     match v {
@@ -53,8 +53,8 @@ pub fn grid_csv(grid: &CompareGrid) -> String {
                 cell(a),
                 cell(ns),
                 cell(nf),
-                cell(grid.error(p, i, Fidelity::Simplified)),
-                cell(grid.error(p, i, Fidelity::Full))
+                cell(grid.error(p, i, Preset::Simplified)),
+                cell(grid.error(p, i, Preset::Full))
             );
         }
         s.push('\n');

@@ -2,7 +2,7 @@
 //! definition ([`CompareConfig`]), running ([`run_grid`]) and result ([`CompareGrid`]).
 
 use super::{
-    AnalyticOutcome, Case, CaseRuns, CompareError, Fidelity, Metric, NumericalSettings, Outcome,
+    AnalyticOutcome, Case, CaseRuns, CompareError, Metric, NumericalSettings, Outcome, Preset,
     compare_case, metric_error, setting,
 };
 use crate::analytic::{self, AnalyticVehicle, GlideEnd, LiftSetting, Phase, Placement};
@@ -14,16 +14,16 @@ use crate::env::ExponentialAtmosphere;
 pub enum GridKind {
     /// Skips at a fixed entry altitude and flight-path angle over entry speeds.
     Skip {
-        /// Entry altitude [m] (also the exit altitude).
+        /// Entry altitude \[m\] (also the exit altitude).
         entry_altitude_m: f64,
-        /// Entry flight-path angle [rad] (negative).
+        /// Entry flight-path angle \[rad\] (negative).
         flight_path_angle_rad: f64,
         /// Entry speeds [m/s] (grid x axis).
         entry_speeds_m_s: Vec<f64>,
     },
     /// Glides over entry altitudes (grid x axis); speed and angle are imposed by the method.
     Glide {
-        /// Entry altitudes [m].
+        /// Entry altitudes \[m\].
         entry_altitudes_m: Vec<f64>,
         /// End of each glide.
         end: GlideEnd,
@@ -44,7 +44,7 @@ pub struct CompareConfig {
     /// Start position and heading.
     pub placement: Placement,
     /// Numerical environments to fly.
-    pub fidelities: Vec<Fidelity>,
+    pub fidelities: Vec<Preset>,
     /// Numerical settings.
     pub numerical: NumericalSettings,
     /// Samples per analytical trajectory.
@@ -54,7 +54,7 @@ pub struct CompareConfig {
 /// One grid point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridPoint {
-    /// Grid x value (entry speed [m/s] or entry altitude [m]).
+    /// Grid x value (entry speed [m/s] or entry altitude \[m\]).
     pub x: f64,
     /// Vertical lift coefficient [-].
     pub cl_vertical: f64,
@@ -62,9 +62,9 @@ pub struct GridPoint {
     pub lift: LiftSetting,
     /// `lambda = C_L / C_L*` [-].
     pub lambda: f64,
-    /// Entry speed [m/s] and flight-path angle [rad] flown (glide: imposed; NaN out of domain).
+    /// Entry speed [m/s] and flight-path angle \[rad\] flown (glide: imposed; NaN out of domain).
     pub entry_speed_m_s: f64,
-    /// Entry flight-path angle [rad].
+    /// Entry flight-path angle \[rad\].
     pub entry_gamma_rad: f64,
     /// Closed form.
     pub analytic: AnalyticOutcome,
@@ -77,10 +77,10 @@ pub struct GridPoint {
 impl GridPoint {
     /// Outcome of one environment.
     #[must_use]
-    pub fn outcome(&self, fidelity: Fidelity) -> &Outcome {
+    pub fn outcome(&self, fidelity: Preset) -> &Outcome {
         match fidelity {
-            Fidelity::Simplified => &self.simplified,
-            Fidelity::Full => &self.full,
+            Preset::Simplified => &self.simplified,
+            Preset::Full => &self.full,
         }
     }
 }
@@ -92,7 +92,7 @@ pub struct CompareGrid {
     pub phase: Phase,
     /// Metrics, in value order.
     pub metrics: Vec<Metric>,
-    /// Grid x values (entry speeds [m/s] or altitudes [m]).
+    /// Grid x values (entry speeds [m/s] or altitudes \[m\]).
     pub xs: Vec<f64>,
     /// Vertical lift coefficients [-].
     pub cl_vertical: Vec<f64>,
@@ -107,7 +107,7 @@ pub struct CompareGrid {
 impl CompareGrid {
     /// Error of metric `m` at `point` against `fidelity`, if both sides have values.
     #[must_use]
-    pub fn error(&self, point: &GridPoint, m: usize, fidelity: Fidelity) -> Option<f64> {
+    pub fn error(&self, point: &GridPoint, m: usize, fidelity: Preset) -> Option<f64> {
         let metric = self.metrics.get(m)?;
         let a = *point.analytic.values()?.get(m)?;
         let n = *point.outcome(fidelity).values()?.get(m)?;
@@ -116,7 +116,7 @@ impl CompareGrid {
 
     /// Largest |error| of metric `m` against `fidelity` over the compared points.
     #[must_use]
-    pub fn max_abs_error(&self, m: usize, fidelity: Fidelity) -> Option<f64> {
+    pub fn max_abs_error(&self, m: usize, fidelity: Preset) -> Option<f64> {
         self.points
             .iter()
             .filter_map(|p| self.error(p, m, fidelity))

@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::{AnalyticOutcome, CompareGrid, Fidelity};
+use super::{AnalyticOutcome, CompareGrid, Preset};
 use crate::analytic::Phase;
 use crate::report::xml_escape;
 
@@ -17,7 +17,7 @@ fn shade(f: f64) -> String {
 /// the largest |error| of the map), value printed in each cell. Out-of-domain points are grey
 /// and marked "out of domain"; failed numerical runs are hatched yellow and marked "n/a".
 #[must_use]
-pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Fidelity) -> String {
+pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Preset) -> String {
     let Some(metric) = grid.metrics.get(m) else {
         return String::new();
     };

@@ -4,10 +4,10 @@
 //! coefficient), as in thesis fig. 8.5 (glide: final range-angle error over entry altitude and
 //! `C_L`, SRM capsule, simplified environment) and sec. 8.2.1 (skip).
 //!
-//! * [`Fidelity::Simplified`]: non-rotating sphere, central gravity and the *same* exponential
+//! * [`Preset::Simplified`]: non-rotating sphere, central gravity and the *same* exponential
 //!   atmosphere as the closed forms ([`crate::env::Environment::simplified`]): the closed forms'
 //!   own assumptions, so the error is that of the approximations alone (thesis sec. 8.1.3).
-//! * [`Fidelity::Full`]: rotating Earth, US76, J2 ([`crate::env::Environment::full`]).
+//! * [`Preset::Full`]: rotating Earth, US76, J2 ([`crate::env::Environment::full`]).
 //!
 //! In both, the numerical vehicle is the analytical one: its drag polar at constant `C_L`
 //! ([`AnalyticVehicle::constant_lift_vehicle`]), flown at constant bank through the simulator's
@@ -17,9 +17,9 @@
 //!
 //! Metrics and their errors (analytical minus numerical):
 //! * skip (entry -> return to the entry altitude): exit speed [%], exit flight-path angle
-//!   [deg], deepest altitude [km], peak heat flux [%], range angle to the exit [%];
+//!   \[deg\], deepest altitude \[km\], peak heat flux [%], range angle to the exit [%];
 //! * glide (imposed entry -> end): range angle [%], final speed [%] (end at an altitude) or final
-//!   altitude [km] (end at a speed), peak heat flux [%].
+//!   altitude \[km\] (end at a speed), peak heat flux [%].
 //!
 //! The range angle of both is the flown range angle `integral V cos(gamma)/r dt` (eq. 3.15),
 //! the quantity the closed forms give. Points where the closed form is out of its domain are
@@ -31,7 +31,6 @@
 //! [`FixedAttitude`]: crate::sim::FixedAttitude
 
 mod case;
-mod command;
 mod csv;
 mod grid;
 mod heatmap;
@@ -40,10 +39,10 @@ mod numerical;
 mod output;
 
 use crate::analytic::AnalyticError;
+use crate::env::Preset;
 use crate::report::ReportError;
 
 pub use case::{AnalyticOutcome, Case, CaseRuns, Outcome, compare_case};
-pub use command::{CliPhase, CompareCliArgs, config_from_args, run_cli};
 pub use csv::grid_csv;
 pub use grid::{
     CompareConfig, CompareGrid, GridKind, GridPoint, PointHook, run_grid, run_grid_with,
@@ -55,34 +54,14 @@ pub use metrics::{
 pub use numerical::numerical_run;
 pub use output::{write_case, write_grid};
 
-/// Which numerical environment.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Fidelity {
-    /// Non-rotating sphere, central gravity, the closed forms' exponential atmosphere.
-    Simplified,
-    /// Rotating sphere, US76, central + J2 gravity.
-    Full,
-}
-
-impl Fidelity {
-    /// Short name for files and columns.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Fidelity::Simplified => "simplified",
-            Fidelity::Full => "full",
-        }
-    }
-}
-
 /// Numerical-run settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NumericalSettings {
     /// RKF4(5) relative tolerance [-].
     pub rtol: f64,
-    /// Sample interval [s] (the deepest altitude and speed crossings are read from samples).
+    /// Sample interval \[s\] (the deepest altitude and speed crossings are read from samples).
     pub output_interval_s: f64,
-    /// Time limit of a glide run [s].
+    /// Time limit of a glide run \[s\].
     pub max_time_s: f64,
 }
 
@@ -124,10 +103,17 @@ pub enum CompareError {
     Io(#[from] std::io::Error),
 }
 
-fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> CompareError {
-    CompareError::Setting {
-        field,
-        value: value.to_string(),
-        reason,
+impl CompareError {
+    /// A [`CompareError::Setting`] naming `field`, `value` and `reason`.
+    pub fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> Self {
+        Self::Setting {
+            field,
+            value: value.to_string(),
+            reason,
+        }
     }
+}
+
+fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> CompareError {
+    CompareError::setting(field, value, reason)
 }

@@ -2,10 +2,11 @@
 //! constant lift and bank.
 
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::guidance::Command;
 
-use super::{Fidelity, NumericalSettings};
+use super::{NumericalSettings, Preset};
 use crate::analytic::{self, AnalyticVehicle, LiftSetting};
-use crate::dynamics::{Attitude, Dynamics, SphericalState};
+use crate::dynamics::{Dynamics, SphericalState};
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::integrate::Tolerances;
 use crate::sim::{FixedAttitude, SimConfig, SimError, SimResult, Termination, simulate};
@@ -18,7 +19,7 @@ use crate::sim::{FixedAttitude, SimConfig, SimError, SimResult, Termination, sim
 pub fn numerical_run(
     vehicle: &AnalyticVehicle,
     lift: &LiftSetting,
-    fidelity: Fidelity,
+    fidelity: Preset,
     atmosphere: &ExponentialAtmosphere,
     entry: &SphericalState,
     termination: Termination,
@@ -26,8 +27,8 @@ pub fn numerical_run(
     settings: &NumericalSettings,
 ) -> Result<SimResult, SimError> {
     let env = match fidelity {
-        Fidelity::Simplified => Environment::simplified(*atmosphere),
-        Fidelity::Full => Environment::full(),
+        Preset::Simplified => Environment::simplified(*atmosphere),
+        Preset::Full => Environment::full(),
     };
     let veh = vehicle.constant_lift_vehicle(lift);
     let dynm = Dynamics::from_environment(&env, &veh);
@@ -39,11 +40,11 @@ pub fn numerical_run(
     };
     cfg.output_interval_s = settings.output_interval_s;
     cfg.interface_altitude_m = interface_altitude_m;
-    let source = FixedAttitude(Attitude {
+    let source = FixedAttitude(Command {
         alpha_rad: 0.0,
         sigma_rad: lift.bank_rad,
     });
-    let (res, _) = simulate(dynm, source, &cfg, &mut |_, _| {})?;
+    let (res, _) = simulate(dynm, source, &cfg, &mut |_| {})?;
     Ok(res)
 }
 

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{CaseRuns, CompareGrid, Fidelity, grid_csv, heat_map_svg};
+use super::{CaseRuns, CompareGrid, Preset, grid_csv, heat_map_svg};
 use crate::analytic::{self, AnalyticVehicle};
 use crate::report::{self, ReportError};
 use crate::sim::SimResult;
@@ -15,7 +15,7 @@ use crate::sim::SimResult;
 pub fn write_grid(
     dir: &Path,
     grid: &CompareGrid,
-    fidelities: &[Fidelity],
+    fidelities: &[Preset],
 ) -> Result<Vec<PathBuf>, ReportError> {
     std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
         path: dir.to_path_buf(),
@@ -70,11 +70,11 @@ pub fn write_case(
     for (f, res, _) in &runs.numerical {
         if let Some(res) = res {
             let env = match f {
-                Fidelity::Simplified => {
+                Preset::Simplified => {
                     "numerical: non-rotating sphere, central gravity, \
                      exponential atmosphere of the closed forms"
                 }
-                Fidelity::Full => "numerical: rotating sphere, US76, J2",
+                Preset::Full => "numerical: rotating sphere, US76, J2",
             };
             written.extend(write(f.name(), res, env)?);
         }

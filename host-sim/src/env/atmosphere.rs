@@ -3,17 +3,19 @@
 //! ([`ExponentialAtmosphere`]); thesis sec. 3.6.2.
 
 pub mod exponential;
+pub mod table;
 pub mod us76;
 
 pub use exponential::{ExponentialAtmosphere, ExponentialAtmosphereError};
+pub use table::{TableAtmosphereError, TabulatedAtmosphere};
 pub use us76::Us76;
 
 /// Atmospheric state at one altitude.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AtmosphereState {
-    /// Kinetic temperature [K].
+    /// Kinetic temperature \[K\].
     pub temperature_k: f64,
-    /// Pressure [Pa].
+    /// Pressure \[Pa\].
     pub pressure_pa: f64,
     /// Density [kg/m^3].
     pub density_kg_m3: f64,
@@ -23,7 +25,7 @@ pub struct AtmosphereState {
 
 /// An atmosphere model: properties as a function of geometric altitude above the sphere.
 pub trait Atmosphere: Send + Sync {
-    /// Properties at geometric altitude `altitude_m` [m]. Below 0 m the model holds its 0 m
+    /// Properties at geometric altitude `altitude_m` \[m\]. Below 0 m the model holds its 0 m
     /// values; above its top it returns zero density and pressure.
     fn state(&self, altitude_m: f64) -> AtmosphereState;
     /// Density only [kg/m^3] (may be faster than [`Atmosphere::state`]).

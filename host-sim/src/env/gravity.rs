@@ -29,7 +29,7 @@ use nalgebra::Vector3;
 /// A gravity model in the planet-centred frame (inertial or rotating: the field is
 /// axisymmetric about the z axis, so it is the same in both).
 pub trait Gravity: Send + Sync {
-    /// Gravitational acceleration [m/s^2] at position `r_m` [m] (z axis = rotation axis).
+    /// Gravitational acceleration [m/s^2] at position `r_m` \[m\] (z axis = rotation axis).
     fn acceleration(&self, r_m: &Vector3<f64>) -> Vector3<f64>;
     /// Gravitational potential U [m^2/s^2] with acceleration = -grad U (zero at infinity).
     /// Default: not provided (NaN); both models here implement it.
@@ -85,7 +85,7 @@ impl Gravity for CentralGravity {
 pub struct J2Gravity {
     /// Gravitational parameter mu [m^3/s^2].
     pub mu_m3_s2: f64,
-    /// Reference (equatorial) radius R of the J2 coefficient [m].
+    /// Reference (equatorial) radius R of the J2 coefficient \[m\].
     pub reference_radius_m: f64,
     /// Second zonal harmonic J2 [-].
     pub j2: f64,
@@ -109,7 +109,7 @@ impl J2Gravity {
     }
 
     /// Radial (positive towards the centre) and northward components [m/s^2] at radius
-    /// `r_m` [m] and geocentric latitude `latitude_rad` (thesis eq. 3.100: g_r, g_delta).
+    /// `r_m` \[m\] and geocentric latitude `latitude_rad` (thesis eq. 3.100: g_r, g_delta).
     #[must_use]
     pub fn radial_and_north_components(&self, r_m: f64, latitude_rad: f64) -> (f64, f64) {
         let g0 = self.mu_m3_s2 / (r_m * r_m);

@@ -12,11 +12,38 @@
 
 pub mod atmosphere;
 pub mod gravity;
+pub mod heat_flux;
 pub mod planet;
 
-pub use atmosphere::{Atmosphere, AtmosphereState, ExponentialAtmosphere, Us76};
+pub use atmosphere::{
+    Atmosphere, AtmosphereState, ExponentialAtmosphere, TableAtmosphereError, TabulatedAtmosphere,
+    Us76,
+};
 pub use gravity::{CentralGravity, Gravity, J2Gravity};
+pub use heat_flux::{ChapmanHeatFlux, HeatFluxError};
 pub use planet::Planet;
+
+/// The environment presets: the one list, used by scenarios and by the analytical comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// Non-rotating sphere, central gravity, an exponential atmosphere (the closed forms'
+    /// assumptions, thesis sec. 8.1.3).
+    Simplified,
+    /// Rotating sphere, US76, central + J2 gravity (thesis sec. 7.4).
+    Full,
+}
+
+impl Preset {
+    /// Short name for files, columns and scenario files.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Simplified => "simplified",
+            Preset::Full => "full",
+        }
+    }
+}
 
 /// A complete environment: planet, atmosphere and gravity model.
 pub struct Environment {
@@ -26,6 +53,8 @@ pub struct Environment {
     pub atmosphere: Box<dyn Atmosphere>,
     /// Gravity model.
     pub gravity: Box<dyn Gravity>,
+    /// Chapman heat-flux constants (default: the thesis', [`ChapmanHeatFlux::thesis`]).
+    pub heat_flux: ChapmanHeatFlux,
 }
 
 impl Environment {
@@ -37,6 +66,7 @@ impl Environment {
             planet,
             atmosphere: Box::new(Us76::new()),
             gravity: Box::new(J2Gravity::from_planet(&planet)),
+            heat_flux: ChapmanHeatFlux::thesis(),
         }
     }
 
@@ -48,6 +78,7 @@ impl Environment {
             planet,
             atmosphere: Box::new(atmosphere),
             gravity: Box::new(CentralGravity::from_planet(&planet)),
+            heat_flux: ChapmanHeatFlux::thesis(),
         }
     }
 
@@ -65,6 +96,7 @@ impl Environment {
             planet,
             atmosphere,
             gravity,
+            heat_flux: ChapmanHeatFlux::thesis(),
         }
     }
 }

@@ -12,7 +12,7 @@
 pub struct Planet {
     /// Gravitational parameter mu [m^3/s^2].
     pub mu_m3_s2: f64,
-    /// Radius of the sphere [m]; altitude is measured from it.
+    /// Radius of the sphere \[m\]; altitude is measured from it.
     pub radius_m: f64,
     /// Rotation rate about +z [rad/s]; 0 for a non-rotating planet.
     pub rotation_rate_rad_s: f64,
@@ -34,6 +34,19 @@ impl Planet {
             radius_m: guidance_core::energy::EARTH_RADIUS_M,
             rotation_rate_rad_s: EARTH_ROTATION_RATE_RAD_S,
             j2: EARTH_J2,
+        }
+    }
+
+    /// Rotating spherical Mars (NASA Mars fact sheet): mu = 4.2828e13 m^3/s^2, volumetric
+    /// mean radius 3389.5 km, J2 = 1.96045e-3, sidereal day 24.6229 h (omega = 7.0882e-5
+    /// rad/s).
+    #[must_use]
+    pub fn mars() -> Self {
+        Self {
+            mu_m3_s2: 4.282_8e13,
+            radius_m: 3_389_500.0,
+            rotation_rate_rad_s: std::f64::consts::TAU / (24.6229 * 3600.0),
+            j2: 1.960_45e-3,
         }
     }
 
@@ -62,13 +75,13 @@ impl Planet {
         self.rotation_rate_rad_s != 0.0
     }
 
-    /// Radial distance [m] of a point at `altitude_m` above the sphere.
+    /// Radial distance \[m\] of a point at `altitude_m` above the sphere.
     #[must_use]
     pub fn radius_at_altitude_m(&self, altitude_m: f64) -> f64 {
         self.radius_m + altitude_m
     }
 
-    /// Altitude [m] above the sphere of a point at radial distance `r_m`.
+    /// Altitude \[m\] above the sphere of a point at radial distance `r_m`.
     #[must_use]
     pub fn altitude_m(&self, r_m: f64) -> f64 {
         r_m - self.radius_m

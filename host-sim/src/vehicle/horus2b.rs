@@ -18,7 +18,7 @@
 //!   (low Mach at alpha ~11.5 deg), where the table is published.
 //! * Drag polar C_D = C_D0 + K C_L^2 per Mach from thesis table 8.1
 //!   (`data/horus2b/drag_polar.csv`), linear in Mach between the tabulated Mach numbers and
-//!   clamped outside, available through [`Aerodynamics::drag_polar`].
+//!   clamped outside, available through [`Aerodynamics::drag_polar`](super::Aerodynamics::drag_polar).
 
 use super::models::{DragPolar, DragPolarTable, TableAerodynamics};
 use super::table::{CoefficientTable, GapFill};
@@ -32,11 +32,11 @@ pub const DRAG_POLAR_CSV: &str = include_str!("../../data/horus2b/drag_polar.csv
 const CLEAN_AERO_FILE: &str = "data/horus2b/clean_aero.csv";
 const DRAG_POLAR_FILE: &str = "data/horus2b/drag_polar.csv";
 
-/// Mass at entry [kg].
+/// Mass at entry \[kg\].
 pub const MASS_KG: f64 = 26_029.0;
 /// Reference area [m^2].
 pub const REFERENCE_AREA_M2: f64 = 110.0;
-/// Nose radius [m].
+/// Nose radius \[m\].
 pub const NOSE_RADIUS_M: f64 = 0.8;
 
 /// Operational limits of HORUS-2B (thesis table 2.1).

@@ -31,7 +31,7 @@ pub struct AeroCoefficients {
 
 /// Aerodynamic model: coefficients against Mach number and angle of attack.
 pub trait Aerodynamics: Send + Sync + std::fmt::Debug {
-    /// Coefficients at Mach `mach` [-] and angle of attack `alpha_rad` [rad]. Outside the
+    /// Coefficients at Mach `mach` [-] and angle of attack `alpha_rad` \[rad\]. Outside the
     /// tabulated range the model clamps to its edges (documented per model).
     fn coefficients(&self, mach: f64, alpha_rad: f64) -> AeroCoefficients;
 
@@ -69,11 +69,11 @@ pub struct VehicleLimits {
 pub struct Vehicle {
     /// Name used on the command line and in reports.
     pub name: String,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass_kg: f64,
     /// Aerodynamic reference area [m^2].
     pub reference_area_m2: f64,
-    /// Nose radius [m] (Chapman heat flux).
+    /// Nose radius \[m\] (Chapman heat flux).
     pub nose_radius_m: f64,
     /// Operational limits.
     pub limits: VehicleLimits,

@@ -130,16 +130,16 @@ fn clamp_alpha(alpha_deg: f64, min_deg: Option<f64>, max_deg: Option<f64>) -> f6
 }
 
 /// Mach-independent polynomials in the angle of attack in degrees:
-/// C_L = sum cl[i] alpha_deg^i, C_D = sum cd[i] alpha_deg^i, alpha optionally clamped.
+/// C_L = sum cl\[i\] alpha_deg^i, C_D = sum cd\[i\] alpha_deg^i, alpha optionally clamped.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PolynomialAerodynamics {
     /// C_L coefficients, constant term first (per deg^i).
     pub cl: Vec<f64>,
     /// C_D coefficients, constant term first (per deg^i).
     pub cd: Vec<f64>,
-    /// Lower alpha clamp [deg], if any.
+    /// Lower alpha clamp \[deg\], if any.
     pub alpha_min_deg: Option<f64>,
-    /// Upper alpha clamp [deg], if any.
+    /// Upper alpha clamp \[deg\], if any.
     pub alpha_max_deg: Option<f64>,
 }
 
@@ -157,17 +157,17 @@ impl Aerodynamics for PolynomialAerodynamics {
     }
 }
 
-/// Mach-independent drag polar with C_L a polynomial in alpha [deg]:
-/// C_L = sum cl[i] alpha_deg^i, C_D = C_D0 + K C_L^2.
+/// Mach-independent drag polar with C_L a polynomial in alpha \[deg\]:
+/// C_L = sum cl\[i\] alpha_deg^i, C_D = C_D0 + K C_L^2.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PolarAerodynamics {
     /// The drag polar.
     pub polar: DragPolar,
     /// C_L coefficients, constant term first (per deg^i).
     pub cl: Vec<f64>,
-    /// Lower alpha clamp [deg], if any.
+    /// Lower alpha clamp \[deg\], if any.
     pub alpha_min_deg: Option<f64>,
-    /// Upper alpha clamp [deg], if any.
+    /// Upper alpha clamp \[deg\], if any.
     pub alpha_max_deg: Option<f64>,
 }
 

@@ -24,13 +24,13 @@
 use super::models::TrimAerodynamics;
 use super::{AeroCoefficients, Vehicle, VehicleLimits};
 
-/// Mass [kg] (thesis table 2.3).
+/// Mass \[kg\] (thesis table 2.3).
 pub const MASS_KG: f64 = 38.77;
 /// Reference area [m^2] (thesis table 2.3).
 pub const REFERENCE_AREA_M2: f64 = 0.441;
-/// Nose radius [m] (thesis table 2.3).
+/// Nose radius \[m\] (thesis table 2.3).
 pub const NOSE_RADIUS_M: f64 = 0.90;
-/// Diameter [m] (thesis table 2.3).
+/// Diameter \[m\] (thesis table 2.3).
 pub const DIAMETER_M: f64 = 0.75;
 /// Trim lift coefficient [-] (thesis sec. 8.1.5).
 pub const TRIM_CL: f64 = 1.2786;

@@ -96,7 +96,7 @@ fn locate(axis: &[f64], x: f64) -> (usize, f64) {
 }
 
 impl CoefficientTable {
-    /// Table from axes (Mach [-], alpha [rad]) and rows `values[i][j]` at (mach[i], alpha[j]).
+    /// Table from axes (Mach [-], alpha \[rad\]) and rows `values\[i\]\[j\]` at (mach\[i\], alpha\[j\]).
     ///
     /// # Errors
     /// Bad axes, wrong row count or length, non-finite values.
@@ -196,7 +196,7 @@ impl CoefficientTable {
         &self.mach
     }
 
-    /// The angle-of-attack axis [rad].
+    /// The angle-of-attack axis \[rad\].
     #[must_use]
     pub fn alpha_rad(&self) -> &[f64] {
         &self.alpha_rad

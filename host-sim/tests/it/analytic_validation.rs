@@ -16,11 +16,11 @@
 
 use host_sim::analytic::{self, AnalyticVehicle, GlideEnd, Placement};
 use host_sim::compare::{
-    self, AnalyticOutcome, Case, CompareConfig, CompareGrid, Fidelity, GridKind, NumericalSettings,
-    Outcome, compare_case,
+    self, AnalyticOutcome, Case, CompareConfig, CompareGrid, GridKind, NumericalSettings, Outcome,
+    compare_case,
 };
 use host_sim::dynamics::SphericalState;
-use host_sim::env::ExponentialAtmosphere;
+use host_sim::env::{ExponentialAtmosphere, Preset};
 use host_sim::sim::{SampleKind, SimResult};
 use host_sim::vehicle;
 
@@ -71,14 +71,14 @@ fn simplified_case(case: &Case, cl_vertical: f64) -> (Vec<f64>, Vec<f64>, compar
         &lift,
         &fitted(),
         case,
-        &[Fidelity::Simplified],
+        &[Preset::Simplified],
         &NumericalSettings::default(),
         201,
     )
     .unwrap();
     let a = runs.analytic_outcome.values().unwrap().to_vec();
     let n = match &runs.numerical[0] {
-        (Fidelity::Simplified, Some(_), Outcome::Values(n)) => n.clone(),
+        (Preset::Simplified, Some(_), Outcome::Values(n)) => n.clone(),
         other => panic!("{case:?} C_L,v {cl_vertical}: {other:?}"),
     };
     assert_eq!(runs.numerical[1].2, Outcome::NotRun);
@@ -213,7 +213,7 @@ fn validate_vinh_vs_numerical_srm_glide_to_altitude() {
     assert!((last.conditions.altitude_m - 40e3).abs() < 1.0);
 }
 
-fn glide_grid_2x2(fidelities: Vec<Fidelity>) -> CompareConfig {
+fn glide_grid_2x2(fidelities: Vec<Preset>) -> CompareConfig {
     CompareConfig {
         vehicle: srm(),
         kind: GridKind::Glide {
@@ -253,7 +253,7 @@ fn assert_all_finite(grid: &CompareGrid) {
 /// written and mark the out-of-domain cells.
 #[test]
 fn compare_glide_grid_2x2_marks_out_of_domain_points() {
-    let cfg = glide_grid_2x2(vec![Fidelity::Simplified, Fidelity::Full]);
+    let cfg = glide_grid_2x2(vec![Preset::Simplified, Preset::Full]);
     let mut calls = 0;
     let grid = compare::run_grid(&cfg, &mut |_, total| {
         calls += 1;
@@ -279,7 +279,7 @@ fn compare_glide_grid_2x2_marks_out_of_domain_points() {
         }
     }
     assert_all_finite(&grid);
-    assert!(grid.max_abs_error(0, Fidelity::Simplified).unwrap() <= 3.0);
+    assert!(grid.max_abs_error(0, Preset::Simplified).unwrap() <= 3.0);
 
     let csv = compare::grid_csv(&grid);
     let lines: Vec<&str> = csv.lines().collect();
@@ -310,7 +310,7 @@ fn compare_skip_grid_2x2_marks_captured_points() {
             entry_speeds_m_s: vec![7000.0, 9000.0],
         },
         cl_vertical: vec![0.4, 1.2786],
-        fidelities: vec![Fidelity::Simplified],
+        fidelities: vec![Preset::Simplified],
         ..glide_grid_2x2(vec![])
     };
     let grid = compare::run_grid(&cfg, &mut |_, _| {}).unwrap();
@@ -401,7 +401,7 @@ fn horus_glide_at_122_km_is_out_of_domain() {
             placement: Placement::default(),
             end: GlideEnd::SpeedFraction { fraction: 0.5 },
         },
-        &[Fidelity::Simplified],
+        &[Preset::Simplified],
         &NumericalSettings::default(),
         51,
     )
@@ -416,7 +416,7 @@ fn horus_glide_at_122_km_is_out_of_domain() {
 /// Bad grid settings are errors naming the setting and the value.
 #[test]
 fn bad_grid_settings_name_the_field() {
-    let mut cfg = glide_grid_2x2(vec![Fidelity::Simplified]);
+    let mut cfg = glide_grid_2x2(vec![Preset::Simplified]);
     cfg.cl_vertical = vec![2.0];
     let e = compare::run_grid(&cfg, &mut |_, _| {})
         .unwrap_err()
@@ -427,7 +427,7 @@ fn bad_grid_settings_name_the_field() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("cl_vertical"), "{e}");
-    let mut cfg = glide_grid_2x2(vec![Fidelity::Simplified]);
+    let mut cfg = glide_grid_2x2(vec![Preset::Simplified]);
     cfg.kind = GridKind::Glide {
         entry_altitudes_m: vec![f64::NAN],
         end: GlideEnd::SpeedFraction { fraction: 0.5 },
@@ -436,7 +436,7 @@ fn bad_grid_settings_name_the_field() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("entry_altitudes_m") && e.contains("NaN"), "{e}");
-    let mut cfg = glide_grid_2x2(vec![Fidelity::Simplified]);
+    let mut cfg = glide_grid_2x2(vec![Preset::Simplified]);
     cfg.kind = GridKind::Glide {
         entry_altitudes_m: vec![90e3],
         end: GlideEnd::SpeedFraction { fraction: 1.5 },
@@ -453,8 +453,8 @@ fn print_grid(grid: &CompareGrid) {
         println!(
             "{}: max |err| simplified {:?} full {:?} [{}]",
             m.name,
-            grid.max_abs_error(i, Fidelity::Simplified),
-            grid.max_abs_error(i, Fidelity::Full),
+            grid.max_abs_error(i, Preset::Simplified),
+            grid.max_abs_error(i, Preset::Full),
             m.error_unit
         );
     }
@@ -489,7 +489,7 @@ fn fig_8_5_srm_glide_error_map() {
         cl_vertical: vec![0.4, 0.6, 0.8, 1.0, 1.2786],
         atmosphere: fitted_map(),
         placement: Placement::default(),
-        fidelities: vec![Fidelity::Simplified, Fidelity::Full],
+        fidelities: vec![Preset::Simplified, Preset::Full],
         numerical: NumericalSettings::default(),
         points: 201,
     };
@@ -499,7 +499,7 @@ fn fig_8_5_srm_glide_error_map() {
         compare::write_grid(std::path::Path::new(&dir), &grid, &cfg.fidelities).unwrap();
     }
     assert_all_finite(&grid);
-    assert!(grid.max_abs_error(0, Fidelity::Simplified).unwrap() <= 3.0);
+    assert!(grid.max_abs_error(0, Preset::Simplified).unwrap() <= 3.0);
 }
 
 /// SRM skip from 100 km at -3 deg: entry speed 7000-10000 m/s x vertical C_L 0.4-1.2786.
@@ -517,84 +517,13 @@ fn srm_skip_error_map() {
         cl_vertical: vec![0.4, 0.6, 0.8, 1.0, 1.2786],
         atmosphere: fitted_map(),
         placement: Placement::default(),
-        fidelities: vec![Fidelity::Simplified, Fidelity::Full],
+        fidelities: vec![Preset::Simplified, Preset::Full],
         numerical: NumericalSettings::default(),
         points: 201,
     };
     let grid = compare::run_grid(&cfg, &mut |_, _| {}).unwrap();
     print_grid(&grid);
     assert_all_finite(&grid);
-}
-
-#[derive(clap::Parser)]
-struct CompareCommand {
-    #[command(flatten)]
-    args: compare::CompareCliArgs,
-}
-
-fn parse(args: &[&str]) -> compare::CompareCliArgs {
-    use clap::Parser as _;
-    CompareCommand::try_parse_from(std::iter::once("compare").chain(args.iter().copied()))
-        .unwrap()
-        .args
-}
-
-/// The `compare` command-line front end (the lead wires it into `host-sim compare`): a 2 x 1
-/// skip grid with trajectories, files written, summary printed; bad arguments name themselves.
-#[test]
-fn compare_command_line_runs_a_small_grid() {
-    use clap::CommandFactory as _;
-    CompareCommand::command().debug_assert();
-    let dir = std::env::temp_dir().join(format!("host-sim-compare-cli-{}", std::process::id()));
-    let out_dir = dir.display().to_string();
-    let a = parse(&[
-        "--vehicle",
-        "srm",
-        "--phase",
-        "skip",
-        "--speeds-m-s",
-        "7000,9000",
-        "--gamma-deg",
-        "-3",
-        "--cl-vertical",
-        "0.4",
-        "--environments",
-        "simplified",
-        "--points",
-        "41",
-        "--trajectories",
-        "--out",
-        &out_dir,
-    ]);
-    let mut out = Vec::new();
-    let files = compare::run_cli(&a, &mut out).unwrap();
-    let text = String::from_utf8(out).unwrap();
-    assert!(
-        text.contains("2 points, 1 out of the closed form's domain"),
-        "{text}"
-    );
-    assert!(text.contains("exit_speed_m_s"), "{text}");
-    assert!(dir.join("grid.csv").exists());
-    assert!(dir.join("exit_speed_m_s_err_simplified.svg").exists());
-    // Point 0 (7000 m/s) is out of domain: no trajectories; point 1 has both runs.
-    assert!(!dir.join("point_0/analytic").exists());
-    assert!(dir.join("point_1/analytic/trajectory.csv").exists());
-    assert!(dir.join("point_1/simplified/summary.json").exists());
-    assert!(files.iter().all(|f| f.exists()));
-    std::fs::remove_dir_all(&dir).unwrap();
-
-    let bad = |args: &[&str]| {
-        compare::run_cli(&parse(args), &mut Vec::new())
-            .unwrap_err()
-            .to_string()
-    };
-    let e = bad(&["--fit-altitudes-km", "50", "--out", &out_dir]);
-    assert!(e.contains("--fit-altitudes-km") && e.contains("50"), "{e}");
-    let e = bad(&["--vehicle", "nope", "--out", &out_dir]);
-    assert!(e.contains("nope"), "{e}");
-    let e = bad(&["--points", "1", "--out", &out_dir]);
-    assert!(e.contains("points") && e.contains('1'), "{e}");
-    assert!(!dir.exists(), "nothing written on bad input");
 }
 
 /// HORUS-2B (Mach-20 polar, C_L* = 0.206): skip from 122 km at -2 deg over entry speeds, and
@@ -616,7 +545,7 @@ fn horus_error_maps() {
         cl_vertical: [0.5, 1.0, 1.5].iter().map(|f| f * cl_star).collect(),
         atmosphere: fitted_map(),
         placement: Placement::default(),
-        fidelities: vec![Fidelity::Simplified, Fidelity::Full],
+        fidelities: vec![Preset::Simplified, Preset::Full],
         numerical: NumericalSettings::default(),
         points: 201,
     };

@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-use host_sim::cli::{Scenario, parse_scenario, run, scenario_to_toml};
+use host_sim::cli::run;
+use host_sim::scenario::{Scenario, parse_scenario, scenario_to_toml};
 
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_host-sim"))
@@ -320,7 +321,7 @@ fn runs_are_deterministic() {
     let mut outs = vec![];
     for k in 0..2 {
         let out = dir.join(format!("run{k}"));
-        host_sim::cli::simulate_scenario(&sc, "tiny.toml", &out, &mut |_, _| {}).unwrap();
+        host_sim::scenario::simulate_scenario(&sc, "tiny.toml", &out, &mut |_| {}).unwrap();
         outs.push((
             std::fs::read(out.join("trajectory.csv")).unwrap(),
             std::fs::read(out.join("summary.json")).unwrap(),
@@ -359,7 +360,7 @@ proptest::proptest! {
             }
             Ok(sc) => {
                 // Flies (or fails cleanly) without panicking.
-                let _ = host_sim::cli::fly(&sc, "p.toml", &mut |_, _| {});
+                let _ = host_sim::scenario::fly(&sc, "p.toml", &mut |_| {});
             }
         }
         // Garbage after a valid key is a syntax error naming the file.
@@ -368,4 +369,98 @@ proptest::proptest! {
             proptest::prop_assert!(e.to_string().starts_with("q.toml: "));
         }
     }
+}
+
+/// `host-sim simulate --pil ELF` names a missing ELF and refuses a scenario file.
+#[test]
+fn pil_cli_errors_are_named() {
+    let mut out = Vec::new();
+    let e = run(
+        [
+            "host-sim",
+            "simulate",
+            "--pil",
+            "/nonexistent/pil.elf",
+            "--quiet",
+        ],
+        &mut out,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("/nonexistent/pil.elf") || e.contains("QEMU is missing"),
+        "{e}"
+    );
+    let e = run(
+        [
+            "host-sim",
+            "simulate",
+            "--pil",
+            "x.elf",
+            "--scenario",
+            "s.toml",
+        ],
+        &mut out,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("--pil") && e.contains("--scenario"), "{e}");
+}
+
+/// The `compare` command-line front end (the lead wires it into `host-sim compare`): a 2 x 1
+/// skip grid with trajectories, files written, summary printed; bad arguments name themselves.
+#[test]
+fn compare_command_line_runs_a_small_grid() {
+    use clap::CommandFactory as _;
+    host_sim::cli::Cli::command().debug_assert();
+    let compare =
+        |args: &[&str], out: &mut Vec<u8>| run(["host-sim", "compare"].iter().chain(args), out);
+    let dir = std::env::temp_dir().join(format!("host-sim-compare-cli-{}", std::process::id()));
+    let out_dir = dir.display().to_string();
+    let mut out = Vec::new();
+    compare(
+        &[
+            "--vehicle",
+            "srm",
+            "--phase",
+            "skip",
+            "--speeds-m-s",
+            "7000,9000",
+            "--gamma-deg",
+            "-3",
+            "--cl-vertical",
+            "0.4",
+            "--environments",
+            "simplified",
+            "--points",
+            "41",
+            "--trajectories",
+            "--out",
+            &out_dir,
+        ],
+        &mut out,
+    )
+    .unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(
+        text.contains("2 points, 1 out of the closed form's domain"),
+        "{text}"
+    );
+    assert!(text.contains("exit_speed_m_s"), "{text}");
+    assert!(dir.join("grid.csv").exists());
+    assert!(dir.join("exit_speed_m_s_err_simplified.svg").exists());
+    // Point 0 (7000 m/s) is out of domain: no trajectories; point 1 has both runs.
+    assert!(!dir.join("point_0/analytic").exists());
+    assert!(dir.join("point_1/analytic/trajectory.csv").exists());
+    assert!(dir.join("point_1/simplified/summary.json").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+
+    let bad = |args: &[&str]| compare(args, &mut Vec::new()).unwrap_err().to_string();
+    let e = bad(&["--fit-altitudes-km", "50", "--out", &out_dir]);
+    assert!(e.contains("--fit-altitudes-km") && e.contains("50"), "{e}");
+    let e = bad(&["--vehicle", "nope", "--out", &out_dir]);
+    assert!(e.contains("nope"), "{e}");
+    let e = bad(&["--points", "1", "--out", &out_dir]);
+    assert!(e.contains("points") && e.contains('1'), "{e}");
+    assert!(!dir.exists(), "nothing written on bad input");
 }

@@ -3,16 +3,17 @@
 
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
-use host_sim::dynamics::{Attitude, Dynamics, SphericalState};
+use guidance_core::guidance::Command;
+use guidance_core::nodes::Independent;
+use host_sim::dynamics::{Dynamics, SphericalState};
 use host_sim::sim::{
-    AttitudeSource, FixedAttitude, HostSchedule, SampleKind, ScheduleIndex, SimConfig,
-    TerminationReason, simulate,
+    AttitudeSource, FixedAttitude, SampleKind, SimConfig, TerminationReason, simulate,
 };
 
-use host_sim::cli::{Scenario, build_guidance};
 use host_sim::env::Environment;
+use host_sim::scenario::{Scenario, build_guidance};
 
-use crate::support::{Central, ExpAtmo, MU, RE, planet, vehicle};
+use crate::support::{Central, ExpAtmo, HostSchedule, MU, RE, planet, vehicle};
 
 const ATM: ExpAtmo = ExpAtmo {
     rho0: 1.225,
@@ -31,8 +32,8 @@ fn entry(v: f64, gamma_deg: f64) -> SphericalState {
     }
 }
 
-fn deg(a: f64, s: f64) -> Attitude {
-    Attitude {
+fn deg(a: f64, s: f64) -> Command<f64> {
+    Command {
         alpha_rad: a.to_radians(),
         sigma_rad: s.to_radians(),
     }
@@ -45,11 +46,12 @@ struct Recorder<A> {
 }
 
 impl<A: AttitudeSource> AttitudeSource for Recorder<A> {
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
+    type Error = A::Error;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), A::Error> {
         self.navs.push(*nav);
         self.inner.tick(nav)
     }
-    fn attitude_at(&self, t: f64) -> Attitude {
+    fn attitude_at(&self, t: f64) -> Command<f64> {
         self.inner.attitude_at(t)
     }
     fn next_tick_s(&self) -> f64 {
@@ -70,7 +72,7 @@ fn time_schedule(e: &SphericalState, nodes: Vec<[f64; 3]>) -> HostSchedule {
         .map(|[t, a, s]| [t, a.to_radians(), s.to_radians()])
         .collect();
     HostSchedule::new(
-        ScheduleIndex::Time,
+        Independent::TimeS,
         nodes,
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -88,6 +90,7 @@ fn guidance_ticks_are_landed_on_exactly() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let mut cfg = SimConfig::new(e);
@@ -102,7 +105,7 @@ fn guidance_ticks_are_landed_on_exactly() {
         ),
         navs: vec![],
     };
-    let (res, src) = simulate(dynm, src, &cfg, &mut |_, _| {}).unwrap();
+    let (res, src) = simulate(dynm, src, &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::MaxTime);
     assert_eq!(src.navs.len(), 151, "ticks at 0, 2, ..., 300 s");
     for (k, nav) in src.navs.iter().enumerate() {
@@ -140,6 +143,7 @@ fn skip_exit_and_reentry_are_located() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7500.0, -1.5);
     let mut cfg = SimConfig::new(e);
@@ -147,7 +151,7 @@ fn skip_exit_and_reentry_are_located() {
     cfg.termination.altitude_m = Some(60_000.0);
     cfg.tolerances.event_time_tol_s = 1e-7;
     let src = FixedAttitude(deg(40.0, 0.0));
-    let (res, _) = simulate(dynm, src, &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, src, &cfg, &mut |_| {}).unwrap();
     let s = &res.summary;
     println!("{s:?}");
     assert!(s.exits >= 1 && s.skips >= 1, "expected a skip: {s:?}");
@@ -175,7 +179,7 @@ fn skip_exit_and_reentry_are_located() {
     let mut cfg2 = cfg;
     cfg2.output_interval_s = 0.05;
     cfg2.termination.max_time_s = t_reentry + 1.0;
-    let (res2, _) = simulate(dynm, FixedAttitude(deg(40.0, 0.0)), &cfg2, &mut |_, _| {}).unwrap();
+    let (res2, _) = simulate(dynm, FixedAttitude(deg(40.0, 0.0)), &cfg2, &mut |_| {}).unwrap();
     let pts: Vec<(f64, f64)> = res2
         .samples
         .iter()
@@ -208,12 +212,13 @@ fn heat_load_matches_quadrature_of_heat_flux() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let mut cfg = SimConfig::new(e);
     cfg.output_interval_s = 0.1;
     cfg.termination.max_time_s = 600.0;
-    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 45.0)), &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 45.0)), &cfg, &mut |_| {}).unwrap();
     let mut q = 0.0;
     for w in res.samples.windows(2) {
         q += 0.5
@@ -247,6 +252,7 @@ fn energy_indexed_nodes_and_energy_termination() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let nodes = vec![
@@ -255,7 +261,7 @@ fn energy_indexed_nodes_and_energy_termination() {
         [0.3, 20f64.to_radians(), 40f64.to_radians()],
     ];
     let sched = HostSchedule::new(
-        ScheduleIndex::NormalizedEnergy,
+        Independent::NormalizedEnergy,
         nodes,
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -267,7 +273,7 @@ fn energy_indexed_nodes_and_energy_termination() {
     cfg.termination.altitude_m = None;
     cfg.termination.normalized_energy = Some(0.5);
     cfg.termination.max_time_s = 5000.0;
-    let (res, _) = simulate(dynm, sched, &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, sched, &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::NormalizedEnergy);
     let last = res.samples.last().unwrap();
     assert!(
@@ -328,10 +334,10 @@ fn horus_reference(rtol: f64) -> (host_sim::sim::SimResult, host_sim::sim::SimRe
     cfg.termination = sc.termination;
     cfg.tolerances = sc.tolerances;
     cfg.tolerances.rtol = rtol;
-    let core = build_guidance(&sc, &env.planet, "test").unwrap();
-    let (a, _) = simulate(dynm, core, &cfg, &mut |_, _| {}).unwrap();
+    let core = host_sim::sim::CoreGuidance::new(build_guidance(&sc, &env.planet, "test").unwrap());
+    let (a, _) = simulate(dynm, core, &cfg, &mut |_| {}).unwrap();
     let host = HostSchedule::new(
-        ScheduleIndex::Time,
+        Independent::TimeS,
         sc.guidance.nodes.clone(),
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -345,7 +351,7 @@ fn horus_reference(rtol: f64) -> (host_sim::sim::SimResult, host_sim::sim::SimRe
         sc.guidance.initial,
     )
     .unwrap();
-    let (b, _) = simulate(dynm, host, &cfg, &mut |_, _| {}).unwrap();
+    let (b, _) = simulate(dynm, host, &cfg, &mut |_| {}).unwrap();
     (a, b)
 }
 
@@ -414,10 +420,10 @@ fn core_guidance_and_host_schedule_agree_on_energy_nodes() {
     let dynm = Dynamics::from_environment(&env, &veh);
     let mut cfg = SimConfig::new(sc.entry);
     cfg.termination = sc.termination;
-    let core = build_guidance(&sc, &env.planet, "test").unwrap();
-    let (a, _) = simulate(dynm, core, &cfg, &mut |_, _| {}).unwrap();
+    let core = host_sim::sim::CoreGuidance::new(build_guidance(&sc, &env.planet, "test").unwrap());
+    let (a, _) = simulate(dynm, core, &cfg, &mut |_| {}).unwrap();
     let host = HostSchedule::new(
-        ScheduleIndex::NormalizedEnergy,
+        Independent::NormalizedEnergy,
         sc.guidance.nodes.clone(),
         2.0,
         (5f64.to_radians(), 15f64.to_radians()),
@@ -431,7 +437,7 @@ fn core_guidance_and_host_schedule_agree_on_energy_nodes() {
         sc.guidance.initial,
     )
     .unwrap();
-    let (b, _) = simulate(dynm, host, &cfg, &mut |_, _| {}).unwrap();
+    let (b, _) = simulate(dynm, host, &cfg, &mut |_| {}).unwrap();
     assert_eq!(a.summary.termination, TerminationReason::Altitude);
     assert_eq!(a.samples.len(), b.samples.len());
     let mut max_ds: f64 = 0.0;
@@ -463,13 +469,14 @@ fn mach_and_ground_terminations() {
         atmosphere: &ATM,
         gravity: &Central,
         vehicle: &veh,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
     };
     let e = entry(7435.5, -1.43);
     let mut cfg = SimConfig::new(e);
     cfg.termination.altitude_m = None;
     cfg.termination.mach = Some(5.0);
     cfg.termination.max_time_s = 5000.0;
-    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 50.0)), &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, FixedAttitude(deg(40.0, 50.0)), &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::Mach);
     let m = res.samples.last().unwrap().conditions.mach;
     assert!(m <= 5.0 && m > 5.0 - 1e-5, "Mach at end {m}");
@@ -478,11 +485,12 @@ fn mach_and_ground_terminations() {
     let ball = vehicle(500.0, 1.0, 0.0, 1.0);
     let dynm = Dynamics {
         vehicle: &ball,
+        heat_flux: host_sim::env::ChapmanHeatFlux::thesis(),
         ..dynm
     };
     let mut cfg = SimConfig::new(entry(7000.0, -30.0));
     cfg.termination.altitude_m = None;
-    let (res, _) = simulate(dynm, FixedAttitude(deg(0.0, 0.0)), &cfg, &mut |_, _| {}).unwrap();
+    let (res, _) = simulate(dynm, FixedAttitude(deg(0.0, 0.0)), &cfg, &mut |_| {}).unwrap();
     assert_eq!(res.summary.termination, TerminationReason::Ground);
     let h = res.samples.last().unwrap().conditions.altitude_m;
     assert!(h <= 0.0 && h > -1e-2, "altitude at end {h}");

@@ -5,6 +5,8 @@ mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
+mod layering;
 mod pil;
 mod replan_loop;
+mod scenario_files;
 mod support;

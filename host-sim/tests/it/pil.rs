@@ -6,11 +6,11 @@
 //! The ELF is `$PIL_ELF`, else `<target dir>/thumbv7em-none-eabihf/firmware/pil`; `cargo xtask
 //! test` builds it and runs this test in its "PIL closed loop" step.
 
+use guidance_core::guidance::Command;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use guidance_core::NavState;
-use host_sim::dynamics::Attitude;
 use host_sim::pil::{
     PilConfig, PilError, fly_reference, fly_reference_pil, fly_reference_sil,
     reference_sil_guidance,
@@ -29,15 +29,16 @@ fn elf() -> PathBuf {
 }
 
 /// SIL guidance with a constant offset `delta` [rad] added to both commanded angles.
-struct Offset(Box<dyn AttitudeSource>, f64);
+struct Offset(host_sim::sim::CoreGuidance, f64);
 
 impl AttitudeSource for Offset {
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), String> {
+    type Error = host_sim::sim::TickError;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error> {
         self.0.tick(nav)
     }
-    fn attitude_at(&self, time_s: f64) -> Attitude {
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
         let a = self.0.attitude_at(time_s);
-        Attitude {
+        Command {
             alpha_rad: a.alpha_rad + self.1,
             sigma_rad: a.sigma_rad + self.1,
         }
@@ -186,40 +187,4 @@ fn pil_times_out_instead_of_hanging() {
         other => panic!("expected a timeout, got {other:?}"),
     }
     assert!(!dir.exists());
-}
-
-/// `host-sim simulate --pil ELF` names a missing ELF and refuses a scenario file.
-#[test]
-fn pil_cli_errors_are_named() {
-    let mut out = Vec::new();
-    let e = host_sim::cli::run(
-        [
-            "host-sim",
-            "simulate",
-            "--pil",
-            "/nonexistent/pil.elf",
-            "--quiet",
-        ],
-        &mut out,
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.contains("/nonexistent/pil.elf") || e.contains("QEMU is missing"),
-        "{e}"
-    );
-    let e = host_sim::cli::run(
-        [
-            "host-sim",
-            "simulate",
-            "--pil",
-            "x.elf",
-            "--scenario",
-            "s.toml",
-        ],
-        &mut out,
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("--pil") && e.contains("--scenario"), "{e}");
 }

@@ -124,7 +124,7 @@ fn fly_stored(s: &Setup) -> SimResult {
     )
     .unwrap();
     let dynm = Dynamics::from_environment(&s.env, &s.veh);
-    simulate(dynm, CoreGuidance(g), &s.cfg, &mut |_, _| {})
+    simulate(dynm, CoreGuidance::new(g), &s.cfg, &mut |_| {})
         .unwrap()
         .0
 }
@@ -171,7 +171,7 @@ fn fly_replanning(s: &Setup, rc: ReplanningConfig<f64>) -> (SimResult, ReplanLoo
     )
     .unwrap();
     let dynm = Dynamics::from_environment(&s.env, &s.veh);
-    simulate(dynm, ReplanLoop::new(g), &s.cfg, &mut |_, _| {}).unwrap()
+    simulate(dynm, ReplanLoop::new(g), &s.cfg, &mut |_| {}).unwrap()
 }
 
 fn end_point(r: &SimResult) -> TargetPoint<f64> {
@@ -383,7 +383,7 @@ fn full_environment(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<(f64, f64, Rep
     )
     .unwrap();
     let fly = |dg: f64| {
-        simulate(dynm, CoreGuidance(g.clone()), &mk(dg), &mut |_, _| {})
+        simulate(dynm, CoreGuidance::new(g.clone()), &mk(dg), &mut |_| {})
             .unwrap()
             .0
     };
@@ -409,7 +409,7 @@ fn full_environment(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<(f64, f64, Rep
                 rc,
             )
             .unwrap();
-            let (r, lp) = simulate(dynm, ReplanLoop::new(rg), &mk(dg), &mut |_, _| {}).unwrap();
+            let (r, lp) = simulate(dynm, ReplanLoop::new(rg), &mk(dg), &mut |_| {}).unwrap();
             check_rate(&lp, &r, EVERY);
             (
                 (stored.summary.flown_range_angle_rad - total) * re,

@@ -1,8 +1,14 @@
 //! Small test-local environment and vehicle models shared by the dynamics and closed-loop
 //! tests (written independently of `host_sim::env` so these tests check the integrators and
-//! equations of motion, not the environment implementations).
+//! equations of motion, not the environment implementations), and [`HostSchedule`], the
+//! host-side oracle of node guidance the closed-loop tests check the core against.
 
+use guidance_core::energy::EnergyNormalizer;
+use guidance_core::guidance::Command;
+use guidance_core::nodes::Independent;
+use guidance_core::{GuidanceError, NavState};
 use host_sim::env::{Atmosphere, AtmosphereState, Gravity, Planet};
+use host_sim::sim::{AttitudeSource, ramp_kink};
 use host_sim::vehicle::{AeroCoefficients, Aerodynamics, Vehicle, VehicleLimits};
 use nalgebra::Vector3;
 
@@ -94,5 +100,165 @@ pub fn planet(rotating: bool) -> Planet {
         radius_m: RE,
         rotation_rate_rad_s: if rotating { OMEGA_E } else { 0.0 },
         j2: J2,
+    }
+}
+
+/// A host-side reference implementation of node guidance: linear interpolation between
+/// nodes (clamped outside), zero-order hold at a fixed period, the change per tick limited
+/// to `rate * period`, and between ticks a ramp from the attitude at the tick towards the
+/// held command at the rate limits. It mirrors the contract of `guidance-core`'s `Guidance`
+/// (docs/guidance-api.md) for linear interpolation and serves as an independent
+/// cross-check of it.
+#[derive(Clone, Debug)]
+pub struct HostSchedule {
+    index: Independent,
+    nodes: Vec<[f64; 3]>,
+    period_s: f64,
+    alpha_rate: f64,
+    sigma_rate: f64,
+    energy: EnergyNormalizer<f64>,
+    command: Command<f64>,
+    at_tick: Command<f64>,
+    tick_time: f64,
+    ticks: u64,
+}
+
+impl HostSchedule {
+    /// `nodes`: `[x, alpha_rad, sigma_rad]` in flight order (time increasing or energy
+    /// decreasing); `initial`: attitude at t = 0.
+    ///
+    /// # Errors
+    /// A message for fewer than one node, non-finite values or a non-positive period/rate.
+    pub fn new(
+        index: Independent,
+        nodes: Vec<[f64; 3]>,
+        period_s: f64,
+        rates_rad_s: (f64, f64),
+        energy: EnergyNormalizer<f64>,
+        initial: Command<f64>,
+    ) -> Result<Self, String> {
+        if nodes.is_empty() || nodes.iter().flatten().any(|v| !v.is_finite()) {
+            return Err("node table must be non-empty and finite".into());
+        }
+        for (i, v) in [
+            ("period_s", period_s),
+            ("alpha_rate", rates_rad_s.0),
+            ("sigma_rate", rates_rad_s.1),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!("{i} = {v}: must be finite and > 0"));
+            }
+        }
+        Ok(Self {
+            index,
+            nodes,
+            period_s,
+            alpha_rate: rates_rad_s.0,
+            sigma_rate: rates_rad_s.1,
+            energy,
+            command: initial,
+            at_tick: initial,
+            tick_time: 0.0,
+            ticks: 0,
+        })
+    }
+
+    fn interpolate(&self, x: f64) -> Command<f64> {
+        // Work on an increasing abscissa.
+        let key = |n: &[f64; 3]| match self.index {
+            Independent::TimeS => n[0],
+            Independent::NormalizedEnergy => -n[0],
+        };
+        let xk = match self.index {
+            Independent::TimeS => x,
+            Independent::NormalizedEnergy => -x,
+        };
+        let first = self.nodes[0];
+        let last = self.nodes[self.nodes.len() - 1];
+        let pick = |n: [f64; 3]| Command {
+            alpha_rad: n[1],
+            sigma_rad: n[2],
+        };
+        if xk <= key(&first) {
+            return pick(first);
+        }
+        if xk >= key(&last) {
+            return pick(last);
+        }
+        for w in self.nodes.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            if xk <= key(&b) {
+                let f = (xk - key(&a)) / (key(&b) - key(&a));
+                return Command {
+                    alpha_rad: a[1] + f * (b[1] - a[1]),
+                    sigma_rad: a[2] + f * (b[2] - a[2]),
+                };
+            }
+        }
+        pick(last)
+    }
+}
+
+fn step_towards(from: f64, to: f64, max_step: f64) -> f64 {
+    from + (to - from).clamp(-max_step, max_step)
+}
+
+impl AttitudeSource for HostSchedule {
+    type Error = GuidanceError;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), GuidanceError> {
+        nav.validate()?;
+        let x = match self.index {
+            Independent::TimeS => nav.time_s,
+            Independent::NormalizedEnergy => self.energy.normalized(nav.radius_m, nav.speed_m_s)?,
+        };
+        let target = self.interpolate(x);
+        let now = self.attitude_at(nav.time_s);
+        self.command = Command {
+            alpha_rad: step_towards(
+                self.command.alpha_rad,
+                target.alpha_rad,
+                self.alpha_rate * self.period_s,
+            ),
+            sigma_rad: step_towards(
+                self.command.sigma_rad,
+                target.sigma_rad,
+                self.sigma_rate * self.period_s,
+            ),
+        };
+        self.at_tick = now;
+        self.tick_time = nav.time_s;
+        self.ticks += 1;
+        Ok(())
+    }
+
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
+        let dt = (time_s - self.tick_time).max(0.0);
+        Command {
+            alpha_rad: step_towards(
+                self.at_tick.alpha_rad,
+                self.command.alpha_rad,
+                self.alpha_rate * dt,
+            ),
+            sigma_rad: step_towards(
+                self.at_tick.sigma_rad,
+                self.command.sigma_rad,
+                self.sigma_rate * dt,
+            ),
+        }
+    }
+
+    fn next_tick_s(&self) -> f64 {
+        // t0 = 0: tick k at k * period exactly.
+        self.ticks as f64 * self.period_s
+    }
+
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        ramp_kink(
+            time_s,
+            self.tick_time,
+            self.at_tick,
+            self.command,
+            (self.alpha_rate, self.sigma_rate),
+        )
     }
 }

@@ -16,7 +16,7 @@ pub const R_AIR_J_KG_K: f64 = R_STAR_J_KMOL_K / M0_KG_KMOL;
 /// Default sea-level density [kg/m^3] (the US76 sea-level value, also the thesis' rho_0 in
 /// the Chapman heat-flux relation).
 pub const DEFAULT_RHO0_KG_M3: f64 = 1.225;
-/// Default scale height [m]. The thesis does not print its H_s; 7.2 km is the common Earth
+/// Default scale height \[m\]. The thesis does not print its H_s; 7.2 km is the common Earth
 /// value (e.g. the default exponential Earth atmosphere of the Tudat toolbox the thesis used).
 pub const DEFAULT_SCALE_HEIGHT_M: f64 = 7_200.0;
 
@@ -113,7 +113,7 @@ impl ExponentialAtmosphere {
         Self::new(rho1_kg_m3, scale_height_m, h1_m)
     }
 
-    /// The exponential atmosphere matching `atmosphere`'s density at `h1_m` and `h2_m` [m]
+    /// The exponential atmosphere matching `atmosphere`'s density at `h1_m` and `h2_m` \[m\]
     /// (see [`ExponentialAtmosphere::through_points`]).
     ///
     /// # Errors
@@ -135,19 +135,19 @@ impl ExponentialAtmosphere {
         self.rho0_kg_m3
     }
 
-    /// Scale height H_s [m].
+    /// Scale height H_s \[m\].
     #[must_use]
     pub fn scale_height_m(&self) -> f64 {
         self.scale_height_m
     }
 
-    /// Reference altitude [m] at which the density is rho_0.
+    /// Reference altitude \[m\] at which the density is rho_0.
     #[must_use]
     pub fn reference_altitude_m(&self) -> f64 {
         self.reference_altitude_m
     }
 
-    /// Isothermal temperature consistent with the scale height, g0 H_s / R_air [K].
+    /// Isothermal temperature consistent with the scale height, g0 H_s / R_air \[K\].
     #[must_use]
     pub fn temperature_k(&self) -> f64 {
         G0_M_S2 * self.scale_height_m / R_AIR_J_KG_K

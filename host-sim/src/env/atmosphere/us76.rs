@@ -59,7 +59,7 @@ pub const G0_M_S2: f64 = 9.806_65;
 pub const R_STAR_J_KMOL_K: f64 = 8_314.32;
 /// Sea-level mean molecular weight M0 [kg/kmol].
 pub const M0_KG_KMOL: f64 = 28.964_4;
-/// Effective Earth radius r0 [m] for the geopotential conversion.
+/// Effective Earth radius r0 \[m\] for the geopotential conversion.
 pub const R0_M: f64 = 6_356_766.0;
 /// Boltzmann constant k [J/K] (the standard's value).
 pub const BOLTZMANN_J_K: f64 = 1.380_622e-23;
@@ -67,9 +67,9 @@ pub const BOLTZMANN_J_K: f64 = 1.380_622e-23;
 pub const AVOGADRO_PER_KMOL: f64 = 6.022_169e26;
 /// Ratio of specific heats used for the speed of sound [-].
 pub const GAMMA_AIR: f64 = 1.4;
-/// Top of the model [m].
+/// Top of the model \[m\].
 pub const TOP_ALTITUDE_M: f64 = 1_000_000.0;
-/// Altitude where the lower (homosphere) definition hands over to the upper one [m].
+/// Altitude where the lower (homosphere) definition hands over to the upper one \[m\].
 pub const Z7_M: f64 = 86_000.0;
 
 /// Sea-level pressure [Pa].
@@ -439,7 +439,7 @@ impl Us76 {
         }
     }
 
-    /// Geopotential altitude H [m'] from geometric altitude Z [m].
+    /// Geopotential altitude H [m'] from geometric altitude Z \[m\].
     #[must_use]
     pub fn geopotential_altitude_m(z_m: f64) -> f64 {
         R0_M * z_m / (R0_M + z_m)

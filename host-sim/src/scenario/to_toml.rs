@@ -1,7 +1,8 @@
 //! The scenario as TOML text (the inverse of [`parse_scenario`](super::parse_scenario)).
 
-use super::{Independent, InterpolationKind, Scenario, VehicleSpec};
-use crate::env::Planet;
+use guidance_core::nodes::Independent;
+
+use super::{AtmosphereSpec, InterpolationKind, Scenario, VehicleSpec};
 
 /// Rounding to 10 decimals for printing degree values (keeps 40.0 from printing as
 /// 39.99999999999999 after a radian round trip).
@@ -20,7 +21,7 @@ impl Round10 for f64 {
 pub fn scenario_to_toml(sc: &Scenario) -> String {
     use std::fmt::Write as _;
     let mut s = String::new();
-    let r = Planet::earth().radius_m;
+    let r = sc.environment.planet.radius_m;
     let _ = writeln!(s, "name = {:?}", sc.name);
     match &sc.vehicle {
         VehicleSpec::Name(n) => {
@@ -34,8 +35,45 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
     let _ = writeln!(
         s,
         "\n[environment]\natmosphere = {:?}\ngravity = {:?}\nrotating = {}",
-        e.atmosphere, e.gravity, e.rotating
+        e.atmosphere.kind().as_str(),
+        e.gravity.as_str(),
+        e.rotating
     );
+    let p = &e.planet;
+    let _ = writeln!(
+        s,
+        "\n[environment.planet]\nradius_m = {:?}\nmu_m3_s2 = {:?}\nj2 = {:?}\nrotation_rate_rad_s = {:?}",
+        p.radius_m, p.mu_m3_s2, p.j2, p.rotation_rate_rad_s
+    );
+    match &e.atmosphere {
+        AtmosphereSpec::Us76 => {}
+        AtmosphereSpec::Exponential(x) => {
+            let _ = writeln!(
+                s,
+                "\n[environment.exponential]\nrho0_kg_m3 = {:?}\nscale_height_m = {:?}",
+                x.rho0_kg_m3(),
+                x.scale_height_m()
+            );
+        }
+        AtmosphereSpec::Table(t) => {
+            let _ = writeln!(
+                s,
+                "\n[environment.table]\nfile = {:?}\ngas_constant_j_kg_k = {:?}\nheat_capacity_ratio = {:?}",
+                t.file.display().to_string(),
+                t.model.gas_constant_j_kg_k(),
+                t.model.heat_capacity_ratio()
+            );
+        }
+    }
+    let h = &e.heat_flux;
+    let _ = writeln!(
+        s,
+        "\n[heat_flux]\ncoefficient = {:?}\nreference_density_kg_m3 = {:?}\nreference_speed_m_s = {:?}\nspeed_exponent = {:?}",
+        h.coefficient, h.reference_density_kg_m3, h.reference_speed_m_s, h.speed_exponent
+    );
+    if let Some(rn) = sc.nose_radius_m {
+        let _ = writeln!(s, "nose_radius_m = {rn:?}");
+    }
     let en = &sc.entry;
     let _ = writeln!(
         s,
@@ -57,8 +95,8 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
         s,
         "\n[guidance]\nindependent = {:?}\ninterpolation = {interp:?}",
         match g.independent {
-            Independent::Time => "time",
-            Independent::Energy => "energy",
+            Independent::TimeS => "time",
+            Independent::NormalizedEnergy => "energy",
         }
     );
     if let Some(t) = tension {

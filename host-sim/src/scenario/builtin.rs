@@ -1,23 +1,21 @@
 //! Built-in scenarios: the HORUS-2B reference mission (the default) and the SRM glide.
 
+use guidance_core::guidance::Command;
 use guidance_core::interp::Interpolation;
 use guidance_core::missions::{Mission, horus2b_reference};
-use guidance_core::nodes::Independent as CoreIndependent;
+use guidance_core::nodes::Independent;
 
 use super::{
-    EnvSpec, GuidanceSpec, Independent, InterpolationKind, Scenario, VehicleSpec, guidance_bounds,
+    EnvSpec, GuidanceSpec, InterpolationKind, Scenario, ScenarioError, VehicleSpec, guidance_bounds,
 };
-use crate::dynamics::{Attitude, SphericalState};
-use crate::env::Planet;
+use crate::dynamics::SphericalState;
+use crate::env::{Planet, Preset};
 use crate::sim::{SimConfig, Termination};
 
 /// The guidance of a core mission as a scenario's guidance settings (same values, SI).
 fn guidance_of(m: &Mission<f64>) -> GuidanceSpec {
     GuidanceSpec {
-        independent: match m.table.independent() {
-            CoreIndependent::TimeS => Independent::Time,
-            CoreIndependent::NormalizedEnergy => Independent::Energy,
-        },
+        independent: m.table.independent(),
         interpolation: match m.interpolation {
             Interpolation::Linear => InterpolationKind::Linear,
             Interpolation::NaturalCubic => InterpolationKind::NaturalCubic,
@@ -26,10 +24,7 @@ fn guidance_of(m: &Mission<f64>) -> GuidanceSpec {
         period_s: m.config.period_s,
         alpha_rate_rad_s: m.config.rates.alpha_rad_s,
         sigma_rate_rad_s: m.config.rates.sigma_rad_s,
-        initial: Attitude {
-            alpha_rad: m.initial.alpha_rad,
-            sigma_rad: m.initial.sigma_rad,
-        },
+        initial: m.initial,
         nodes: m
             .table
             .nodes()
@@ -48,6 +43,7 @@ impl Default for Scenario {
     fn default() -> Self {
         let planet = Planet::earth();
         // f64 represents every value of the mission: this cannot fail (tested).
+        #[allow(clippy::expect_used)]
         let mission = horus2b_reference::<f64>().expect("HORUS-2B reference mission in f64");
         let e = mission.entry;
         let entry = SphericalState {
@@ -63,7 +59,7 @@ impl Default for Scenario {
         Self {
             name: mission.name.into(),
             vehicle: VehicleSpec::Name("horus-2b".into()),
-            environment: EnvSpec::full(),
+            environment: EnvSpec::preset(Preset::Full),
             entry,
             guidance: guidance_of(&mission),
             termination: Termination {
@@ -76,6 +72,7 @@ impl Default for Scenario {
             output_interval_s: sim.output_interval_s,
             interface_altitude_m: sim.interface_altitude_m,
             g_rate_window_s: sim.g_rate_window_s,
+            nose_radius_m: None,
         }
     }
 }
@@ -91,6 +88,17 @@ impl Scenario {
         }
     }
 
+    /// A built-in scenario by name, or an error listing the known names.
+    ///
+    /// # Errors
+    /// [`ScenarioError::UnknownBuiltin`].
+    pub fn try_builtin(name: &str) -> Result<Self, ScenarioError> {
+        Self::builtin(name).ok_or_else(|| ScenarioError::UnknownBuiltin {
+            name: name.to_string(),
+            known: Self::BUILTIN.join(", "),
+        })
+    }
+
     /// Names accepted by [`Scenario::builtin`].
     pub const BUILTIN: [&'static str; 2] = ["horus-2b-reference", "srm-glide"];
 
@@ -104,7 +112,7 @@ impl Scenario {
         Self {
             name: "srm-glide".into(),
             vehicle: VehicleSpec::Name("srm".into()),
-            environment: EnvSpec::simplified(),
+            environment: EnvSpec::preset(Preset::Simplified),
             entry: SphericalState {
                 radius_m: planet.radius_m + 100_000.0,
                 longitude_rad: 0.0,
@@ -114,12 +122,12 @@ impl Scenario {
                 heading_rad: 90.0 * d,
             },
             guidance: GuidanceSpec {
-                independent: Independent::Energy,
+                independent: Independent::NormalizedEnergy,
                 interpolation: InterpolationKind::Linear,
                 period_s: 2.0,
                 alpha_rate_rad_s: 5.0 * d,
                 sigma_rate_rad_s: 15.0 * d,
-                initial: Attitude {
+                initial: Command {
                     alpha_rad: 0.0,
                     sigma_rad: 0.0,
                 },

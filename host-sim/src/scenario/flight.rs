@@ -3,23 +3,12 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{CliError, Scenario, VehicleSpec, build_guidance};
+use super::{Scenario, ScenarioError, build_guidance};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
 use crate::report;
 use crate::sim;
-use crate::vehicle::{self, Vehicle};
-
-/// Load the vehicle of a scenario.
-///
-/// # Errors
-/// [`CliError::Vehicle`] naming the file or name.
-pub fn load_vehicle(spec: &VehicleSpec) -> Result<Vehicle, CliError> {
-    Ok(match spec {
-        VehicleSpec::Name(n) => vehicle::by_name(n)?,
-        VehicleSpec::File(p) => vehicle::from_toml_file(p)?,
-    })
-}
+use crate::vehicle::Vehicle;
 
 /// Result of [`simulate_scenario`].
 #[derive(Debug)]
@@ -54,15 +43,15 @@ impl std::fmt::Debug for Flight {
 /// Fly a scenario closed-loop with `guidance-core`'s guidance (no files written).
 ///
 /// # Errors
-/// [`CliError`] for vehicle, guidance or simulation failures.
+/// [`ScenarioError`] for vehicle, guidance or simulation failures.
 pub fn fly(
     sc: &Scenario,
     file: &str,
-    progress: &mut dyn FnMut(f64, f64),
-) -> Result<Flight, CliError> {
-    let vehicle = load_vehicle(&sc.vehicle)?;
+    progress: &mut dyn FnMut(sim::Progress),
+) -> Result<Flight, ScenarioError> {
+    let vehicle = sc.load_vehicle()?;
     let environment = sc.environment.build();
-    let source = build_guidance(sc, &environment.planet, file)?;
+    let source = sim::CoreGuidance::new(build_guidance(sc, &environment.planet, file)?);
     let dynm = Dynamics::from_environment(&environment, &vehicle);
     let (result, _) = sim::simulate(dynm, source, &sc.sim_config(), progress)?;
     Ok(Flight {
@@ -75,13 +64,13 @@ pub fn fly(
 /// Fly a scenario and write its run directory.
 ///
 /// # Errors
-/// [`CliError`] for vehicle, guidance, simulation or output failures.
+/// [`ScenarioError`] for vehicle, guidance, simulation or output failures.
 pub fn simulate_scenario(
     sc: &Scenario,
     file: &str,
     out_dir: &Path,
-    progress: &mut dyn FnMut(f64, f64),
-) -> Result<RunOutput, CliError> {
+    progress: &mut dyn FnMut(sim::Progress),
+) -> Result<RunOutput, ScenarioError> {
     let flight = fly(sc, file, progress)?;
     write_flight(sc, &sc.name, flight, out_dir)
 }
@@ -89,13 +78,13 @@ pub fn simulate_scenario(
 /// Write the run directory of a flown scenario (`run_name` labels the summary).
 ///
 /// # Errors
-/// [`CliError::Report`] if the files cannot be written.
+/// [`ScenarioError::Report`] if the files cannot be written.
 pub fn write_flight(
     sc: &Scenario,
     run_name: &str,
     flight: Flight,
     out_dir: &Path,
-) -> Result<RunOutput, CliError> {
+) -> Result<RunOutput, ScenarioError> {
     let Flight {
         result,
         vehicle: veh,

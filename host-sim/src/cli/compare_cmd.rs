@@ -3,11 +3,34 @@
 
 use std::path::PathBuf;
 
-use super::{
-    AnalyticOutcome, CompareConfig, CompareError, Fidelity, GridKind, NumericalSettings,
-    run_grid_with, setting, write_case, write_grid,
-};
 use crate::analytic::{self, AnalyticVehicle, GlideEnd, Placement};
+use crate::compare::{
+    AnalyticOutcome, CompareConfig, CompareError, GridKind, NumericalSettings, run_grid_with,
+    write_case, write_grid,
+};
+use crate::env::Preset;
+
+fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> CompareError {
+    CompareError::setting(field, value, reason)
+}
+
+/// A numerical environment of `compare` (the library's [`Preset`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EnvArg {
+    /// Non-rotating sphere, central gravity, the closed forms' exponential atmosphere.
+    Simplified,
+    /// Rotating sphere, US76, central + J2 gravity.
+    Full,
+}
+
+impl From<EnvArg> for Preset {
+    fn from(a: EnvArg) -> Self {
+        match a {
+            EnvArg::Simplified => Preset::Simplified,
+            EnvArg::Full => Preset::Full,
+        }
+    }
+}
 
 /// Which closed form the `compare` subcommand maps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -27,7 +50,7 @@ pub struct CompareCliArgs {
     /// Closed form to compare.
     #[arg(long, value_enum, default_value = "glide")]
     pub phase: CliPhase,
-    /// Glide: entry altitudes [km] (grid x axis), comma-separated.
+    /// Glide: entry altitudes (km) (grid x axis), comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "70,80,90,100,110")]
     pub altitudes_km: Vec<f64>,
     /// Skip: entry speeds [m/s] (grid x axis), comma-separated.
@@ -37,10 +60,10 @@ pub struct CompareCliArgs {
         default_value = "7000,7500,8000,9000,10000"
     )]
     pub speeds_m_s: Vec<f64>,
-    /// Skip: entry altitude [km] (also the exit altitude).
+    /// Skip: entry altitude (km) (also the exit altitude).
     #[arg(long, default_value_t = 100.0)]
     pub altitude_km: f64,
-    /// Skip: entry flight-path angle [deg] (negative: descending).
+    /// Skip: entry flight-path angle (deg) (negative: descending).
     #[arg(long, default_value_t = -3.0, allow_negative_numbers = true)]
     pub gamma_deg: f64,
     /// Vertical lift coefficients C_L cos(sigma) [-] (grid y axis), comma-separated. Bank-only
@@ -48,7 +71,7 @@ pub struct CompareCliArgs {
     /// values from 0.3 to 1 times the maximum (trim C_L, or C_L at maximum L/D).
     #[arg(long, value_delimiter = ',')]
     pub cl_vertical: Vec<f64>,
-    /// Glide: end at this altitude [km] instead of a speed.
+    /// Glide: end at this altitude (km) instead of a speed.
     #[arg(long, conflicts_with = "end_speed_fraction")]
     pub end_altitude_km: Option<f64>,
     /// Glide: end at this fraction of the imposed entry speed [-].
@@ -57,7 +80,7 @@ pub struct CompareCliArgs {
     /// Mach number at which a tabulated drag polar is taken [-].
     #[arg(long, default_value_t = crate::analytic::DEFAULT_POLAR_MACH)]
     pub polar_mach: f64,
-    /// Two altitudes [km] through which the exponential atmosphere is fitted to US76.
+    /// Two altitudes (km) through which the exponential atmosphere is fitted to US76.
     #[arg(long, value_delimiter = ',', num_args = 1, default_value = "50,100")]
     pub fit_altitudes_km: Vec<f64>,
     /// Numerical environments to fly, comma-separated.
@@ -67,30 +90,30 @@ pub struct CompareCliArgs {
         value_delimiter = ',',
         default_value = "simplified,full"
     )]
-    pub environments: Vec<Fidelity>,
-    /// Start latitude [deg].
+    pub environments: Vec<EnvArg>,
+    /// Start latitude (deg).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub latitude_deg: f64,
-    /// Start longitude [deg].
+    /// Start longitude (deg).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub longitude_deg: f64,
-    /// Start heading [deg], clockwise from north.
+    /// Start heading (deg), clockwise from north.
     #[arg(long, default_value_t = 90.0, allow_negative_numbers = true)]
     pub heading_deg: f64,
     /// Integrator relative tolerance [-].
     #[arg(long, default_value_t = 1e-8)]
     pub rtol: f64,
-    /// Numerical sample interval [s].
+    /// Numerical sample interval (s).
     #[arg(long, default_value_t = 1.0)]
     pub output_interval_s: f64,
     /// Samples per analytical trajectory.
     #[arg(long, default_value_t = crate::analytic::DEFAULT_POINTS)]
     pub points: usize,
     /// Also write every point's trajectories (analytic/, simplified/, full/ run directories
-    /// under point_<i>/).
+    /// under `point_<i>/`).
     #[arg(long)]
     pub trajectories: bool,
-    /// Output directory (default: runs/compare-<vehicle>-<phase>/).
+    /// Output directory (default: `runs/compare-<vehicle>-<phase>/`).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 }
@@ -107,7 +130,7 @@ fn finite_arg(field: &'static str, v: f64) -> Result<f64, CompareError> {
 ///
 /// # Errors
 /// [`CompareError`] naming the argument and value (or the vehicle file, field and value).
-pub fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareError> {
+pub(super) fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareError> {
     let veh = crate::vehicle::load(&a.vehicle)?;
     let vehicle = AnalyticVehicle::from_vehicle(&veh, a.polar_mach)?;
     let [h1, h2] = a.fit_altitudes_km[..] else {
@@ -171,7 +194,7 @@ pub fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareErro
             longitude_rad: finite_arg("--longitude-deg", a.longitude_deg)?.to_radians(),
             heading_rad: finite_arg("--heading-deg", a.heading_deg)?.to_radians(),
         },
-        fidelities: a.environments.clone(),
+        fidelities: a.environments.iter().map(|&e| e.into()).collect(),
         numerical: NumericalSettings {
             rtol: a.rtol,
             output_interval_s: a.output_interval_s,
@@ -187,7 +210,7 @@ pub fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, CompareErro
 ///
 /// # Errors
 /// [`CompareError`] naming the argument and value, or the path that could not be written.
-pub fn run_cli(
+pub(super) fn run(
     a: &CompareCliArgs,
     out: &mut dyn std::io::Write,
 ) -> Result<Vec<PathBuf>, CompareError> {

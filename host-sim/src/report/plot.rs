@@ -1,0 +1,340 @@
+//! Line charts through `plotters` (SVG backend): the four standard plots of a run (altitude
+//! against velocity, heat flux, g-load, attitude) with titles, axis labels with units, a
+//! legend and dashed limit lines. Axis ranges are rounded out to "nice" tick steps.
+//!
+//! SVG only: `plotters`' bitmap (PNG) backend needs a rasterised font, i.e. either its `ttf`
+//! feature (font-kit, which links the system's fontconfig and FreeType) or `ab_glyph` with a
+//! font file shipped in the repository; SVG needs neither (the viewer renders the text).
+
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+
+use super::ReportError;
+use crate::sim::{Sample, SimResult};
+
+type PlotError = Box<dyn std::error::Error + Send + Sync>;
+
+/// One polyline series of a plot.
+#[derive(Clone, Debug)]
+pub struct Series {
+    /// Legend label.
+    pub label: String,
+    /// Points (x, y).
+    pub points: Vec<(f64, f64)>,
+    /// Dashed (for limit lines).
+    pub dashed: bool,
+}
+
+/// Series colours (matplotlib's first four).
+const COLOURS: [RGBColor; 4] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xd6, 0x27, 0x28),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0x94, 0x67, 0xbd),
+];
+
+/// "Nice" tick step for a span of `span` with about `n` ticks.
+fn nice_step(span: f64, n: f64) -> f64 {
+    let raw = (span / n).max(f64::MIN_POSITIVE);
+    let mag = 10f64.powf(raw.log10().floor());
+    let f = raw / mag;
+    let nf = if f < 1.5 {
+        1.0
+    } else if f < 3.0 {
+        2.0
+    } else if f < 7.0 {
+        5.0
+    } else {
+        10.0
+    };
+    nf * mag
+}
+
+fn fmt_tick(v: f64, step: f64) -> String {
+    let decimals = if step >= 1.0 {
+        0
+    } else {
+        (-step.log10().floor()) as usize
+    };
+    format!("{v:.decimals$}")
+}
+
+/// Escape text for SVG/XML content.
+pub(crate) fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// Axis range covering `lo..hi`, rounded out to multiples of a nice step for about `n`
+/// ticks; returns `(lo, hi, step)`.
+fn nice_range(lo: f64, hi: f64, n: f64) -> (f64, f64, f64) {
+    let step = nice_step(hi - lo, n);
+    ((lo / step).floor() * step, (hi / step).ceil() * step, step)
+}
+
+/// Data bounds of the finite points of `series` (unit box if none; widened if flat).
+fn bounds(series: &[Series]) -> (f64, f64, f64, f64) {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+    {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if x1 - x0 <= 0.0 {
+        x1 = x0 + 1.0;
+    }
+    if y1 - y0 <= 0.0 {
+        y1 = y0 + 1.0;
+    }
+    (x0, x1, y0, y1)
+}
+
+fn draw(
+    svg: &mut String,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<(), PlotError> {
+    let (x0, x1, y0, y1) = bounds(series);
+    let (x0, x1, xs) = nice_range(x0, x1, 8.0);
+    let (y0, y1, ys) = nice_range(y0, y1, 6.0);
+    let root = SVGBackend::with_string(svg, (720, 460)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 16))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    let x_ticks = ((x1 - x0) / xs).round() as usize + 1;
+    let y_ticks = ((y1 - y0) / ys).round() as usize + 1;
+    let x_fmt = |v: &f64| fmt_tick(*v, xs);
+    let y_fmt = |v: &f64| fmt_tick(*v, ys);
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_labels(x_ticks)
+        .y_labels(y_ticks)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .max_light_lines(0)
+        .bold_line_style(RGBColor(0xe0, 0xe0, 0xe0))
+        .label_style(("sans-serif", 12))
+        .axis_desc_style(("sans-serif", 13))
+        .draw()?;
+    for (i, ser) in series.iter().enumerate() {
+        let colour = COLOURS[i % COLOURS.len()];
+        let style = ShapeStyle {
+            color: colour.to_rgba(),
+            filled: false,
+            stroke_width: 2,
+        };
+        let points: Vec<(f64, f64)> = ser
+            .points
+            .iter()
+            .copied()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .collect();
+        let label = ser.label.as_str();
+        if ser.dashed {
+            chart
+                .draw_series(DashedLineSeries::new(points, 6, 4, style))?
+                .label(label)
+                .legend(move |(x, y)| {
+                    DashedPathElement::new(vec![(x, y), (x + 24, y)], 6, 4, style)
+                });
+        } else {
+            chart
+                .draw_series(LineSeries::new(points, style))?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        }
+    }
+    if !series.is_empty() {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 12))
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// A line chart as a standalone SVG document (`plotters`' SVG backend).
+///
+/// # Errors
+/// [`ReportError::Plot`] if `plotters` fails to draw.
+pub fn line_plot_svg(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<String, ReportError> {
+    let mut svg = String::new();
+    draw(&mut svg, title, x_label, y_label, series).map_err(|source| ReportError::Plot {
+        name: title.to_string(),
+        source,
+    })?;
+    Ok(svg)
+}
+
+/// The four standard plots of a run: `(file name, svg)`.
+///
+/// # Errors
+/// [`ReportError::Plot`] if a plot cannot be drawn.
+pub fn standard_plots(
+    res: &SimResult,
+    heat_limit_w_m2: f64,
+    g_limit: f64,
+) -> Result<Vec<(&'static str, String)>, ReportError> {
+    let smp = &res.samples;
+    let t_end = smp.last().map_or(1.0, |s| s.time_s);
+    let series = |label: &str, f: &dyn Fn(&Sample) -> (f64, f64)| Series {
+        label: label.into(),
+        points: smp.iter().map(f).collect(),
+        dashed: false,
+    };
+    let limit = |label: &str, v: f64| Series {
+        label: label.into(),
+        points: vec![(0.0, v), (t_end, v)],
+        dashed: true,
+    };
+    Ok(vec![
+        (
+            "altitude_velocity.svg",
+            line_plot_svg(
+                "Altitude against velocity",
+                "planet-relative speed [km/s]",
+                "altitude [km]",
+                &[series("trajectory", &|s| {
+                    (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3)
+                })],
+            )?,
+        ),
+        (
+            "heat_flux.svg",
+            line_plot_svg(
+                "Stagnation heat flux (Chapman)",
+                "time [s]",
+                "heat flux [kW/m^2]",
+                &[
+                    series("heat flux", &|s| {
+                        (s.time_s, s.conditions.heat_flux_w_m2 / 1e3)
+                    }),
+                    limit("limit", heat_limit_w_m2 / 1e3),
+                ],
+            )?,
+        ),
+        (
+            "g_load.svg",
+            line_plot_svg(
+                "Aerodynamic load factor",
+                "time [s]",
+                "g-load [-]",
+                &[
+                    series("g-load", &|s| (s.time_s, s.conditions.g_load)),
+                    limit("limit", g_limit),
+                ],
+            )?,
+        ),
+        (
+            "attitude.svg",
+            line_plot_svg(
+                "Angle of attack and bank angle",
+                "time [s]",
+                "angle [deg]",
+                &[
+                    series("alpha", &|s| (s.time_s, s.attitude.alpha_rad.to_degrees())),
+                    series("sigma", &|s| (s.time_s, s.attitude.sigma_rad.to_degrees())),
+                ],
+            )?,
+        ),
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps() {
+        assert_eq!(nice_step(1400.0, 8.0), 200.0);
+        assert_eq!(nice_step(1.0, 5.0), 0.2);
+        assert_eq!(nice_step(75.0, 6.0), 10.0);
+        assert_eq!(fmt_tick(0.2, 0.2), "0.2");
+        assert_eq!(fmt_tick(1200.0, 200.0), "1200");
+    }
+
+    #[test]
+    fn svg_escapes_and_handles_empty_series() {
+        let s = line_plot_svg("a < b & c", "x", "y", &[]).unwrap();
+        assert!(s.contains("a &lt; b &amp; c"));
+        assert!(s.contains("<svg") && s.trim_end().ends_with("</svg>"));
+        let s = line_plot_svg(
+            "t",
+            "x",
+            "y",
+            &[Series {
+                label: "flat".into(),
+                points: vec![(0.0, 1.0), (1.0, 1.0), (f64::NAN, 2.0)],
+                dashed: true,
+            }],
+        )
+        .unwrap();
+        assert!(!s.contains("NaN") && s.contains("flat"), "{s}");
+    }
+
+    #[test]
+    fn plot_keeps_title_labels_units_legend_and_limit_line() {
+        let s = line_plot_svg(
+            "Stagnation heat flux (Chapman)",
+            "time [s]",
+            "heat flux [kW/m^2]",
+            &[
+                Series {
+                    label: "heat flux".into(),
+                    points: vec![(0.0, 10.0), (100.0, 480.0), (200.0, 20.0)],
+                    dashed: false,
+                },
+                Series {
+                    label: "limit".into(),
+                    points: vec![(0.0, 500.0), (200.0, 500.0)],
+                    dashed: true,
+                },
+            ],
+        )
+        .unwrap();
+        for needle in [
+            "Stagnation heat flux (Chapman)",
+            "time [s]",
+            "heat flux [kW/m^2]",
+            ">\nlimit\n<",
+            "<polyline",
+            "#1F77B4",
+            "#D62728",
+        ] {
+            assert!(s.contains(needle), "`{needle}` missing");
+        }
+        // Nice axis range: 0..200 s in steps of 20 s, 0..500 kW/m^2 in steps of 100.
+        assert!(s.contains(">\n200\n<") && s.contains(">\n500\n<"));
+    }
+}

@@ -1,0 +1,391 @@
+//! The mission definition: vehicle, environment, entry state, guidance, termination,
+//! integrator, monitors and output.
+//!
+//! A scenario file (TOML) is read into the serde structs of [`file`](mod@file) (unknown fields
+//! rejected), then resolved into a [`Scenario`] (SI units, radians, typed choices) with every
+//! value range-checked; every error names the file, the field and the value
+//! ([`ScenarioError`]). [`Scenario::default`] is the HORUS-2B reference mission and
+//! [`Scenario::builtin`] names the built-in scenarios. [`fly`] flies a scenario with
+//! `guidance-core`'s guidance and [`simulate_scenario`] also writes its run directory.
+//!
+//! Scenario file (all sections and keys optional; defaults are the HORUS-2B reference
+//! mission, thesis eq. 2.3 and table 2.1). `host-sim simulate --print-scenario` prints it:
+//!
+//! ```toml
+//! name = "horus-2b-reference"
+//! vehicle = "horus-2b"            # built-in name, or vehicle_file = "my.toml"
+//!
+//! [environment]
+//! preset = "full"                 # full: US76, J2, rotating; simplified: exponential, central
+//! # atmosphere = "us76" | "exponential" | "table"; gravity = "j2" | "central"; rotating = true
+//!
+//! [environment.planet]            # optional: preset = "earth" | "mars", then constants
+//! radius_m = 6378137.0
+//! mu_m3_s2 = 3.986004418e14
+//! j2 = 1.0826267e-3
+//! rotation_rate_rad_s = 7.292115e-5   # used when rotating = true
+//!
+//! # [environment.exponential]     # with atmosphere = "exponential"
+//! # rho0_kg_m3 = 1.225
+//! # scale_height_m = 7200.0
+//! # [environment.table]           # with atmosphere = "table": CSV altitude, density,
+//! # file = "atmosphere.csv"       # temperature or speed of sound (see env::TabulatedAtmosphere)
+//! # gas_constant_j_kg_k = 287.05
+//! # heat_capacity_ratio = 1.4
+//!
+//! [heat_flux]                     # Chapman q = c*/sqrt(R_N) sqrt(rho/rho_ref) (V/V_ref)^m
+//! coefficient = 1.1097e8          # c* [W/m^2 m^0.5]
+//! reference_density_kg_m3 = 1.225
+//! reference_speed_m_s = 7905.4
+//! speed_exponent = 3.15
+//! # nose_radius_m = 0.8           # replaces the vehicle's
+//!
+//! [entry]
+//! altitude_km = 122.0
+//! longitude_deg = -106.7
+//! latitude_deg = -22.3
+//! speed_m_s = 7435.5              # planet-relative
+//! flight_path_angle_deg = -1.43
+//! heading_deg = 70.75
+//!
+//! [guidance]
+//! independent = "time"            # or "energy" (normalised energy, 1 at entry)
+//! interpolation = "linear"        # or "natural-cubic", "hermite" (with tension)
+//! period_s = 2.0
+//! alpha_rate_deg_s = 5.0
+//! sigma_rate_deg_s = 15.0
+//! initial_alpha_deg = 40.0
+//! initial_sigma_deg = 0.0
+//! nodes = [[0, 40, 0], [264, 40, 0], [290, 40, 79.6], ...]   # [x, alpha_deg, sigma_deg]
+//!
+//! [termination]
+//! altitude_km = 25.0              # and/or mach = 2.5, normalized_energy = 0.01
+//! max_time_s = 2500.0
+//!
+//! [integrator]
+//! rtol = 1e-9
+//! h_init_s = 0.1
+//! h_min_s = 1e-9
+//! h_max_s = 20.0
+//! max_steps = 2000000
+//! event_time_tol_s = 1e-6        # event-location time tolerance
+//!
+//! [monitors]
+//! interface_altitude_km = 100.0   # exit/re-entry (skip) detection
+//! g_rate_window_s = 0.1           # minimum window of the g-load-rate difference
+//!
+//! [output]
+//! interval_s = 0.0                # 0: one sample per guidance tick
+//! ```
+
+mod builtin;
+mod error;
+pub mod file;
+mod flight;
+mod guidance;
+mod resolve;
+mod resolve_guidance;
+mod to_toml;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use guidance_core::guidance::Command;
+use guidance_core::nodes::Independent;
+
+use crate::dynamics::SphericalState;
+use crate::env::{
+    Atmosphere, CentralGravity, ChapmanHeatFlux, Environment, ExponentialAtmosphere, Gravity,
+    J2Gravity, Planet, Preset, TabulatedAtmosphere, Us76,
+};
+use crate::integrate::Tolerances;
+use crate::sim::{SimConfig, Termination};
+
+pub use error::ScenarioError;
+pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
+pub use guidance::{build_guidance, guidance_bounds};
+pub use resolve::{parse_scenario, read_scenario};
+pub use to_toml::scenario_to_toml;
+
+/// Interpolation between nodes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InterpolationKind {
+    /// Piecewise linear.
+    Linear,
+    /// Natural cubic spline.
+    NaturalCubic,
+    /// Cardinal Hermite spline with tension.
+    Hermite {
+        /// Tension \[-\].
+        tension: f64,
+    },
+}
+
+/// Guidance settings of a scenario (SI units, radians).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GuidanceSpec {
+    /// Node independent variable (the core's).
+    pub independent: Independent,
+    /// Interpolation.
+    pub interpolation: InterpolationKind,
+    /// Guidance period \[s\].
+    pub period_s: f64,
+    /// Angle-of-attack rate limit \[rad/s\].
+    pub alpha_rate_rad_s: f64,
+    /// Bank-angle rate limit \[rad/s\].
+    pub sigma_rate_rad_s: f64,
+    /// Attitude at t = 0 \[rad\].
+    pub initial: Command<f64>,
+    /// Nodes `[x, alpha_rad, sigma_rad]` in flight order.
+    pub nodes: Vec<[f64; 3]>,
+    /// Angle bounds the nodes and commands are held to \[rad\]: the mission's for the
+    /// built-in reference scenario, [`guidance_bounds`] (banking to either side) for a
+    /// scenario file and the SRM glide.
+    pub bounds: guidance_core::nodes::AngleBounds<f64>,
+}
+
+/// Atmosphere model of a scenario.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AtmosphereKind {
+    /// U.S. Standard Atmosphere 1976.
+    Us76,
+    /// Exponential atmosphere (default rho0 = 1.225 kg/m^3, H = 7.2 km).
+    Exponential,
+    /// Tabulated atmosphere from a CSV file.
+    Table,
+}
+
+impl AtmosphereKind {
+    /// Name as written in scenario files.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Us76 => "us76",
+            Self::Exponential => "exponential",
+            Self::Table => "table",
+        }
+    }
+}
+
+/// Gravity model of a scenario.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GravityKind {
+    /// Central field plus J2.
+    J2,
+    /// Central field.
+    Central,
+}
+
+impl GravityKind {
+    /// Name as written in scenario files.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::J2 => "j2",
+            Self::Central => "central",
+        }
+    }
+}
+
+/// A tabulated atmosphere of a scenario: the file it came from and the table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AtmosphereTable {
+    /// CSV file (as resolved against the scenario file's folder).
+    pub file: PathBuf,
+    /// The table.
+    pub model: Arc<TabulatedAtmosphere>,
+}
+
+/// The atmosphere of a scenario, with its parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AtmosphereSpec {
+    /// U.S. Standard Atmosphere 1976.
+    Us76,
+    /// Exponential atmosphere.
+    Exponential(ExponentialAtmosphere),
+    /// Tabulated atmosphere.
+    Table(AtmosphereTable),
+}
+
+impl AtmosphereSpec {
+    /// The kind, as named in scenario files.
+    #[must_use]
+    pub fn kind(&self) -> AtmosphereKind {
+        match self {
+            Self::Us76 => AtmosphereKind::Us76,
+            Self::Exponential(_) => AtmosphereKind::Exponential,
+            Self::Table(_) => AtmosphereKind::Table,
+        }
+    }
+}
+
+/// Environment of a scenario: planet, atmosphere, gravity, rotation, heat-flux constants.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvSpec {
+    /// Planet constants (its rotation rate is used when [`EnvSpec::rotating`]).
+    pub planet: Planet,
+    /// Atmosphere model.
+    pub atmosphere: AtmosphereSpec,
+    /// Gravity model.
+    pub gravity: GravityKind,
+    /// Rotating planet.
+    pub rotating: bool,
+    /// Chapman heat-flux constants.
+    pub heat_flux: ChapmanHeatFlux,
+}
+
+impl EnvSpec {
+    /// The models of an environment preset (Earth, thesis heat-flux constants).
+    #[must_use]
+    pub fn preset(p: Preset) -> Self {
+        let (atmosphere, gravity, rotating) = match p {
+            Preset::Full => (AtmosphereSpec::Us76, GravityKind::J2, true),
+            Preset::Simplified => (
+                AtmosphereSpec::Exponential(ExponentialAtmosphere::earth()),
+                GravityKind::Central,
+                false,
+            ),
+        };
+        Self {
+            planet: Planet::earth(),
+            atmosphere,
+            gravity,
+            rotating,
+            heat_flux: ChapmanHeatFlux::thesis(),
+        }
+    }
+
+    /// The planet flown: [`EnvSpec::planet`], without rotation unless [`EnvSpec::rotating`].
+    #[must_use]
+    pub fn effective_planet(&self) -> Planet {
+        if self.rotating {
+            self.planet
+        } else {
+            self.planet.without_rotation()
+        }
+    }
+
+    /// Build the environment.
+    #[must_use]
+    pub fn build(&self) -> Environment {
+        let planet = self.effective_planet();
+        let atmosphere: Box<dyn Atmosphere> = match &self.atmosphere {
+            AtmosphereSpec::Us76 => Box::new(Us76::new()),
+            AtmosphereSpec::Exponential(e) => Box::new(*e),
+            AtmosphereSpec::Table(t) => Box::new(t.model.as_ref().clone()),
+        };
+        let gravity: Box<dyn Gravity> = match self.gravity {
+            GravityKind::Central => Box::new(CentralGravity::from_planet(&planet)),
+            GravityKind::J2 => Box::new(J2Gravity::from_planet(&planet)),
+        };
+        let mut env = Environment::new(planet, atmosphere, gravity);
+        env.heat_flux = self.heat_flux;
+        env
+    }
+
+    /// One-line description for reports.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        let body = if self.planet == Planet::earth() {
+            "Earth".to_string()
+        } else {
+            format!("planet (R = {} km)", self.planet.radius_m / 1e3)
+        };
+        format!(
+            "{} atmosphere, {} gravity, {} spherical {body}",
+            self.atmosphere.kind().as_str(),
+            self.gravity.as_str(),
+            if self.rotating {
+                "rotating"
+            } else {
+                "non-rotating"
+            }
+        )
+    }
+}
+
+/// Vehicle choice.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum VehicleSpec {
+    /// Built-in name.
+    Name(String),
+    /// Vehicle TOML file.
+    File(PathBuf),
+}
+
+impl VehicleSpec {
+    /// Load the vehicle (the vehicle module's one loader).
+    ///
+    /// # Errors
+    /// [`crate::vehicle::VehicleFileError`] naming the file or name.
+    pub fn load(&self) -> Result<crate::vehicle::Vehicle, crate::vehicle::VehicleFileError> {
+        match self {
+            Self::Name(n) => crate::vehicle::by_name(n),
+            Self::File(p) => crate::vehicle::from_toml_file(p),
+        }
+    }
+}
+
+/// A resolved scenario (SI units, radians).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scenario {
+    /// Name (default output directory runs/\<name\>/).
+    pub name: String,
+    /// Vehicle.
+    pub vehicle: VehicleSpec,
+    /// Environment.
+    pub environment: EnvSpec,
+    /// Entry state.
+    pub entry: SphericalState,
+    /// Guidance.
+    pub guidance: GuidanceSpec,
+    /// Termination.
+    pub termination: Termination,
+    /// Integrator.
+    pub tolerances: Tolerances,
+    /// Output interval \[s\] (0: per tick).
+    pub output_interval_s: f64,
+    /// Atmospheric interface for exit/re-entry (skip) detection \[m\] (thesis: 100 km).
+    pub interface_altitude_m: f64,
+    /// Minimum window of the g-load-rate finite difference \[s\].
+    pub g_rate_window_s: f64,
+    /// Nose radius replacing the vehicle's \[m\] (`[heat_flux] nose_radius_m`).
+    pub nose_radius_m: Option<f64>,
+}
+
+impl Scenario {
+    /// The scenario's vehicle: loaded through [`VehicleSpec::load`], with the scenario's
+    /// nose radius if it sets one.
+    ///
+    /// # Errors
+    /// [`crate::vehicle::VehicleFileError`] naming the file or name.
+    pub fn load_vehicle(
+        &self,
+    ) -> Result<crate::vehicle::Vehicle, crate::vehicle::VehicleFileError> {
+        let mut v = self.vehicle.load()?;
+        if let Some(rn) = self.nose_radius_m {
+            v.nose_radius_m = rn;
+        }
+        Ok(v)
+    }
+
+    /// The simulator settings this scenario asks for (entry state, termination, tolerances,
+    /// output interval, interface altitude, g-load-rate window).
+    #[must_use]
+    pub fn sim_config(&self) -> SimConfig {
+        let mut cfg = SimConfig::new(self.entry);
+        cfg.termination = self.termination;
+        cfg.tolerances = self.tolerances;
+        cfg.output_interval_s = self.output_interval_s;
+        cfg.interface_altitude_m = self.interface_altitude_m;
+        cfg.g_rate_window_s = self.g_rate_window_s;
+        cfg
+    }
+}
+
+/// A guidance node from file units `[x, alpha_deg, sigma_deg]` to `[x, alpha_rad, sigma_rad]`.
+pub(crate) fn node_to_rad(n: &[f64; 3]) -> [f64; 3] {
+    [n[0], n[1].to_radians(), n[2].to_radians()]
+}

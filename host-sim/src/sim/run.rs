@@ -1,0 +1,266 @@
+//! The run loop: integrate between breakpoints (ticks, output times, ramp ends), tick the
+//! attitude source, locate events, record samples and peaks.
+
+use guidance_core::NavState;
+use guidance_core::energy::EnergyNormalizer;
+use guidance_core::monitor::GLoadRateMonitor;
+
+use super::events::{Event, EventState};
+use super::{
+    AttitudeSource, Peak, Sample, SampleKind, SimConfig, SimError, SimResult, Summary, Termination,
+    TerminationReason, great_circle, state_atol, validate_config, violations,
+};
+use crate::dynamics::{Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, STATE_LEN, SphericalState};
+use crate::integrate::{Direction, OdeProblem, Rkf45, Stats};
+
+/// Progress of a run, reported at every guidance tick and output sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Mission time \[s\].
+    pub time_s: f64,
+    /// Altitude \[m\].
+    pub altitude_m: f64,
+}
+
+struct Loop<'a, A> {
+    dynm: Dynamics<'a>,
+    source: A,
+    term: Termination,
+    interface_m: f64,
+    energy: EnergyNormalizer<f64>,
+    g_rate_window_s: f64,
+    peak_q: Peak,
+    peak_g: Peak,
+    peak_gdot: Peak,
+    g_rate: GLoadRateMonitor<f64>,
+    g_rate_last_s: Option<f64>,
+}
+
+impl<A: AttitudeSource> Loop<'_, A> {
+    fn observe(&mut self, t: f64, y: &[f64; STATE_LEN]) {
+        let fc = self.dynm.conditions_at(y, self.source.attitude_at(t));
+        self.peak_q.update(fc.heat_flux_w_m2, t);
+        self.peak_g.update(fc.g_load, t);
+        // g-load rate from successive samples at least one window apart (core monitor).
+        if self
+            .g_rate_last_s
+            .is_none_or(|t0| t - t0 >= self.g_rate_window_s)
+        {
+            if let Ok(Some(rate)) = self.g_rate.update(t, fc.g_load) {
+                self.peak_gdot.update(rate.abs(), t);
+            }
+            self.g_rate_last_s = Some(t);
+        }
+    }
+
+    fn sample(&self, t: f64, y: &[f64; STATE_LEN], kind: SampleKind) -> Sample {
+        let state = self.dynm.spherical_of(y, t);
+        let attitude = self.source.attitude_at(t);
+        Sample {
+            time_s: t,
+            state,
+            attitude,
+            conditions: self.dynm.conditions_at(y, attitude),
+            heat_load_j_m2: y[HEAT_LOAD_SLOT],
+            flown_range_rad: y[FLOWN_RANGE_SLOT],
+            normalized_energy: self
+                .energy
+                .normalized(state.radius_m, state.speed_m_s)
+                .unwrap_or(f64::NAN),
+            kind,
+        }
+    }
+}
+
+impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
+    fn rhs(&mut self, t: f64, y: &[f64; STATE_LEN]) -> [f64; STATE_LEN] {
+        self.dynm.cartesian_rhs(y, self.source.attitude_at(t)).0
+    }
+    fn event_count(&self) -> usize {
+        Event::ALL.len()
+    }
+    fn events(&mut self, t: f64, y: &[f64; STATE_LEN], out: &mut [f64]) {
+        let r = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+        let mut state = EventState {
+            altitude_m: r - self.dynm.planet.radius_m,
+            mach: 0.0,
+            normalized_energy: None,
+        };
+        if Event::needs_conditions(&self.term) {
+            let fc = self.dynm.conditions_at(y, self.source.attitude_at(t));
+            state.mach = fc.mach;
+            state.normalized_energy = self.energy.normalized(r, fc.airspeed_m_s).ok();
+        }
+        for (o, e) in out.iter_mut().zip(Event::ALL) {
+            *o = e.value(&state, self.interface_m, &self.term);
+        }
+    }
+    fn event_direction(&self, i: usize) -> Direction {
+        Event::from_index(i).map_or(Direction::Falling, Event::direction)
+    }
+    fn on_step(&mut self, t: f64, y: &[f64; STATE_LEN]) {
+        self.observe(t, y);
+    }
+}
+
+fn nav_of(t: f64, s: &SphericalState) -> NavState<f64> {
+    NavState {
+        time_s: t,
+        radius_m: s.radius_m,
+        speed_m_s: s.speed_m_s,
+        flight_path_angle_rad: s.flight_path_angle_rad,
+        heading_rad: s.heading_rad,
+        latitude_rad: s.latitude_rad,
+        longitude_rad: s.longitude_rad,
+    }
+}
+
+/// Fly a trajectory closed-loop. `progress` is called at every guidance tick
+/// and output sample.
+///
+/// # Errors
+/// [`SimError`] for bad settings, integrator failure or a guidance error.
+pub fn simulate<A: AttitudeSource>(
+    dynm: Dynamics<'_>,
+    source: A,
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(SimResult, A), SimError> {
+    validate_config(cfg, dynm.planet.radius_m)?;
+    let energy = EnergyNormalizer::<f64>::new(
+        dynm.planet.mu_m3_s2,
+        dynm.planet.radius_m,
+        cfg.entry.radius_m,
+        cfg.entry.speed_m_s,
+    )
+    .map_err(SimError::Entry)?;
+    let mut lp = Loop {
+        dynm,
+        source,
+        term: cfg.termination,
+        interface_m: cfg.interface_altitude_m,
+        energy,
+        g_rate_window_s: cfg.g_rate_window_s,
+        peak_q: Peak::default(),
+        peak_g: Peak::default(),
+        peak_gdot: Peak::default(),
+        g_rate: GLoadRateMonitor::new(),
+        g_rate_last_s: None,
+    };
+    let mut integ = Rkf45::new(cfg.tolerances, state_atol(cfg.tolerances.rtol));
+    let mut t = 0.0_f64;
+    let mut y = dynm.initial_state(&cfg.entry, 0.0);
+    let mut ticks = 0u64;
+    let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN], ticks: &mut u64| {
+        let s = lp.dynm.spherical_of(y, t);
+        *ticks += 1;
+        lp.source
+            .tick(&nav_of(t, &s))
+            .map_err(|e| SimError::Guidance {
+                time_s: t,
+                source: Box::new(e),
+            })
+    };
+    tick(&mut lp, t, &y, &mut ticks)?;
+    lp.observe(t, &y);
+    let mut samples = vec![lp.sample(t, &y, SampleKind::Start)];
+    let mut crossings = Vec::new();
+    let (mut exits, mut skips, mut pending_exit) = (0u32, 0u32, false);
+    let mut out_k = 1u64;
+    let out_dt = cfg.output_interval_s;
+    let next_out = |k: u64| {
+        if out_dt > 0.0 {
+            out_dt * k as f64
+        } else {
+            f64::INFINITY
+        }
+    };
+    let reason = loop {
+        let t_tick = lp.source.next_tick_s();
+        let t_tick = if t_tick.is_finite() && t_tick > t {
+            t_tick
+        } else if t_tick.is_finite() {
+            return Err(SimError::TickNotAfter {
+                time_s: t,
+                next_tick_s: t_tick,
+            });
+        } else {
+            f64::INFINITY
+        };
+        let t_out = next_out(out_k);
+        let t_kink = lp.source.next_kink_s(t);
+        let t_break = t_tick
+            .min(t_out)
+            .min(t_kink)
+            .min(cfg.termination.max_time_s);
+        let hit = integ.advance_to(&mut lp, &mut t, &mut y, t_break)?;
+        if let Some(hit) = hit {
+            match Event::from_index(hit.index).ok_or(SimError::UnknownEvent(hit.index))? {
+                Event::Exit => {
+                    exits += 1;
+                    pending_exit = true;
+                    crossings.push((t, SampleKind::Exit));
+                    samples.push(lp.sample(t, &y, SampleKind::Exit));
+                    continue;
+                }
+                Event::Entry => {
+                    if pending_exit {
+                        skips += 1;
+                        pending_exit = false;
+                    }
+                    crossings.push((t, SampleKind::Entry));
+                    samples.push(lp.sample(t, &y, SampleKind::Entry));
+                    continue;
+                }
+                Event::Altitude => break TerminationReason::Altitude,
+                Event::Mach => break TerminationReason::Mach,
+                Event::NormalizedEnergy => break TerminationReason::NormalizedEnergy,
+                Event::Ground => break TerminationReason::Ground,
+            }
+        }
+        if t >= cfg.termination.max_time_s {
+            break TerminationReason::MaxTime;
+        }
+        let mut record = false;
+        if t >= t_tick {
+            tick(&mut lp, t, &y, &mut ticks)?;
+            record = out_dt == 0.0;
+        }
+        if t >= t_out {
+            out_k += 1;
+            record = true;
+        }
+        if record {
+            samples.push(lp.sample(t, &y, SampleKind::Output));
+            progress(Progress {
+                time_s: t,
+                altitude_m: samples.last().map_or(0.0, |s| s.conditions.altitude_m),
+            });
+        }
+    };
+    samples.push(lp.sample(t, &y, SampleKind::End));
+    let first = samples[0].state;
+    let last = samples[samples.len() - 1].state;
+    let range = great_circle(&first, &last);
+    let lim = dynm.vehicle.limits;
+    let stats: Stats = integ.stats;
+    let summary = Summary {
+        termination: reason,
+        flight_time_s: t,
+        range_angle_rad: range,
+        flown_range_angle_rad: y[FLOWN_RANGE_SLOT],
+        heat_load_j_m2: y[HEAT_LOAD_SLOT],
+        peak_heat_flux_w_m2: lp.peak_q,
+        peak_g_load: lp.peak_g,
+        peak_g_load_rate_per_s: lp.peak_gdot,
+        exits,
+        skips,
+        interface_crossings_s: crossings,
+        violations: violations(lp.peak_q, lp.peak_g, lp.peak_gdot, &lim),
+        rhs_evals: stats.rhs_evals,
+        accepted_steps: stats.accepted,
+        rejected_steps: stats.rejected,
+        ticks,
+    };
+    Ok((SimResult { samples, summary }, lp.source))
+}

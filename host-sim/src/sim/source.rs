@@ -1,0 +1,205 @@
+//! The guidance seam of the closed loop: [`AttitudeSource`], a constant attitude
+//! ([`FixedAttitude`]) and the one adapter that flies `guidance-core`'s guidance, plain
+//! ([`CoreGuidance`]) or with onboard re-planning (`crate::replan_loop::ReplanLoop`), at the
+//! guidance's own clock ([`GuidanceSource`]).
+
+use guidance_core::guidance::{Command, Guidance};
+use guidance_core::replan::{ReplanReport, ReplanningGuidance};
+use guidance_core::{GuidanceError, NavState};
+
+/// A source of commanded attitude: the guidance seam of the closed loop.
+pub trait AttitudeSource {
+    /// What a failed tick reports (carried by [`super::SimError::Guidance`] as its source).
+    type Error: std::error::Error + Send + Sync + 'static;
+    /// Called at every guidance tick (first at t = 0) with the navigation state.
+    ///
+    /// # Errors
+    /// [`AttitudeSource::Error`] when the guidance rejects the state or cannot answer.
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error>;
+    /// Attitude at time `time_s` \[s\] between ticks (continuous) \[rad\].
+    fn attitude_at(&self, time_s: f64) -> Command<f64>;
+    /// Time of the next tick \[s\]; `f64::INFINITY` for none.
+    fn next_tick_s(&self) -> f64;
+    /// The next time after `time_s` at which [`AttitudeSource::attitude_at`] has a kink (a
+    /// rate-limited ramp reaching the held command) \[s\]; `f64::INFINITY` for none. The loop
+    /// makes these breakpoints, so no integration step straddles a kink (which would cost
+    /// rejected steps and accuracy).
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        let _ = time_s;
+        f64::INFINITY
+    }
+}
+
+/// Constant attitude, never ticks (open loop).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FixedAttitude(pub Command<f64>);
+
+impl AttitudeSource for FixedAttitude {
+    type Error = std::convert::Infallible;
+    fn tick(&mut self, _nav: &NavState<f64>) -> Result<(), Self::Error> {
+        Ok(())
+    }
+    fn attitude_at(&self, _time_s: f64) -> Command<f64> {
+        self.0
+    }
+    fn next_tick_s(&self) -> f64 {
+        f64::INFINITY
+    }
+}
+
+/// A `guidance-core` guidance the closed loop can fly: [`Guidance`] itself, or
+/// [`ReplanningGuidance`] (the same clocked guidance plus the predictor-corrector).
+pub trait FlightGuidance {
+    /// What a tick may report besides the command (a re-plan report; nothing for plain
+    /// guidance).
+    type Report;
+    /// One guidance update at `nav`: whether the guidance ticked, and the tick's report.
+    ///
+    /// # Errors
+    /// The core's [`GuidanceError`].
+    fn update(
+        &mut self,
+        nav: &NavState<f64>,
+    ) -> Result<(bool, Option<Self::Report>), GuidanceError>;
+    /// The clocked guidance: held command, ramp, ticks.
+    fn clocked(&self) -> &Guidance<f64>;
+}
+
+impl FlightGuidance for Guidance<f64> {
+    type Report = std::convert::Infallible;
+    fn update(
+        &mut self,
+        nav: &NavState<f64>,
+    ) -> Result<(bool, Option<Self::Report>), GuidanceError> {
+        Ok((Guidance::update(self, nav)?.ticked, None))
+    }
+    fn clocked(&self) -> &Guidance<f64> {
+        self
+    }
+}
+
+impl FlightGuidance for ReplanningGuidance<f64> {
+    type Report = ReplanReport<f64>;
+    fn update(
+        &mut self,
+        nav: &NavState<f64>,
+    ) -> Result<(bool, Option<Self::Report>), GuidanceError> {
+        let out = ReplanningGuidance::update(self, nav)?;
+        Ok((out.guidance.ticked, out.replan))
+    }
+    fn clocked(&self) -> &Guidance<f64> {
+        self.guidance()
+    }
+}
+
+/// Why a tick of a [`GuidanceSource`] failed.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum TickError {
+    /// The core rejected the navigation state or its configuration.
+    #[error(transparent)]
+    Guidance(#[from] GuidanceError),
+    /// The loop called at a time that is not a guidance tick.
+    #[error("guidance did not tick at t = {time_s} s (next tick {next_tick_s} s)")]
+    NoTick {
+        /// Mission time of the call \[s\].
+        time_s: f64,
+        /// The guidance's next tick \[s\].
+        next_tick_s: f64,
+    },
+}
+
+/// A `guidance-core` guidance as the attitude source of the closed loop: called at every
+/// tick with the navigation state; the attitude between ticks is its rate-limited ramp
+/// ([`Guidance::attitude_at`]). Every report a tick makes is kept in
+/// [`GuidanceSource::reports`] (the re-plans of a run).
+#[derive(Clone, Debug)]
+pub struct GuidanceSource<G: FlightGuidance> {
+    /// The flight guidance.
+    pub guidance: G,
+    /// Every report of the run, in order.
+    pub reports: Vec<G::Report>,
+}
+
+/// `guidance-core`'s [`Guidance`] in the loop.
+pub type CoreGuidance = GuidanceSource<Guidance<f64>>;
+
+impl<G: FlightGuidance> GuidanceSource<G> {
+    /// Wrap a configured guidance.
+    #[must_use]
+    pub fn new(guidance: G) -> Self {
+        Self {
+            guidance,
+            reports: Vec::new(),
+        }
+    }
+}
+
+impl<G: FlightGuidance> AttitudeSource for GuidanceSource<G> {
+    type Error = TickError;
+    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), TickError> {
+        let (ticked, report) = self.guidance.update(nav)?;
+        self.reports.extend(report);
+        if ticked {
+            Ok(())
+        } else {
+            Err(TickError::NoTick {
+                time_s: nav.time_s,
+                next_tick_s: self.guidance.clocked().next_tick_s(),
+            })
+        }
+    }
+    fn attitude_at(&self, time_s: f64) -> Command<f64> {
+        self.guidance.clocked().attitude_at(time_s)
+    }
+    fn next_tick_s(&self) -> f64 {
+        self.guidance.clocked().next_tick_s()
+    }
+    fn next_kink_s(&self, time_s: f64) -> f64 {
+        self.guidance
+            .clocked()
+            .next_ramp_kink_s(time_s)
+            .unwrap_or(f64::INFINITY)
+    }
+}
+
+/// Next ramp end after `time_s` for ramps that started at `tick_time` from `at_tick`
+/// towards `command` at `rates` \[rad/s\]; `f64::INFINITY` if none. A test oracle (the
+/// `HostSchedule` of the tests re-derives the ramp independently); flight code asks the core
+/// (`Guidance::next_ramp_kink_s`, `CommandFrame::ramp_end`).
+#[must_use]
+pub fn ramp_kink(
+    time_s: f64,
+    tick_time: f64,
+    at_tick: Command<f64>,
+    command: Command<f64>,
+    rates: (f64, f64),
+) -> f64 {
+    let ta = tick_time + (command.alpha_rad - at_tick.alpha_rad).abs() / rates.0;
+    let ts = tick_time + (command.sigma_rad - at_tick.sigma_rad).abs() / rates.1;
+    let mut best = f64::INFINITY;
+    for k in [ta, ts] {
+        if k > time_s && k.is_finite() {
+            best = best.min(k);
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ramp_kinks() {
+        let a = |x: f64, y: f64| Command {
+            alpha_rad: x,
+            sigma_rad: y,
+        };
+        // alpha needs 0.1/0.5 = 0.2 s, sigma 0.3/1.0 = 0.3 s from the tick at t = 10.
+        let k = ramp_kink(10.0, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0));
+        assert!((k - 10.2).abs() < 1e-12);
+        let k = ramp_kink(10.25, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0));
+        assert!((k - 10.3).abs() < 1e-12);
+        assert!(ramp_kink(10.5, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0)).is_infinite());
+    }
+}

@@ -1,0 +1,227 @@
+//! Scenario files beyond the defaults: the planet, exponential and tabulated atmospheres,
+//! heat-flux constants, and the Betts Space Shuttle example (examples/betts-shuttle.toml).
+
+use std::path::{Path, PathBuf};
+
+use host_sim::env::Atmosphere;
+use host_sim::scenario::{AtmosphereSpec, Scenario, fly, parse_scenario, read_scenario};
+use host_sim::sim::TerminationReason;
+
+const FT: f64 = 0.3048;
+const SLUG_PER_FT3: f64 = 0.453_592_37 * 9.806_65 / FT / (FT * FT * FT);
+const BTU_FT2_S: f64 = 1_055.055_852_62 / (FT * FT);
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+/// The Betts shuttle set-up, converted from Betts' English units here independently of the
+/// file's comments: planet, atmosphere, aerodynamics, heating and entry state; then it flies
+/// to Betts' terminal altitude turning north (negative bank).
+#[test]
+fn betts_shuttle_example_loads_and_flies() {
+    let sc = read_scenario(&examples().join("betts-shuttle.toml")).unwrap();
+    let e = &sc.environment;
+    assert!(rel(e.planet.radius_m, 20_902_900.0 * FT) < 1e-15);
+    assert!(rel(e.planet.mu_m3_s2, 0.140_765_39e17 * FT * FT * FT) < 1e-15);
+    assert!(!e.rotating && e.planet.j2 == 0.0);
+    let AtmosphereSpec::Exponential(atm) = e.atmosphere else {
+        panic!("exponential atmosphere expected: {:?}", e.atmosphere);
+    };
+    assert!(rel(atm.rho0_kg_m3(), 0.002_378 * SLUG_PER_FT3) < 1e-12);
+    assert!(rel(atm.scale_height_m(), 23_800.0 * FT) < 1e-12);
+    assert!((atm.density_kg_m3(23_800.0 * FT) / atm.rho0_kg_m3() - (-1.0f64).exp()).abs() < 1e-12);
+    // Entry state.
+    assert!(rel(sc.entry.radius_m - e.planet.radius_m, 260_000.0 * FT) < 1e-12);
+    assert!(rel(sc.entry.speed_m_s, 25_600.0 * FT) < 1e-15);
+    assert!(rel(sc.entry.flight_path_angle_rad, (-1f64).to_radians()) < 1e-15);
+    assert!(rel(sc.entry.heading_rad, 90f64.to_radians()) < 1e-15);
+    // Vehicle: mass, area, polynomial aerodynamics in alpha_hat [deg].
+    let veh = sc.load_vehicle().unwrap();
+    assert!(rel(veh.mass_kg, 203_000.0 * 0.453_592_37) < 1e-12);
+    assert!(rel(veh.reference_area_m2, 2690.0 * FT * FT) < 1e-12);
+    let c = veh.aero.coefficients(10.0, 20f64.to_radians());
+    assert!((c.cl - (-0.207_04 + 0.029_244 * 20.0)).abs() < 1e-12);
+    assert!((c.cd - (0.078_54 - 0.615_92e-2 * 20.0 + 0.621_408e-3 * 400.0)).abs() < 1e-12);
+    // Heating: Betts' q_r = 17700 sqrt(rho) (1e-4 V)^3.07 BTU/ft^2/s in English units.
+    for (rho_si, v_si) in [(1e-4, 7000.0), (3e-6, 7800.0), (2e-3, 2500.0)] {
+        let betts =
+            17_700.0 * (rho_si / SLUG_PER_FT3).sqrt() * (1e-4 * v_si / FT).powf(3.07) * BTU_FT2_S;
+        let q = e.heat_flux.heat_flux_w_m2(rho_si, v_si, veh.nose_radius_m);
+        assert!(rel(q, betts) < 1e-12, "{q} vs {betts}");
+    }
+    // Flies to 80000 ft, turning north.
+    let f = fly(&sc, "betts-shuttle.toml", &mut |_| {}).unwrap();
+    let s = &f.result.summary;
+    assert_eq!(s.termination, TerminationReason::Altitude);
+    let end = f.result.samples.last().unwrap();
+    assert!((end.conditions.altitude_m - 80_000.0 * FT).abs() < 1.0);
+    assert!(
+        (1500.0..3000.0).contains(&s.flight_time_s),
+        "{}",
+        s.flight_time_s
+    );
+    let lat = end.state.latitude_rad.to_degrees();
+    assert!(lat > 20.0 && lat < 40.0, "final latitude {lat} deg");
+    assert!(f.result.samples.iter().any(|x| x.attitude.sigma_rad < -0.5));
+    assert!(s.heat_load_j_m2.is_finite() && s.peak_heat_flux_w_m2.value > 0.0);
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("host-sim-scn-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A tabulated atmosphere from a CSV next to the scenario, on another planet (Mars preset with
+/// a changed radius): the entry altitude is kept, and the run uses the table.
+#[test]
+fn table_atmosphere_and_planet_preset() {
+    let d = temp_dir("table");
+    std::fs::write(
+        d.join("mars.csv"),
+        "altitude_km,density_kg_m3,speed_of_sound_m_s\n0,0.020,240\n40,0.0006,210\n80,1.0e-5,190\n130,1.0e-8,180\n",
+    )
+    .unwrap();
+    let text = "vehicle = \"srm\"\n[environment]\natmosphere = \"table\"\ngravity = \"central\"\n\
+                [environment.planet]\npreset = \"mars\"\n\
+                [environment.table]\nfile = \"mars.csv\"\ngas_constant_j_kg_k = 188.9\nheat_capacity_ratio = 1.29\n\
+                [guidance]\nindependent = \"energy\"\nnodes = [[1, 0, 0], [0, 0, 30]]\n\
+                [entry]\naltitude_km = 125\nspeed_m_s = 3300\nflight_path_angle_deg = -15\n\
+                [termination]\naltitude_km = 10\nmax_time_s = 3000\n";
+    let sc = parse_scenario(text, "mars.toml", &d).unwrap();
+    let e = &sc.environment;
+    assert_eq!(e.planet.radius_m, host_sim::env::Planet::mars().radius_m);
+    assert!((sc.entry.radius_m - e.planet.radius_m - 125e3).abs() < 1e-6);
+    let AtmosphereSpec::Table(t) = &e.atmosphere else {
+        panic!("table expected");
+    };
+    assert!((t.model.state(0.0).speed_of_sound_m_s - 240.0).abs() < 1e-9);
+    assert!(e.describe().contains("table atmosphere") && e.describe().contains("3389.5"));
+    let f = fly(&sc, "mars.toml", &mut |_| {}).unwrap();
+    assert_eq!(f.result.summary.termination, TerminationReason::Altitude);
+    // The printed scenario parses back to the same environment.
+    let back = parse_scenario(
+        &host_sim::scenario::scenario_to_toml(&sc),
+        "back.toml",
+        Path::new("/"),
+    )
+    .unwrap();
+    assert_eq!(back.environment, sc.environment);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Bad environment settings name the scenario file, the field and the value.
+#[test]
+fn bad_environment_settings_are_named() {
+    let d = temp_dir("bad-env");
+    std::fs::write(
+        d.join("bad.csv"),
+        "altitude_m,density_kg_m3,temperature_k\n0,1,300\n0,0.5,300\n",
+    )
+    .unwrap();
+    let cases: &[(&str, &[&str])] = &[
+        (
+            "[environment]\natmosphere = \"us76\"\n[environment.exponential]\nrho0_kg_m3 = 1.0\n",
+            &["s.toml", "environment.exponential", "exponential"],
+        ),
+        (
+            "[environment]\natmosphere = \"exponential\"\n[environment.exponential]\nscale_height_m = -3\n",
+            &["s.toml", "environment.exponential.scale_height_m", "-3"],
+        ),
+        (
+            "[environment]\natmosphere = \"table\"\n",
+            &["s.toml", "environment.table", "missing"],
+        ),
+        (
+            "[environment]\natmosphere = \"table\"\n[environment.table]\nfile = \"bad.csv\"\n",
+            &[
+                "s.toml",
+                "environment.table.file",
+                "bad.csv",
+                "line 3",
+                "increase",
+            ],
+        ),
+        (
+            "[environment]\natmosphere = \"mars-ish\"\n",
+            &[
+                "s.toml",
+                "environment.atmosphere",
+                "mars-ish",
+                "unknown variant",
+            ],
+        ),
+        (
+            "[environment.planet]\nradius_m = 0\n",
+            &["s.toml", "environment.planet.radius_m", "0", "> 0"],
+        ),
+        (
+            "[environment.planet]\nradus_m = 5\n",
+            &["s.toml", "environment.planet.radus_m", "5", "unknown field"],
+        ),
+        (
+            "[heat_flux]\nspeed_exponent = \"3\"\n",
+            &["s.toml", "heat_flux.speed_exponent", "\"3\"", "number"],
+        ),
+        (
+            "[heat_flux]\nnose_radius_m = -1\n",
+            &["s.toml", "heat_flux.nose_radius_m", "-1"],
+        ),
+    ];
+    for (text, needles) in cases {
+        let e = parse_scenario(text, "s.toml", &d).unwrap_err().to_string();
+        for n in *needles {
+            assert!(e.contains(n), "`{n}` not in: {e}\n(for {text})");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Heat-flux constants and the nose radius reach the run: doubling c* doubles the peak.
+#[test]
+fn heat_flux_constants_reach_the_dynamics() {
+    let base = Scenario::srm_glide();
+    let text = "vehicle = \"srm\"\n[heat_flux]\ncoefficient = 2.2194e8\n";
+    let mut doubled = parse_scenario(text, "h.toml", Path::new(".")).unwrap();
+    doubled.entry = base.entry;
+    doubled.guidance = base.guidance.clone();
+    doubled.termination = base.termination;
+    doubled.environment.atmosphere = base.environment.atmosphere.clone();
+    doubled.environment.gravity = base.environment.gravity;
+    doubled.environment.rotating = base.environment.rotating;
+    let a = fly(&base, "base", &mut |_| {}).unwrap().result.summary;
+    let b = fly(&doubled, "h.toml", &mut |_| {}).unwrap().result.summary;
+    assert_eq!(
+        a.flight_time_s, b.flight_time_s,
+        "heat flux must not change the trajectory"
+    );
+    assert!(
+        rel(
+            b.peak_heat_flux_w_m2.value,
+            2.0 * a.peak_heat_flux_w_m2.value
+        ) < 1e-12
+    );
+    let text = "vehicle = \"srm\"\n[heat_flux]\nnose_radius_m = 4.0\n";
+    let mut big_nose = parse_scenario(text, "n.toml", Path::new(".")).unwrap();
+    big_nose.entry = base.entry;
+    big_nose.guidance = base.guidance.clone();
+    big_nose.termination = base.termination;
+    big_nose.environment = base.environment.clone();
+    let rn = base.load_vehicle().unwrap().nose_radius_m;
+    let c = fly(&big_nose, "n.toml", &mut |_| {})
+        .unwrap()
+        .result
+        .summary;
+    assert!(
+        rel(
+            c.peak_heat_flux_w_m2.value,
+            a.peak_heat_flux_w_m2.value * (rn / 4.0).sqrt()
+        ) < 1e-12
+    );
+}
