@@ -39,7 +39,7 @@ pub mod ballistic;
 pub mod error;
 pub mod glide;
 pub mod nondim;
-mod num;
+pub(crate) mod num;
 pub mod predict;
 pub mod skip;
 
@@ -49,5 +49,7 @@ pub use glide::{GlidePoint, GlideSolution};
 pub use nondim::{
     Constants, EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
 };
-pub use predict::{Prediction, PredictorConfig, predict};
+pub use predict::{
+    LoadLimits, PeakMode, PeakStatus, Prediction, PredictorConfig, predict, predict_with,
+};
 pub use skip::{Leg, SkipOptions, SkipPoint, SkipSolution};

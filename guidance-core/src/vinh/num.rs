@@ -1,5 +1,6 @@
-//! Bounded numerical helpers shared by the closed forms: bracketing root finder, first sign
-//! change on a scan, golden-section maximiser, and a cancellation-free `(e^x - 1 - x)/x^2`.
+//! Bounded numerical helpers shared by the closed forms: Brent's bracketing root finder (a
+//! resumable state machine, [`Zeroin`]), first sign change on a scan, golden-section maximiser
+//! (kept as the dense reference of the tests), and a cancellation-free `(e^x - 1 - x)/x^2`.
 //!
 //! Every loop here has a fixed maximum iteration count (stated on each function), so the
 //! worst-case cost of every closed-form evaluation is bounded.
@@ -84,6 +85,302 @@ pub(crate) fn bisect<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
         i += 1;
     }
     Ok((lo + hi).half())
+}
+
+/// Largest number of function evaluations of one [`Zeroin`] search ([`brent`]). Brent's method
+/// falls back to bisection whenever interpolation is slow, so it needs at most about twice the
+/// bisection count to reach the working precision (< 2 x 64 for `f64` from any finite bracket
+/// whose ends differ by less than 2^64 ulps, far fewer for `f32`); the cap only bounds the loop.
+pub(crate) const MAX_BRENT_EVALS: u32 = 128;
+
+/// What a [`Zeroin`] search wants next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) enum ZeroinStep<S> {
+    /// Evaluate the function here and [`Zeroin::supply`] the value.
+    Eval(S),
+    /// Converged: the bracket is below the tolerance (or a zero was hit); the best point.
+    Done(S),
+}
+
+/// Brent's root finder (zeroin: bisection, secant and inverse quadratic interpolation on a
+/// bracket that always contains a sign change), written as a resumable state machine so a caller
+/// can spread the evaluations over several calls (the re-planner does, one prediction per step).
+///
+/// Stops when the bracket is below `2 EPSILON |b| + tol_abs/2` (the working precision of `S`
+/// when `tol_abs` is 0: `f32` stops after far fewer steps than `f64`) or a zero is hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct Zeroin<S> {
+    a: S,
+    b: S,
+    c: S,
+    fa: S,
+    fb: S,
+    fc: S,
+    d: S,
+    e: S,
+    tol_abs: S,
+    evals: u32,
+}
+
+impl<S: Real> Zeroin<S> {
+    /// Search on `[a, b]` with `f(a) = fa`, `f(b) = fb` of opposite signs (or one zero).
+    ///
+    /// # Errors
+    /// [`VinhError::NoConvergence`] if the ends do not bracket a sign change or are not finite.
+    pub(crate) fn new(a: S, fa: S, b: S, fb: S, tol_abs: S) -> Result<Self, VinhError> {
+        let all = [a, fa, b, fb, tol_abs];
+        if all.iter().any(|v| !v.is_finite()) {
+            return Err(VinhError::NoConvergence);
+        }
+        if fa != S::ZERO && fb != S::ZERO && (fa > S::ZERO) == (fb > S::ZERO) {
+            return Err(VinhError::NoConvergence);
+        }
+        Ok(Self {
+            a,
+            b,
+            c: a,
+            fa,
+            fb,
+            fc: fa,
+            d: b - a,
+            e: b - a,
+            tol_abs: tol_abs.abs(),
+            evals: 0,
+        })
+    }
+
+    /// Next point to evaluate, or the converged root.
+    pub(crate) fn next(&mut self) -> ZeroinStep<S> {
+        let two: S = k(2.0);
+        let opposite = |x: S, y: S| (x > S::ZERO && y < S::ZERO) || (x < S::ZERO && y > S::ZERO);
+        if !opposite(self.fb, self.fc) {
+            self.c = self.a;
+            self.fc = self.fa;
+            self.d = self.b - self.a;
+            self.e = self.d;
+        }
+        if self.fc.abs() < self.fb.abs() {
+            self.a = self.b;
+            self.b = self.c;
+            self.c = self.a;
+            self.fa = self.fb;
+            self.fb = self.fc;
+            self.fc = self.fa;
+        }
+        let tol = two * S::EPSILON * self.b.abs() + self.tol_abs.half();
+        let m = (self.c - self.b).half();
+        if !(m.abs() > tol) || self.fb == S::ZERO || self.evals >= MAX_BRENT_EVALS {
+            return ZeroinStep::Done(self.b);
+        }
+        if self.e.abs() >= tol && self.fa.abs() > self.fb.abs() {
+            let s = self.fb / self.fa;
+            let (mut p, mut q);
+            if self.a == self.c {
+                p = two * m * s;
+                q = S::ONE - s;
+            } else {
+                let qq = self.fa / self.fc;
+                let r = self.fb / self.fc;
+                p = s * (two * m * qq * (qq - r) - (self.b - self.a) * (r - S::ONE));
+                q = (qq - S::ONE) * (r - S::ONE) * (s - S::ONE);
+            }
+            if p > S::ZERO {
+                q = -q;
+            } else {
+                p = -p;
+            }
+            let three: S = k(3.0);
+            if two * p < three * m * q - (tol * q).abs() && p < (self.e * q).half().abs() {
+                self.e = self.d;
+                self.d = p / q;
+            } else {
+                self.d = m;
+                self.e = m;
+            }
+        } else {
+            self.d = m;
+            self.e = m;
+        }
+        self.a = self.b;
+        self.fa = self.fb;
+        let step = if self.d.abs() > tol {
+            self.d
+        } else if m > S::ZERO {
+            tol
+        } else {
+            -tol
+        };
+        let x = self.b + step;
+        self.b = if x.is_finite() { x } else { self.b + m };
+        self.evals += 1;
+        ZeroinStep::Eval(self.b)
+    }
+
+    /// Supply `f` at the point returned by the last [`Zeroin::next`].
+    pub(crate) fn supply(&mut self, fx: S) {
+        self.fb = fx;
+    }
+}
+
+/// Root of `f` on `[a, b]` (`fa`, `fb` of opposite signs) by [`Zeroin`], to the working precision
+/// plus `tol_abs/2`. At most [`MAX_BRENT_EVALS`] evaluations.
+///
+/// # Errors
+/// [`VinhError::NoConvergence`] without a sign change; errors of `f`; a non-finite value of `f`
+/// is [`VinhError::NonFiniteResult`].
+pub(crate) fn brent<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
+    mut f: F,
+    a: S,
+    b: S,
+    fa: S,
+    fb: S,
+    tol_abs: S,
+) -> Result<S, VinhError> {
+    let mut z = Zeroin::new(a, fa, b, fb, tol_abs)?;
+    loop {
+        match z.next() {
+            ZeroinStep::Done(x) => return Ok(x),
+            ZeroinStep::Eval(x) => z.supply(finite(f(x)?)?),
+        }
+    }
+}
+
+/// First root of `f` in `(lo, hi]` on the grid `lo + j h` (`j = 1, 2, ...`, the last point
+/// `hi`), knowing `f(lo) > 0`: the first grid point where `f <= 0` closes the bracket, which
+/// [`brent`] then solves. `Ok(None)` if `f` stays positive up to `hi`. At most
+/// [`SCAN_INTERVALS`] grid points (`h` is raised to `(hi - lo)/SCAN_INTERVALS` if smaller).
+pub(crate) fn first_root_from<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
+    mut f: F,
+    lo: S,
+    hi: S,
+    f_lo: S,
+    h: S,
+) -> Result<Option<S>, VinhError> {
+    let h_min = (hi - lo) / k::<S>(f64::from(SCAN_INTERVALS));
+    let h = if h.is_finite() && h > h_min { h } else { h_min };
+    let mut a = lo;
+    let mut fa = f_lo;
+    let mut i = 1_u32;
+    while i <= SCAN_INTERVALS {
+        let mut b = lo + h * k::<S>(f64::from(i));
+        if !(b < hi) {
+            b = hi;
+        }
+        let fb = finite(f(b)?)?;
+        if fb <= S::ZERO {
+            return brent(&mut f, a, b, fa, fb, S::ZERO).map(Some);
+        }
+        if b == hi {
+            return Ok(None);
+        }
+        a = b;
+        fa = fb;
+        i += 1;
+    }
+    Ok(None)
+}
+
+/// Largest number of function evaluations of one [`brent_max`].
+pub(crate) const MAX_BRENT_MAX_EVALS: u32 = 64;
+
+/// Local maximum of `f` on `[a, b]` by Brent's method (golden section with parabolic
+/// interpolation, no derivatives), started at `x0` in `[a, b]` with `f(x0) = f0`; stops when the
+/// bracket is within `2 (sqrt(EPSILON) |x| + tol_abs)` of the best point (the peak value is then
+/// within the working precision: the function is flat there), or after
+/// [`MAX_BRENT_MAX_EVALS`] evaluations. Returns `(x, f(x))` with the largest `f` seen.
+///
+/// # Errors
+/// Errors of `f`; [`VinhError::NonFiniteResult`] for a non-finite value.
+pub(crate) fn brent_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
+    mut f: F,
+    mut a: S,
+    mut b: S,
+    x0: S,
+    f0: S,
+    tol_abs: S,
+) -> Result<(S, S), VinhError> {
+    let golden: S = k(0.381_966_011_250_105_1);
+    let two: S = k(2.0);
+    let rel = S::EPSILON.sqrt_raw();
+    // Minimise g = -f.
+    let (mut x, mut w, mut v) = (x0, x0, x0);
+    let (mut fx, mut fw, mut fv) = (-f0, -f0, -f0);
+    let (mut d, mut e) = (S::ZERO, S::ZERO);
+    let mut n = 0_u32;
+    while n < MAX_BRENT_MAX_EVALS {
+        let m = (a + b).half();
+        let tol = rel * x.abs() + tol_abs;
+        let t2 = two * tol;
+        if !((x - m).abs() > t2 - (b - a).half()) {
+            break;
+        }
+        let mut golden_step = true;
+        if e.abs() > tol {
+            let r = (x - w) * (fx - fv);
+            let mut q = (x - v) * (fx - fw);
+            let mut p = (x - v) * q - (x - w) * r;
+            q = two * (q - r);
+            if q > S::ZERO {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let e_old = e;
+            if p.abs() < (q * e_old).half().abs() && p > q * (a - x) && p < q * (b - x) {
+                e = d;
+                d = p / q;
+                let u = x + d;
+                if u - a < t2 || b - u < t2 {
+                    d = if x < m { tol } else { -tol };
+                }
+                golden_step = false;
+            }
+        }
+        if golden_step {
+            e = if x < m { b - x } else { a - x };
+            d = golden * e;
+        }
+        let u = if d.abs() >= tol {
+            x + d
+        } else if d > S::ZERO {
+            x + tol
+        } else {
+            x - tol
+        };
+        let fu = -finite(f(u)?)?;
+        n += 1;
+        if fu <= fx {
+            if u < x {
+                b = x;
+            } else {
+                a = x;
+            }
+            v = w;
+            fv = fw;
+            w = x;
+            fw = fx;
+            x = u;
+            fx = fu;
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                v = w;
+                fv = fw;
+                w = u;
+                fw = fu;
+            } else if fu <= fv || v == x || v == w {
+                v = u;
+                fv = fu;
+            }
+        }
+    }
+    Ok((x, -fx))
 }
 
 /// Number of scan intervals of [`first_root`].
@@ -209,5 +506,79 @@ mod tests {
         );
         let (t, v) = maximize(|x: f64| Ok(-(x - 0.3) * (x - 0.3)), 0.0, 1.0).unwrap();
         assert!((t - 0.3).abs() < 1e-7 && v.abs() < 1e-13);
+    }
+
+    #[test]
+    fn brent_reaches_working_precision_in_few_steps() {
+        let mut n = 0;
+        let r = brent(
+            |x: f64| {
+                n += 1;
+                Ok(x * x - 2.0)
+            },
+            0.0,
+            5.0,
+            -2.0,
+            23.0,
+            0.0,
+        )
+        .unwrap();
+        assert!(
+            (r - crate::math::sqrt(2.0)).abs() <= 4.0 * f64::EPSILON,
+            "{r}"
+        );
+        assert!(n < 15, "{n} evaluations");
+        let mut n32 = 0;
+        let r32 = brent(
+            |x: f32| {
+                n32 += 1;
+                Ok(x * x - 2.0)
+            },
+            0.0,
+            5.0,
+            -2.0,
+            23.0,
+            0.0,
+        )
+        .unwrap();
+        assert!((r32 - core::f32::consts::SQRT_2).abs() <= 4.0 * f32::EPSILON);
+        assert!(n32 <= n, "{n32} f32 vs {n} f64 evaluations");
+        // A step function: Brent degrades to bisection but stays bounded.
+        let mut m = 0;
+        let s = brent(
+            |x: f64| {
+                m += 1;
+                Ok(if x < 0.3 { -1.0 } else { 1.0 })
+            },
+            0.0,
+            1.0,
+            -1.0,
+            1.0,
+            0.0,
+        )
+        .unwrap();
+        assert!((s - 0.3).abs() < 1e-12 && m <= MAX_BRENT_EVALS as usize);
+        assert!(brent(|x: f64| Ok(x), 1.0, 2.0, 1.0, 2.0, 0.0).is_err());
+        let mut k = 0;
+        let (t, v) = brent_max(
+            |x: f64| {
+                k += 1;
+                Ok(-(x - 0.3) * (x - 0.3) + (x - 0.3).powi(3))
+            },
+            0.0,
+            1.0,
+            0.5,
+            -0.04 + 0.008,
+            0.0,
+        )
+        .unwrap();
+        assert!(
+            (t - 0.3).abs() < 1e-7 && v.abs() < 1e-13 && k < 20,
+            "{t} {v} {k}"
+        );
+        let first = first_root_from(|x: f64| Ok(2.0 - x * x), 0.0, 5.0, 2.0, 0.5)
+            .unwrap()
+            .unwrap();
+        assert!((first - crate::math::sqrt(2.0)).abs() < 1e-14);
     }
 }

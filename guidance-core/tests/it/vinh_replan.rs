@@ -841,3 +841,66 @@ fn validate_dormand_prince_glide_predictor_range() {
         assert!(w[0] < 0.0 && w[0] < w[1], "{errs:?}");
     }
 }
+
+/// Issue 8 item 6: the limit grid `f_min + (f_max - f_min) i / 15` rounds to one ulp above
+/// `f_max` for `f_min = 0.06`, `f_max = 0.85` (f64), and `replan` returned that fraction. In the
+/// glide the peak heat flux falls with more vertical lift, so a heat-flux limit between the
+/// peaks of the last two grid points leaves only the last one feasible: the result must be
+/// exactly `f_max`, never above.
+#[test]
+fn replan_output_is_clamped_exactly_into_its_bounds() {
+    let (f_min, f_max) = (0.06_f64, 0.85_f64);
+    let n = 15.0;
+    let f14 = f_min + (f_max - f_min) * 14.0 / n;
+    let f15 = f_min + (f_max - f_min) * 15.0 / n;
+    assert!(f15 > f_max, "the rounding this test needs: {f15}");
+    let s = glide_nav(0.0);
+    let state = EntryState {
+        radius_m: s.radius_m,
+        speed_m_s: s.speed_m_s,
+        flight_path_angle_rad: s.flight_path_angle_rad,
+    };
+    let q_at = |f: f64| {
+        predict_glide(
+            &planet(),
+            &atmosphere(),
+            &srm(),
+            &LiftControl {
+                lambda: 1.0,
+                vertical_fraction: f,
+            },
+            &state,
+            &config().predictor,
+        )
+        .unwrap()
+        .peak_heat_flux_w_m2
+    };
+    let (q14, q15) = (q_at(f14), q_at(f15));
+    assert!(q15 < q14, "{q15} {q14}");
+    let limits = ReplanLimits {
+        heat_flux_w_m2: 0.5 * (q14 + q15),
+        g_load: 1e3,
+    };
+    let solver = ReplanConfig {
+        min_vertical_fraction: f_min,
+        max_vertical_fraction: f_max,
+        mode: PredictorMode::Glide,
+        ..config()
+    };
+    let r = replan(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &s,
+        glide_range_m(0.3),
+        &limits,
+        &solver,
+    );
+    assert_eq!(r.case, ReplanCase::LimitsBind, "{r:?}");
+    assert!(
+        r.vertical_fraction >= f_min && r.vertical_fraction <= f_max,
+        "{}",
+        r.vertical_fraction
+    );
+    assert_eq!(r.vertical_fraction, f_max);
+}

@@ -135,6 +135,19 @@ fn bench_closed_forms(c: &mut InsnCounter) -> bool {
         "bench vinh_skip_solution_f32: {} insn/call",
         skip * INSN_PER_TICK / reps
     );
+    let skip_peaks = c.ticks(|| {
+        for _ in 0..reps {
+            let r = NonDim::new(&planet, &atm, &veh, &lift, &entry)
+                .and_then(|nd| SkipSolution::new(&nd))
+                .and_then(|s| Ok((s.exit(), s.peaks()?)));
+            ok &= r.is_ok();
+            core::hint::black_box(r.ok());
+        }
+    });
+    hprintln!(
+        "bench vinh_skip_with_peaks_f32: {} insn/call",
+        skip_peaks * INSN_PER_TICK / reps
+    );
     let glide = c.ticks(|| {
         for _ in 0..reps {
             let r = GlideSolution::new(&planet, &atm, &veh, &lift, 6_378_137.0 + 80_000.0)
