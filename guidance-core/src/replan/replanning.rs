@@ -69,7 +69,7 @@ use crate::nodes::{Independent, NodeTable};
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
-use super::{ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, ReplanResult, replan};
+use super::{ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver};
 use crate::vinh::VinhError;
 
 /// Largest accepted [`ReplanningConfig::every_n_ticks`] (one re-plan per 65535 ticks, about
@@ -169,6 +169,11 @@ pub struct ReplanningConfig<S> {
     /// Also apply the nearest end of the vertical-fraction interval when the target is out of
     /// reach (a saturated corrector). `false`: out of reach keeps the current table.
     pub apply_out_of_reach: bool,
+    /// Work budget per guidance tick \[predictor calls\]: 0 runs a whole re-plan inside its
+    /// tick (at most [`super::MAX_PREDICTOR_CALLS`] calls); `k >= 1` spreads it over ticks, at
+    /// most `k` predictor calls per tick ([`super::ReplanSolver`]), the table in use flying
+    /// until the solve completes (module docs, "Bounded work per tick").
+    pub steps_per_tick: u8,
 }
 
 /// What one re-plan did.
@@ -185,8 +190,10 @@ pub struct ReplanReport<S> {
     pub range_to_go_m: S,
     /// What the solver reported.
     pub case: ReplanCase,
-    /// Predictor calls made (at most 58).
+    /// Predictor calls made by the whole solve (at most [`super::MAX_PREDICTOR_CALLS`]).
     pub predictor_calls: u8,
+    /// Tick at which the solve started (equal to `tick` without a per-tick budget).
+    pub start_tick: u32,
     /// Solved bank-angle magnitude \[rad\] (0 for a fall-back).
     pub bank_rad: S,
     /// Predicted range at the solved bank \[m\] (`None` for a fall-back).
@@ -244,8 +251,21 @@ impl ReplanCounts {
 pub struct ReplanningOutput<S> {
     /// The guidance output of this sample (held command, tick flag, E-hat).
     pub guidance: GuidanceOutput<S>,
-    /// The re-plan run at this sample, if any.
+    /// The re-plan completed at this sample, if any.
     pub replan: Option<ReplanReport<S>>,
+    /// Predictor calls made during this sample (0 without re-planning work; at most
+    /// [`ReplanningConfig::steps_per_tick`] when that is not 0).
+    pub predictor_calls: u8,
+}
+
+/// A re-plan in progress ([`ReplanningConfig::steps_per_tick`] `> 0`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Pending<S> {
+    solver: ReplanSolver<S>,
+    start_tick: u32,
+    time_s: S,
+    range_to_go_m: S,
 }
 
 /// [`Guidance`] (energy-indexed table) with periodic onboard re-planning (module docs).
@@ -262,6 +282,8 @@ pub struct ReplanningGuidance<S> {
     flown_rad: S,
     /// Position of the last accepted sample (latitude, longitude) \[rad\].
     last_position: Option<(S, S)>,
+    /// The solve in progress.
+    pending: Option<Pending<S>>,
 }
 
 /// Great-circle angle \[rad\] between two points (haversine form); `None` if non-finite.
@@ -351,6 +373,7 @@ impl<S: Real> ReplanningGuidance<S> {
             counts: ReplanCounts::default(),
             flown_rad: S::ZERO,
             last_position: None,
+            pending: None,
         })
     }
 
@@ -377,11 +400,29 @@ impl<S: Real> ReplanningGuidance<S> {
         let n = u32::from(self.config.every_n_ticks.max(1));
         let mut report = None;
         let mut previous = None;
-        if will_tick && self.ticks.is_multiple_of(n) {
+        let pending_before = self.pending;
+        let mut calls = 0_u8;
+        if will_tick && (self.pending.is_some() || self.ticks.is_multiple_of(n)) {
             let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
-            let (r, old) = self.replan_now(nav, e_hat, flown);
-            report = Some(r);
-            previous = old;
+            let mut p = match self.pending {
+                Some(p) => p,
+                None => self.start_solve(nav, flown),
+            };
+            let before = p.solver.predictor_calls();
+            let done = match self.config.steps_per_tick {
+                0 => p.solver.run(u8::MAX),
+                k => p.solver.run(k),
+            };
+            calls = p.solver.predictor_calls().saturating_sub(before);
+            match done {
+                Some(res) => {
+                    self.pending = None;
+                    let (r, old) = self.apply(&p, &res, e_hat);
+                    report = Some(r);
+                    previous = old;
+                }
+                None => self.pending = Some(p),
+            }
         }
         let out = match self.guidance.update(nav) {
             Ok(o) => o,
@@ -390,6 +431,7 @@ impl<S: Real> ReplanningGuidance<S> {
                     // Restore the table in use before this sample (it was valid).
                     let _ = self.guidance.replace_table(t);
                 }
+                self.pending = pending_before;
                 return Err(e);
             }
         };
@@ -405,17 +447,12 @@ impl<S: Real> ReplanningGuidance<S> {
         Ok(ReplanningOutput {
             guidance: out,
             replan: report,
+            predictor_calls: calls,
         })
     }
 
-    /// Run the solver and, if applicable, install the re-planned table. Returns the report and
-    /// the replaced table (to restore on a later error).
-    fn replan_now(
-        &mut self,
-        nav: &NavState<S>,
-        e_hat: S,
-        flown_rad: S,
-    ) -> (ReplanReport<S>, Option<NodeTable<S>>) {
+    /// Set up a solve from `nav` (range to go, effective planet): a solver that has not run.
+    fn start_solve(&self, nav: &NavState<S>, flown_rad: S) -> Pending<S> {
         let cfg = &self.config;
         let m = &cfg.model;
         let rtg = match cfg.target {
@@ -426,26 +463,39 @@ impl<S: Real> ReplanningGuidance<S> {
             }
         };
         let planet = m.effective_planet(nav, cfg.solver.predictor.final_speed_m_s);
-        let res = match rtg {
-            Some(rtg) => replan(
-                &planet,
-                &m.atmosphere,
-                &m.vehicle,
-                nav,
-                rtg,
-                &cfg.limits,
-                &cfg.solver,
-            ),
-            // Non-finite range to go (non-finite model radius or target sum): out of domain.
-            None => ReplanResult {
-                case: ReplanCase::FallBack(ReplanFallBack::OutOfDomain(VinhError::NonFiniteInput)),
-                vertical_fraction: S::ONE,
-                bank_rad: S::ZERO,
-                prediction: None,
-                predictor_calls: 0,
+        let solver = ReplanSolver::new(
+            &planet,
+            &m.atmosphere,
+            &m.vehicle,
+            nav,
+            rtg.unwrap_or(S::ZERO),
+            &cfg.limits,
+            &cfg.solver,
+        );
+        Pending {
+            // A non-finite range to go (non-finite model radius or target sum): out of domain.
+            solver: if rtg.is_some() {
+                solver
+            } else {
+                solver.fallen_back(VinhError::NonFiniteInput)
             },
-        };
-        let rtg = rtg.unwrap_or(S::ZERO);
+            start_tick: self.ticks,
+            time_s: nav.time_s,
+            range_to_go_m: rtg.unwrap_or(S::ZERO),
+        }
+    }
+
+    /// Report a finished solve and, if applicable, install the re-planned table (nodes below
+    /// the current `e_hat`). Returns the report and the replaced table (to restore on a later
+    /// error).
+    fn apply(
+        &mut self,
+        p: &Pending<S>,
+        res: &ReplanResult<S>,
+        e_hat: S,
+    ) -> (ReplanReport<S>, Option<NodeTable<S>>) {
+        let cfg = &self.config;
+        let rtg = p.range_to_go_m;
         let apply = match res.case {
             ReplanCase::Converged | ReplanCase::LimitsBind => true,
             ReplanCase::TargetOutOfReach => cfg.apply_out_of_reach,
@@ -453,7 +503,8 @@ impl<S: Real> ReplanningGuidance<S> {
         };
         let mut report = ReplanReport {
             tick: self.ticks,
-            time_s: nav.time_s,
+            start_tick: p.start_tick,
+            time_s: p.time_s,
             normalized_energy: e_hat,
             range_to_go_m: rtg,
             case: res.case,

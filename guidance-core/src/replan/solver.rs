@@ -142,6 +142,13 @@ impl<S: Real> ReplanSolver<S> {
         s
     }
 
+    /// This solver, finished as a fall-back for `e` (out of domain) without a predictor call.
+    #[must_use]
+    pub(crate) fn fallen_back(mut self, e: VinhError) -> Self {
+        self.phase = Phase::Done(fall_back(ReplanFallBack::OutOfDomain(e), 0));
+        self
+    }
+
     /// The result, once the solve is done.
     #[must_use]
     pub fn result(&self) -> Option<ReplanResult<S>> {

@@ -4,5 +4,6 @@ mod guidance_props;
 mod vinh_peaks;
 mod vinh_props;
 mod vinh_replan;
+mod vinh_replan_budget;
 mod vinh_support;
 mod vinh_validation;
