@@ -7,20 +7,29 @@
 //! [`PredictorMode`]) meets the range target, while the predicted peak heat flux and g-load stay
 //! within the limits.
 //!
-//! # Algorithm (bounded)
-//! 1. Predict at both ends `f_min`, `f_max` of the allowed interval (more vertical lift flies
-//!    farther). A predictor domain error at either end (in [`PredictorMode::Auto`]: of the
-//!    chain and then of the glide), or a range that does not increase with `f`, is
-//!    [`ReplanCase::FallBack`]: keep the stored profile.
+//! # Algorithm (bounded; [`ReplanSolver`], one predictor call per step)
+//! 1. Range-only predictions ([`crate::vinh::PeakMode::RangeOnly`]: no peak search) at both
+//!    ends `f_min`, `f_max` of the allowed interval (more vertical lift flies farther). A
+//!    predictor domain error at either end (in [`PredictorMode::Auto`]: of the chain and then of
+//!    the glide), or a range that does not increase with `f`, is [`ReplanCase::FallBack`]: keep
+//!    the stored profile.
 //! 2. Target outside `[range(f_min), range(f_max)]`: the nearest end is taken
-//!    ([`ReplanCase::TargetOutOfReach`]). Otherwise bisection on `f` until the predicted range is
-//!    within `tolerance_m` or [`ReplanConfig::max_iterations`] halvings (a domain error inside
-//!    the bracket is also a fall-back).
-//! 3. Limits: if the prediction at that `f` exceeds the heat-flux or g-load limit, a fixed grid
-//!    of [`LIMIT_GRID`] fractions over `[f_min, f_max]` is predicted and the feasible one whose
-//!    range is closest to the target is returned as [`ReplanCase::LimitsBind`] (the loads are not
-//!    monotone in `f`: more lift can turn a captured glide into a skip with a higher peak). No
-//!    feasible grid point: [`ReplanCase::FallBack`] with [`ReplanFallBack::LimitsInfeasible`].
+//!    ([`ReplanCase::TargetOutOfReach`]). Otherwise Brent's method on `range(f) - target`
+//!    (secant and inverse quadratic interpolation, bisection when they stall), range-only,
+//!    until the miss is within `tolerance_m`, the bracket reaches the working precision of the
+//!    scalar type, or [`ReplanConfig::max_iterations`] predictions (a domain error inside the
+//!    bracket is also a fall-back). Not within tolerance at the end:
+//!    [`ReplanCase::TargetOutOfReach`] at the best fraction.
+//! 3. One prediction with peaks at that `f` ([`crate::vinh::PeakMode::Limits`]).
+//! 4. Limits: if it exceeds the heat-flux or g-load limit, a fixed grid of [`LIMIT_GRID`]
+//!    fractions over `[f_min, f_max]` is predicted (each stops at the first phase proven to
+//!    exceed a limit) and the feasible one whose range is closest to the target is returned as
+//!    [`ReplanCase::LimitsBind`] (the loads are not monotone in `f`: more lift can turn a
+//!    captured glide into a skip with a higher peak). No feasible grid point:
+//!    [`ReplanCase::FallBack`] with [`ReplanFallBack::LimitsInfeasible`].
+//!
+//! Every fraction evaluated or returned is clamped into `[f_min, f_max]`: the output is never
+//! outside its bounds, not even by rounding (issue 8, item 6).
 //!
 //! # In the guidance loop
 //! [`ReplanningGuidance`] wraps [`crate::guidance::Guidance`] and runs [`replan`] on every N-th
@@ -35,14 +44,17 @@
 //! glide when the chain is out of domain ([`PredictorMode::Auto`]).
 //!
 //! # Worst-case cost
-//! `max_iterations + 4 + LIMIT_GRID` predictor calls (at most
-//! [`MAX_PREDICTOR_CALLS`]` = 40 + 4 + 16 = 60`; `+ 2` instead of `+ 4` outside
+//! `max_iterations + 5 + LIMIT_GRID` predictor calls (at most
+//! [`MAX_PREDICTOR_CALLS`]` = 40 + 5 + 16 = 61`; `+ 3` instead of `+ 5` outside
 //! [`PredictorMode::Auto`]); each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
-//! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide.
-//! Measured host times (docs/VINH.md, `cargo bench -p guidance-core --bench closed_forms`,
-//! AMD EPYC, release): chain call with 2 skips 87 us (f64) / 63 us (f32), glide 28 / 20 us,
-//! the 58-call worst case 3.1 ms / 2.2 ms. On the Cortex-M4F one `f32` chain call (2-3 skips)
-//! is 1.09 M instructions (docs/PERFORMANCE.md), so 60 calls of that length are <= 66 M.
+//! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
+//! all but the last and the limit grid are range-only. In practice Brent's method converges in
+//! a handful of predictions and stops at the scalar type's working precision (the worst-case
+//! benchmark with an unreachable 1e-6 m tolerance: 29 calls in `f32`). Measured on the
+//! Cortex-M4F in `f32` (docs/PERFORMANCE.md, `cargo xtask bench-firmware`): predictor chain
+//! 81 k instructions, converged re-plan 0.44 M, worst case 1.1 M; spread over ticks with one
+//! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
+//! 115 k instructions.
 
 mod replanning;
 mod solver;
@@ -97,7 +109,7 @@ pub enum PredictorMode {
     Auto,
 }
 
-/// Vehicle limits checked on the prediction (the predictor's [`LoadLimits`]).
+/// Vehicle limits checked on the prediction (the predictor's [`crate::vinh::LoadLimits`]).
 pub use crate::vinh::predict::LoadLimits as ReplanLimits;
 
 /// Re-planner settings.

@@ -45,16 +45,32 @@
 //!   high L/D and no bank reversals the heading turns by tens of degrees and only this form
 //!   is consistent with the predictor.
 //!
+//! # Bounded work per tick
+//! With [`ReplanningConfig::steps_per_tick`] `= 0` a re-plan runs to completion inside its tick.
+//! With `k >= 1` the solve is a [`ReplanSolver`] kept across ticks: the re-planning tick starts
+//! it (range to go, effective planet and state of that tick) and makes at most `k` predictor
+//! calls; every following tick makes at most `k` more, until it completes. Meanwhile the table
+//! in use (stored profile or last re-plan) flies unchanged and the command of every tick is
+//! computed as without re-planning, so it is always on time. When the solve completes its
+//! result is applied at that tick, to the nodes below that tick's E-hat, and reported
+//! ([`ReplanReport::start_tick`], [`ReplanReport::tick`]). A new solve starts at the first
+//! re-planning tick (multiple of `every_n_ticks`) after the previous one completed. The answer
+//! is bit for bit that of [`super::replan`] from the start state (tested).
+//!
+//! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
+//! below 200 k instructions with `k = 1` (measured maximum 115 k: the tick that runs the chain
+//! prediction with peaks; docs/PERFORMANCE.md); a worst-case solve then takes at most
+//! [`super::MAX_PREDICTOR_CALLS`] ticks, in practice 5-30.
+//!
 //! # Cost (worst case, bounded)
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
-//! angle (the odometer). An update with a re-plan adds: one E-hat evaluation, one range to go
-//! (a great-circle angle and a bearing: about 10 trig functions), one solver call of at most
-//! [`super::MAX_PREDICTOR_CALLS`]` = 60` predictor calls (58 outside
-//! [`super::PredictorMode::Auto`]; each chain call at most
-//! [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one glide), a copy of the table (at
-//! most [`crate::nodes::MAX_NODES`] nodes) and one interpolator rebuild. The worst case of one
-//! update is therefore `60 x` (the cost of the longest predictor call); measured host times
-//! are in `docs/VINH.md` ("Re-planning"). No allocation, no recursion, no panics.
+//! angle (the odometer). An update with re-planning work adds: one E-hat evaluation, at the
+//! start one range to go (a great-circle angle and a bearing: about 10 trig functions), the
+//! predictor calls (all of a solve, at most [`super::MAX_PREDICTOR_CALLS`]` = 61`, or at most
+//! `steps_per_tick`; each chain call at most [`crate::vinh::predict::MAX_SKIPS`] skips and
+//! arcs plus one glide), and at completion a copy of the table (at most
+//! [`crate::nodes::MAX_NODES`] nodes) and one interpolator rebuild. No allocation, no
+//! recursion, no panics.
 //!
 //! # Rotating planet
 //! The closed forms assume a non-rotating planet. [`PredictorModel::rotation_rate_rad_s`]

@@ -87,6 +87,128 @@ pub(crate) fn bisect<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
     Ok((lo + hi).half())
 }
 
+/// Whether `S` is a single-precision type (`EPSILON` above 1e-10): the closed forms then use
+/// the polynomial kernels below instead of libm's `sinf`/`cosf`/`asinf`, which compute in
+/// `f64` (software floating point on a single-precision FPU such as the Cortex-M4F's).
+#[inline]
+fn single<S: Real>() -> bool {
+    S::EPSILON > k::<S>(1e-10)
+}
+
+/// `(sin x, cos x)` for `|x| <= pi/2`. Single precision: Taylor polynomials to `x^13` and
+/// `x^14` in the type's own arithmetic (truncation below `(pi/2)^15/15! < 7e-10` and
+/// `(pi/2)^16/16! < 1.1e-10`; tested against libm: sine within 2 ulp, cosine within
+/// 2 `EPSILON` absolute and 8 ulp where it is above 0.1). Double precision, or `|x|` beyond
+/// `pi/2 + 0.01`: libm's `sin` and `cos`.
+pub(crate) fn sin_cos_reduced<S: Real>(x: S) -> (S, S) {
+    if !single::<S>() || !(x.abs() <= k(1.580_796_326_794_896_6)) {
+        return (x.sin(), x.cos());
+    }
+    let x2 = x * x;
+    // sin: x (1 - x2/(2 3) (1 - x2/(4 5) (1 - ... (1 - x2/(12 13)))))
+    let mut p = S::ONE - x2 * k::<S>(1.0 / 156.0);
+    p = S::ONE - x2 * k::<S>(1.0 / 110.0) * p;
+    p = S::ONE - x2 * k::<S>(1.0 / 72.0) * p;
+    p = S::ONE - x2 * k::<S>(1.0 / 42.0) * p;
+    p = S::ONE - x2 * k::<S>(1.0 / 20.0) * p;
+    p = S::ONE - x2 * k::<S>(1.0 / 6.0) * p;
+    // cos: 1 - x2/(1 2) (1 - x2/(3 4) (1 - ... (1 - x2/(13 14))))
+    let mut q = S::ONE - x2 * k::<S>(1.0 / 182.0);
+    q = S::ONE - x2 * k::<S>(1.0 / 132.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 90.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 56.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 30.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 12.0) * q;
+    q = S::ONE - x2.half() * q;
+    (x * p, q)
+}
+
+/// `asin(a)` for `a` in `[-1, 1]` by [`asin_unit`] (odd symmetry); libm otherwise.
+pub(crate) fn asin_signed<S: Real>(a: S) -> S {
+    if a < S::ZERO {
+        -asin_unit(-a)
+    } else {
+        asin_unit(a)
+    }
+}
+
+/// `(sin x, cos x)` for any finite `x`. Single precision with `|x| <= 64`: directly
+/// [`sin_cos_reduced`] for `|x| <= pi/4`, else reduction by `pi/2` in three parts
+/// (Cody-Waite, the constants of Cephes' `sinf`: `n * P1` exact), [`sin_cos_reduced`] and the
+/// quadrant; within 4 `EPSILON` of libm (tested). Otherwise libm.
+pub(crate) fn sin_cos<S: Real>(x: S) -> (S, S) {
+    if !(single::<S>() && x.abs() <= k(64.0)) {
+        return (x.sin(), x.cos());
+    }
+    if x.abs() <= k(core::f64::consts::FRAC_PI_4) {
+        return sin_cos_reduced(x);
+    }
+    let two_over_pi: S = k(core::f64::consts::FRAC_2_PI);
+    // n = nearest integer of x 2/pi (|x 2/pi| < 41), by subtracting powers of two: no
+    // float-to-integer conversion (a software routine on some targets); q = n as an integer.
+    let t = x * two_over_pi;
+    let mut acc = t.abs() + S::ONE.half();
+    let mut n = S::ZERO;
+    let mut q = 0_i32;
+    let mut pf: S = k(32.0);
+    let mut p2 = 32_i32;
+    while p2 >= 1 {
+        if acc >= pf {
+            acc = acc - pf;
+            n = n + pf;
+            q += p2;
+        }
+        pf = pf.half();
+        p2 /= 2;
+    }
+    if t < S::ZERO {
+        n = -n;
+        q = -q;
+    }
+    let r = ((x - n * k::<S>(1.570_312_5)) - n * k::<S>(4.837_512_969_970_703e-4))
+        - n * k::<S>(7.549_789_954_891_882e-8);
+    let (sr, cr) = sin_cos_reduced(r);
+    match q.rem_euclid(4) {
+        0 => (sr, cr),
+        1 => (cr, -sr),
+        2 => (-sr, -cr),
+        _ => (-cr, sr),
+    }
+}
+
+/// `asin(a)` for `a` in `[0, 1]`. Single precision: the series
+/// `sum (2n)!/(4^n (n!)^2 (2n+1)) z^(2n+1)` to `n = 10` on `z <= 1/2` (truncation below
+/// `1.5e-9` relative), with `asin(a) = pi/2 - 2 asin(sqrt((1 - a)/2))` above 1/2 (`1 - a` is
+/// exact there); tested against libm to 4 ulp. Double precision or outside `[0, 1]`: libm.
+pub(crate) fn asin_unit<S: Real>(a: S) -> S {
+    if !(single::<S>() && a >= S::ZERO && a <= S::ONE) {
+        return a.asin();
+    }
+    // Coefficients (2n)!/(4^n (n!)^2 (2n+1)), n = 0..10, as literals (each `k` folds to an
+    // `S` constant; a loop over an `f64` array would convert at run time).
+    let series = |z: S| -> S {
+        let z2 = z * z;
+        let mut p = k::<S>(654_729_075.0 / 78_033_715_200.0);
+        p = p * z2 + k::<S>(34_459_425.0 / 3_530_096_640.0);
+        p = p * z2 + k::<S>(2_027_025.0 / 175_472_640.0);
+        p = p * z2 + k::<S>(135_135.0 / 9_676_800.0);
+        p = p * z2 + k::<S>(10395.0 / 599_040.0);
+        p = p * z2 + k::<S>(945.0 / 42240.0);
+        p = p * z2 + k::<S>(105.0 / 3456.0);
+        p = p * z2 + k::<S>(15.0 / 336.0);
+        p = p * z2 + k::<S>(3.0 / 40.0);
+        p = p * z2 + k::<S>(1.0 / 6.0);
+        p = p * z2 + S::ONE;
+        z * p
+    };
+    if a <= k(0.5) {
+        series(a)
+    } else {
+        let z = ((S::ONE - a).half()).sqrt();
+        k::<S>(core::f64::consts::FRAC_PI_2) - series(z) - series(z)
+    }
+}
+
 /// Largest number of function evaluations of one [`Zeroin`] search ([`brent`]). Brent's method
 /// falls back to bisection whenever interpolation is slow, so it needs at most about twice the
 /// bisection count to reach the working precision (< 2 x 64 for `f64` from any finite bracket
@@ -506,6 +628,43 @@ mod tests {
         );
         let (t, v) = maximize(|x: f64| Ok(-(x - 0.3) * (x - 0.3)), 0.0, 1.0).unwrap();
         assert!((t - 0.3).abs() < 1e-7 && v.abs() < 1e-13);
+    }
+
+    #[test]
+    fn single_precision_kernels_match_libm() {
+        let ulp = |x: f32| f32::EPSILON * x.abs().max(f32::MIN_POSITIVE);
+        let mut worst = (0.0_f32, 0.0_f32, 0.0_f32);
+        for i in -2000_i32..=2000 {
+            let x = 1.5808_f32 * i as f32 / 2000.0;
+            let (s, c) = sin_cos_reduced(x);
+            let (s_ref, c_ref) = (crate::math::sinf(x), crate::math::cosf(x));
+            let es = (s - s_ref).abs() / ulp(s_ref).max(f32::EPSILON * 1e-3);
+            let ec = (c - c_ref).abs() / ulp(c_ref).max(f32::EPSILON * 1e-3);
+            worst.0 = worst.0.max(es);
+            worst.1 = worst.1.max(if c_ref > 0.1 { ec } else { 0.0 });
+            assert!((c - c_ref).abs() <= 2.0 * f32::EPSILON, "cos {x}");
+            let a = i.unsigned_abs() as f32 / 2000.0;
+            let e = (asin_unit(a) - crate::math::asinf(a)).abs()
+                / ulp(crate::math::asinf(a).max(1e-30));
+            worst.2 = worst.2.max(if a > 0.0 { e } else { 0.0 });
+        }
+        assert!(
+            worst.0 <= 2.0 && worst.1 <= 8.0 && worst.2 <= 4.0,
+            "{worst:?} ulp"
+        );
+        let mut worst_any = 0.0_f32;
+        for i in -6000_i32..=6000 {
+            let x = 0.011 * i as f32 + 0.003;
+            let (s, c) = sin_cos(x);
+            let e = (s - crate::math::sinf(x))
+                .abs()
+                .max((c - crate::math::cosf(x)).abs());
+            worst_any = worst_any.max(e);
+        }
+        assert!(worst_any <= 4.0 * f32::EPSILON, "{worst_any}");
+        // f64 goes to libm unchanged.
+        assert_eq!(sin_cos_reduced(0.3_f64).0, crate::math::sin(0.3));
+        assert_eq!(asin_unit(0.3_f64), crate::math::asin(0.3));
     }
 
     #[test]

@@ -43,7 +43,8 @@
 use super::error::VinhError;
 use super::nondim::{NonDim, k1_min};
 use super::num::{
-    brent, brent_max, expm1mx_over_x2, finite, first_root, first_root_from, k, maximize,
+    asin_unit, brent, brent_max, expm1mx_over_x2, finite, first_root, first_root_from, k, maximize,
+    sin_cos_reduced,
 };
 use crate::scalar::Real;
 
@@ -199,13 +200,12 @@ impl<S: Real> Quad<S> {
         self.x_phi_a(tau).0
     }
 
-    /// `(x, phi_a)` at `tau` from one sine: with `theta = omega (tau - tau_b)/2`,
-    /// `|theta| <= pi/2` on the skip, so `cos(theta) = sqrt(1 - sin^2(theta)) >= 0` and
-    /// `sin(2 theta) = 2 sin(theta) cos(theta)`.
+    /// `(x, phi_a)` at `tau` from one sine and cosine of `theta = omega (tau - tau_b)/2`
+    /// (`|theta| <= pi/2` on the skip; `sin(2 theta) = 2 sin(theta) cos(theta)`), by the
+    /// single-precision kernels of [`super::num::sin_cos_reduced`] in `f32`.
     fn x_phi_a(&self, tau: S) -> (S, S) {
-        let sn = (self.omega * (tau - self.tau_bottom)).half().sin();
+        let (sn, cs) = sin_cos_reduced((self.omega * (tau - self.tau_bottom)).half());
         let h = sn / self.omega;
-        let cs = (S::ONE - sn * sn).max(S::ZERO).sqrt();
         (
             self.x1 - self.sd * h * h,
             -self.sd * (sn + sn) * cs / (k::<S>(2.0) * self.omega),
@@ -213,14 +213,14 @@ impl<S: Real> Quad<S> {
     }
 
     fn phi_a(&self, tau: S) -> S {
-        -self.sd * (self.omega * (tau - self.tau_bottom)).sin() / (k::<S>(2.0) * self.omega)
+        self.x_phi_a(tau).1
     }
 
     /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
     fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
         let depth = (self.x1 - x).max(S::ZERO);
         let arg = (self.omega * (depth / self.sd).sqrt()).min(S::ONE);
-        let half = k::<S>(2.0) / self.omega * arg.asin();
+        let half = k::<S>(2.0) / self.omega * asin_unit(arg);
         // phi_a = -sd sin(omega Delta)/(2 omega) with sin(omega half/2) = arg (no second sine).
         let pa = self.sd * arg * (S::ONE - arg * arg).max(S::ZERO).sqrt() / self.omega;
         match leg {
@@ -309,8 +309,12 @@ impl<S: Real> SkipSolution<S> {
 
     /// Solve the skip from the reference state of `nd`.
     ///
-    /// Cost: two bracketed roots (each at most 64 scan + 200 bisection evaluations), plus the
-    /// same per refinement pass.
+    /// Cost: two bracketed roots, each solved by Brent's method to the working precision
+    /// (typically 6-10 evaluations in `f32`; at most 64 scan points + 128 evaluations), plus
+    /// the second root again per refinement pass. The first-order root (upward lift) is
+    /// bracketed by `x_g = ln(1 + c^2/(2 k1))`, the second-order root by the first sign change
+    /// on a grid of step `x1f/2` (the roots lie close together); with downward lift both use
+    /// the 64-interval scan of the thesis set-up.
     ///
     /// # Errors
     /// [`VinhError::NotDescending`], [`VinhError::VerticalLiftTooSmall`],
