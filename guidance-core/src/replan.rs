@@ -70,7 +70,10 @@ use crate::scalar::Real;
 use crate::vinh::VinhError;
 use crate::vinh::glide::GlideSolution;
 use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
-use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius};
+use crate::vinh::predict::{
+    PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_validity,
+};
+use crate::vinh::validity::{Extrapolation, GLIDE_MAX_START_OFFSET_M, Validity};
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
 pub const MAX_ITERATIONS: u8 = 40;
@@ -275,6 +278,17 @@ pub fn predict_glide_with<S: Real>(
         glide_start_radius_m: r_g,
         glide_range_angle_rad: theta,
         peak_status: status,
+        validity: glide_validity(
+            Validity::InDomain,
+            &glide,
+            planet,
+            r_g,
+            config.final_speed_m_s,
+        )
+        .and(
+            !((r_g - state.radius_m).abs() <= S::from_f64(GLIDE_MAX_START_OFFSET_M)),
+            Extrapolation::GlideStartOffset,
+        ),
     })
 }
 

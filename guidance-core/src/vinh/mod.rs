@@ -7,6 +7,7 @@
 //! * [`glide`]: atmospheric glide, second order (eq. 3.62-3.79).
 //! * [`ballistic`]: Kepler arc from exit to re-entry (eq. 3.80-3.82, corrected).
 //! * [`mod@predict`]: skip -> arc -> ... -> final glide chain: range, peak heat flux and g-load.
+//! * [`validity`]: whether a prediction lies in the validated region ([`Validity`]).
 //!
 //! Everything is generic over [`crate::Real`] (`f32`, `f64`), `no_std`, allocation-free and
 //! panic-free; every iteration is bounded (roots: a short scan for the bracket, then Brent's
@@ -45,6 +46,7 @@ pub mod nondim;
 pub(crate) mod num;
 pub mod predict;
 pub mod skip;
+pub mod validity;
 
 pub use ballistic::{ArcPoint, BallisticArc};
 pub use error::VinhError;
@@ -56,3 +58,4 @@ pub use predict::{
     LoadLimits, PeakMode, PeakStatus, Prediction, PredictorConfig, predict, predict_with,
 };
 pub use skip::{Leg, SkipOptions, SkipPoint, SkipSolution};
+pub use validity::{Extrapolation, Validity, validity_of};

@@ -34,6 +34,10 @@ use super::glide::GlideSolution;
 use super::nondim::{EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams};
 use super::num::{brent, finite, k};
 use super::skip::SkipSolution;
+use super::validity::{
+    Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE,
+    SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_SPEED_RANGE_M_S, Validity,
+};
 use crate::scalar::Real;
 
 /// Largest accepted [`PredictorConfig::max_skips`].
@@ -116,6 +120,8 @@ pub struct Prediction<S> {
     pub glide_range_angle_rad: S,
     /// What the peak fields hold.
     pub peak_status: PeakStatus,
+    /// Whether every phase lies in the validated region ([`super::validity`]).
+    pub validity: Validity,
 }
 
 /// Predict range and peak loads from `state` with constant lift `lift`
@@ -177,6 +183,7 @@ pub fn predict_with<S: Real>(
     let mut arcs = 0_u8;
     let r_i = state.radius_m;
     let mut phase = 0_u8;
+    let mut validity = Validity::InDomain;
     // Each pass is a skip (descending) or an arc (ascending); at most 2 max_skips + 1 passes.
     let max_phases = config.max_skips.saturating_mul(2).saturating_add(1);
     loop {
@@ -215,6 +222,7 @@ pub fn predict_with<S: Real>(
         match SkipSolution::new(&nd) {
             Ok(skip) => {
                 let ex = skip.exit();
+                validity = skip_validity(validity, &cur, ex.eta_v);
                 if let PeakMode::Limits(l) = peaks {
                     let b = skip.deepest_point()?;
                     if l.exceeded(b.heat_flux_w_m2, b.g_load) {
@@ -251,6 +259,7 @@ pub fn predict_with<S: Real>(
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, cur.speed_m_s, r_i)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
+    validity = glide_validity(validity, &glide, planet, r_g, config.final_speed_m_s);
     if let PeakMode::Limits(l) = peaks {
         let start = glide.point_at_u(glide.u_entry())?;
         let (qb, nb) = (
@@ -287,7 +296,50 @@ pub fn predict_with<S: Real>(
         } else {
             PeakStatus::Computed
         },
+        validity,
     })
+}
+
+/// `v` updated with a skip from `entry` whose exit has `exit_eta_v`.
+fn skip_validity<S: Real>(v: Validity, entry: &EntryState<S>, exit_eta_v: S) -> Validity {
+    let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
+    v.and(
+        !inside(entry.speed_m_s, SKIP_SPEED_RANGE_M_S),
+        Extrapolation::SkipEntrySpeed,
+    )
+    .and(
+        !inside(entry.flight_path_angle_rad.abs(), SKIP_FPA_RANGE_RAD),
+        Extrapolation::SkipFlightPathAngle,
+    )
+    .and(
+        !(exit_eta_v.abs() <= k(SKIP_MAX_EXIT_ETA_V)),
+        Extrapolation::SkipSpeedExpansion,
+    )
+}
+
+/// `v` updated with a glide started at `r_g` \[m\] and run to `final_speed_m_s` \[m/s\].
+pub(crate) fn glide_validity<S: Real>(
+    v: Validity,
+    glide: &GlideSolution<S>,
+    planet: &Planet<S>,
+    r_g: S,
+    final_speed_m_s: S,
+) -> Validity {
+    let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
+    let e = glide.nondim().constants().e_vertical;
+    let ratio = final_speed_m_s / glide.imposed_entry().speed_m_s;
+    v.and(
+        !inside(r_g - planet.radius_m, GLIDE_ALTITUDE_RANGE_M),
+        Extrapolation::GlideAltitude,
+    )
+    .and(
+        !inside(e, GLIDE_VERTICAL_LD_RANGE),
+        Extrapolation::GlideVerticalLiftToDrag,
+    )
+    .and(
+        !(ratio >= k(GLIDE_MIN_FINAL_SPEED_RATIO)),
+        Extrapolation::GlideFinalSpeedRatio,
+    )
 }
 
 /// A prediction stopped by [`PeakMode::Limits`] (range so far; the loads that exceeded).
@@ -302,6 +354,7 @@ fn exceeded<S: Real>(theta: S, planet: &Planet<S>, q: S, n: S) -> Prediction<S> 
         glide_start_radius_m: S::ZERO,
         glide_range_angle_rad: S::ZERO,
         peak_status: PeakStatus::LimitExceeded,
+        validity: Validity::InDomain,
     }
 }
 

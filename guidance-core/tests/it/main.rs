@@ -7,3 +7,4 @@ mod vinh_replan;
 mod vinh_replan_budget;
 mod vinh_support;
 mod vinh_validation;
+mod vinh_validity;
