@@ -73,7 +73,7 @@ use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, Vehicl
 use crate::vinh::predict::{
     PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_validity,
 };
-use crate::vinh::validity::{Extrapolation, GLIDE_MAX_START_OFFSET_M, Validity};
+use crate::vinh::validity::{Extrapolation, GLIDE_MAX_START_OFFSET_PER_LD_M, Validity};
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
 pub const MAX_ITERATIONS: u8 = 40;
@@ -286,7 +286,10 @@ pub fn predict_glide_with<S: Real>(
             config.final_speed_m_s,
         )
         .and(
-            !((r_g - state.radius_m).abs() <= S::from_f64(GLIDE_MAX_START_OFFSET_M)),
+            // Total L/D = vertical L/D / vertical fraction (> 0 for a glide).
+            !((r_g - state.radius_m).abs() * lift.vertical_fraction
+                <= S::from_f64(GLIDE_MAX_START_OFFSET_PER_LD_M)
+                    * glide.nondim().constants().e_vertical),
             Extrapolation::GlideStartOffset,
         ),
     })

@@ -5,9 +5,13 @@
 //! equations only over the validation grids of docs/VINH.md; a prediction with any phase
 //! outside those grids is computed but *extrapolated*: its error is not known to be within the
 //! documented bounds (skip exit speed <= 0.8 %, glide range angle <= 3.2 %, ...). The limits
-//! below are the edges of the validated grids, plus the glide-mode start offset derived from
-//! `validate_dormand_prince_glide_predictor_range` (range error -0.9 % at a 2.6 km offset,
-//! -3.2 % at 5 km, -10 % at 8.7 km).
+//! below are the edges of the validated grids; the glide limits come from the range-error map
+//! of the glide-mode prediction against integration (`tests/it/vinh_error_map.rs`, L/D 0.3 to
+//! 2.5, 70-100 km, vertical fractions 0.3 to 1; docs/VINH.md): from an equilibrium start the
+//! error is <= 2.8 % for vertical L/D 0.72 to 2.5 and -4.4 % at 0.5; a start above the
+//! equilibrium of the commanded bank (the descent to it is not modelled) adds about
+//! `0.56 (dh_km / E)^2` percent for a start `dh_km` above the glide start radius and a total
+//! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5).
 
 use super::error::VinhError;
 use super::predict::Prediction;
@@ -25,14 +29,14 @@ pub const SKIP_MAX_EXIT_ETA_V: f64 = 0.35;
 /// Glide start altitudes validated to the documented accuracy \[m\] (70 to 110 km; at 50 km
 /// with little vertical lift the range error reached 8-12 %).
 pub const GLIDE_ALTITUDE_RANGE_M: (f64, f64) = (70_000.0, 110_000.0);
-/// Vertical lift-to-drag ratios of the validated glides (SRM and HORUS-2B at
-/// `cos(sigma)` 0.3 to 1: 0.63 to 2.27).
-pub const GLIDE_VERTICAL_LD_RANGE: (f64, f64) = (0.6, 2.3);
+/// Vertical lift-to-drag ratios of the validated glides (validation grid: 0.63 to 2.27; error
+/// map: <= 2.8 % from 0.72 to 2.5, -4.4 % at 0.5).
+pub const GLIDE_VERTICAL_LD_RANGE: (f64, f64) = (0.6, 2.5);
 /// Smallest validated ratio of final to glide start speed (0.3).
 pub const GLIDE_MIN_FINAL_SPEED_RATIO: f64 = 0.3;
-/// Largest distance between the state and the glide start radius of a glide-mode
-/// prediction for a range error within 3 % \[m\].
-pub const GLIDE_MAX_START_OFFSET_M: f64 = 4_000.0;
+/// Largest distance between the state and the glide start radius of a glide-mode prediction,
+/// per unit of total L/D \[m\]: `0.56 (1.9)^2 = 2` % of added error (error map).
+pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
 
 /// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,7 +54,8 @@ pub enum Extrapolation {
     GlideVerticalLiftToDrag,
     /// Final speed below [`GLIDE_MIN_FINAL_SPEED_RATIO`] of the glide start speed.
     GlideFinalSpeedRatio,
-    /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_M`] from the state.
+    /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
+    /// L/D from the state.
     GlideStartOffset,
 }
 

@@ -1,6 +1,7 @@
 //! The guidance-core integration-test binary (one per crate). Each module is one topic.
 
 mod guidance_props;
+mod vinh_error_map;
 mod vinh_peaks;
 mod vinh_props;
 mod vinh_replan;
