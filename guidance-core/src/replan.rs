@@ -127,7 +127,7 @@ pub struct ReplanConfig<S> {
     pub max_vertical_fraction: S,
     /// Accepted range miss \[m\].
     pub tolerance_m: S,
-    /// Bisection halvings per search (at most [`MAX_ITERATIONS`]).
+    /// Corrector predictions per range search (Brent steps; at most [`MAX_ITERATIONS`]).
     pub max_iterations: u8,
     /// Predictor settings (final glide speed, skip budget).
     pub predictor: PredictorConfig<S>,
