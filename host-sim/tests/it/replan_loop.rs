@@ -157,6 +157,7 @@ fn replanning_config(
         },
         model: predictor_model(&veh, &ExponentialAtmosphere::earth(), &p, 20.0).unwrap(),
         apply_out_of_reach: false,
+        steps_per_tick: 0,
     }
 }
 
