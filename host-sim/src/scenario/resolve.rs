@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use toml::{Table, Value};
+use crate::toml_input::TomlInputError;
 
 use std::sync::Arc;
 
@@ -22,14 +22,6 @@ use crate::env::atmosphere::exponential::R_AIR_J_KG_K;
 use crate::env::atmosphere::us76::GAMMA_AIR;
 use crate::env::{ExponentialAtmosphere, Planet, TabulatedAtmosphere};
 use crate::vehicle;
-
-/// A TOML value as written in error messages (strings quoted).
-pub(super) fn fmt_value(v: &Value) -> String {
-    match v {
-        Value::String(s) => format!("{s:?}"),
-        other => other.to_string(),
-    }
-}
 
 /// Names the file in errors and range-checks numbers.
 pub(super) struct Fields<'a> {
@@ -66,40 +58,26 @@ impl Fields<'_> {
     }
 }
 
-/// The value at a serde path in the parsed TOML, if there is one.
-fn value_at<'v>(doc: &'v Table, path: &serde_path_to_error::Path) -> Option<&'v Value> {
-    use serde_path_to_error::Segment;
-    let mut segs = path.iter();
-    let first = match segs.next()? {
-        Segment::Map { key } => doc.get(key)?,
-        _ => return None,
-    };
-    segs.try_fold(first, |v, s| match (s, v) {
-        (Segment::Map { key }, Value::Table(t)) => t.get(key),
-        (Segment::Seq { index }, Value::Array(a)) => a.get(*index),
-        _ => None,
-    })
-}
-
-/// Read the file structs out of TOML text; errors name the file, the field and the value.
+/// Read the file structs out of TOML text (the one TOML reading path,
+/// [`crate::toml_input`]); errors name the file, the field and the value.
 fn read_file(text: &str, file: &str) -> Result<ScenarioFile, ScenarioError> {
-    let doc: Table = text
-        .parse()
-        .map_err(|e: toml::de::Error| ScenarioError::Toml {
+    match crate::toml_input::parse(text) {
+        Ok((sf, _)) => Ok(sf),
+        Err(TomlInputError::Syntax(message)) => Err(ScenarioError::Toml {
             file: file.to_string(),
-            message: e.to_string().trim_end().to_string(),
-        })?;
-    serde_path_to_error::deserialize(doc.clone()).map_err(|e| {
-        let reason = e.inner().message().to_string();
-        let field = e.path().to_string();
-        let value = value_at(&doc, e.path());
-        ScenarioError::Field {
+            message,
+        }),
+        Err(TomlInputError::Field {
+            field,
+            value,
+            reason,
+        }) => Err(ScenarioError::Field {
             file: file.to_string(),
             field,
-            value: value.map_or_else(|| "(missing)".to_string(), fmt_value),
+            value,
             reason,
-        }
-    })
+        }),
+    }
 }
 
 /// Read and resolve a scenario file (relative `vehicle_file` paths against its folder).
