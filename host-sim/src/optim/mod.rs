@@ -17,22 +17,28 @@
 //! See docs/OPTIMISERS.md for the semantics and the measured convergence.
 
 pub mod algorithm;
+pub mod algorithms;
 pub mod error;
 pub mod evaluate;
 pub mod hypervolume;
 pub mod observe;
+pub mod operators;
 pub mod pareto;
 pub mod population;
 pub mod problem;
+pub mod problems;
 pub mod rng;
+pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
+pub use algorithms::{Moead, MoeadConfig, Nsga2, Nsga2Config};
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
 pub use evaluate::{Evaluator, Rayon, Serial, evolve};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
 pub use rng::OptimRng;
+pub use weights::{Decomposition, WeightGeneration};
 
 #[cfg(test)]
 mod layering {

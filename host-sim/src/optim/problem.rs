@@ -129,6 +129,12 @@ impl Bounds {
         Ok(Self { lower, upper })
     }
 
+    /// Bounds known to be valid at compile time (crate-internal test problems).
+    pub(crate) fn from_checked(lower: Vec<f64>, upper: Vec<f64>) -> Self {
+        debug_assert!(Self::new(lower.clone(), upper.clone()).is_ok());
+        Self { lower, upper }
+    }
+
     /// The same interval `[lo, hi]` for `n` variables.
     ///
     /// # Errors

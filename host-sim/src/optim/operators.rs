@@ -1,0 +1,181 @@
+//! Variation operators on real vectors inside box bounds, with pagmo's formulas: uniform
+//! sampling, MOEA/D's differential-evolution step with its bound repair, simulated binary
+//! crossover (SBX) and polynomial mutation (Deb). Every random draw comes from the run's
+//! [`OptimRng`], in a fixed order.
+
+use super::problem::Bounds;
+use super::rng::OptimRng;
+
+/// A uniformly random point inside the bounds.
+#[must_use]
+pub fn random_point(bounds: &Bounds, rng: &mut OptimRng) -> Vec<f64> {
+    bounds
+        .lower()
+        .iter()
+        .zip(bounds.upper())
+        .map(|(&lo, &hi)| rng.uniform_in(lo, hi))
+        .collect()
+}
+
+/// MOEA/D-DE step (pagmo `moead`): per variable with probability `cr`,
+/// `child = x + f (a - b)`; a value outside the bounds is redrawn uniformly between the bound
+/// and the parent's value; otherwise the parent's value is kept.
+#[allow(clippy::too_many_arguments)] // the DE step has exactly these inputs
+pub fn de_step(
+    x: &[f64],
+    a: &[f64],
+    b: &[f64],
+    f: f64,
+    cr: f64,
+    bounds: &Bounds,
+    rng: &mut OptimRng,
+    child: &mut Vec<f64>,
+) {
+    child.clear();
+    for k in 0..x.len() {
+        let (lo, hi) = (bounds.lower()[k], bounds.upper()[k]);
+        let mut v = x[k];
+        if rng.uniform() < cr {
+            v = x[k] + f * (a[k] - b[k]);
+            if v < lo {
+                v = lo + rng.uniform() * (x[k] - lo);
+            }
+            if v > hi {
+                v = hi - rng.uniform() * (hi - x[k]);
+            }
+        }
+        child.push(v);
+    }
+}
+
+/// Polynomial mutation (Deb & Goyal; pagmo's form): each variable mutates with probability
+/// `rate` with distribution index `eta`; results are clamped to the bounds.
+pub fn polynomial_mutation(
+    x: &mut [f64],
+    bounds: &Bounds,
+    rate: f64,
+    eta: f64,
+    rng: &mut OptimRng,
+) {
+    let mut_pow = 1.0 / (eta + 1.0);
+    for (k, y) in x.iter_mut().enumerate() {
+        if rng.uniform() < rate {
+            let (yl, yu) = (bounds.lower()[k], bounds.upper()[k]);
+            let span = yu - yl;
+            let delta1 = (*y - yl) / span;
+            let delta2 = (yu - *y) / span;
+            let rnd = rng.uniform();
+            let deltaq = if rnd < 0.5 {
+                let xy = 1.0 - delta1;
+                let val = 2.0 * rnd + (1.0 - 2.0 * rnd) * xy.powf(eta + 1.0);
+                val.powf(mut_pow) - 1.0
+            } else {
+                let xy = 1.0 - delta2;
+                let val = 2.0 * (1.0 - rnd) + 2.0 * (rnd - 0.5) * xy.powf(eta + 1.0);
+                1.0 - val.powf(mut_pow)
+            };
+            *y = (*y + deltaq * span).clamp(yl, yu);
+        }
+    }
+}
+
+/// Simulated binary crossover (Deb & Agrawal; pagmo's bounded form): with probability `cr`
+/// the pair is crossed, each variable with probability 1/2, with distribution index `eta`;
+/// children are clamped to the bounds and swapped with probability 1/2 per variable.
+/// Returns the two children.
+#[must_use]
+pub fn sbx(
+    p1: &[f64],
+    p2: &[f64],
+    bounds: &Bounds,
+    cr: f64,
+    eta: f64,
+    rng: &mut OptimRng,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut c1 = p1.to_vec();
+    let mut c2 = p2.to_vec();
+    if rng.uniform() >= cr {
+        return (c1, c2);
+    }
+    let pow = 1.0 / (eta + 1.0);
+    for k in 0..p1.len() {
+        if rng.uniform() >= 0.5 || (p1[k] - p2[k]).abs() <= 1e-14 {
+            continue;
+        }
+        let (y1, y2) = if p1[k] < p2[k] {
+            (p1[k], p2[k])
+        } else {
+            (p2[k], p1[k])
+        };
+        let (yl, yu) = (bounds.lower()[k], bounds.upper()[k]);
+        let rand = rng.uniform();
+        let betaq = |beta: f64| {
+            let alpha = 2.0 - beta.powf(-(eta + 1.0));
+            if rand <= 1.0 / alpha {
+                (rand * alpha).powf(pow)
+            } else {
+                (1.0 / (2.0 - rand * alpha)).powf(pow)
+            }
+        };
+        let b1 = betaq(1.0 + 2.0 * (y1 - yl) / (y2 - y1));
+        let v1 = (0.5 * ((y1 + y2) - b1 * (y2 - y1))).clamp(yl, yu);
+        let b2 = betaq(1.0 + 2.0 * (yu - y2) / (y2 - y1));
+        let v2 = (0.5 * ((y1 + y2) + b2 * (y2 - y1))).clamp(yl, yu);
+        if rng.uniform() < 0.5 {
+            c1[k] = v2;
+            c2[k] = v1;
+        } else {
+            c1[k] = v1;
+            c2[k] = v2;
+        }
+    }
+    (c1, c2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn operators_stay_inside_bounds() {
+        let bounds = Bounds::new(vec![-1.0, 0.0, 5.0], vec![1.0, 0.001, 6.0]).unwrap();
+        let mut rng = OptimRng::new(11);
+        let mut child = Vec::new();
+        for _ in 0..2000 {
+            let x = random_point(&bounds, &mut rng);
+            let a = random_point(&bounds, &mut rng);
+            let b = random_point(&bounds, &mut rng);
+            de_step(&x, &a, &b, 0.9, 1.0, &bounds, &mut rng, &mut child);
+            polynomial_mutation(&mut child, &bounds, 1.0, 20.0, &mut rng);
+            let (c1, c2) = sbx(&x, &a, &bounds, 1.0, 2.0, &mut rng);
+            for v in [&x, &child, &c1, &c2] {
+                for k in 0..3 {
+                    assert!(
+                        v[k] >= bounds.lower()[k] && v[k] <= bounds.upper()[k],
+                        "{v:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sbx_children_are_centred_on_the_parents() {
+        // SBX preserves the mean of the two parents (before clamping).
+        let bounds = Bounds::uniform(1, -100.0, 100.0).unwrap();
+        let mut rng = OptimRng::new(5);
+        for _ in 0..200 {
+            let (c1, c2) = sbx(&[0.3], &[0.7], &bounds, 1.0, 15.0, &mut rng);
+            assert!((c1[0] + c2[0] - 1.0).abs() < 1e-12, "{c1:?} {c2:?}");
+        }
+    }
+
+    #[test]
+    fn mutation_with_rate_zero_is_identity() {
+        let bounds = Bounds::uniform(4, 0.0, 1.0).unwrap();
+        let mut rng = OptimRng::new(2);
+        let mut x = vec![0.1, 0.2, 0.3, 0.4];
+        polynomial_mutation(&mut x, &bounds, 0.0, 20.0, &mut rng);
+        assert_eq!(x, vec![0.1, 0.2, 0.3, 0.4]);
+    }
+}
