@@ -58,6 +58,7 @@ mod builtin;
 mod fields;
 mod flight;
 mod guidance;
+mod optimize_cmd;
 mod parse;
 mod parse_guidance;
 mod scenario;
@@ -76,6 +77,7 @@ use crate::{report, sim, vehicle};
 pub use builtin::HORUS_REFERENCE_NODES;
 pub use flight::{Flight, RunOutput, fly, load_vehicle, simulate_scenario, write_flight};
 pub use guidance::{build_guidance, guidance_bounds};
+pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 pub use parse::parse_scenario;
 pub use scenario::{EnvSpec, GuidanceSpec, Independent, InterpolationKind, Scenario, VehicleSpec};
 pub use to_toml::scenario_to_toml;
@@ -102,6 +104,9 @@ pub enum Command {
     /// Analytical (Vinh closed forms) against numerical simulation over a grid of entry
     /// altitude or speed x vertical lift coefficient (thesis fig. 8.5): grid.csv + SVG heat maps.
     Compare(crate::compare::CompareCliArgs),
+    /// Multi-objective optimiser on a test problem (ZDT, DTLZ, CONSTR): summary, and with
+    /// --out the final population, front CSV and summary JSON.
+    Optimize(OptimizeArgs),
 }
 
 /// Arguments of `simulate`.
@@ -173,6 +178,9 @@ pub enum CliError {
     /// Analytical-vs-numerical comparison failed.
     #[error("{0}")]
     Compare(#[from] crate::compare::CompareError),
+    /// Optimisation failed.
+    #[error("{0}")]
+    Optimize(#[from] OptimizeError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -197,5 +205,6 @@ where
             Ok(())
         }
         Command::Vehicles => vehicles_cmd::run(out),
+        Command::Optimize(a) => Ok(optimize_cmd::run(&a, out)?),
     }
 }
