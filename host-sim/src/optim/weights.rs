@@ -163,17 +163,7 @@ fn simplex_from_unit_cube(mut u: Vec<f64>) -> Vec<f64> {
 #[must_use]
 pub fn decompose(kind: Decomposition, f: &[f64], w: &[f64], z: &[f64]) -> f64 {
     match kind {
-        Decomposition::Tchebycheff => {
-            let mut r = f64::NEG_INFINITY;
-            for i in 0..f.len() {
-                let wi = if w[i] == 0.0 { 1e-4 } else { w[i] };
-                let t = wi * (f[i] - z[i]).abs();
-                if t > r {
-                    r = t;
-                }
-            }
-            r
-        }
+        Decomposition::Tchebycheff => tchebycheff(f, w, z),
         Decomposition::Weighted => f.iter().zip(w).map(|(a, b)| a * b).sum(),
         Decomposition::Pbi => {
             const THETA: f64 = 5.0;
@@ -198,6 +188,21 @@ pub fn decompose(kind: Decomposition, f: &[f64], w: &[f64], z: &[f64]) -> f64 {
             d1 + THETA * d2
         }
     }
+}
+
+/// Tchebycheff value `max_i w_i |f_i - z_i|` (a zero weight counts as 1e-4, as in pagmo).
+#[inline]
+#[must_use]
+pub fn tchebycheff(f: &[f64], w: &[f64], z: &[f64]) -> f64 {
+    let mut r = f64::NEG_INFINITY;
+    for ((&fi, &wi), &zi) in f.iter().zip(w).zip(z) {
+        let wi = if wi == 0.0 { 1e-4 } else { wi };
+        let t = wi * (fi - zi).abs();
+        if t > r {
+            r = t;
+        }
+    }
+    r
 }
 
 /// For every weight, the indices of its `t` nearest weights (Euclidean, itself first; ties

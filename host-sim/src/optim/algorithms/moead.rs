@@ -20,13 +20,15 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::optim::algorithm::{Algorithm, Batch, check_objectives};
+use crate::optim::algorithm::{Algorithm, Batch, Scratch, check_objectives};
 use crate::optim::error::{ConfigError, OptimError};
 use crate::optim::operators::{de_step, polynomial_mutation, random_point};
 use crate::optim::population::Individual;
 use crate::optim::problem::{Evaluation, RealProblem};
 use crate::optim::rng::OptimRng;
-use crate::optim::weights::{Decomposition, WeightGeneration, decompose, generate, neighbourhoods};
+use crate::optim::weights::{
+    Decomposition, WeightGeneration, decompose, generate, neighbourhoods, tchebycheff,
+};
 
 use super::check_range;
 
@@ -155,7 +157,15 @@ pub struct Moead {
     generation: u64,
     evaluations: u64,
     #[serde(skip)]
-    scratch: Vec<usize>,
+    scratch: Scratch<Buffers>,
+}
+
+/// Reused allocations (not state).
+#[derive(Clone, Debug, Default)]
+struct Buffers {
+    pool: Vec<usize>,
+    told: Vec<Individual<Vec<f64>>>,
+    spare: Vec<Vec<f64>>,
 }
 
 impl Moead {
@@ -176,7 +186,7 @@ impl Moead {
             initialised: false,
             generation: 0,
             evaluations: 0,
-            scratch: Vec::new(),
+            scratch: Scratch::default(),
         }
     }
 
@@ -263,31 +273,45 @@ impl Moead {
             .config
             .mutation_probability
             .unwrap_or(1.0 / bounds.dim() as f64);
-        let mut decisions = Vec::with_capacity(count);
+        let mut batch = std::mem::take(&mut self.batch);
+        let mut spare = std::mem::take(&mut self.scratch.0.spare);
         self.origins.clear();
-        for k in 0..count {
-            let n = self.order[self.cursor + k];
-            let whole = self.config.preserve_diversity && self.rng.uniform() >= self.config.realb;
-            let [a, b] = self.select_parents(n, whole);
-            let mut child = Vec::with_capacity(bounds.dim());
-            de_step(
-                &self.population[n].decision,
-                &self.population[a].decision,
-                &self.population[b].decision,
-                self.config.f,
-                self.config.cr,
-                bounds,
-                &mut self.rng,
-                &mut child,
-            );
-            polynomial_mutation(&mut child, bounds, rate, self.config.eta_m, &mut self.rng);
-            decisions.push(child);
-            self.origins.push(ChildOrigin {
-                subproblem: n,
-                whole_population: whole,
-            });
-        }
-        self.batch.open(decisions);
+        batch.open_with(|decisions| {
+            for k in 0..count {
+                decisions.push(self.offspring(k, rate, bounds, &mut spare));
+            }
+        });
+        self.batch = batch;
+        self.scratch.0.spare = spare;
+    }
+
+    fn offspring(
+        &mut self,
+        k: usize,
+        rate: f64,
+        bounds: &crate::optim::problem::Bounds,
+        spare: &mut Vec<Vec<f64>>,
+    ) -> Vec<f64> {
+        let n = self.order[self.cursor + k];
+        let whole = self.config.preserve_diversity && self.rng.uniform() >= self.config.realb;
+        let [a, b] = self.select_parents(n, whole);
+        let mut child = spare.pop().unwrap_or_default();
+        de_step(
+            &self.population[n].decision,
+            &self.population[a].decision,
+            &self.population[b].decision,
+            self.config.f,
+            self.config.cr,
+            bounds,
+            &mut self.rng,
+            &mut child,
+        );
+        polynomial_mutation(&mut child, bounds, rate, self.config.eta_m, &mut self.rng);
+        self.origins.push(ChildOrigin {
+            subproblem: n,
+            whole_population: whole,
+        });
+        child
     }
 
     fn update_ideal(ideal: &mut [f64], ind: &Individual<Vec<f64>>) {
@@ -308,11 +332,16 @@ impl Moead {
         weight: &[f64],
     ) -> bool {
         match (child.is_feasible(), member.is_feasible()) {
-            (true, true) => {
-                let kind = self.config.decomposition;
-                decompose(kind, &child.objectives, weight, &self.ideal)
-                    < decompose(kind, &member.objectives, weight, &self.ideal)
-            }
+            (true, true) => match self.config.decomposition {
+                Decomposition::Tchebycheff => {
+                    tchebycheff(&child.objectives, weight, &self.ideal)
+                        < tchebycheff(&member.objectives, weight, &self.ideal)
+                }
+                kind => {
+                    decompose(kind, &child.objectives, weight, &self.ideal)
+                        < decompose(kind, &member.objectives, weight, &self.ideal)
+                }
+            },
             (true, false) => true,
             (false, true) => false,
             (false, false) => child.violation <= member.violation,
@@ -327,7 +356,7 @@ impl Moead {
         } else {
             self.neighbourhoods[origin.subproblem].len()
         };
-        let mut pool = std::mem::take(&mut self.scratch);
+        let mut pool = std::mem::take(&mut self.scratch.0.pool);
         pool.clear();
         pool.extend(0..size);
         self.rng.shuffle(&mut pool);
@@ -346,7 +375,7 @@ impl Moead {
                 break;
             }
         }
-        self.scratch = pool;
+        self.scratch.0.pool = pool;
     }
 
     fn new_generation_order(&mut self) {
@@ -388,19 +417,26 @@ impl<P: RealProblem> Algorithm<P> for Moead {
         if !complete {
             return Ok(());
         }
-        let told = self.batch.take();
         if self.initialised {
+            let mut told = std::mem::take(&mut self.scratch.0.told);
+            self.batch.take_into(&mut told);
             let origins = std::mem::take(&mut self.origins);
             for (child, origin) in told.iter().zip(&origins) {
                 self.apply(child, *origin);
             }
             self.origins = origins;
             self.cursor += told.len();
+            self.scratch
+                .0
+                .spare
+                .extend(told.drain(..).map(|i| i.decision));
+            self.scratch.0.told = told;
             if self.cursor >= self.config.population {
                 self.generation += 1;
                 self.new_generation_order();
             }
         } else {
+            let told = self.batch.take();
             for ind in &told {
                 Self::update_ideal(&mut self.ideal, ind);
             }

@@ -325,7 +325,7 @@ fn failed_evaluation_stops_evolve_with_its_index_and_nan_never_reaches_the_front
             .all(|i| i.objectives.iter().all(|v| !v.is_nan()))
     );
     let front = feasible_front(a.population());
-    assert!(!front.is_empty() && front.iter().all(|f| f[1] < 2.0));
+    assert!(!front.is_empty() && front.iter().all(|f| f[1] < 10.0));
     evolve(&mut a, &p2, &Serial, 2, &mut hist).unwrap();
     assert_eq!(hist.records.len(), 2);
     assert!(
@@ -353,11 +353,12 @@ fn constrained_runs_end_feasible_and_close_to_the_constr_front() {
     }
 }
 
-// Thresholds: the measured ratio of these seeds (docs/OPTIMISERS.md) less 1-2 %.
-const MOEAD_CONSTR: f64 = 0.935;
-const NSGA2_CONSTR: f64 = 0.97;
-const MOEAD_ZDT1: f64 = 0.955;
-const MOEAD_DTLZ2: f64 = 0.79;
+// Thresholds: the smallest ratio measured over seeds 1..=8 (`threshold_survey`,
+// docs/OPTIMISERS.md) less about 1 %.
+const MOEAD_CONSTR: f64 = 0.92;
+const NSGA2_CONSTR: f64 = 0.88;
+const MOEAD_ZDT1: f64 = 0.95;
+const MOEAD_DTLZ2: f64 = 0.77;
 const NSGA2_ZDT1: f64 = 0.985;
 const NSGA2_ZDT3: f64 = 0.99;
 const NSGA2_DTLZ2: f64 = 0.85;
@@ -411,5 +412,53 @@ fn convergence_table() {
             line += &format!("  moead {a:.4} nsga2 {b:.4}");
         }
         println!("{line}");
+    }
+}
+
+/// The configurations of the convergence tests above over seeds 1..=8: the thresholds are
+/// the minimum less a margin (`cargo test --release -p host-sim --lib
+/// optim::algorithms::tests::threshold_survey -- --ignored --nocapture`).
+#[test]
+#[ignore = "survey: run in release"]
+fn threshold_survey() {
+    let zdt1 = TestProblem::Zdt(Zdt::standard(1).unwrap());
+    let zdt3 = TestProblem::Zdt(Zdt::standard(3).unwrap());
+    let dtlz2 = TestProblem::Dtlz(Dtlz::standard(2, 3).unwrap());
+    let constr = TestProblem::Constr(Constr::default());
+    type Case<'a> = (&'a str, Box<dyn Fn(u64) -> f64 + 'a>);
+    let cases: Vec<Case> = vec![
+        (
+            "moead constr 40x100",
+            Box::new(|s| hv_ratio(&run(moead(40, s), &constr, 100), &constr)),
+        ),
+        (
+            "nsga2 constr 40x100",
+            Box::new(|s| hv_ratio(&run(nsga2(40, s), &constr, 100), &constr)),
+        ),
+        (
+            "moead zdt1 100x250",
+            Box::new(|s| hv_ratio(&run(moead(100, s), &zdt1, 250), &zdt1)),
+        ),
+        (
+            "moead dtlz2 91x100",
+            Box::new(|s| hv_ratio(&run(moead(91, s), &dtlz2, 100), &dtlz2)),
+        ),
+        (
+            "nsga2 zdt1 100x250",
+            Box::new(|s| hv_ratio(&run(nsga2(100, s), &zdt1, 250), &zdt1)),
+        ),
+        (
+            "nsga2 zdt3 100x250",
+            Box::new(|s| hv_ratio(&run(nsga2(100, s), &zdt3, 250), &zdt3)),
+        ),
+        (
+            "nsga2 dtlz2 92x100",
+            Box::new(|s| hv_ratio(&run(nsga2(92, s), &dtlz2, 100), &dtlz2)),
+        ),
+    ];
+    for (name, f) in cases {
+        let r: Vec<f64> = (1..=8).map(&f).collect();
+        let min = r.iter().copied().fold(f64::INFINITY, f64::min);
+        println!("{name}: min {min:.4} {r:.4?}");
     }
 }
