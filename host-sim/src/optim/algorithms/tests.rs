@@ -462,3 +462,43 @@ fn threshold_survey() {
         println!("{name}: min {min:.4} {r:.4?}");
     }
 }
+
+#[test]
+fn observer_sees_generation_zero_then_every_generation() {
+    let p = TestProblem::Zdt(Zdt::standard(1).unwrap());
+    let mut a = nsga2(20, 4);
+    let mut hist = History::with_reference(vec![11.0, 11.0]);
+    evolve(&mut a, &p, &Serial, 3, &mut hist).unwrap();
+    let gens: Vec<(u64, u64)> = hist
+        .records
+        .iter()
+        .map(|r| (r.generation, r.evaluations))
+        .collect();
+    assert_eq!(gens, vec![(0, 20), (1, 40), (2, 60), (3, 80)]);
+    // Elitist survival: on this seed the hypervolume never decreases (crowding truncation
+    // could in principle lose a little).
+    let hv: Vec<f64> = hist
+        .records
+        .iter()
+        .map(|r| r.hypervolume.unwrap())
+        .collect();
+    assert!(hv.windows(2).all(|w| w[1] >= w[0]), "{hv:?}");
+    assert!(
+        hist.records
+            .iter()
+            .all(|r| r.feasible_fraction == 1.0 && r.min_violation == 0.0)
+    );
+    // A closure is an observer too; a second evolve continues from generation 3.
+    let mut seen = Vec::new();
+    evolve(
+        &mut a,
+        &p,
+        &Serial,
+        2,
+        &mut |r: &crate::optim::GenerationReport<'_, Vec<f64>>| {
+            seen.push((r.algorithm, r.generation, r.population.len()));
+        },
+    )
+    .unwrap();
+    assert_eq!(seen, vec![("nsga2", 4, 20), ("nsga2", 5, 20)]);
+}
