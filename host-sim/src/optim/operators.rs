@@ -79,6 +79,11 @@ pub fn de_step(
 
 /// Polynomial mutation (Deb & Goyal; pagmo's form): each variable mutates with probability
 /// `rate` with distribution index `eta`; results are clamped to the bounds.
+///
+/// The mutated variables are found by geometric skipping (the gap to the next mutated
+/// variable is drawn, `P(gap = j) = (1 - rate)^j rate`), which selects them with exactly the
+/// per-variable Bernoulli(`rate`) law but draws one number per mutation instead of one per
+/// variable.
 pub fn polynomial_mutation(
     x: &mut [f64],
     bounds: &Bounds,
@@ -86,24 +91,38 @@ pub fn polynomial_mutation(
     eta: f64,
     rng: &mut OptimRng,
 ) {
+    if rate <= 0.0 {
+        return;
+    }
     let mut_pow = 1.0 / (eta + 1.0);
-    for ((y, &yl), &yu) in x.iter_mut().zip(bounds.lower()).zip(bounds.upper()) {
-        if rng.uniform() < rate {
-            let span = yu - yl;
-            let delta1 = (*y - yl) / span;
-            let delta2 = (yu - *y) / span;
-            let rnd = rng.uniform();
-            let deltaq = if rnd < 0.5 {
-                let xy = 1.0 - delta1;
-                let val = 2.0 * rnd + (1.0 - 2.0 * rnd) * pow(xy, eta + 1.0);
-                val.powf(mut_pow) - 1.0
-            } else {
-                let xy = 1.0 - delta2;
-                let val = 2.0 * (1.0 - rnd) + 2.0 * (rnd - 0.5) * pow(xy, eta + 1.0);
-                1.0 - val.powf(mut_pow)
-            };
-            *y = (*y + deltaq * span).clamp(yl, yu);
+    let log_q = (1.0 - rate).ln();
+    let gap = |rng: &mut OptimRng| -> usize {
+        if rate >= 1.0 {
+            0
+        } else {
+            // 1 - u lies in (0, 1]; the quotient is >= 0 and saturates on conversion.
+            ((1.0 - rng.uniform()).ln() / log_q).floor() as usize
         }
+    };
+    let mut k = gap(rng);
+    while k < x.len() {
+        let (yl, yu) = (bounds.lower()[k], bounds.upper()[k]);
+        let y = &mut x[k];
+        let span = yu - yl;
+        let delta1 = (*y - yl) / span;
+        let delta2 = (yu - *y) / span;
+        let rnd = rng.uniform();
+        let deltaq = if rnd < 0.5 {
+            let xy = 1.0 - delta1;
+            let val = 2.0 * rnd + (1.0 - 2.0 * rnd) * pow(xy, eta + 1.0);
+            val.powf(mut_pow) - 1.0
+        } else {
+            let xy = 1.0 - delta2;
+            let val = 2.0 * (1.0 - rnd) + 2.0 * (rnd - 0.5) * pow(xy, eta + 1.0);
+            1.0 - val.powf(mut_pow)
+        };
+        *y = (*y + deltaq * span).clamp(yl, yu);
+        k = k.saturating_add(1).saturating_add(gap(rng));
     }
 }
 
@@ -207,6 +226,39 @@ mod tests {
                 let (a, b): (f64, f64) = (pow(x, e), x.powf(e));
                 assert!(a == b || ((a - b) / b).abs() < 1e-13, "{x}^{e}: {a} {b}");
             }
+        }
+    }
+
+    #[test]
+    fn geometric_skipping_mutates_each_variable_with_the_given_rate() {
+        let bounds = Bounds::uniform(50, 0.0, 1.0).unwrap();
+        let mut rng = OptimRng::new(8);
+        for rate in [0.02, 0.3, 1.0] {
+            let mut counts = [0usize; 50];
+            let trials = 4000;
+            for _ in 0..trials {
+                let mut x = vec![0.5; 50];
+                polynomial_mutation(&mut x, &bounds, rate, 20.0, &mut rng);
+                for (c, v) in counts.iter_mut().zip(&x) {
+                    *c += usize::from(*v != 0.5);
+                }
+            }
+            let total: usize = counts.iter().sum();
+            let expected = rate * (50 * trials) as f64;
+            let sigma = (expected * (1.0 - rate)).sqrt().max(1.0);
+            assert!(
+                (total as f64 - expected).abs() < 5.0 * sigma,
+                "rate {rate}: {total} vs {expected}"
+            );
+            // Uniform over positions: first and last ten variables mutate equally often.
+            let head: usize = counts[..10].iter().sum();
+            let tail: usize = counts[40..].iter().sum();
+            let e = rate * (10 * trials) as f64;
+            let s = (e * (1.0 - rate)).sqrt().max(1.0);
+            assert!(
+                (head as f64 - e).abs() < 5.0 * s && (tail as f64 - e).abs() < 5.0 * s,
+                "{head} {tail} {e}"
+            );
         }
     }
 
