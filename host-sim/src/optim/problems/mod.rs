@@ -9,9 +9,44 @@ pub use constr::Constr;
 pub use dtlz::Dtlz;
 pub use zdt::Zdt;
 
-use super::error::{BoundsError, EvalError};
+use super::error::EvalError;
 use super::hypervolume::hypervolume;
 use super::problem::{Bounds, Evaluation, Problem, RealProblem};
+
+/// A test problem that does not exist or is too small.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TestProblemError {
+    /// No such ZDT.
+    #[error("zdt{id} does not exist here; use zdt1, zdt2, zdt3, zdt4 or zdt6")]
+    UnknownZdt {
+        /// The number given.
+        id: u8,
+    },
+    /// No such DTLZ.
+    #[error("dtlz{id} does not exist; use dtlz1 to dtlz7")]
+    UnknownDtlz {
+        /// The number given.
+        id: u8,
+    },
+    /// Too few decision variables.
+    #[error("{problem}: {given} variables is too few; use at least {minimum}")]
+    TooFewVariables {
+        /// Problem name.
+        problem: String,
+        /// Variables asked for.
+        given: usize,
+        /// Smallest legal number.
+        minimum: usize,
+    },
+    /// Too few objectives.
+    #[error("{problem}: {given} objectives is too few; use at least 2")]
+    TooFewObjectives {
+        /// Problem name.
+        problem: String,
+        /// Objectives asked for.
+        given: usize,
+    },
+}
 
 /// Names accepted by [`TestProblem::by_name`].
 pub const NAMES: [&str; 13] = [
@@ -35,8 +70,8 @@ impl TestProblem {
     /// `objectives` (ignored by the others). `None` for an unknown name.
     ///
     /// # Errors
-    /// [`BoundsError`] for a DTLZ with fewer than 2 objectives.
-    pub fn by_name(name: &str, objectives: usize) -> Result<Option<Self>, BoundsError> {
+    /// [`TestProblemError`] for a DTLZ with fewer than 2 objectives.
+    pub fn by_name(name: &str, objectives: usize) -> Result<Option<Self>, TestProblemError> {
         let lower = name.to_ascii_lowercase();
         if lower == "constr" {
             return Ok(Some(Self::Constr(Constr::default())));
@@ -159,6 +194,23 @@ mod tests {
         let z = Zdt::standard(1).unwrap();
         assert!((z.front_hypervolume(&[1.1, 1.1]).unwrap() - 0.876_666_666).abs() < 1e-8);
         assert!((zdt::zdt6_front_start() - 0.280_775_319_1).abs() < 1e-9);
+        assert_eq!(Zdt::new(5, 30), Err(TestProblemError::UnknownZdt { id: 5 }));
+        assert!(
+            Zdt::new(1, 1)
+                .unwrap_err()
+                .to_string()
+                .contains("use at least 2")
+        );
+        assert_eq!(
+            Dtlz::new(8, 3, 5),
+            Err(TestProblemError::UnknownDtlz { id: 8 })
+        );
+        let e = TestProblem::by_name("dtlz2", 1).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "dtlz2: 1 objectives is too few; use at least 2"
+        );
+        assert_eq!(TestProblem::by_name("zdt5", 3), Ok(None));
     }
 
     /// Decisions on the Pareto set evaluate onto the sampled front, and no random decision

@@ -84,7 +84,7 @@ impl Default for MoeadConfig {
 }
 
 impl MoeadConfig {
-    fn check(&self, dim: usize, objectives: usize) -> Result<(), ConfigError> {
+    fn check(&self, objectives: usize) -> Result<(), ConfigError> {
         if objectives < 2 {
             return Err(ConfigError::TooFewObjectives {
                 algorithm: NAME,
@@ -127,7 +127,6 @@ impl MoeadConfig {
         if let Some(p) = self.mutation_probability {
             check_range(NAME, "mutation_probability", p, 0.0, 1.0, "[0, 1]")?;
         }
-        let _ = dim;
         Ok(())
     }
 }
@@ -236,7 +235,7 @@ impl Moead {
     fn start<P: RealProblem>(&mut self, problem: &P) -> Result<(), OptimError> {
         check_objectives(problem)?;
         let m = problem.objectives();
-        self.config.check(problem.bounds().dim(), m)?;
+        self.config.check(m)?;
         let n = self.config.population;
         self.weights = generate(n, m, self.config.weights, &mut self.rng)?;
         self.neighbourhoods = neighbourhoods(&self.weights, self.config.neighbours);
