@@ -3,7 +3,7 @@
 pub mod moead;
 pub mod nsga2;
 
-pub use moead::{Moead, MoeadConfig};
+pub use moead::{DeVariation, Moead, MoeadConfig, MoeadVariation, MoeadWith};
 pub use nsga2::{Nsga2, Nsga2Config};
 
 use super::error::ConfigError;

@@ -18,13 +18,16 @@
 //! index order when all are told. `batch_size = 1` (default) is pagmo's steady-state loop;
 //! larger batches allow parallel evaluation at the price of slightly staler parents.
 
+use std::fmt::Debug;
+
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use crate::optim::algorithm::{Algorithm, Batch, Scratch, check_objectives};
 use crate::optim::error::{ConfigError, OptimError};
 use crate::optim::operators::{de_step, polynomial_mutation, random_point};
 use crate::optim::population::Individual;
-use crate::optim::problem::{Evaluation, RealProblem};
+use crate::optim::problem::{Decision, Evaluation, Problem, RealProblem};
 use crate::optim::rng::OptimRng;
 use crate::optim::weights::{
     Decomposition, WeightGeneration, decompose, generate, neighbourhoods, tchebycheff,
@@ -138,41 +141,134 @@ struct ChildOrigin {
     whole_population: bool,
 }
 
-/// MOEA/D state (serialisable: checkpoint and resume give the bit-identical run).
+/// How MOEA/D makes decisions: the random initial ones, and the child of a subproblem's
+/// member and two parents. [`DeVariation`] is pagmo's operator for real vectors; a
+/// structured-chromosome variation (SCEA) plugs in here and inherits the rest of MOEA/D
+/// (weights, neighbourhoods, decomposition, Lampinen's rules, ask/tell, checkpoints).
+pub trait MoeadVariation<P: Problem>:
+    Clone + Debug + PartialEq + Serialize + DeserializeOwned
+{
+    /// Check the settings against the problem (called by the first `ask`).
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the setting to change.
+    fn check(&self, _problem: &P, _config: &MoeadConfig) -> Result<(), ConfigError> {
+        Ok(())
+    }
+
+    /// A random decision for the initial population.
+    fn random(&self, problem: &P, rng: &mut OptimRng) -> P::Decision;
+
+    /// The child of subproblem member `x` with parents `a` and `b`. `reuse` is a spent
+    /// decision whose allocation may be recycled (its contents are meaningless).
+    #[allow(clippy::too_many_arguments)] // the operator has exactly these inputs
+    fn child(
+        &self,
+        problem: &P,
+        config: &MoeadConfig,
+        x: &P::Decision,
+        a: &P::Decision,
+        b: &P::Decision,
+        reuse: Option<P::Decision>,
+        rng: &mut OptimRng,
+    ) -> P::Decision;
+}
+
+/// pagmo's MOEA/D operator for real vectors: the DE step `x + F (a - b)` per variable with
+/// probability CR (pagmo's bound repair), then polynomial mutation with probability
+/// `mutation_probability` (default 1/dim) and index `eta_m`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DeVariation;
+
+impl<P: RealProblem> MoeadVariation<P> for DeVariation {
+    fn random(&self, problem: &P, rng: &mut OptimRng) -> Vec<f64> {
+        random_point(problem.bounds(), rng)
+    }
+
+    fn child(
+        &self,
+        problem: &P,
+        config: &MoeadConfig,
+        x: &Vec<f64>,
+        a: &Vec<f64>,
+        b: &Vec<f64>,
+        reuse: Option<Vec<f64>>,
+        rng: &mut OptimRng,
+    ) -> Vec<f64> {
+        let bounds = problem.bounds();
+        let rate = config
+            .mutation_probability
+            .unwrap_or(1.0 / bounds.dim() as f64);
+        let mut child = reuse.unwrap_or_default();
+        de_step(x, a, b, config.f, config.cr, bounds, rng, &mut child);
+        polynomial_mutation(&mut child, bounds, rate, config.eta_m, rng);
+        child
+    }
+}
+
+/// MOEA/D on real vectors with pagmo's operator.
+pub type Moead = MoeadWith<Vec<f64>, DeVariation>;
+
+/// MOEA/D state for decisions `D` made by variation `V` (serialisable: checkpoint and resume
+/// give the bit-identical run).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Moead {
+#[serde(bound(
+    serialize = "D: Serialize, V: Serialize",
+    deserialize = "D: DeserializeOwned, V: DeserializeOwned"
+))]
+pub struct MoeadWith<D, V> {
     config: MoeadConfig,
+    variation: V,
     rng: OptimRng,
-    population: Vec<Individual<Vec<f64>>>,
+    population: Vec<Individual<D>>,
     weights: Vec<Vec<f64>>,
     neighbourhoods: Vec<Vec<usize>>,
     ideal: Vec<f64>,
     /// Subproblem order of the current generation and the next position in it.
     order: Vec<usize>,
     cursor: usize,
-    batch: Batch<Vec<f64>>,
+    batch: Batch<D>,
     origins: Vec<ChildOrigin>,
     initialised: bool,
     generation: u64,
     evaluations: u64,
     #[serde(skip)]
-    scratch: Scratch<Buffers>,
+    scratch: Scratch<Buffers<D>>,
 }
 
 /// Reused allocations (not state).
-#[derive(Clone, Debug, Default)]
-struct Buffers {
+#[derive(Clone, Debug)]
+struct Buffers<D> {
     pool: Vec<usize>,
-    told: Vec<Individual<Vec<f64>>>,
-    spare: Vec<Vec<f64>>,
+    told: Vec<Individual<D>>,
+    spare: Vec<D>,
+}
+
+impl<D> Default for Buffers<D> {
+    fn default() -> Self {
+        Self {
+            pool: Vec::new(),
+            told: Vec::new(),
+            spare: Vec::new(),
+        }
+    }
 }
 
 impl Moead {
-    /// A new run with `config`, seeded with `seed`.
+    /// A new run with `config` and pagmo's operator, seeded with `seed`.
     #[must_use]
     pub fn new(config: MoeadConfig, seed: u64) -> Self {
+        Self::with_variation(config, DeVariation, seed)
+    }
+}
+
+impl<D: Decision, V> MoeadWith<D, V> {
+    /// A new run with `config` and `variation`, seeded with `seed`.
+    #[must_use]
+    pub fn with_variation(config: MoeadConfig, variation: V, seed: u64) -> Self {
         Self {
             config,
+            variation,
             rng: OptimRng::new(seed),
             population: Vec::new(),
             weights: Vec::new(),
@@ -191,7 +287,7 @@ impl Moead {
 
     /// The current population (parents).
     #[must_use]
-    pub fn population(&self) -> &[Individual<Vec<f64>>] {
+    pub fn population(&self) -> &[Individual<D>] {
         &self.population
     }
 
@@ -232,16 +328,27 @@ impl Moead {
         &self.ideal
     }
 
-    fn start<P: RealProblem>(&mut self, problem: &P) -> Result<(), OptimError> {
+    /// The variation operator.
+    #[must_use]
+    pub fn variation(&self) -> &V {
+        &self.variation
+    }
+
+    fn start<P>(&mut self, problem: &P) -> Result<(), OptimError>
+    where
+        P: Problem<Decision = D>,
+        V: MoeadVariation<P>,
+    {
         check_objectives(problem)?;
         let m = problem.objectives();
         self.config.check(m)?;
+        self.variation.check(problem, &self.config)?;
         let n = self.config.population;
         self.weights = generate(n, m, self.config.weights, &mut self.rng)?;
         self.neighbourhoods = neighbourhoods(&self.weights, self.config.neighbours);
         self.ideal = vec![f64::MAX; m];
         let decisions = (0..n)
-            .map(|_| random_point(problem.bounds(), &mut self.rng))
+            .map(|_| self.variation.random(problem, &mut self.rng))
             .collect();
         self.batch.open(decisions);
         Ok(())
@@ -265,47 +372,42 @@ impl Moead {
         [a, b]
     }
 
-    fn make_offspring(&mut self, bounds: &crate::optim::problem::Bounds) {
+    fn make_offspring<P>(&mut self, problem: &P)
+    where
+        P: Problem<Decision = D>,
+        V: MoeadVariation<P>,
+    {
         let np = self.config.population;
         let count = self.config.batch_size.min(np - self.cursor);
-        let rate = self
-            .config
-            .mutation_probability
-            .unwrap_or(1.0 / bounds.dim() as f64);
         let mut batch = std::mem::take(&mut self.batch);
         let mut spare = std::mem::take(&mut self.scratch.0.spare);
         self.origins.clear();
         batch.open_with(|decisions| {
             for k in 0..count {
-                decisions.push(self.offspring(k, rate, bounds, &mut spare));
+                decisions.push(self.offspring(problem, k, &mut spare));
             }
         });
         self.batch = batch;
         self.scratch.0.spare = spare;
     }
 
-    fn offspring(
-        &mut self,
-        k: usize,
-        rate: f64,
-        bounds: &crate::optim::problem::Bounds,
-        spare: &mut Vec<Vec<f64>>,
-    ) -> Vec<f64> {
+    fn offspring<P>(&mut self, problem: &P, k: usize, spare: &mut Vec<D>) -> D
+    where
+        P: Problem<Decision = D>,
+        V: MoeadVariation<P>,
+    {
         let n = self.order[self.cursor + k];
         let whole = self.config.preserve_diversity && self.rng.uniform() >= self.config.realb;
         let [a, b] = self.select_parents(n, whole);
-        let mut child = spare.pop().unwrap_or_default();
-        de_step(
+        let child = self.variation.child(
+            problem,
+            &self.config,
             &self.population[n].decision,
             &self.population[a].decision,
             &self.population[b].decision,
-            self.config.f,
-            self.config.cr,
-            bounds,
+            spare.pop(),
             &mut self.rng,
-            &mut child,
         );
-        polynomial_mutation(&mut child, bounds, rate, self.config.eta_m, &mut self.rng);
         self.origins.push(ChildOrigin {
             subproblem: n,
             whole_population: whole,
@@ -313,7 +415,7 @@ impl Moead {
         child
     }
 
-    fn update_ideal(ideal: &mut [f64], ind: &Individual<Vec<f64>>) {
+    fn update_ideal(ideal: &mut [f64], ind: &Individual<D>) {
         if ind.is_feasible() {
             for (z, &f) in ideal.iter_mut().zip(&ind.objectives) {
                 if f < *z {
@@ -324,12 +426,7 @@ impl Moead {
     }
 
     /// Lampinen's selection: does `child` replace `member` on subproblem `weight`?
-    fn child_wins(
-        &self,
-        child: &Individual<Vec<f64>>,
-        member: &Individual<Vec<f64>>,
-        weight: &[f64],
-    ) -> bool {
+    fn child_wins(&self, child: &Individual<D>, member: &Individual<D>, weight: &[f64]) -> bool {
         match (child.is_feasible(), member.is_feasible()) {
             (true, true) => match self.config.decomposition {
                 Decomposition::Tchebycheff => {
@@ -347,7 +444,7 @@ impl Moead {
         }
     }
 
-    fn apply(&mut self, child: &Individual<Vec<f64>>, origin: ChildOrigin) {
+    fn apply(&mut self, child: &Individual<D>, origin: ChildOrigin) {
         Self::update_ideal(&mut self.ideal, child);
         let np = self.population.len();
         let size = if origin.whole_population {
@@ -384,15 +481,19 @@ impl Moead {
     }
 }
 
-impl<P: RealProblem> Algorithm<P> for Moead {
+impl<P, V> Algorithm<P> for MoeadWith<P::Decision, V>
+where
+    P: Problem,
+    V: MoeadVariation<P>,
+{
     fn name(&self) -> &'static str {
         NAME
     }
 
-    fn ask(&mut self, problem: &P) -> Result<&[Vec<f64>], OptimError> {
+    fn ask(&mut self, problem: &P) -> Result<&[P::Decision], OptimError> {
         if !self.batch.is_open() {
             if self.initialised {
-                self.make_offspring(problem.bounds());
+                self.make_offspring(problem);
             } else {
                 self.start(problem)?;
             }
@@ -446,7 +547,7 @@ impl<P: RealProblem> Algorithm<P> for Moead {
         Ok(())
     }
 
-    fn population(&self) -> &[Individual<Vec<f64>>] {
+    fn population(&self) -> &[Individual<P::Decision>] {
         &self.population
     }
 

@@ -50,6 +50,7 @@ fn run<A: Algorithm<TestProblem>>(mut alg: A, p: &TestProblem, gens: u64) -> A {
 }
 
 mod convergence;
+mod variable;
 
 // ---------------------------------------------------------------------------------------
 // Bad settings
