@@ -171,7 +171,7 @@ fn same_seed_same_population_whatever_tell_order_and_thread_count() {
             seed,
         )
     };
-    // MOEA/D with batches of 7 (so batches straddle generations) and NSGA-II.
+    // MOEA/D with batches of 7 (7 + 7 + 6 per generation of 20) and NSGA-II.
     let mut a = batched(42);
     evolve(
         &mut a,
