@@ -6,8 +6,9 @@
 //! its neighbourhood, else from the whole population; two distinct parents `a, b` are drawn;
 //! the child is `x_n + F (x_a - x_b)` per variable with probability `CR` (bound repair as in
 //! pagmo), then polynomial mutation (probability `1/dim` unless set, index `eta_m`). The child
-//! updates the ideal point and then replaces, in random order, members of the same pool whose
-//! subproblem it solves better, at most `limit` of them when `preserve_diversity` is on.
+//! updates the ideal point, replaces the member of subproblem `n` if it solves `n` better, and
+//! then, in random order, members of the same pool whose subproblems it solves better, at most
+//! `limit` replacements in all when `preserve_diversity` is on.
 //!
 //! "Better" follows Lampinen (2002): a feasible child beats an infeasible member; of two
 //! infeasible the child wins with a violation lower or equal; of two feasible the child wins
@@ -452,11 +453,18 @@ impl<D: Decision, V> MoeadWith<D, V> {
         } else {
             self.neighbourhoods[origin.subproblem].len()
         };
+        // First the child's own subproblem (pagmo: "first try on problem n"), then the pool in
+        // random order; both count towards `limit`.
+        let n = origin.subproblem;
+        let mut replaced = 0;
+        if self.child_wins(child, &self.population[n], &self.weights[n]) {
+            self.population[n].clone_from(child);
+            replaced += 1;
+        }
         let mut pool = std::mem::take(&mut self.scratch.0.pool);
         pool.clear();
         pool.extend(0..size);
         self.rng.shuffle(&mut pool);
-        let mut replaced = 0;
         for &k in &pool {
             let pick = if origin.whole_population {
                 k
