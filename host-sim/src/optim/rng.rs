@@ -52,8 +52,9 @@ impl OptimRng {
         loop {
             let m = u128::from(self.next_u64()) * u128::from(n);
             let low = m as u64;
-            // Reject the few values that would bias the result.
-            if low >= n.wrapping_neg() % n {
+            // Reject the few values that would bias the result; the threshold (a division) is
+            // only needed when `low < n`, which is rare.
+            if low >= n || low >= n.wrapping_neg() % n {
                 return (m >> 64) as usize;
             }
         }
@@ -85,7 +86,8 @@ impl OptimRng {
             let n = (i + 1) as u32;
             let j = loop {
                 let m = u64::from(next32(self)) * u64::from(n);
-                if (m as u32) >= n.wrapping_neg() % n {
+                let low = m as u32;
+                if low >= n || low >= n.wrapping_neg() % n {
                     break (m >> 32) as usize;
                 }
             };
