@@ -174,6 +174,9 @@ mod tests {
         let bad =
             Individual::from_evaluation((), Evaluation::new(vec![f64::NAN, 1.0]), 0, 2, 0).unwrap();
         assert!(bad.is_failed() && !bad.is_feasible());
+        let failure = Individual::from_evaluation((), Evaluation::failure(2, 1), 0, 2, 1).unwrap();
+        assert!(failure.is_failed());
+        assert_eq!(failure.objectives, vec![f64::MAX, f64::MAX]);
         assert_eq!(bad.objectives, vec![f64::MAX, 1.0]);
         assert_eq!(
             Individual::from_evaluation((), Evaluation::new(vec![1.0]), 3, 2, 0),
