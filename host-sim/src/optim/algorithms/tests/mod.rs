@@ -377,3 +377,35 @@ fn observer_sees_generation_zero_then_every_generation() {
     .unwrap();
     assert_eq!(seen, vec![("nsga2", 4, 20), ("nsga2", 5, 20)]);
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    /// Any seed, batch size and tell order: the run equals the one told in index order.
+    #[test]
+    fn tell_order_never_changes_the_run(seed in 0u64..1000, batch in 1usize..=12, order_seed in 0u64..1000) {
+        let p = TestProblem::Constr(Constr::default());
+        let make = || {
+            Moead::new(
+                MoeadConfig {
+                    population: 12,
+                    neighbours: 4,
+                    weights: WeightGeneration::LowDiscrepancy,
+                    batch_size: batch,
+                    ..MoeadConfig::default()
+                },
+                seed,
+            )
+        };
+        let mut in_order = make();
+        evolve(&mut in_order, &p, &Serial, 4, &mut NoObserver).unwrap();
+        let mut shuffled = make();
+        run_shuffled(&mut shuffled, &p, 4, order_seed);
+        proptest::prop_assert_eq!(&in_order, &shuffled);
+        let mut a = nsga2(12, seed);
+        evolve(&mut a, &p, &Serial, 3, &mut NoObserver).unwrap();
+        let mut b = nsga2(12, seed);
+        run_shuffled(&mut b, &p, 3, order_seed);
+        proptest::prop_assert_eq!(a, b);
+    }
+}
