@@ -48,6 +48,14 @@ pub trait Algorithm<P: Problem> {
 
     /// Evaluations told so far.
     fn evaluations(&self) -> u64;
+
+    /// Decision `index` of the open batch has been told already (a run resumed from a
+    /// checkpoint taken mid-batch); [`crate::optim::evolve`] evaluates only the others. The
+    /// default, `false`, suits algorithms that do not track it.
+    fn is_told(&self, index: usize) -> bool {
+        let _ = index;
+        false
+    }
 }
 
 /// An open batch: the decisions handed out and the evaluations told so far.
@@ -92,6 +100,12 @@ impl<D> Batch<D> {
         self.remaining = self.decisions.len();
         self.told.clear();
         self.told.resize_with(self.decisions.len(), || None);
+    }
+
+    /// Decision `index` of the open batch has been told.
+    #[must_use]
+    pub fn is_told(&self, index: usize) -> bool {
+        self.remaining > 0 && self.told.get(index).is_some_and(Option::is_some)
     }
 
     /// The decisions of the batch.

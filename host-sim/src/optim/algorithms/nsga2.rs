@@ -304,4 +304,8 @@ impl<P: RealProblem> Algorithm<P> for Nsga2 {
     fn evaluations(&self) -> u64 {
         self.evaluations
     }
+
+    fn is_told(&self, index: usize) -> bool {
+        self.batch.is_told(index)
+    }
 }

@@ -570,6 +570,10 @@ where
     fn evaluations(&self) -> u64 {
         self.evaluations
     }
+
+    fn is_told(&self, index: usize) -> bool {
+        self.batch.is_told(index)
+    }
 }
 
 #[cfg(test)]

@@ -263,6 +263,14 @@ fn checkpoint_and_resume_give_the_bit_identical_run() {
     }
     assert_eq!(resumed.generation(), 3);
     assert_eq!(resumed.population(), straight.population());
+    // `evolve` on a checkpoint taken mid-batch evaluates only the untold decisions.
+    let mut again: Nsga2 = serde_json::from_str(&serde_json::to_string(&part).unwrap()).unwrap();
+    let told = |a: &Nsga2, i| <Nsga2 as Algorithm<TestProblem>>::is_told(a, i);
+    assert!(told(&again, order[0]) && !told(&again, order[5]));
+    let before = again.evaluations();
+    evolve(&mut again, &zdt, &Serial, 1, &mut NoObserver).unwrap();
+    assert_eq!(again.evaluations() - before, (batch.len() - 5) as u64);
+    assert_eq!(again, resumed);
 }
 
 // ---------------------------------------------------------------------------------------
