@@ -54,8 +54,30 @@ pub fn de_step(
     child: &mut Vec<f64>,
 ) {
     child.clear();
-    // With CR = 1 every variable crosses: no draw needed (same distribution).
-    let always = cr >= 1.0;
+    if cr >= 1.0 {
+        // Every variable crosses, no draw needed (same distribution): the step vectorises,
+        // and the rare repairs follow in variable order (the same draws as the loop below).
+        child.extend(
+            x.iter()
+                .zip(a)
+                .zip(b)
+                .map(|((&xk, &ak), &bk)| xk + f * (ak - bk)),
+        );
+        let vars = child
+            .iter_mut()
+            .zip(x)
+            .zip(bounds.lower())
+            .zip(bounds.upper());
+        for (((v, &xk), &lo), &hi) in vars {
+            if *v < lo {
+                *v = lo + rng.uniform() * (xk - lo);
+            }
+            if *v > hi {
+                *v = hi - rng.uniform() * (hi - xk);
+            }
+        }
+        return;
+    }
     let vars = x
         .iter()
         .zip(a)
@@ -64,7 +86,7 @@ pub fn de_step(
         .zip(bounds.upper());
     for ((((&xk, &ak), &bk), &lo), &hi) in vars {
         let mut v = xk;
-        if always || rng.uniform() < cr {
+        if rng.uniform() < cr {
             v = xk + f * (ak - bk);
             if v < lo {
                 v = lo + rng.uniform() * (xk - lo);
