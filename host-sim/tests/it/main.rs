@@ -5,6 +5,7 @@ mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
+mod hypervolume;
 mod pil;
 mod replan_loop;
 mod support;
