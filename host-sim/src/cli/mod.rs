@@ -58,6 +58,7 @@ mod builtin;
 mod fields;
 mod flight;
 mod guidance;
+mod hypervolume_cmd;
 mod parse;
 mod parse_guidance;
 mod scenario;
@@ -76,6 +77,7 @@ use crate::{report, sim, vehicle};
 pub use builtin::HORUS_REFERENCE_NODES;
 pub use flight::{Flight, RunOutput, fly, load_vehicle, simulate_scenario, write_flight};
 pub use guidance::{build_guidance, guidance_bounds};
+pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use parse::parse_scenario;
 pub use scenario::{EnvSpec, GuidanceSpec, Independent, InterpolationKind, Scenario, VehicleSpec};
 pub use to_toml::scenario_to_toml;
@@ -102,6 +104,8 @@ pub enum Command {
     /// Analytical (Vinh closed forms) against numerical simulation over a grid of entry
     /// altitude or speed x vertical lift coefficient (thesis fig. 8.5): grid.csv + SVG heat maps.
     Compare(crate::compare::CompareCliArgs),
+    /// Exact hypervolume of a front CSV (minimised objectives as columns) for a reference point.
+    Hypervolume(HypervolumeArgs),
 }
 
 /// Arguments of `simulate`.
@@ -176,6 +180,9 @@ pub enum CliError {
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
+    /// `hypervolume` failed.
+    #[error("{0}")]
+    Hypervolume(#[from] HypervolumeCmdError),
 }
 
 /// Run the CLI with `args` (including the program name), writing normal output to `out`.
@@ -197,5 +204,6 @@ where
             Ok(())
         }
         Command::Vehicles => vehicles_cmd::run(out),
+        Command::Hypervolume(a) => hypervolume_cmd::run(&a, out),
     }
 }

@@ -6,6 +6,7 @@ mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
 mod hypervolume;
+mod hypervolume_cli;
 mod pil;
 mod replan_loop;
 mod support;
