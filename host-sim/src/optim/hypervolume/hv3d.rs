@@ -24,6 +24,9 @@ pub(super) struct Sorted3 {
     pub(super) z_pos: Vec<usize>,
     /// Reference point (first three coordinates).
     pub(super) r: [f64; 3],
+    /// After [`Sorted3::exclusive`] of point k: the members above k in z that k dominates
+    /// in x and y (so in 3-D); the 4-D sweep drops them once k is in.
+    pub(super) dominated: Vec<usize>,
     stair: Staircase,
 }
 
@@ -55,6 +58,7 @@ impl Sorted3 {
             by_z,
             z_pos,
             r: [r[0], r[1], r[2]],
+            dominated: Vec::new(),
             stair,
         }
     }
@@ -93,6 +97,7 @@ impl Sorted3 {
         let (px, py, pz) = (self.x[k], self.y[k], self.z[k]);
         let [rx, ry, rz] = self.r;
         self.stair.reset(px);
+        self.dominated.clear();
         // Phase 1: members with z <= pz, in x order, clipped to the box. The ones with
         // x <= px all fall on the wall (slot 0).
         let mut covered = 0.0;
@@ -103,7 +108,13 @@ impl Sorted3 {
             while w != 0 {
                 let j = (wi << 6) | w.trailing_zeros() as usize;
                 w &= w - 1;
-                if j == k || self.z[j] > pz {
+                if j == k {
+                    continue;
+                }
+                if self.z[j] > pz {
+                    if self.x[j] >= px && self.y[j] >= py {
+                        self.dominated.push(j);
+                    }
                     continue;
                 }
                 let yj = self.y[j].max(py);

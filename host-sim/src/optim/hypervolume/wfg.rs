@@ -21,42 +21,218 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
             .total_cmp(&pa[dm])
             .then_with(|| lex(&pb[..dm], &pa[..dm]))
     });
-    let mut sorted = Vec::with_capacity(pts.len());
-    for &i in &order {
-        sorted.extend_from_slice(&pts[d * i..d * i + d]);
-    }
+    // Processed from the best last coordinate up, so the "later" points of point k are the
+    // ones already seen; of those only the non-dominated ones in the first d-1 coordinates
+    // (`seen`) can matter to a limit set.
+    let mut seen: Vec<f64> = Vec::with_capacity(n * dm);
     let mut limited: Vec<f64> = Vec::with_capacity(n * dm);
+    let mut scratch = LimitScratch::default();
     let mut total = 0.0;
-    for k in 0..n {
-        let p = &sorted[d * k..d * k + d];
-        limited.clear();
-        let mut dominated = false;
-        for j in k + 1..n {
-            let q = &sorted[d * j..d * j + dm];
-            let mut same = true;
-            for c in 0..dm {
-                let v = p[c].max(q[c]);
-                same &= v == p[c];
-                limited.push(v);
-            }
-            if same {
-                dominated = true;
-                break;
-            }
-        }
-        if dominated {
-            continue;
+    for &i in order.iter().rev() {
+        let p = &pts[d * i..d * i + d];
+        let pm = &p[..dm];
+        if !limit_set_any(pm, &seen, &mut scratch, &mut limited) {
+            continue; // weakly dominated by a point already seen: no exclusive volume
         }
         let area: f64 = (0..dm).map(|c| r[c] - p[c]).product();
-        let covered = if limited.is_empty() {
-            0.0
-        } else {
-            let nd = nondominated(&limited, dm);
-            super::hypervolume_of(&nd, dm, &r[..dm])
-        };
+        let covered = super::hypervolume_of(&limited, dm, &r[..dm]);
         total += (r[dm] - p[dm]) * (area - covered).max(0.0);
+        insert_nondominated_any(&mut seen, pm);
     }
     total
+}
+
+/// Scratch space of [`limit_set`], reused across calls.
+#[derive(Default)]
+pub(super) struct LimitScratch {
+    /// Per seen point: the coordinates where it exceeds `p` (bit c = coordinate c; beyond 64
+    /// coordinates bits alias, which keeps the filter exact but weaker).
+    mask: Vec<u64>,
+    /// Seen points left by the single-coordinate filter, with their mask sizes.
+    survivors: Vec<(u32, u32)>,
+    /// Kept clipped points with two or more exceeding coordinates, row-major.
+    kept: Vec<f64>,
+    /// Their masks.
+    kept_mask: Vec<u64>,
+    /// One clipped point.
+    q: Vec<f64>,
+    /// For up to [`GROUPED`] coordinates: the kept clipped points by mask, row-major.
+    groups: Vec<Vec<f64>>,
+    /// The masks whose group is non-empty.
+    used: Vec<u64>,
+}
+
+/// Up to this many coordinates the kept points are grouped by mask (2^GROUPED groups), so a
+/// point is compared only with the groups of its mask's subsets.
+const GROUPED: usize = 6;
+
+/// [`limit_set`] for `p.len()` coordinates, monomorphised for the common small counts.
+fn limit_set_any(p: &[f64], seen: &[f64], sc: &mut LimitScratch, out: &mut Vec<f64>) -> bool {
+    match p.len() {
+        4 => limit_set::<4>(p, seen, sc, out),
+        5 => limit_set::<5>(p, seen, sc, out),
+        6 => limit_set::<6>(p, seen, sc, out),
+        _ => limit_set::<0>(p, seen, sc, out),
+    }
+}
+
+/// The points of `{max(p, s) : s in seen}` that no other one weakly dominates, into `out`
+/// (a few dominated ones may remain; the hypervolume does not care). Returns false, leaving
+/// `out` partial, when some `s <= p` (then `p` has no exclusive volume). `N` is the number of
+/// coordinates, or 0 for "read it from `p`".
+///
+/// A clipped point `q = max(p, s)` equals `p` except on its mask `M(s) = {c : s_c > p_c}`,
+/// and `max(p, t) <= max(p, s)` iff `M(t)` is a subset of `M(s)` and `t <= s` on `M(t)`. So
+/// the points with a single-coordinate mask reduce to one minimum per coordinate, which
+/// filter all the others at once; the rest are taken by increasing mask size and compared
+/// only with kept points whose mask is a subset of their own (grouped by mask up to
+/// [`GROUPED`] coordinates, one AND per pair beyond).
+fn limit_set<const N: usize>(
+    p: &[f64],
+    seen: &[f64],
+    sc: &mut LimitScratch,
+    out: &mut Vec<f64>,
+) -> bool {
+    let dm = if N == 0 { p.len() } else { N };
+    let track = dm <= 64;
+    out.clear();
+    sc.mask.clear();
+    let mut best = [f64::INFINITY; 64];
+    for s in seen.chunks_exact(dm) {
+        let mut m = 0u64;
+        for c in 0..dm {
+            if s[c] > p[c] {
+                m |= 1u64 << (c & 63);
+            }
+        }
+        if m == 0 {
+            return false;
+        }
+        if track && m & (m - 1) == 0 {
+            let c = m.trailing_zeros() as usize;
+            best[c] = best[c].min(s[c]);
+        }
+        sc.mask.push(m);
+    }
+    sc.survivors.clear();
+    let mut single_done = [false; 64];
+    for (i, (s, &m)) in seen.chunks_exact(dm).zip(&sc.mask).enumerate() {
+        if track {
+            if m & (m - 1) == 0 {
+                let c = m.trailing_zeros() as usize;
+                if !single_done[c] && s[c] <= best[c] {
+                    single_done[c] = true;
+                    out.extend_from_slice(p);
+                    let at = out.len() - dm + c;
+                    out[at] = s[c];
+                }
+                continue;
+            }
+            let mut bits = m;
+            let mut dominated = false;
+            while bits != 0 {
+                let c = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                if best[c] <= s[c] {
+                    dominated = true;
+                    break;
+                }
+            }
+            if dominated {
+                continue;
+            }
+        }
+        sc.survivors.push((m.count_ones(), i as u32));
+    }
+    sc.survivors.sort_unstable();
+    sc.q.clear();
+    sc.q.extend_from_slice(p);
+    if dm <= GROUPED {
+        if sc.groups.len() < 1 << GROUPED {
+            sc.groups.resize(1 << GROUPED, Vec::new());
+        }
+        for &m in &sc.used {
+            sc.groups[m as usize].clear();
+        }
+        sc.used.clear();
+    } else {
+        sc.kept.clear();
+        sc.kept_mask.clear();
+    }
+    for &(_, i) in &sc.survivors {
+        let i = i as usize;
+        let m = sc.mask[i];
+        let s = &seen[i * dm..i * dm + dm];
+        for c in 0..dm {
+            sc.q[c] = p[c].max(s[c]);
+        }
+        let q = &sc.q[..dm];
+        let covers = |t: &[f64]| (0..dm).all(|c| t[c] <= q[c]);
+        if dm <= GROUPED {
+            // Every submask of m with two or more coordinates (single ones were filtered).
+            let mut dominated = false;
+            let mut sub = m;
+            while sub != 0 && !dominated {
+                if sub & (sub - 1) != 0 {
+                    dominated = sc.groups[sub as usize].chunks_exact(dm).any(covers);
+                }
+                sub = (sub - 1) & m;
+            }
+            if !dominated {
+                let g = &mut sc.groups[m as usize];
+                if g.is_empty() {
+                    sc.used.push(m);
+                }
+                g.extend_from_slice(q);
+            }
+        } else {
+            let dominated = sc
+                .kept_mask
+                .iter()
+                .zip(sc.kept.chunks_exact(dm))
+                .any(|(&km, t)| km & !m == 0 && covers(t));
+            if !dominated {
+                sc.kept.extend_from_slice(q);
+                sc.kept_mask.push(m);
+            }
+        }
+    }
+    if dm <= GROUPED {
+        for &m in &sc.used {
+            out.extend_from_slice(&sc.groups[m as usize]);
+        }
+    } else {
+        out.extend_from_slice(&sc.kept);
+    }
+    true
+}
+
+/// Add `p` to the non-dominated set `set`, dropping the points it weakly dominates; `p`
+/// itself is not weakly dominated by the set (checked by [`limit_set`]).
+fn insert_nondominated<const N: usize>(set: &mut Vec<f64>, p: &[f64]) {
+    let dm = if N == 0 { p.len() } else { N };
+    let mut w = 0;
+    for r in 0..set.len() / dm {
+        let s = r * dm;
+        if !(0..dm).all(|c| p[c] <= set[s + c]) {
+            if w != r {
+                set.copy_within(s..s + dm, w * dm);
+            }
+            w += 1;
+        }
+    }
+    set.truncate(w * dm);
+    set.extend_from_slice(p);
+}
+
+/// [`insert_nondominated`] monomorphised for the common small coordinate counts.
+fn insert_nondominated_any(set: &mut Vec<f64>, p: &[f64]) {
+    match p.len() {
+        4 => insert_nondominated::<4>(set, p),
+        5 => insert_nondominated::<5>(set, p),
+        6 => insert_nondominated::<6>(set, p),
+        _ => insert_nondominated::<0>(set, p),
+    }
 }
 
 /// Lexicographic order of two coordinate slices.
