@@ -37,7 +37,18 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
         let area: f64 = (0..dm).map(|c| r[c] - p[c]).product();
         let covered = super::hypervolume_of(&limited, dm, &r[..dm]);
         total += (r[dm] - p[dm]) * (area - covered).max(0.0);
-        insert_nondominated_any(&mut seen, pm);
+        // p joins the seen set; the seen points it weakly dominates leave it.
+        let mut w = 0;
+        for (r, &gone) in scratch.dominated.iter().enumerate() {
+            if !gone {
+                if w != r {
+                    seen.copy_within(r * dm..r * dm + dm, w * dm);
+                }
+                w += 1;
+            }
+        }
+        seen.truncate(w * dm);
+        seen.extend_from_slice(pm);
     }
     total
 }
@@ -48,6 +59,8 @@ pub(super) struct LimitScratch {
     /// Per seen point: the coordinates where it exceeds `p` (bit c = coordinate c; beyond 64
     /// coordinates bits alias, which keeps the filter exact but weaker).
     mask: Vec<u64>,
+    /// Per seen point: whether `p` weakly dominates it.
+    dominated: Vec<bool>,
     /// Seen points left by the single-coordinate filter, with their mask sizes.
     survivors: Vec<(u32, u32)>,
     /// Kept clipped points with two or more exceeding coordinates, row-major.
@@ -94,20 +107,26 @@ fn limit_set<const N: usize>(
     out: &mut Vec<f64>,
 ) -> bool {
     let dm = if N == 0 { p.len() } else { N };
+    let p = &p[..dm];
     let track = dm <= 64;
     out.clear();
     sc.mask.clear();
+    sc.dominated.clear();
     let mut best = [f64::INFINITY; 64];
     for s in seen.chunks_exact(dm) {
+        let s = &s[..dm];
         let mut m = 0u64;
+        let mut below = true;
         for c in 0..dm {
             if s[c] > p[c] {
                 m |= 1u64 << (c & 63);
             }
+            below &= p[c] <= s[c];
         }
         if m == 0 {
             return false;
         }
+        sc.dominated.push(below);
         if track && m & (m - 1) == 0 {
             let c = m.trailing_zeros() as usize;
             best[c] = best[c].min(s[c]);
@@ -117,6 +136,7 @@ fn limit_set<const N: usize>(
     sc.survivors.clear();
     let mut single_done = [false; 64];
     for (i, (s, &m)) in seen.chunks_exact(dm).zip(&sc.mask).enumerate() {
+        let s = &s[..dm];
         if track {
             if m & (m - 1) == 0 {
                 let c = m.trailing_zeros() as usize;
@@ -163,11 +183,15 @@ fn limit_set<const N: usize>(
         let i = i as usize;
         let m = sc.mask[i];
         let s = &seen[i * dm..i * dm + dm];
+        let q = &mut sc.q[..dm];
         for c in 0..dm {
-            sc.q[c] = p[c].max(s[c]);
+            q[c] = p[c].max(s[c]);
         }
         let q = &sc.q[..dm];
-        let covers = |t: &[f64]| (0..dm).all(|c| t[c] <= q[c]);
+        let covers = |t: &[f64]| {
+            let t = &t[..dm];
+            (0..dm).all(|c| t[c] <= q[c])
+        };
         if dm <= GROUPED {
             // Every submask of m with two or more coordinates (single ones were filtered).
             let mut dominated = false;
@@ -205,34 +229,6 @@ fn limit_set<const N: usize>(
         out.extend_from_slice(&sc.kept);
     }
     true
-}
-
-/// Add `p` to the non-dominated set `set`, dropping the points it weakly dominates; `p`
-/// itself is not weakly dominated by the set (checked by [`limit_set`]).
-fn insert_nondominated<const N: usize>(set: &mut Vec<f64>, p: &[f64]) {
-    let dm = if N == 0 { p.len() } else { N };
-    let mut w = 0;
-    for r in 0..set.len() / dm {
-        let s = r * dm;
-        if !(0..dm).all(|c| p[c] <= set[s + c]) {
-            if w != r {
-                set.copy_within(s..s + dm, w * dm);
-            }
-            w += 1;
-        }
-    }
-    set.truncate(w * dm);
-    set.extend_from_slice(p);
-}
-
-/// [`insert_nondominated`] monomorphised for the common small coordinate counts.
-fn insert_nondominated_any(set: &mut Vec<f64>, p: &[f64]) {
-    match p.len() {
-        4 => insert_nondominated::<4>(set, p),
-        5 => insert_nondominated::<5>(set, p),
-        6 => insert_nondominated::<6>(set, p),
-        _ => insert_nondominated::<0>(set, p),
-    }
 }
 
 /// Lexicographic order of two coordinate slices.
