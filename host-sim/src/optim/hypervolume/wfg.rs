@@ -56,9 +56,10 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
 /// Scratch space of [`limit_set`], reused across calls.
 #[derive(Default)]
 pub(super) struct LimitScratch {
-    /// Per seen point: the coordinates where it exceeds `p` (bit c = coordinate c; beyond 64
-    /// coordinates bits alias, which keeps the filter exact but weaker).
-    mask: Vec<u64>,
+    /// Seen points exceeding `p` in two or more coordinates: (mask, index). The mask has bit
+    /// c set where the point exceeds `p` in coordinate c (beyond 64 coordinates bits alias,
+    /// which keeps the filter exact but weaker).
+    multi: Vec<(u64, u32)>,
     /// Per seen point: whether `p` weakly dominates it.
     dominated: Vec<bool>,
     /// Seen points left by the single-coordinate filter, with their mask sizes.
@@ -110,17 +111,15 @@ fn limit_set<const N: usize>(
     let p = &p[..dm];
     let track = dm <= 64;
     out.clear();
-    sc.mask.clear();
     sc.dominated.clear();
+    sc.multi.clear();
     let mut best = [f64::INFINITY; 64];
-    for s in seen.chunks_exact(dm) {
+    for (i, s) in seen.chunks_exact(dm).enumerate() {
         let s = &s[..dm];
         let mut m = 0u64;
         let mut below = true;
         for c in 0..dm {
-            if s[c] > p[c] {
-                m |= 1u64 << (c & 63);
-            }
+            m |= u64::from(s[c] > p[c]) << (c & 63);
             below &= p[c] <= s[c];
         }
         if m == 0 {
@@ -130,41 +129,49 @@ fn limit_set<const N: usize>(
         if track && m & (m - 1) == 0 {
             let c = m.trailing_zeros() as usize;
             best[c] = best[c].min(s[c]);
+        } else {
+            sc.multi.push((m, i as u32));
         }
-        sc.mask.push(m);
+    }
+    if track {
+        // One single-coordinate point per coordinate: the lowest.
+        for (c, &b) in best.iter().enumerate().take(dm) {
+            if b < f64::INFINITY {
+                out.extend_from_slice(p);
+                let at = out.len() - dm + c;
+                out[at] = b;
+            }
+        }
     }
     sc.survivors.clear();
-    let mut single_done = [false; 64];
-    for (i, (s, &m)) in seen.chunks_exact(dm).zip(&sc.mask).enumerate() {
-        let s = &s[..dm];
+    for &(m, i) in &sc.multi {
         if track {
-            if m & (m - 1) == 0 {
-                let c = m.trailing_zeros() as usize;
-                if !single_done[c] && s[c] <= best[c] {
-                    single_done[c] = true;
-                    out.extend_from_slice(p);
-                    let at = out.len() - dm + c;
-                    out[at] = s[c];
-                }
-                continue;
-            }
-            let mut bits = m;
+            let s = &seen[i as usize * dm..i as usize * dm + dm];
             let mut dominated = false;
-            while bits != 0 {
-                let c = bits.trailing_zeros() as usize;
-                bits &= bits - 1;
-                if best[c] <= s[c] {
-                    dominated = true;
-                    break;
-                }
+            for c in 0..dm {
+                dominated |= (m >> c) & 1 == 1 && best[c] <= s[c];
             }
             if dominated {
                 continue;
             }
         }
-        sc.survivors.push((m.count_ones(), i as u32));
+        sc.survivors.push((m.count_ones(), i));
     }
-    sc.survivors.sort_unstable();
+    if dm <= GROUPED {
+        // Few mask sizes: a stable bucket pass per size.
+        let n = sc.survivors.len();
+        for k in 2..=dm as u32 {
+            for j in 0..n {
+                if sc.survivors[j].0 == k {
+                    let v = sc.survivors[j];
+                    sc.survivors.push(v);
+                }
+            }
+        }
+        sc.survivors.drain(..n);
+    } else {
+        sc.survivors.sort_unstable();
+    }
     sc.q.clear();
     sc.q.extend_from_slice(p);
     if dm <= GROUPED {
@@ -181,8 +188,11 @@ fn limit_set<const N: usize>(
     }
     for &(_, i) in &sc.survivors {
         let i = i as usize;
-        let m = sc.mask[i];
         let s = &seen[i * dm..i * dm + dm];
+        let mut m = 0u64;
+        for c in 0..dm {
+            m |= u64::from(s[c] > p[c]) << (c & 63);
+        }
         let q = &mut sc.q[..dm];
         for c in 0..dm {
             q[c] = p[c].max(s[c]);
