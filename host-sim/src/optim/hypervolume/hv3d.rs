@@ -9,6 +9,8 @@ use super::staircase::{BitSet, Staircase};
 
 /// The first three coordinates of `n` points (read with stride `d`) re-indexed by their
 /// rank in (x, y) order, with their order in z, and the 2-D staircase over those ranks.
+/// [`Sorted3::fill`] reuses the buffers, for callers solving many small problems.
+#[derive(Debug, Clone, Default)]
 pub(super) struct Sorted3 {
     /// x of the point of rank k.
     pub(super) x: Vec<f64>,
@@ -33,34 +35,42 @@ pub(super) struct Sorted3 {
 impl Sorted3 {
     /// Sort the first three coordinates of the points `pts` (stride `d >= 3`).
     pub(super) fn new(pts: &[f64], d: usize, r: &[f64]) -> Self {
+        let mut s = Self::default();
+        s.fill(pts, d, r);
+        s
+    }
+
+    /// [`Sorted3::new`] into the existing buffers.
+    pub(super) fn fill(&mut self, pts: &[f64], d: usize, r: &[f64]) {
         let n = pts.len() / d;
-        let mut order: Vec<usize> = (0..n).collect();
+        let order = &mut self.original;
+        order.clear();
+        order.extend(0..n);
         order.sort_unstable_by(|&a, &b| {
             pts[d * a]
                 .total_cmp(&pts[d * b])
                 .then(pts[d * a + 1].total_cmp(&pts[d * b + 1]))
         });
-        let x: Vec<f64> = order.iter().map(|&i| pts[d * i]).collect();
-        let y: Vec<f64> = order.iter().map(|&i| pts[d * i + 1]).collect();
-        let z: Vec<f64> = order.iter().map(|&i| pts[d * i + 2]).collect();
-        let mut by_z: Vec<usize> = (0..n).collect();
-        by_z.sort_unstable_by(|&a, &b| z[a].total_cmp(&z[b]));
-        let mut z_pos = vec![0; n];
-        for (p, &k) in by_z.iter().enumerate() {
-            z_pos[k] = p;
+        self.x.clear();
+        self.y.clear();
+        self.z.clear();
+        for &i in order.iter() {
+            self.x.push(pts[d * i]);
+            self.y.push(pts[d * i + 1]);
+            self.z.push(pts[d * i + 2]);
         }
-        let stair = Staircase::new(&x, r[0], r[1]);
-        Self {
-            x,
-            y,
-            z,
-            original: order,
-            by_z,
-            z_pos,
-            r: [r[0], r[1], r[2]],
-            dominated: Vec::new(),
-            stair,
+        let z = &self.z;
+        self.by_z.clear();
+        self.by_z.extend(0..n);
+        self.by_z.sort_unstable_by(|&a, &b| z[a].total_cmp(&z[b]));
+        self.z_pos.clear();
+        self.z_pos.resize(n, 0);
+        for (p, &k) in self.by_z.iter().enumerate() {
+            self.z_pos[k] = p;
         }
+        self.stair.fill(&self.x, r[0], r[1]);
+        self.r = [r[0], r[1], r[2]];
+        self.dominated.clear();
     }
 
     /// Number of points.

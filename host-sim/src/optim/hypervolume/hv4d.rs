@@ -10,33 +10,59 @@ use super::staircase::BitSet;
 
 /// Hypervolume of `n` points (stride 4) strictly dominating `r`.
 pub(super) fn hypervolume(pts: &[f64], r: &[f64]) -> f64 {
-    let n = pts.len() / 4;
-    if n == 0 {
-        return 0.0;
-    }
-    let mut s = Sorted3::new(pts, 4, r);
-    // Ranks in increasing w.
-    let w: Vec<f64> = s.original.iter().map(|&i| pts[4 * i + 3]).collect();
-    let mut by_w: Vec<usize> = (0..n).collect();
-    by_w.sort_unstable_by(|&a, &b| w[a].total_cmp(&w[b]));
-    let mut in_x = BitSet::new(n);
-    let mut in_z = BitSet::new(n);
-    let mut v3 = 0.0;
-    let mut vol = 0.0;
-    for (p, &k) in by_w.iter().enumerate() {
-        let c = s.exclusive(k, &in_x, &in_z);
-        if c > 0.0 {
-            v3 += c;
-            in_x.insert(k);
-            in_z.insert(s.z_pos[k]);
-            // Members k dominates in 3-D add nothing to any later union: drop them.
-            for &j in &s.dominated {
-                in_x.remove(j);
-                in_z.remove(s.z_pos[j]);
-            }
+    Hv4::default().hypervolume(pts, r)
+}
+
+/// The 4-D sweep's buffers, reusable across calls (the >= 5-D recursion makes many).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Hv4 {
+    s: Sorted3,
+    w: Vec<f64>,
+    by_w: Vec<usize>,
+    in_x: BitSet,
+    in_z: BitSet,
+}
+
+impl Hv4 {
+    /// Hypervolume of `n` points (stride 4) strictly dominating `r`.
+    pub(super) fn hypervolume(&mut self, pts: &[f64], r: &[f64]) -> f64 {
+        let n = pts.len() / 4;
+        if n == 0 {
+            return 0.0;
         }
-        let w_next = by_w.get(p + 1).map_or(r[3], |&j| w[j]);
-        vol += v3 * (w_next - w[k]);
+        let Self {
+            s,
+            w,
+            by_w,
+            in_x,
+            in_z,
+        } = self;
+        s.fill(pts, 4, r);
+        // Ranks in increasing w.
+        w.clear();
+        w.extend(s.original.iter().map(|&i| pts[4 * i + 3]));
+        by_w.clear();
+        by_w.extend(0..n);
+        by_w.sort_unstable_by(|&a, &b| w[a].total_cmp(&w[b]));
+        in_x.reset(n);
+        in_z.reset(n);
+        let mut v3 = 0.0;
+        let mut vol = 0.0;
+        for (p, &k) in by_w.iter().enumerate() {
+            let c = s.exclusive(k, in_x, in_z);
+            if c > 0.0 {
+                v3 += c;
+                in_x.insert(k);
+                in_z.insert(s.z_pos[k]);
+                // Members k dominates in 3-D add nothing to any later union: drop them.
+                for &j in &s.dominated {
+                    in_x.remove(j);
+                    in_z.remove(s.z_pos[j]);
+                }
+            }
+            let w_next = by_w.get(p + 1).map_or(r[3], |&j| w[j]);
+            vol += v3 * (w_next - w[k]);
+        }
+        vol
     }
-    vol
 }

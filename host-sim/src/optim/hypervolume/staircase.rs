@@ -5,7 +5,7 @@
 
 /// A set of integers `0..n` as a hierarchy of 64-bit words: level 0 holds one bit per
 /// element, level `l + 1` one bit per non-empty word of level `l`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(super) struct BitSet {
     levels: Vec<Vec<u64>>,
 }
@@ -13,16 +13,29 @@ pub(super) struct BitSet {
 impl BitSet {
     /// An empty set able to hold `0..n`.
     pub(super) fn new(n: usize) -> Self {
-        let mut levels = Vec::new();
+        let mut s = Self::default();
+        s.reset(n);
+        s
+    }
+
+    /// Make the set empty and able to hold `0..n`, reusing its buffers.
+    pub(super) fn reset(&mut self, n: usize) {
         let mut len = n.div_ceil(64).max(1);
+        let mut l = 0;
         loop {
-            levels.push(vec![0u64; len]);
+            if l == self.levels.len() {
+                self.levels.push(Vec::new());
+            }
+            let level = &mut self.levels[l];
+            level.clear();
+            level.resize(len, 0);
+            l += 1;
             if len == 1 {
                 break;
             }
             len = len.div_ceil(64);
         }
-        Self { levels }
+        self.levels.truncate(l);
     }
 
     /// Remove every element (cost proportional to `n / 64`).
@@ -141,7 +154,7 @@ impl BitSet {
 /// coordinates are fixed and increase with the slot index (ties allowed). Slot 0 is the
 /// "wall": its x is set on every [`Staircase::reset`] (the left edge of a box) and it may be
 /// lowered repeatedly; the other slots each take one point at most.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(super) struct Staircase {
     set: BitSet,
     x: Vec<f64>,
@@ -153,17 +166,23 @@ pub(super) struct Staircase {
 impl Staircase {
     /// A staircase over slots `0..=xs.len()`: slot `k + 1` has x coordinate `xs[k]` (`xs`
     /// non-decreasing); the bounding corner is `(rx, ry)`.
+    #[cfg(test)]
     pub(super) fn new(xs: &[f64], rx: f64, ry: f64) -> Self {
-        let mut x = Vec::with_capacity(xs.len() + 1);
-        x.push(f64::NEG_INFINITY);
-        x.extend_from_slice(xs);
-        Self {
-            set: BitSet::new(xs.len() + 1),
-            y: vec![0.0; xs.len() + 1],
-            x,
-            rx,
-            ry,
-        }
+        let mut s = Self::default();
+        s.fill(xs, rx, ry);
+        s
+    }
+
+    /// [`Staircase::new`] into the existing buffers.
+    pub(super) fn fill(&mut self, xs: &[f64], rx: f64, ry: f64) {
+        self.x.clear();
+        self.x.push(f64::NEG_INFINITY);
+        self.x.extend_from_slice(xs);
+        self.y.clear();
+        self.y.resize(xs.len() + 1, 0.0);
+        self.set.reset(xs.len() + 1);
+        self.rx = rx;
+        self.ry = ry;
     }
 
     /// Empty the staircase and put the wall (slot 0) at `wall_x`.

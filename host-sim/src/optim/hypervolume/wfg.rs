@@ -27,6 +27,7 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
     let mut seen: Vec<f64> = Vec::with_capacity(n * dm);
     let mut limited: Vec<f64> = Vec::with_capacity(n * dm);
     let mut scratch = LimitScratch::default();
+    let mut hv4 = super::hv4d::Hv4::default();
     let mut total = 0.0;
     for &i in order.iter().rev() {
         let p = &pts[d * i..d * i + d];
@@ -35,7 +36,11 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
             continue; // weakly dominated by a point already seen: no exclusive volume
         }
         let area: f64 = (0..dm).map(|c| r[c] - p[c]).product();
-        let covered = super::hypervolume_of(&limited, dm, &r[..dm]);
+        let covered = if dm == 4 && limited.len() > dm {
+            hv4.hypervolume(&limited, &r[..dm])
+        } else {
+            super::hypervolume_of(&limited, dm, &r[..dm])
+        };
         total += (r[dm] - p[dm]) * (area - covered).max(0.0);
         // p joins the seen set; the seen points it weakly dominates leave it.
         let mut w = 0;
