@@ -134,7 +134,8 @@ fn limit_set<const N: usize>(
         if track && m & (m - 1) == 0 {
             let c = m.trailing_zeros() as usize;
             best[c] = best[c].min(s[c]);
-        } else {
+        } else if !(track && filtered(m, s, &best)) {
+            // Not dominated by the single-coordinate points so far: check again at the end.
             sc.multi.push((m, i as u32));
         }
     }
@@ -150,15 +151,8 @@ fn limit_set<const N: usize>(
     }
     sc.survivors.clear();
     for &(m, i) in &sc.multi {
-        if track {
-            let s = &seen[i as usize * dm..i as usize * dm + dm];
-            let mut dominated = false;
-            for c in 0..dm {
-                dominated |= (m >> c) & 1 == 1 && best[c] <= s[c];
-            }
-            if dominated {
-                continue;
-            }
+        if track && filtered(m, &seen[i as usize * dm..i as usize * dm + dm], &best) {
+            continue;
         }
         sc.survivors.push((m.count_ones(), i));
     }
@@ -244,6 +238,17 @@ fn limit_set<const N: usize>(
         out.extend_from_slice(&sc.kept);
     }
     true
+}
+
+/// Whether the clipped point of `s` (mask `m`, at most 64 coordinates) is weakly dominated
+/// by one of the single-coordinate points `best` (coordinate c at `best[c]`, the rest at p).
+#[inline]
+fn filtered(m: u64, s: &[f64], best: &[f64; 64]) -> bool {
+    let mut dominated = false;
+    for (c, (&v, &b)) in s.iter().zip(best).enumerate() {
+        dominated |= ((m >> c) & 1 == 1) & (b <= v);
+    }
+    dominated
 }
 
 /// Lexicographic order of two coordinate slices.
