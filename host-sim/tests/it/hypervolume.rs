@@ -237,6 +237,34 @@ fn hypervolume_bad_input_is_a_typed_error_naming_point_and_coordinate() {
         contributions(&big, &r),
         Err(HypervolumeError::Overflow { .. })
     ));
+    // Boxes that overflow inside the higher-dimensional algorithms (inf - inf on the way)
+    // are an error too, never a silently wrong finite value.
+    for d in 3..=6 {
+        let mut a = vec![0.0; d];
+        a[0] = -1e300;
+        a[1] = -1e300;
+        let mut b = vec![0.0; d];
+        b[1] = -1e300;
+        b[2] = -1e300;
+        let pts = [a, b, vec![0.5; d]];
+        let r = vec![1.0; d];
+        assert!(
+            matches!(
+                hypervolume(&pts, &r),
+                Err(HypervolumeError::Overflow { .. })
+            ),
+            "d={d}: {:?}",
+            hypervolume(&pts, &r)
+        );
+        assert!(
+            matches!(
+                contributions(&pts, &r),
+                Err(HypervolumeError::Overflow { .. })
+            ),
+            "d={d}: {:?}",
+            contributions(&pts, &r)
+        );
+    }
 }
 
 // ---- pagmo2 reference data -------------------------------------------------------------

@@ -1,7 +1,7 @@
 //! Exclusive contributions (the volume dominated by one point and by no other) and the least
 //! contributor.
 
-use super::{HypervolumeError, finite, hv2d, hv3d, hypervolume_of, prepare, wfg};
+use super::{HypervolumeError, finite, hv2d, hv3d, hypervolume_of, nonneg, prepare, wfg};
 
 /// The exclusive contribution of each point, in the order given: the hypervolume lost when
 /// that point alone is removed. Points that do not strictly dominate `reference`, weakly
@@ -89,7 +89,7 @@ fn contributions_generic(pts: &[f64], d: usize, r: &[f64]) -> Vec<f64> {
         }
         let vol: f64 = p.iter().zip(r).map(|(a, b)| b - a).product();
         let nd = wfg::nondominated(&limited, d);
-        *o = (vol - hypervolume_of(&nd, d, r)).max(0.0);
+        *o = nonneg(vol - hypervolume_of(&nd, d, r));
     }
     out
 }

@@ -98,8 +98,8 @@ impl Sorted3 {
         vol
     }
 
-    /// The volume of the box `[point k, r)` that no member other than `k` dominates.
-    /// `in_x` holds the members by rank, `in_z` by position in z order (the same set).
+    /// The volume of the box `[point k, r)` that no member dominates. `in_x` holds the
+    /// members by rank, `in_z` by position in z order (the same set); `k` must not be one.
     ///
     /// Below the point's z the members form a staircase built by one scan in x order;
     /// above it they are inserted in z order until one dominates the point in x and y.
@@ -118,9 +118,6 @@ impl Sorted3 {
             while w != 0 {
                 let j = (wi << 6) | w.trailing_zeros() as usize;
                 w &= w - 1;
-                if j == k {
-                    continue;
-                }
                 if self.z[j] > pz {
                     if self.x[j] >= px && self.y[j] >= py {
                         self.dominated.push(j);
@@ -152,7 +149,7 @@ impl Sorted3 {
         if last_y.is_finite() {
             covered += (rx - last_x) * (ry - last_y);
         }
-        let mut uncovered = ((rx - px) * (ry - py) - covered).max(0.0);
+        let mut uncovered = super::nonneg((rx - px) * (ry - py) - covered);
         // Phase 2: members above pz in z order.
         let mut vol = 0.0;
         let mut z_prev = pz;
@@ -167,7 +164,7 @@ impl Sorted3 {
                     w &= w - 1;
                     let j = self.by_z[p];
                     let zj = self.z[j];
-                    if j == k || zj <= pz {
+                    if zj <= pz {
                         continue;
                     }
                     vol += (zj - z_prev) * uncovered;
@@ -182,7 +179,7 @@ impl Sorted3 {
                     } else {
                         uncovered -= self.stair.insert(j + 1, yj);
                     }
-                    uncovered = uncovered.max(0.0);
+                    uncovered = super::nonneg(uncovered);
                 }
                 wi += 1;
                 if wi >= words.len() {
@@ -213,7 +210,11 @@ pub(super) fn contributions(pts: &[f64], r: &[f64]) -> Vec<f64> {
     }
     let mut out = vec![0.0; n];
     for k in 0..n {
+        in_x.remove(k);
+        in_z.remove(s.z_pos[k]);
         out[s.original[k]] = s.exclusive(k, &in_x, &in_z);
+        in_x.insert(k);
+        in_z.insert(s.z_pos[k]);
     }
     out
 }

@@ -84,6 +84,14 @@ fn prepare<P: AsRef<[f64]>>(
     Ok((flat, index))
 }
 
+/// `x` clamped at 0 from below (rounding can leave a difference of equal volumes slightly
+/// negative), keeping NaN: a NaN from overflowing intermediates (inf - inf) must reach
+/// [`finite`] and become [`HypervolumeError::Overflow`], which `f64::max` would hide.
+#[inline]
+fn nonneg(x: f64) -> f64 {
+    if x < 0.0 { 0.0 } else { x }
+}
+
 /// A finite result, or [`HypervolumeError::Overflow`].
 fn finite(v: f64) -> Result<f64, HypervolumeError> {
     if v.is_finite() {

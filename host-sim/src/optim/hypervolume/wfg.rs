@@ -41,7 +41,7 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
         } else {
             super::hypervolume_of(&limited, dm, &r[..dm])
         };
-        total += (r[dm] - p[dm]) * (area - covered).max(0.0);
+        total += (r[dm] - p[dm]) * super::nonneg(area - covered);
         // p joins the seen set; the seen points it weakly dominates leave it.
         let mut w = 0;
         for (r, &gone) in scratch.dominated.iter().enumerate() {
