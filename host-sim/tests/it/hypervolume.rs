@@ -463,3 +463,39 @@ proptest! {
         }
     }
 }
+
+/// The layering rule of `host_sim::optim` (module docs): nothing under `src/optim/` names
+/// another host-sim module (`crate::` paths stay inside `crate::optim`).
+#[test]
+fn optim_module_imports_nothing_else_of_host_sim() {
+    fn rust_files(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                rust_files(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    rust_files(
+        &PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/optim"),
+        &mut files,
+    );
+    assert!(files.len() >= 8, "{files:?}");
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            for (at, _) in line.match_indices("crate::") {
+                assert!(
+                    line[at..].starts_with("crate::optim"),
+                    "{}:{}: {line}",
+                    f.display(),
+                    n + 1
+                );
+            }
+            assert!(!line.contains("host_sim::"), "{}:{}", f.display(), n + 1);
+        }
+    }
+}
