@@ -28,18 +28,20 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
     let mut limited: Vec<f64> = Vec::with_capacity(n * dm);
     let mut scratch = LimitScratch::default();
     let mut hv4 = super::hv4d::Hv4::default();
+    let mut rc = vec![0.0; dm];
     let mut total = 0.0;
     for &i in order.iter().rev() {
         let p = &pts[d * i..d * i + d];
         let pm = &p[..dm];
-        if !limit_set_any(pm, &seen, &mut scratch, &mut limited) {
+        rc.copy_from_slice(&r[..dm]);
+        if !limit_set_any(pm, &seen, &mut scratch, &mut limited, &mut rc) {
             continue; // weakly dominated by a point already seen: no exclusive volume
         }
-        let area: f64 = (0..dm).map(|c| r[c] - p[c]).product();
+        let area: f64 = (0..dm).map(|c| rc[c] - p[c]).product();
         let covered = if dm == 4 && limited.len() > dm {
-            hv4.hypervolume(&limited, &r[..dm])
+            hv4.hypervolume(&limited, &rc)
         } else {
-            super::hypervolume_of(&limited, dm, &r[..dm])
+            super::hypervolume_of(&limited, dm, &rc)
         };
         total += (r[dm] - p[dm]) * super::nonneg(area - covered);
         // p joins the seen set; the seen points it weakly dominates leave it.
@@ -86,19 +88,28 @@ pub(super) struct LimitScratch {
 const GROUPED: usize = 6;
 
 /// [`limit_set`] for `p.len()` coordinates, monomorphised for the common small counts.
-fn limit_set_any(p: &[f64], seen: &[f64], sc: &mut LimitScratch, out: &mut Vec<f64>) -> bool {
+fn limit_set_any(
+    p: &[f64],
+    seen: &[f64],
+    sc: &mut LimitScratch,
+    out: &mut Vec<f64>,
+    rc: &mut [f64],
+) -> bool {
     match p.len() {
-        4 => limit_set::<4>(p, seen, sc, out),
-        5 => limit_set::<5>(p, seen, sc, out),
-        6 => limit_set::<6>(p, seen, sc, out),
-        _ => limit_set::<0>(p, seen, sc, out),
+        4 => limit_set::<4>(p, seen, sc, out, rc),
+        5 => limit_set::<5>(p, seen, sc, out, rc),
+        6 => limit_set::<6>(p, seen, sc, out, rc),
+        _ => limit_set::<0>(p, seen, sc, out, rc),
     }
 }
 
 /// The points of `{max(p, s) : s in seen}` that no other one weakly dominates, into `out`
-/// (a few dominated ones may remain; the hypervolume does not care). Returns false, leaving
-/// `out` partial, when some `s <= p` (then `p` has no exclusive volume). `N` is the number of
-/// coordinates, or 0 for "read it from `p`".
+/// (a few dominated ones may remain; the hypervolume does not care), with the reference
+/// point `rc` (the caller's, on entry) lowered to the points that exceed `p` in a single
+/// coordinate, which then need no volume computation: `p`'s exclusive volume is
+/// `vol([p, rc)) - HV(out, rc)`, and every point of `out` strictly dominates `rc`. Returns
+/// false, leaving `out` and `rc` partial, when some `s <= p` (then `p` has no exclusive
+/// volume). `N` is the number of coordinates, or 0 for "read it from `p`".
 ///
 /// A clipped point `q = max(p, s)` equals `p` except on its mask `M(s) = {c : s_c > p_c}`,
 /// and `max(p, t) <= max(p, s)` iff `M(t)` is a subset of `M(s)` and `t <= s` on `M(t)`. So
@@ -111,6 +122,7 @@ fn limit_set<const N: usize>(
     seen: &[f64],
     sc: &mut LimitScratch,
     out: &mut Vec<f64>,
+    rc: &mut [f64],
 ) -> bool {
     let dm = if N == 0 { p.len() } else { N };
     let p = &p[..dm];
@@ -140,13 +152,10 @@ fn limit_set<const N: usize>(
         }
     }
     if track {
-        // One single-coordinate point per coordinate: the lowest.
+        // The single-coordinate points together cover every x with some x_c >= best[c]:
+        // what is left of the box is [p, rc).
         for (c, &b) in best.iter().enumerate().take(dm) {
-            if b < f64::INFINITY {
-                out.extend_from_slice(p);
-                let at = out.len() - dm + c;
-                out[at] = b;
-            }
+            rc[c] = rc[c].min(b);
         }
     }
     sc.survivors.clear();
