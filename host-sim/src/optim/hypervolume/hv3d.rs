@@ -30,6 +30,16 @@ pub(super) struct Sorted3 {
     /// in x and y (so in 3-D); the 4-D sweep drops them once k is in.
     pub(super) dominated: Vec<usize>,
     stair: Staircase,
+    /// Sort buffers: (x key, y key, index) and (z key, rank).
+    keys: Vec<(u64, u64, u32)>,
+    zkeys: Vec<(u64, u32)>,
+}
+
+/// A `u64` whose order is that of the finite `f64` `v` (`total_cmp` order).
+#[inline]
+pub(super) fn key(v: f64) -> u64 {
+    let b = v.to_bits();
+    if b >> 63 == 1 { !b } else { b | (1 << 63) }
 }
 
 impl Sorted3 {
@@ -43,26 +53,29 @@ impl Sorted3 {
     /// [`Sorted3::new`] into the existing buffers.
     pub(super) fn fill(&mut self, pts: &[f64], d: usize, r: &[f64]) {
         let n = pts.len() / d;
-        let order = &mut self.original;
-        order.clear();
-        order.extend(0..n);
-        order.sort_unstable_by(|&a, &b| {
-            pts[d * a]
-                .total_cmp(&pts[d * b])
-                .then(pts[d * a + 1].total_cmp(&pts[d * b + 1]))
-        });
+        // Sort integer keys (the order of finite f64 is that of these u64) with the index.
+        self.keys.clear();
+        self.keys
+            .extend((0..n).map(|i| (key(pts[d * i]), key(pts[d * i + 1]), i as u32)));
+        self.keys.sort_unstable();
+        self.original.clear();
         self.x.clear();
         self.y.clear();
         self.z.clear();
-        for &i in order.iter() {
+        for &(_, _, i) in &self.keys {
+            let i = i as usize;
+            self.original.push(i);
             self.x.push(pts[d * i]);
             self.y.push(pts[d * i + 1]);
             self.z.push(pts[d * i + 2]);
         }
-        let z = &self.z;
+        self.zkeys.clear();
+        self.zkeys
+            .extend(self.z.iter().enumerate().map(|(k, &v)| (key(v), k as u32)));
+        self.zkeys.sort_unstable();
         self.by_z.clear();
-        self.by_z.extend(0..n);
-        self.by_z.sort_unstable_by(|&a, &b| z[a].total_cmp(&z[b]));
+        self.by_z
+            .extend(self.zkeys.iter().map(|&(_, k)| k as usize));
         self.z_pos.clear();
         self.z_pos.resize(n, 0);
         for (p, &k) in self.by_z.iter().enumerate() {

@@ -5,7 +5,7 @@
 //! (higher w) point are dropped from the sweep's set when that point comes in, which keeps
 //! the set at the size of the 3-D non-dominated prefix (about a third of n on random fronts).
 
-use super::hv3d::Sorted3;
+use super::hv3d::{Sorted3, key};
 use super::staircase::BitSet;
 
 /// Hypervolume of `n` points (stride 4) strictly dominating `r`.
@@ -21,6 +21,7 @@ pub(super) struct Hv4 {
     by_w: Vec<usize>,
     in_x: BitSet,
     in_z: BitSet,
+    wkeys: Vec<(u64, u32)>,
 }
 
 impl Hv4 {
@@ -36,14 +37,17 @@ impl Hv4 {
             by_w,
             in_x,
             in_z,
+            wkeys,
         } = self;
         s.fill(pts, 4, r);
         // Ranks in increasing w.
         w.clear();
         w.extend(s.original.iter().map(|&i| pts[4 * i + 3]));
+        wkeys.clear();
+        wkeys.extend(w.iter().enumerate().map(|(k, &v)| (key(v), k as u32)));
+        wkeys.sort_unstable();
         by_w.clear();
-        by_w.extend(0..n);
-        by_w.sort_unstable_by(|&a, &b| w[a].total_cmp(&w[b]));
+        by_w.extend(wkeys.iter().map(|&(_, k)| k as usize));
         in_x.reset(n);
         in_z.reset(n);
         let mut v3 = 0.0;
