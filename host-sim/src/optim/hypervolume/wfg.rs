@@ -182,6 +182,8 @@ fn limit_set<const N: usize>(
     }
     sc.q.clear();
     sc.q.extend_from_slice(p);
+    // Bit m set: the group of mask m is not empty (masks < 2^GROUPED <= 64).
+    let mut nonempty = 0u64;
     if dm <= GROUPED {
         if sc.groups.len() < 1 << GROUPED {
             sc.groups.resize(1 << GROUPED, Vec::new());
@@ -206,16 +208,18 @@ fn limit_set<const N: usize>(
             q[c] = p[c].max(s[c]);
         }
         let q = &sc.q[..dm];
+        // Branch-free per point: the comparisons rarely all hold.
         let covers = |t: &[f64]| {
             let t = &t[..dm];
-            (0..dm).all(|c| t[c] <= q[c])
+            (0..dm).fold(true, |acc, c| acc & (t[c] <= q[c]))
         };
         if dm <= GROUPED {
-            // Every submask of m with two or more coordinates (single ones were filtered).
+            // Every non-empty group whose mask is a subset of m (single-coordinate masks
+            // were filtered already).
             let mut dominated = false;
             let mut sub = m;
             while sub != 0 && !dominated {
-                if sub & (sub - 1) != 0 {
+                if (nonempty >> sub) & 1 == 1 {
                     dominated = sc.groups[sub as usize].chunks_exact(dm).any(covers);
                 }
                 sub = (sub - 1) & m;
@@ -224,6 +228,7 @@ fn limit_set<const N: usize>(
                 let g = &mut sc.groups[m as usize];
                 if g.is_empty() {
                     sc.used.push(m);
+                    nonempty |= 1u64 << m;
                 }
                 g.extend_from_slice(q);
             }
