@@ -7,6 +7,7 @@ mod dynamics_validation;
 mod env_validation;
 mod hypervolume;
 mod hypervolume_cli;
+mod hypervolume_pagmo2;
 mod pil;
 mod replan_loop;
 mod support;

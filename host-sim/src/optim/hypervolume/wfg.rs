@@ -1,10 +1,13 @@
 //! Five or more objectives: WFG (While, Bradstreet & Barone 2012) with the points sorted by
-//! the last objective, worst first. Then every point's limit set (the later points clipped to
-//! its box) shares the point's last coordinate, so its exclusive volume is a slab of height
-//! `r_d - p_d` times a (d-1)-dimensional exclusive area: the recursion drops one dimension
-//! per level and bottoms out in the O(n^2) 4-D sweep. Limit sets are reduced to their
-//! non-dominated points before recursing; a point whose limit set contains itself (it is
-//! weakly dominated by a later point) is skipped.
+//! the last objective. A point's exclusive volume is taken against the points better in the
+//! last objective; clipped to its box they all share its last coordinate, so that volume is a
+//! slab of height `r_d - p_d` times a (d-1)-dimensional `vol(box) - HV(limit set)`. The
+//! recursion drops one dimension per level and bottoms out in the O(n^2) 4-D sweep.
+//!
+//! The points are taken from the best last coordinate up, keeping the non-dominated ones seen
+//! so far (in the first d-1 coordinates): only those can shape a limit set. Limit sets are
+//! filtered to (nearly) their non-dominated points by [`limit_set`]; a point weakly dominated
+//! by a seen one has no exclusive volume and is skipped.
 
 use std::cmp::Ordering;
 
