@@ -1,7 +1,6 @@
 //! Exact hypervolume (`host_sim::optim::hypervolume`, issue 9 items 10 and 12): against
-//! brute-force inclusion-exclusion on small random sets, against analytic fronts, against the
-//! published pagmo2 reference data (read in place from `shared/data/hypervolume`), and
-//! property tests.
+//! brute-force inclusion-exclusion on small random sets, against analytic fronts, edge cases
+//! and errors, and property tests. The pagmo2 reference data: `hypervolume_pagmo2.rs`.
 
 use std::path::PathBuf;
 
