@@ -5,6 +5,7 @@
 
 mod atmosphere_cmd;
 mod compare_cmd;
+mod hypervolume_cmd;
 mod optimize_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;
@@ -18,6 +19,7 @@ use crate::{report, scenario, vehicle};
 
 pub use atmosphere_cmd::{AtmosphereArgs, AtmosphereModel};
 pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
+pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 pub use simulate_cmd::SimulateArgs;
 
@@ -46,6 +48,8 @@ pub enum Command {
     /// Multi-objective optimiser on a test problem (ZDT, DTLZ, CONSTR): summary, and with
     /// --out the final population, front CSV and summary JSON.
     Optimize(OptimizeArgs),
+    /// Exact hypervolume of a front CSV (minimised objectives as columns) for a reference point.
+    Hypervolume(HypervolumeArgs),
 }
 
 /// CLI failures; the message names file, field and value where there is one.
@@ -82,6 +86,9 @@ pub enum CliError {
     /// Optimisation failed.
     #[error("{0}")]
     Optimize(#[from] OptimizeError),
+    /// `hypervolume` failed.
+    #[error("{0}")]
+    Hypervolume(#[from] HypervolumeCmdError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -107,5 +114,6 @@ where
         }
         Command::Vehicles => vehicles_cmd::run(out),
         Command::Optimize(a) => Ok(optimize_cmd::run(&a, out)?),
+        Command::Hypervolume(a) => hypervolume_cmd::run(&a, out),
     }
 }

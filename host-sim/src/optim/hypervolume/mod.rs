@@ -1,168 +1,116 @@
-//! Exact hypervolume of a set of points (minimisation) with respect to a reference point.
+//! Exact hypervolume of a set of points (minimisation) with respect to a reference point,
+//! each point's exclusive contribution, and the least contributor.
 //!
-//! replaced by the hv branch: this is a small, simple and correct placeholder (2-D sweep,
-//! slicing recursion above) with the agreed API, so that the optimisers compile and test
-//! before the fast implementation merges. Points that do not strictly dominate the reference
-//! point contribute nothing.
+//! Conventions:
+//! * every objective is minimised; the hypervolume is the Lebesgue measure of the region
+//!   dominated by the points and bounded above by the reference point `r`;
+//! * a point that does not strictly dominate `r` (some coordinate `>= r`) dominates no
+//!   volume: it contributes 0 and is otherwise ignored; weakly dominated points and duplicates
+//!   change nothing (a duplicated point's copies each have exclusive contribution 0);
+//! * an empty set has hypervolume 0;
+//! * a zero-dimensional reference point, non-finite coordinates and points whose dimension
+//!   differs from the reference point's are [`HypervolumeError`]s naming the point and
+//!   coordinate. Nothing panics and no NaN is returned.
+//!
+//! Algorithms (see docs/HYPERVOLUME.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
+//! dimension sweep with a bit-set staircase (O(n log n)); 4-D by sweeping the fourth
+//! coordinate and adding each point's exclusive 3-D contribution (O(n^2)); 5-D and more by
+//! WFG slicing the last objective down to the 4-D case. Exclusive contributions: a sweep in
+//! 2-D (O(n log n)), an O(n) box sweep per point in 3-D, and `vol(box) - HV(limit set)` per
+//! point otherwise.
 
-use thiserror::Error;
+mod contributions;
+mod error;
+mod hv2d;
+mod hv3d;
+mod hv4d;
+mod staircase;
+mod wfg;
 
-/// Bad hypervolume input. (replaced by the hv branch)
-#[derive(Clone, Debug, PartialEq, Error)]
-pub enum HypervolumeError {
-    /// Empty reference point.
-    #[error("hypervolume: the reference point is empty")]
-    EmptyReference,
-    /// A point of the wrong dimension.
-    #[error("hypervolume: point {index} has {got} objectives, the reference point {expected}")]
-    Dimension {
-        /// Point index.
-        index: usize,
-        /// Reference dimension.
-        expected: usize,
-        /// Point dimension.
-        got: usize,
-    },
-    /// A NaN or infinite coordinate.
-    #[error("hypervolume: point {index} has a non-finite value")]
-    NonFinite {
-        /// Point index (`usize::MAX` for the reference point).
-        index: usize,
-    },
-}
+pub use contributions::{contributions, least_contributor};
+pub use error::HypervolumeError;
 
-fn checked<P: AsRef<[f64]>>(
-    points: &[P],
-    reference: &[f64],
-) -> Result<Vec<Vec<f64>>, HypervolumeError> {
-    if reference.is_empty() {
-        return Err(HypervolumeError::EmptyReference);
-    }
-    if reference.iter().any(|r| !r.is_finite()) {
-        return Err(HypervolumeError::NonFinite { index: usize::MAX });
-    }
-    let mut kept = Vec::new();
-    for (index, p) in points.iter().enumerate() {
-        let p = p.as_ref();
-        if p.len() != reference.len() {
-            return Err(HypervolumeError::Dimension {
-                index,
-                expected: reference.len(),
-                got: p.len(),
-            });
-        }
-        if p.iter().any(|v| !v.is_finite()) {
-            return Err(HypervolumeError::NonFinite { index });
-        }
-        if p.iter().zip(reference).all(|(a, r)| a < r) {
-            kept.push(p.to_vec());
-        }
-    }
-    Ok(kept)
-}
-
-fn hv_rec(mut pts: Vec<Vec<f64>>, reference: &[f64]) -> f64 {
-    let d = reference.len();
-    if pts.is_empty() {
-        return 0.0;
-    }
-    if d == 1 {
-        return pts.iter().map(|p| reference[0] - p[0]).fold(0.0, f64::max);
-    }
-    if d == 2 {
-        pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-        let mut vol = 0.0;
-        let mut y = reference[1];
-        for p in &pts {
-            if p[1] < y {
-                vol += (reference[0] - p[0]) * (y - p[1]);
-                y = p[1];
-            }
-        }
-        return vol;
-    }
-    // Slice along the last objective.
-    pts.sort_by(|a, b| a[d - 1].total_cmp(&b[d - 1]));
-    let mut vol = 0.0;
-    for k in 0..pts.len() {
-        let top = if k + 1 < pts.len() {
-            pts[k + 1][d - 1]
-        } else {
-            reference[d - 1]
-        };
-        let depth = top - pts[k][d - 1];
-        if depth > 0.0 {
-            let slice: Vec<Vec<f64>> = pts[..=k].iter().map(|p| p[..d - 1].to_vec()).collect();
-            vol += depth * hv_rec(slice, &reference[..d - 1]);
-        }
-    }
-    vol
-}
-
-/// Hypervolume dominated by `points` and bounded by `reference`.
+/// The exact hypervolume of `points` with respect to `reference` (minimisation).
+///
+/// Points that do not strictly dominate `reference` contribute 0; an empty set gives 0.
 ///
 /// # Errors
-/// [`HypervolumeError`] for a wrong dimension or a non-finite value.
+/// [`HypervolumeError`] for a zero-dimensional or non-finite reference point, a point with
+/// the wrong number of coordinates or a non-finite coordinate, or a volume overflowing `f64`.
 pub fn hypervolume<P: AsRef<[f64]>>(
     points: &[P],
     reference: &[f64],
 ) -> Result<f64, HypervolumeError> {
-    Ok(hv_rec(checked(points, reference)?, reference))
+    let (flat, _) = prepare(points, reference)?;
+    finite(hypervolume_of(&flat, reference.len(), reference))
 }
 
-/// Exclusive contribution of each point (0 for points that do not dominate the reference).
-///
-/// # Errors
-/// As [`hypervolume`].
-pub fn contributions<P: AsRef<[f64]>>(
+/// Check the inputs and gather the points that strictly dominate the reference point,
+/// row-major, with their original indices.
+fn prepare<P: AsRef<[f64]>>(
     points: &[P],
     reference: &[f64],
-) -> Result<Vec<f64>, HypervolumeError> {
-    let total = hypervolume(points, reference)?;
-    let all: Vec<&[f64]> = points.iter().map(AsRef::as_ref).collect();
-    let mut out = Vec::with_capacity(all.len());
-    for i in 0..all.len() {
-        let mut rest = all.clone();
-        rest.remove(i);
-        out.push((total - hypervolume(&rest, reference)?).max(0.0));
+) -> Result<(Vec<f64>, Vec<usize>), HypervolumeError> {
+    let d = reference.len();
+    if d == 0 {
+        return Err(HypervolumeError::ZeroDimension);
     }
-    Ok(out)
-}
-
-/// Index of the point with the smallest exclusive contribution (lowest index on ties).
-///
-/// # Errors
-/// As [`hypervolume`]; [`HypervolumeError::EmptyReference`] also for an empty point set.
-pub fn least_contributor<P: AsRef<[f64]>>(
-    points: &[P],
-    reference: &[f64],
-) -> Result<usize, HypervolumeError> {
-    let c = contributions(points, reference)?;
-    let mut best: Option<(usize, f64)> = None;
-    for (i, v) in c.into_iter().enumerate() {
-        if best.is_none_or(|(_, b)| v < b) {
-            best = Some((i, v));
+    if let Some((coordinate, &value)) = reference.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(HypervolumeError::NonFiniteReference { coordinate, value });
+    }
+    let mut flat = Vec::with_capacity(points.len() * d);
+    let mut index = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        let p = p.as_ref();
+        if p.len() != d {
+            return Err(HypervolumeError::DimensionMismatch {
+                index: i,
+                expected: d,
+                found: p.len(),
+            });
+        }
+        if let Some((coordinate, &value)) = p.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(HypervolumeError::NonFinitePoint {
+                index: i,
+                coordinate,
+                value,
+            });
+        }
+        if p.iter().zip(reference).all(|(a, r)| a < r) {
+            flat.extend_from_slice(p);
+            index.push(i);
         }
     }
-    best.map(|(i, _)| i).ok_or(HypervolumeError::EmptyReference)
+    Ok((flat, index))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+/// `x` clamped at 0 from below (rounding can leave a difference of equal volumes slightly
+/// negative), keeping NaN: a NaN from overflowing intermediates (inf - inf) must reach
+/// [`finite`] and become [`HypervolumeError::Overflow`], which `f64::max` would hide.
+#[inline]
+fn nonneg(x: f64) -> f64 {
+    if x < 0.0 { 0.0 } else { x }
+}
 
-    #[test]
-    fn placeholder_small_cases() {
-        let pts = [[1.0, 2.0], [2.0, 1.0]];
-        assert_eq!(hypervolume(&pts, &[3.0, 3.0]).unwrap(), 3.0);
-        let c = contributions(&pts, &[3.0, 3.0]).unwrap();
-        assert_eq!(c, vec![1.0, 1.0]);
-        let cube = [[0.0, 0.0, 0.0]];
-        assert_eq!(hypervolume(&cube, &[1.0, 2.0, 3.0]).unwrap(), 6.0);
-        let p3 = [[0.0, 1.0, 1.0], [1.0, 0.0, 1.0], [1.0, 1.0, 0.0]];
-        // Three boxes of volume 2 whose pairwise and triple intersections are the cube
-        // [1,2]^3: inclusion-exclusion gives 6 - 3 + 1.
-        assert!((hypervolume(&p3, &[2.0, 2.0, 2.0]).unwrap() - (6.0 - 3.0 + 1.0)).abs() < 1e-12);
-        assert_eq!(hypervolume(&[[5.0, 0.0]], &[3.0, 3.0]).unwrap(), 0.0);
+/// A finite result, or [`HypervolumeError::Overflow`].
+fn finite(v: f64) -> Result<f64, HypervolumeError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(HypervolumeError::Overflow { value: v })
+    }
+}
+
+/// Hypervolume of the points `pts` (row-major, stride `d = r.len()`), every one strictly
+/// dominating `r`.
+fn hypervolume_of(pts: &[f64], d: usize, r: &[f64]) -> f64 {
+    match (pts.len() / d, d) {
+        (0, _) => 0.0,
+        (1, _) => pts.iter().zip(r).map(|(p, r)| r - p).product(),
+        (_, 1) => r[0] - pts.iter().copied().fold(f64::INFINITY, f64::min),
+        (_, 2) => hv2d::hypervolume(pts, r),
+        (_, 3) => hv3d::hypervolume(pts, r),
+        (_, 4) => hv4d::hypervolume(pts, r),
+        _ => wfg::hypervolume(pts, d, r),
     }
 }
