@@ -97,7 +97,7 @@ where
     };
     loop {
         let before = (algorithm.is_initialised(), algorithm.generation());
-        if before.0 && before.1 >= target {
+        if (before.0 && before.1 >= target) || algorithm.is_finished() {
             return Ok(());
         }
         let batch = algorithm.ask(problem)?;

@@ -31,7 +31,9 @@ pub mod rng;
 pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
-pub use algorithms::{Moead, MoeadConfig, Nsga2, Nsga2Config};
+pub use algorithms::{
+    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, Nsga2, Nsga2Config,
+};
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
 pub use evaluate::{Evaluator, Rayon, Serial, evolve};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};

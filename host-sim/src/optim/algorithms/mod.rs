@@ -1,8 +1,10 @@
 //! The algorithms, each an ask/tell [`crate::optim::Algorithm`] with serialisable state.
 
+pub mod mhaco;
 pub mod moead;
 pub mod nsga2;
 
+pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig};
 pub use moead::{Moead, MoeadConfig};
 pub use nsga2::{Nsga2, Nsga2Config};
 
