@@ -18,6 +18,7 @@
 
 pub mod algorithm;
 pub mod algorithms;
+pub mod chromosome;
 pub mod error;
 pub mod evaluate;
 pub mod hypervolume;
@@ -32,7 +33,8 @@ pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
 pub use algorithms::{
-    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, Nsga2, Nsga2Config,
+    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes, Nsga2, Nsga2Config, Scea,
+    SceaConfig,
 };
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
 pub use evaluate::{Evaluator, Rayon, Serial, evolve};

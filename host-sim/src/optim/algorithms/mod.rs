@@ -3,10 +3,12 @@
 pub mod mhaco;
 pub mod moead;
 pub mod nsga2;
+pub mod scea;
 
 pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig};
 pub use moead::{Moead, MoeadConfig};
 pub use nsga2::{Nsga2, Nsga2Config};
+pub use scea::{NewGenes, Scea, SceaConfig};
 
 use super::error::ConfigError;
 

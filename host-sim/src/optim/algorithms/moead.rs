@@ -82,7 +82,7 @@ impl Default for MoeadConfig {
 }
 
 impl MoeadConfig {
-    fn check(&self, dim: usize, objectives: usize) -> Result<(), ConfigError> {
+    pub(crate) fn check(&self, dim: usize, objectives: usize) -> Result<(), ConfigError> {
         if objectives < 2 {
             return Err(ConfigError::TooFewObjectives {
                 algorithm: NAME,
