@@ -59,6 +59,7 @@ mod fields;
 mod flight;
 mod guidance;
 mod optimize_cmd;
+mod optimize_structured;
 mod parse;
 mod parse_guidance;
 mod scenario;

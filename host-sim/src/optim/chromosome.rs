@@ -160,3 +160,54 @@ pub trait StructuredProblem: Problem<Decision = Chromosome> {
         None
     }
 }
+
+/// A fixed-length real problem seen as chromosomes of fixed genes only (no legs), so that
+/// SCEA runs on it (the decision's `fixed` genes are the real vector).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FixedLength<P> {
+    inner: P,
+    layout: Layout,
+}
+
+impl<P: super::problem::RealProblem> FixedLength<P> {
+    /// Wrap `inner`.
+    #[must_use]
+    pub fn new(inner: P) -> Self {
+        let layout = Layout {
+            fixed: Some(inner.bounds().clone()),
+            legs: CountRange { min: 0, max: 0 },
+            nodes: CountRange { min: 1, max: 1 },
+            node: Bounds::from_checked(vec![0.0], vec![1.0]),
+        };
+        Self { inner, layout }
+    }
+
+    /// The wrapped problem.
+    #[must_use]
+    pub fn inner(&self) -> &P {
+        &self.inner
+    }
+}
+
+impl<P: super::problem::RealProblem> Problem for FixedLength<P> {
+    type Decision = Chromosome;
+
+    fn objectives(&self) -> usize {
+        self.inner.objectives()
+    }
+
+    fn constraints(&self) -> usize {
+        self.inner.constraints()
+    }
+
+    fn evaluate(&self, c: &Chromosome) -> Result<super::problem::Evaluation, EvalError> {
+        self.layout.check(c, None)?;
+        self.inner.evaluate(&c.fixed)
+    }
+}
+
+impl<P: super::problem::RealProblem> StructuredProblem for FixedLength<P> {
+    fn layout(&self) -> &Layout {
+        &self.layout
+    }
+}

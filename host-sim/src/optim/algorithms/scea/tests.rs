@@ -6,13 +6,13 @@
 use std::sync::Arc;
 
 use super::*;
-use crate::optim::chromosome::{CountRange, Layout};
+use crate::optim::chromosome::{CountRange, FixedLength, Layout};
 use crate::optim::error::{ConfigError, EvalError};
 use crate::optim::evaluate::{Rayon, Serial, evolve};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::observe::NoObserver;
 use crate::optim::population::feasible_front;
-use crate::optim::problem::{Bounds, Problem, RealProblem};
+use crate::optim::problem::{Bounds, Problem};
 use crate::optim::problems::{Dtlz, TestProblem, Vlmop, Zdt};
 use crate::optim::weights::WeightGeneration;
 
@@ -34,45 +34,6 @@ fn scea(population: usize, new_genes: NewGenes, seed: u64) -> Scea {
 fn run<P: StructuredProblem>(mut alg: Scea, p: &P, gens: u64) -> Scea {
     evolve(&mut alg, p, &Serial, gens, &mut NoObserver).unwrap();
     alg
-}
-
-/// A fixed-length real problem as a chromosome of fixed genes only (no legs).
-struct AsChromosome {
-    inner: TestProblem,
-    layout: Layout,
-}
-
-impl AsChromosome {
-    fn new(inner: TestProblem) -> Self {
-        let layout = Layout::new(
-            Some(inner.bounds().clone()),
-            CountRange { min: 0, max: 0 },
-            CountRange { min: 1, max: 1 },
-            Bounds::uniform(1, 0.0, 1.0).unwrap(),
-        )
-        .unwrap();
-        Self { inner, layout }
-    }
-}
-
-impl Problem for AsChromosome {
-    type Decision = Chromosome;
-    fn objectives(&self) -> usize {
-        self.inner.objectives()
-    }
-    fn constraints(&self) -> usize {
-        self.inner.constraints()
-    }
-    fn evaluate(&self, c: &Chromosome) -> Result<Evaluation, EvalError> {
-        self.layout.check(c, None)?;
-        self.inner.evaluate(&c.fixed)
-    }
-}
-
-impl StructuredProblem for AsChromosome {
-    fn layout(&self) -> &Layout {
-        &self.layout
-    }
 }
 
 /// Free counts: 1-3 legs of 1-4 one-gene nodes; `n` nodes in all (1..=12) and the mean
@@ -305,14 +266,14 @@ fn scea_table() {
 #[test]
 #[ignore = "heavy in debug builds: run in release"]
 fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
-    let zdt1 = AsChromosome::new(TestProblem::Zdt(Zdt::standard(1).unwrap()));
+    let zdt1 = FixedLength::new(TestProblem::Zdt(Zdt::standard(1).unwrap()));
     let a = run(scea(100, NewGenes::History, 1), &zdt1, 250);
     let r = [1.1, 1.1];
     let ratio = hypervolume(&feasible_front(a.population()), &r).unwrap()
-        / zdt1.inner.front_hypervolume(&r, 2000).unwrap();
+        / zdt1.inner().front_hypervolume(&r, 2000).unwrap();
     println!("scea zdt1 {ratio:.4}");
     assert!(ratio > SCEA_ZDT1, "zdt1 {ratio}");
-    let dtlz2 = AsChromosome::new(TestProblem::Dtlz(Dtlz::standard(2, 3).unwrap()));
+    let dtlz2 = FixedLength::new(TestProblem::Dtlz(Dtlz::standard(2, 3).unwrap()));
     let a = run(
         Scea::new(
             SceaConfig {
@@ -328,9 +289,9 @@ fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
         &dtlz2,
         100,
     );
-    let r = dtlz2.inner.reference_point();
+    let r = dtlz2.inner().reference_point();
     let ratio = hypervolume(&feasible_front(a.population()), &r).unwrap()
-        / dtlz2.inner.front_hypervolume(&r, 2000).unwrap();
+        / dtlz2.inner().front_hypervolume(&r, 2000).unwrap();
     println!("scea dtlz2 {ratio:.4}");
     assert!(ratio > SCEA_DTLZ2, "dtlz2 {ratio}");
 }
