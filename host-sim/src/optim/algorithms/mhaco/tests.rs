@@ -412,3 +412,21 @@ fn mhaco_zdt1_table() {
         );
     }
 }
+
+/// Every fixed-length test problem, population 100 (92 for three objectives), ker 63,
+/// n_gen_mark 15, 250 generations, seeds 1..=3: hypervolume ratios (release: `cargo test
+/// --release -p host-sim --lib mhaco_convergence_table -- --ignored --nocapture`).
+#[test]
+#[ignore = "heavy: run in release"]
+fn mhaco_convergence_table() {
+    for name in crate::optim::problems::NAMES {
+        let p = TestProblem::by_name(name, 3).unwrap().unwrap();
+        let pop = if p.objectives() == 2 { 100 } else { 92 };
+        let mut line = format!("{name:8}");
+        for seed in 1..=3 {
+            let r = hv_ratio(&run(recommended(pop, 63, seed), &p, 250), &p);
+            line += &format!("  {r:.4}");
+        }
+        println!("{line}");
+    }
+}
