@@ -11,8 +11,8 @@ use host_sim::optim::hypervolume::hypervolume;
 use host_sim::optim::population::feasible_front;
 use host_sim::optim::problems::Zdt;
 use host_sim::optim::{
-    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
-    Serial, evolve,
+    Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, Serial,
+    evolve,
 };
 
 const GENERATIONS: u64 = 250;
@@ -27,7 +27,7 @@ fn run_moead(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
 fn run_nsga2(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
     let mut a = Nsga2::new(Nsga2Config::default(), seed);
     evolve(&mut a, problem, &Serial, GENERATIONS, &mut NoObserver).expect("nsga2 runs");
-    <Nsga2 as Algorithm<Zdt>>::population(&a).to_vec()
+    a.population().to_vec()
 }
 
 fn median_hypervolume(run: fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>, problem: &Zdt) -> Vec<f64> {

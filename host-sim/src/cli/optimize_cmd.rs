@@ -13,10 +13,10 @@ use serde::Serialize;
 
 use crate::optim::hypervolume::{HypervolumeError, hypervolume};
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
-use crate::optim::problems::{NAMES, TestProblem};
+use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
 use crate::optim::{
-    Algorithm, BoundsError, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2,
-    Nsga2Config, OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
+    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
+    OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
 };
 use crate::report::{ReportError, write_atomic};
 
@@ -83,8 +83,16 @@ pub struct OptimizeArgs {
     /// MOEA/D and SCEA neighbourhood size (at most population - 1).
     #[arg(long, default_value_t = 20)]
     pub neighbours: usize,
-    /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D's
-    /// steady state hands out one decision at a time, so only NSGA-II gains.
+    /// MOEA/D per-variable mutation probability (default 1/variables; the thesis used
+    /// 1/population).
+    #[arg(long, value_name = "P")]
+    pub mutation_probability: Option<f64>,
+    /// MOEA/D offspring per ask/tell batch (1: pagmo's steady state; larger batches let
+    /// --threads evaluate in parallel).
+    #[arg(long, default_value_t = 1)]
+    pub batch_size: usize,
+    /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
+    /// gains only with --batch-size > 1.
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
     /// Hypervolume reference point, comma-separated (default: the problem's).
@@ -114,14 +122,14 @@ pub enum OptimizeError {
         name: String,
     },
     /// The problem could not be built (e.g. a DTLZ with fewer than 2 objectives).
-    #[error("command line: --problem {name} with --objectives {objectives}: {source}")]
+    #[error("command line: --problem {name} --objectives {objectives}: {source}")]
     Problem {
         /// Problem name.
         name: String,
         /// Objectives asked for.
         objectives: usize,
         /// Cause.
-        source: BoundsError,
+        source: TestProblemError,
     },
     /// A reference point of the wrong dimension or with non-finite values.
     #[error(
@@ -235,6 +243,8 @@ pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
         population: a.population,
         weights,
         neighbours: a.neighbours,
+        mutation_probability: a.mutation_probability,
+        batch_size: a.batch_size,
         ..MoeadConfig::default()
     }
 }
@@ -413,6 +423,8 @@ mod tests {
             objectives: 3,
             weights: WeightsArg::Grid,
             neighbours: 5,
+            mutation_probability: None,
+            batch_size: 1,
             threads: 1,
             reference: None,
             out,
@@ -461,6 +473,18 @@ mod tests {
         a.population = 22;
         let e = run(&a, &mut out).unwrap_err();
         assert!(e.to_string().contains("use 20 or 24"), "{e}");
+        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        a.batch_size = 21;
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("batch_size = 21 is outside [1, population]"),
+            "{e}"
+        );
+        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        a.mutation_probability = Some(1.5);
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(e.to_string().contains("mutation_probability = 1.5"), "{e}");
         let mut a = args("zdt1", AlgorithmName::Nsga2, None);
         a.threads = 0;
         assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads)));
@@ -470,15 +494,18 @@ mod tests {
     fn optimize_threads_do_not_change_the_result() {
         let dir =
             |t| std::env::temp_dir().join(format!("host-sim-optimize-t{t}-{}", std::process::id()));
-        for t in [1usize, 3] {
-            let mut a = args("constr", AlgorithmName::Nsga2, Some(dir(t)));
-            a.threads = t;
-            run(&a, &mut Vec::new()).unwrap();
-        }
-        let read = |t| std::fs::read_to_string(dir(t).join("population.csv")).unwrap();
-        assert_eq!(read(1), read(3));
-        for t in [1usize, 3] {
-            std::fs::remove_dir_all(dir(t)).unwrap();
+        for alg in [AlgorithmName::Nsga2, AlgorithmName::Moead] {
+            for t in [1usize, 3] {
+                let mut a = args("constr", alg, Some(dir(t)));
+                a.threads = t;
+                a.batch_size = 8;
+                run(&a, &mut Vec::new()).unwrap();
+            }
+            let read = |t| std::fs::read_to_string(dir(t).join("population.csv")).unwrap();
+            assert_eq!(read(1), read(3), "{alg:?}");
+            for t in [1usize, 3] {
+                std::fs::remove_dir_all(dir(t)).unwrap();
+            }
         }
     }
 }

@@ -219,6 +219,8 @@ mod tests {
             objectives: 3,
             weights: WeightsArg::Grid,
             neighbours: 5,
+            mutation_probability: None,
+            batch_size: 1,
             threads: 1,
             reference: None,
             out: None,

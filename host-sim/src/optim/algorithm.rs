@@ -49,6 +49,14 @@ pub trait Algorithm<P: Problem> {
     /// Evaluations told so far.
     fn evaluations(&self) -> u64;
 
+    /// Decision `index` of the open batch has been told already (a run resumed from a
+    /// checkpoint taken mid-batch); [`crate::optim::evolve`] evaluates only the others. The
+    /// default, `false`, suits algorithms that do not track it.
+    fn is_told(&self, index: usize) -> bool {
+        let _ = index;
+        false
+    }
+
     /// The algorithm has stopped by its own criterion (MHACO's `evalstop`); `evolve` returns
     /// early and `ask` hands out no more decisions. Default: never.
     fn is_finished(&self) -> bool {
@@ -83,10 +91,27 @@ impl<D> Batch<D> {
 
     /// Open a new batch with these decisions.
     pub fn open(&mut self, decisions: Vec<D>) {
-        self.remaining = decisions.len();
-        self.told.clear();
-        self.told.resize_with(decisions.len(), || None);
         self.decisions = decisions;
+        self.reset_told();
+    }
+
+    /// Open a new batch filled by `fill` (the decision buffer's allocation is reused).
+    pub fn open_with(&mut self, fill: impl FnOnce(&mut Vec<D>)) {
+        self.decisions.clear();
+        fill(&mut self.decisions);
+        self.reset_told();
+    }
+
+    fn reset_told(&mut self) {
+        self.remaining = self.decisions.len();
+        self.told.clear();
+        self.told.resize_with(self.decisions.len(), || None);
+    }
+
+    /// Decision `index` of the open batch has been told.
+    #[must_use]
+    pub fn is_told(&self, index: usize) -> bool {
+        self.remaining > 0 && self.told.get(index).is_some_and(Option::is_some)
     }
 
     /// The decisions of the batch.
@@ -131,21 +156,45 @@ impl<D> Batch<D> {
     /// Take the complete batch as individuals, in index order.
     #[must_use]
     pub fn take(&mut self) -> Vec<Individual<D>> {
-        let decisions = std::mem::take(&mut self.decisions);
-        let told = std::mem::take(&mut self.told);
+        let mut out = Vec::with_capacity(self.decisions.len());
+        self.take_into(&mut out);
+        out
+    }
+
+    /// Append the complete batch's individuals to `out`, in index order, keeping this batch's
+    /// buffers for the next one.
+    pub fn take_into(&mut self, out: &mut Vec<Individual<D>>) {
         self.remaining = 0;
-        decisions
-            .into_iter()
-            .zip(told)
-            .filter_map(|(decision, t)| {
-                t.map(|t| Individual {
-                    decision,
-                    objectives: t.objectives,
-                    constraints: t.constraints,
-                    violation: t.violation,
-                })
-            })
-            .collect()
+        out.extend(
+            self.decisions
+                .drain(..)
+                .zip(self.told.drain(..))
+                .filter_map(|(decision, t)| {
+                    t.map(|t| Individual {
+                        decision,
+                        objectives: t.objectives,
+                        constraints: t.constraints,
+                        violation: t.violation,
+                    })
+                }),
+        );
+    }
+}
+
+/// Working memory that is not part of an algorithm's state: never serialised, always equal,
+/// so checkpoints and state comparisons ignore it.
+#[derive(Clone, Default)]
+pub struct Scratch<T>(pub T);
+
+impl<T> PartialEq for Scratch<T> {
+    fn eq(&self, _other: &Self) -> bool {
+        true
+    }
+}
+
+impl<T> std::fmt::Debug for Scratch<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Scratch")
     }
 }
 

@@ -100,15 +100,30 @@ where
         if (before.0 && before.1 >= target) || algorithm.is_finished() {
             return Ok(());
         }
-        let batch = algorithm.ask(problem)?;
-        let results = evaluator.evaluate(problem, batch);
-        for (index, r) in results.into_iter().enumerate() {
-            let evaluation = r.map_err(|source| OptimError::Evaluation {
+        // `ask` is idempotent while the batch is open: ask once for its size, once to borrow it.
+        let n = algorithm.ask(problem)?.len();
+        let generation = before.1 + u64::from(before.0);
+        let fail = |index| {
+            move |source| OptimError::Evaluation {
                 index,
-                generation: before.1 + u64::from(before.0),
+                generation,
                 source,
-            })?;
-            algorithm.tell(problem, index, evaluation)?;
+            }
+        };
+        if (0..n).all(|i| !algorithm.is_told(i)) {
+            let results = evaluator.evaluate(problem, algorithm.ask(problem)?);
+            for (index, r) in results.into_iter().enumerate() {
+                algorithm.tell(problem, index, r.map_err(fail(index))?)?;
+            }
+        } else {
+            // Resumed from a checkpoint taken mid-batch: evaluate only what is missing.
+            let untold: Vec<usize> = (0..n).filter(|&i| !algorithm.is_told(i)).collect();
+            let batch = algorithm.ask(problem)?;
+            let missing: Vec<P::Decision> = untold.iter().map(|&i| batch[i].clone()).collect();
+            let results = evaluator.evaluate(problem, &missing);
+            for (&index, r) in untold.iter().zip(results) {
+                algorithm.tell(problem, index, r.map_err(fail(index))?)?;
+            }
         }
         let after = (algorithm.is_initialised(), algorithm.generation());
         if after != before && after.0 {

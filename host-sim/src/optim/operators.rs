@@ -6,6 +6,28 @@
 use super::problem::Bounds;
 use super::rng::OptimRng;
 
+/// `x^e`: by repeated squaring when `e` is a whole number up to 64 in magnitude (the usual
+/// distribution indices; portable and about ten times cheaper than `powf`), else `powf`.
+#[inline]
+#[must_use]
+pub fn pow(x: f64, e: f64) -> f64 {
+    if e.fract() == 0.0 && e.abs() <= 64.0 {
+        let mut n = e.abs() as u32;
+        let mut base = x;
+        let mut acc = 1.0;
+        while n > 0 {
+            if n & 1 == 1 {
+                acc *= base;
+            }
+            base *= base;
+            n >>= 1;
+        }
+        if e < 0.0 { 1.0 / acc } else { acc }
+    } else {
+        x.powf(e)
+    }
+}
+
 /// A uniformly random point inside the bounds.
 #[must_use]
 pub fn random_point(bounds: &Bounds, rng: &mut OptimRng) -> Vec<f64> {
@@ -32,16 +54,45 @@ pub fn de_step(
     child: &mut Vec<f64>,
 ) {
     child.clear();
-    for k in 0..x.len() {
-        let (lo, hi) = (bounds.lower()[k], bounds.upper()[k]);
-        let mut v = x[k];
+    if cr >= 1.0 {
+        // Every variable crosses, no draw needed (same distribution): the step vectorises,
+        // and the rare repairs follow in variable order (the same draws as the loop below).
+        child.extend(
+            x.iter()
+                .zip(a)
+                .zip(b)
+                .map(|((&xk, &ak), &bk)| xk + f * (ak - bk)),
+        );
+        let vars = child
+            .iter_mut()
+            .zip(x)
+            .zip(bounds.lower())
+            .zip(bounds.upper());
+        for (((v, &xk), &lo), &hi) in vars {
+            if *v < lo {
+                *v = lo + rng.uniform() * (xk - lo);
+            }
+            if *v > hi {
+                *v = hi - rng.uniform() * (hi - xk);
+            }
+        }
+        return;
+    }
+    let vars = x
+        .iter()
+        .zip(a)
+        .zip(b)
+        .zip(bounds.lower())
+        .zip(bounds.upper());
+    for ((((&xk, &ak), &bk), &lo), &hi) in vars {
+        let mut v = xk;
         if rng.uniform() < cr {
-            v = x[k] + f * (a[k] - b[k]);
+            v = xk + f * (ak - bk);
             if v < lo {
-                v = lo + rng.uniform() * (x[k] - lo);
+                v = lo + rng.uniform() * (xk - lo);
             }
             if v > hi {
-                v = hi - rng.uniform() * (hi - x[k]);
+                v = hi - rng.uniform() * (hi - xk);
             }
         }
         child.push(v);
@@ -50,6 +101,11 @@ pub fn de_step(
 
 /// Polynomial mutation (Deb & Goyal; pagmo's form): each variable mutates with probability
 /// `rate` with distribution index `eta`; results are clamped to the bounds.
+///
+/// The mutated variables are found by geometric skipping (the gap to the next mutated
+/// variable is drawn, `P(gap = j) = (1 - rate)^j rate`), which selects them with exactly the
+/// per-variable Bernoulli(`rate`) law but draws one number per mutation instead of one per
+/// variable.
 pub fn polynomial_mutation(
     x: &mut [f64],
     bounds: &Bounds,
@@ -57,25 +113,38 @@ pub fn polynomial_mutation(
     eta: f64,
     rng: &mut OptimRng,
 ) {
+    if rate <= 0.0 {
+        return;
+    }
     let mut_pow = 1.0 / (eta + 1.0);
-    for (k, y) in x.iter_mut().enumerate() {
-        if rng.uniform() < rate {
-            let (yl, yu) = (bounds.lower()[k], bounds.upper()[k]);
-            let span = yu - yl;
-            let delta1 = (*y - yl) / span;
-            let delta2 = (yu - *y) / span;
-            let rnd = rng.uniform();
-            let deltaq = if rnd < 0.5 {
-                let xy = 1.0 - delta1;
-                let val = 2.0 * rnd + (1.0 - 2.0 * rnd) * xy.powf(eta + 1.0);
-                val.powf(mut_pow) - 1.0
-            } else {
-                let xy = 1.0 - delta2;
-                let val = 2.0 * (1.0 - rnd) + 2.0 * (rnd - 0.5) * xy.powf(eta + 1.0);
-                1.0 - val.powf(mut_pow)
-            };
-            *y = (*y + deltaq * span).clamp(yl, yu);
+    let log_q = (1.0 - rate).ln();
+    let gap = |rng: &mut OptimRng| -> usize {
+        if rate >= 1.0 {
+            0
+        } else {
+            // 1 - u lies in (0, 1]; the quotient is >= 0 and saturates on conversion.
+            ((1.0 - rng.uniform()).ln() / log_q).floor() as usize
         }
+    };
+    let mut k = gap(rng);
+    while k < x.len() {
+        let (yl, yu) = (bounds.lower()[k], bounds.upper()[k]);
+        let y = &mut x[k];
+        let span = yu - yl;
+        let delta1 = (*y - yl) / span;
+        let delta2 = (yu - *y) / span;
+        let rnd = rng.uniform();
+        let deltaq = if rnd < 0.5 {
+            let xy = 1.0 - delta1;
+            let val = 2.0 * rnd + (1.0 - 2.0 * rnd) * pow(xy, eta + 1.0);
+            val.powf(mut_pow) - 1.0
+        } else {
+            let xy = 1.0 - delta2;
+            let val = 2.0 * (1.0 - rnd) + 2.0 * (rnd - 0.5) * pow(xy, eta + 1.0);
+            1.0 - val.powf(mut_pow)
+        };
+        *y = (*y + deltaq * span).clamp(yl, yu);
+        k = k.saturating_add(1).saturating_add(gap(rng));
     }
 }
 
@@ -97,7 +166,7 @@ pub fn sbx(
     if rng.uniform() >= cr {
         return (c1, c2);
     }
-    let pow = 1.0 / (eta + 1.0);
+    let root = 1.0 / (eta + 1.0);
     for k in 0..p1.len() {
         if rng.uniform() >= 0.5 || (p1[k] - p2[k]).abs() <= 1e-14 {
             continue;
@@ -110,11 +179,11 @@ pub fn sbx(
         let (yl, yu) = (bounds.lower()[k], bounds.upper()[k]);
         let rand = rng.uniform();
         let betaq = |beta: f64| {
-            let alpha = 2.0 - beta.powf(-(eta + 1.0));
+            let alpha = 2.0 - pow(beta, -(eta + 1.0));
             if rand <= 1.0 / alpha {
-                (rand * alpha).powf(pow)
+                (rand * alpha).powf(root)
             } else {
-                (1.0 / (2.0 - rand * alpha)).powf(pow)
+                (1.0 / (2.0 - rand * alpha)).powf(root)
             }
         };
         let b1 = betaq(1.0 + 2.0 * (y1 - yl) / (y2 - y1));
@@ -167,6 +236,51 @@ mod tests {
         for _ in 0..200 {
             let (c1, c2) = sbx(&[0.3], &[0.7], &bounds, 1.0, 15.0, &mut rng);
             assert!((c1[0] + c2[0] - 1.0).abs() < 1e-12, "{c1:?} {c2:?}");
+        }
+    }
+
+    #[test]
+    fn integer_pow_matches_powf() {
+        for &x in &[0.0, 1e-3, 0.37, 1.0, 1.7, 12.5] {
+            for e in [
+                -21.0, -11.0, -1.0, 0.0, 1.0, 2.0, 11.0, 21.0, 51.0, 0.5, 2.5,
+            ] {
+                let (a, b): (f64, f64) = (pow(x, e), x.powf(e));
+                assert!(a == b || ((a - b) / b).abs() < 1e-13, "{x}^{e}: {a} {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn geometric_skipping_mutates_each_variable_with_the_given_rate() {
+        let bounds = Bounds::uniform(50, 0.0, 1.0).unwrap();
+        let mut rng = OptimRng::new(8);
+        for rate in [0.02, 0.3, 1.0] {
+            let mut counts = [0usize; 50];
+            let trials = 4000;
+            for _ in 0..trials {
+                let mut x = vec![0.5; 50];
+                polynomial_mutation(&mut x, &bounds, rate, 20.0, &mut rng);
+                for (c, v) in counts.iter_mut().zip(&x) {
+                    *c += usize::from(*v != 0.5);
+                }
+            }
+            let total: usize = counts.iter().sum();
+            let expected = rate * (50 * trials) as f64;
+            let sigma = (expected * (1.0 - rate)).sqrt().max(1.0);
+            assert!(
+                (total as f64 - expected).abs() < 5.0 * sigma,
+                "rate {rate}: {total} vs {expected}"
+            );
+            // Uniform over positions: first and last ten variables mutate equally often.
+            let head: usize = counts[..10].iter().sum();
+            let tail: usize = counts[40..].iter().sum();
+            let e = rate * (10 * trials) as f64;
+            let s = (e * (1.0 - rate)).sqrt().max(1.0);
+            assert!(
+                (head as f64 - e).abs() < 5.0 * s && (tail as f64 - e).abs() < 5.0 * s,
+                "{head} {tail} {e}"
+            );
         }
     }
 

@@ -60,7 +60,7 @@ pub fn constrained_sort_fronts<P: AsRef<[f64]>>(
     let feasible: Vec<usize> = (0..points.len()).filter(|&i| violation[i] == 0.0).collect();
     let mut fronts = sort_subset(points, &feasible);
     let mut infeasible: Vec<usize> = (0..points.len()).filter(|&i| violation[i] != 0.0).collect();
-    infeasible.sort_by(|&a, &b| violation[a].total_cmp(&violation[b]).then(a.cmp(&b)));
+    infeasible.sort_unstable_by(|&a, &b| violation[a].total_cmp(&violation[b]).then(a.cmp(&b)));
     let mut k = 0;
     while k < infeasible.len() {
         let v = violation[infeasible[k]];
@@ -96,7 +96,7 @@ fn sort_subset<P: AsRef<[f64]>>(points: &[P], subset: &[usize]) -> Vec<Vec<usize
 /// domination by every front before it).
 fn sort_2d<P: AsRef<[f64]>>(points: &[P], subset: &[usize]) -> Vec<Vec<usize>> {
     let mut order = subset.to_vec();
-    order.sort_by(|&a, &b| {
+    order.sort_unstable_by(|&a, &b| {
         let (pa, pb) = (points[a].as_ref(), points[b].as_ref());
         pa[0]
             .total_cmp(&pb[0])
@@ -179,7 +179,7 @@ pub fn crowding_distance<P: AsRef<[f64]>>(points: &[P], front: &[usize]) -> Vec<
     let mut order: Vec<usize> = (0..n).collect();
     for k in 0..m {
         let val = |i: usize| points[front[i]].as_ref()[k];
-        order.sort_by(|&a, &b| val(a).total_cmp(&val(b)).then(front[a].cmp(&front[b])));
+        order.sort_unstable_by(|&a, &b| val(a).total_cmp(&val(b)).then(front[a].cmp(&front[b])));
         let (lo, hi) = (val(order[0]), val(order[n - 1]));
         d[order[0]] = f64::INFINITY;
         d[order[n - 1]] = f64::INFINITY;

@@ -14,7 +14,7 @@ use super::pareto;
 use super::problem::Evaluation;
 
 /// One evaluated decision.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
 pub struct Individual<D> {
     /// The decision (chromosome).
     pub decision: D,
@@ -24,6 +24,25 @@ pub struct Individual<D> {
     pub constraints: Vec<f64>,
     /// Total violation `sum max(0, g_i)`; `f64::MAX` for a failed evaluation.
     pub violation: f64,
+}
+
+impl<D: Clone> Clone for Individual<D> {
+    fn clone(&self) -> Self {
+        Self {
+            decision: self.decision.clone(),
+            objectives: self.objectives.clone(),
+            constraints: self.constraints.clone(),
+            violation: self.violation,
+        }
+    }
+
+    /// Reuses the buffers of `self` (no allocation when the sizes match).
+    fn clone_from(&mut self, source: &Self) {
+        self.decision.clone_from(&source.decision);
+        self.objectives.clone_from(&source.objectives);
+        self.constraints.clone_from(&source.constraints);
+        self.violation = source.violation;
+    }
 }
 
 impl<D> Individual<D> {
@@ -155,6 +174,9 @@ mod tests {
         let bad =
             Individual::from_evaluation((), Evaluation::new(vec![f64::NAN, 1.0]), 0, 2, 0).unwrap();
         assert!(bad.is_failed() && !bad.is_feasible());
+        let failure = Individual::from_evaluation((), Evaluation::failure(2, 1), 0, 2, 1).unwrap();
+        assert!(failure.is_failed());
+        assert_eq!(failure.objectives, vec![f64::MAX, f64::MAX]);
         assert_eq!(bad.objectives, vec![f64::MAX, 1.0]);
         assert_eq!(
             Individual::from_evaluation((), Evaluation::new(vec![1.0]), 3, 2, 0),

@@ -41,6 +41,18 @@ impl Evaluation {
         }
     }
 
+    /// A failed evaluation that should not stop the run: `objectives` NaN objectives and
+    /// `constraints` NaN constraints. The algorithms keep it as a failed individual (worst
+    /// possible violation, never on a front) instead of stopping as they do on an
+    /// [`EvalError`].
+    #[must_use]
+    pub fn failure(objectives: usize, constraints: usize) -> Self {
+        Self {
+            objectives: vec![f64::NAN; objectives],
+            constraints: vec![f64::NAN; constraints],
+        }
+    }
+
     /// Evaluation with inequality constraints (`<= 0` satisfied).
     #[must_use]
     pub fn with_constraints(objectives: Vec<f64>, constraints: Vec<f64>) -> Self {

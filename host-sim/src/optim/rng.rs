@@ -52,17 +52,45 @@ impl OptimRng {
         loop {
             let m = u128::from(self.next_u64()) * u128::from(n);
             let low = m as u64;
-            // Reject the few values that would bias the result.
-            if low >= n.wrapping_neg() % n {
+            // Reject the few values that would bias the result; the threshold (a division) is
+            // only needed when `low < n`, which is rare.
+            if low >= n || low >= n.wrapping_neg() % n {
                 return (m >> 64) as usize;
             }
         }
     }
 
-    /// Fisher-Yates shuffle.
+    /// Fisher-Yates shuffle (unbiased). Slices shorter than 2^32 take their indices from
+    /// 32-bit halves of the generator's output (Lemire's multiply-and-reject on 32 bits), two
+    /// per draw.
     pub fn shuffle<T>(&mut self, items: &mut [T]) {
+        if items.len() > u32::MAX as usize {
+            for i in (1..items.len()).rev() {
+                let j = self.below(i + 1);
+                items.swap(i, j);
+            }
+            return;
+        }
+        let mut spare: Option<u32> = None;
+        let mut next32 = |rng: &mut Self| -> u32 {
+            match spare.take() {
+                Some(v) => v,
+                None => {
+                    let r = rng.next_u64();
+                    spare = Some(r as u32);
+                    (r >> 32) as u32
+                }
+            }
+        };
         for i in (1..items.len()).rev() {
-            let j = self.below(i + 1);
+            let n = (i + 1) as u32;
+            let j = loop {
+                let m = u64::from(next32(self)) * u64::from(n);
+                let low = m as u32;
+                if low >= n || low >= n.wrapping_neg() % n {
+                    break (m >> 32) as usize;
+                }
+            };
             items.swap(i, j);
         }
     }
@@ -90,6 +118,24 @@ mod tests {
             assert_eq!(a.next_u64(), c.next_u64());
         }
         assert_ne!(OptimRng::new(8).next_u64(), OptimRng::new(7).next_u64());
+    }
+
+    #[test]
+    fn shuffle_is_a_uniform_permutation() {
+        let mut r = OptimRng::new(2);
+        // Position of element 0 after shuffling 5 elements: uniform over 0..5.
+        let mut counts = [0usize; 5];
+        for _ in 0..10_000 {
+            let mut v = [0, 1, 2, 3, 4];
+            r.shuffle(&mut v);
+            let mut sorted = v;
+            sorted.sort_unstable();
+            assert_eq!(sorted, [0, 1, 2, 3, 4]);
+            counts[v.iter().position(|&x| x == 0).unwrap()] += 1;
+        }
+        for c in counts {
+            assert!((1800..2200).contains(&c), "{counts:?}");
+        }
     }
 
     #[test]

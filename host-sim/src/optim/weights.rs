@@ -104,10 +104,13 @@ pub fn generate(
                 let u: Vec<f64> = if kind == WeightGeneration::Random {
                     (0..m - 1).map(|_| rng.uniform()).collect()
                 } else {
-                    count += 1;
-                    (0..m - 1)
+                    // pagmo's Halton points start at index m (the point after the m unit
+                    // vectors).
+                    let u = (0..m - 1)
                         .map(|d| radical_inverse(count, PRIMES[d % PRIMES.len()]))
-                        .collect()
+                        .collect();
+                    count += 1;
+                    u
                 };
                 out.push(simplex_from_unit_cube(u));
             }
@@ -163,17 +166,7 @@ fn simplex_from_unit_cube(mut u: Vec<f64>) -> Vec<f64> {
 #[must_use]
 pub fn decompose(kind: Decomposition, f: &[f64], w: &[f64], z: &[f64]) -> f64 {
     match kind {
-        Decomposition::Tchebycheff => {
-            let mut r = f64::NEG_INFINITY;
-            for i in 0..f.len() {
-                let wi = if w[i] == 0.0 { 1e-4 } else { w[i] };
-                let t = wi * (f[i] - z[i]).abs();
-                if t > r {
-                    r = t;
-                }
-            }
-            r
-        }
+        Decomposition::Tchebycheff => tchebycheff(f, w, z),
         Decomposition::Weighted => f.iter().zip(w).map(|(a, b)| a * b).sum(),
         Decomposition::Pbi => {
             const THETA: f64 = 5.0;
@@ -198,6 +191,21 @@ pub fn decompose(kind: Decomposition, f: &[f64], w: &[f64], z: &[f64]) -> f64 {
             d1 + THETA * d2
         }
     }
+}
+
+/// Tchebycheff value `max_i w_i |f_i - z_i|` (a zero weight counts as 1e-4, as in pagmo).
+#[inline]
+#[must_use]
+pub fn tchebycheff(f: &[f64], w: &[f64], z: &[f64]) -> f64 {
+    let mut r = f64::NEG_INFINITY;
+    for ((&fi, &wi), &zi) in f.iter().zip(w).zip(z) {
+        let wi = if wi == 0.0 { 1e-4 } else { wi };
+        let t = wi * (fi - zi).abs();
+        if t > r {
+            r = t;
+        }
+    }
+    r
 }
 
 /// For every weight, the indices of its `t` nearest weights (Euclidean, itself first; ties
@@ -297,5 +305,143 @@ mod tests {
         );
         assert_eq!(nb[0], vec![0, 1, 2]);
         assert_eq!(nb[2], vec![2, 1, 3]);
+    }
+
+    // pygmo 2.20: `pg.decomposition_weights(m, n, method, 1)` and `pg.decompose_objectives`.
+    const GRID_3_15: &[&[f64]] = &[
+        &[0.0, 0.0, 1.0],
+        &[0.0, 0.25, 0.75],
+        &[0.0, 0.5, 0.5],
+        &[0.0, 0.75, 0.25],
+        &[0.0, 1.0, 0.0],
+        &[0.25, 0.0, 0.75],
+        &[0.25, 0.25, 0.5],
+        &[0.25, 0.5, 0.25],
+        &[0.25, 0.75, 0.0],
+        &[0.5, 0.0, 0.5],
+        &[0.5, 0.25, 0.25],
+        &[0.5, 0.5, 0.0],
+        &[0.75, 0.0, 0.25],
+        &[0.75, 0.25, 0.0],
+        &[1.0, 0.0, 0.0],
+    ];
+    const LD_3_12: &[&[f64]] = &[
+        &[1.0, 0.0, 0.0],
+        &[0.0, 1.0, 0.0],
+        &[0.0, 0.0, 1.0],
+        &[0.1111111111111111, 0.6388888888888888, 0.25],
+        &[0.125, 0.3194444444444444, 0.5555555555555556],
+        &[0.625, 0.15277777777777768, 0.22222222222222232],
+        &[0.2222222222222222, 0.1527777777777778, 0.625],
+        &[0.5555555555555556, 0.3194444444444444, 0.125],
+        &[0.0625, 0.8263888888888888, 0.11111111111111116],
+        &[0.037037037037037035, 0.525462962962963, 0.4375],
+        &[0.3125, 0.05787037037037035, 0.6296296296296297],
+        &[0.7037037037037037, 0.10879629629629628, 0.1875],
+    ];
+    const LD_2_6: &[&[f64]] = &[
+        &[1.0, 0.0],
+        &[0.0, 1.0],
+        &[0.25, 0.75],
+        &[0.75, 0.25],
+        &[0.125, 0.875],
+        &[0.625, 0.375],
+    ];
+    const LD_4_9: &[&[f64]] = &[
+        &[1.0, 0.0, 0.0, 0.0],
+        &[0.0, 1.0, 0.0, 0.0],
+        &[0.0, 0.0, 1.0, 0.0],
+        &[0.0, 0.0, 0.0, 1.0],
+        &[
+            0.125,
+            0.3194444444444444,
+            0.3555555555555556,
+            0.19999999999999996,
+        ],
+        &[0.04, 0.585, 0.15277777777777768, 0.22222222222222232],
+        &[
+            0.2222222222222222,
+            0.01777777777777781,
+            0.13499999999999998,
+            0.625,
+        ],
+        &[0.44, 0.11555555555555558, 0.3194444444444444, 0.125],
+        &[
+            0.0625,
+            0.5775000000000001,
+            0.24888888888888872,
+            0.11111111111111116,
+        ],
+    ];
+
+    #[test]
+    fn validate_pygmo_weights_and_decompositions() {
+        let mut rng = OptimRng::new(0);
+        for (n, m, kind, expected) in [
+            (15, 3, WeightGeneration::Grid, GRID_3_15),
+            (12, 3, WeightGeneration::LowDiscrepancy, LD_3_12),
+            (6, 2, WeightGeneration::LowDiscrepancy, LD_2_6),
+            (9, 4, WeightGeneration::LowDiscrepancy, LD_4_9),
+        ] {
+            let w = generate(n, m, kind, &mut rng).unwrap();
+            assert_eq!(w.len(), expected.len());
+            for (a, b) in w.iter().zip(expected) {
+                for (x, y) in a.iter().zip(b.iter()) {
+                    assert!((x - y).abs() < 1e-15, "{kind:?} {n}: {a:?} vs pygmo {b:?}");
+                }
+            }
+        }
+        type Case<'a> = (Decomposition, &'a [f64], &'a [f64], &'a [f64], f64);
+        let cases: [Case; 6] = [
+            (
+                Decomposition::Tchebycheff,
+                &[1.0, 2.0],
+                &[0.5, 0.5],
+                &[0.0, 0.0],
+                1.0,
+            ),
+            (
+                Decomposition::Tchebycheff,
+                &[1.0, 2.0],
+                &[0.0, 1.0],
+                &[0.1, 0.2],
+                1.8,
+            ),
+            (
+                Decomposition::Weighted,
+                &[1.0, 2.0, 3.0],
+                &[0.2, 0.3, 0.5],
+                &[0.0; 3],
+                2.3,
+            ),
+            (
+                Decomposition::Weighted,
+                &[1.0, 2.0],
+                &[0.5, 0.5],
+                &[0.3, 0.1],
+                1.5,
+            ),
+            (
+                Decomposition::Pbi,
+                &[1.0, 2.0],
+                &[0.5, 0.5],
+                &[0.0, 0.0],
+                5.65685424949238,
+            ),
+            (
+                Decomposition::Pbi,
+                &[0.3, 0.9, 0.1],
+                &[0.1, 0.6, 0.3],
+                &[0.05, 0.1, 0.0],
+                2.2910772514487983,
+            ),
+        ];
+        for (kind, f, w, z, expected) in cases {
+            let v = decompose(kind, f, w, z);
+            assert!(
+                (v - expected).abs() < 1e-12,
+                "{kind:?}: {v} vs pygmo {expected}"
+            );
+        }
     }
 }

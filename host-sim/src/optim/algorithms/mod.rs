@@ -6,9 +6,9 @@ pub mod nsga2;
 pub mod scea;
 
 pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig};
-pub use moead::{Moead, MoeadConfig};
+pub use moead::{DeVariation, Moead, MoeadConfig, MoeadVariation, MoeadWith};
 pub use nsga2::{Nsga2, Nsga2Config};
-pub use scea::{NewGenes, Scea, SceaConfig};
+pub use scea::{NewGenes, Scea, SceaConfig, SceaVariation};
 
 use super::error::ConfigError;
 

@@ -200,17 +200,38 @@ impl Nsga2 {
         self.batch.open(children);
     }
 
-    /// Keep the best `n` of parents + children.
+    /// Keep the best `n` of parents + children: whole fronts in order, the front that
+    /// overflows cut by decreasing crowding distance (ties by index).
     fn survive(&mut self, children: Vec<Individual<Vec<f64>>>) {
         let n = self.config.population;
         let mut all = std::mem::take(&mut self.population);
         all.extend(children);
-        let (rank, crowd) = Self::rank_and_crowding(&all);
-        let mut order: Vec<usize> = (0..all.len()).collect();
-        order.sort_by(|&a, &b| rank_crowding_cmp((rank[a], crowd[a], a), (rank[b], crowd[b], b)));
         let mut keep = vec![false; all.len()];
-        for &i in order.iter().take(n) {
-            keep[i] = true;
+        {
+            let objs: Vec<&[f64]> = all.iter().map(|i| i.objectives.as_slice()).collect();
+            let viol: Vec<f64> = all.iter().map(|i| i.violation).collect();
+            let mut left = n;
+            for front in constrained_sort_fronts(&objs, &viol) {
+                if front.len() <= left {
+                    for &i in &front {
+                        keep[i] = true;
+                    }
+                    left -= front.len();
+                } else {
+                    let d = crowding_distance(&objs, &front);
+                    let mut order: Vec<usize> = (0..front.len()).collect();
+                    order.sort_unstable_by(|&a, &b| {
+                        rank_crowding_cmp((0, d[a], front[a]), (0, d[b], front[b]))
+                    });
+                    for &k in order.iter().take(left) {
+                        keep[front[k]] = true;
+                    }
+                    left = 0;
+                }
+                if left == 0 {
+                    break;
+                }
+            }
         }
         self.population = all
             .into_iter()
@@ -282,5 +303,9 @@ impl<P: RealProblem> Algorithm<P> for Nsga2 {
 
     fn evaluations(&self) -> u64 {
         self.evaluations
+    }
+
+    fn is_told(&self, index: usize) -> bool {
+        self.batch.is_told(index)
     }
 }

@@ -3,10 +3,12 @@
 
 use std::f64::consts::PI;
 
-use crate::optim::error::{BoundsError, EvalError};
+use crate::optim::error::EvalError;
 use crate::optim::pareto::non_dominated;
 use crate::optim::problem::{Bounds, Evaluation, Problem, RealProblem};
 use crate::optim::rng::OptimRng;
+
+use super::TestProblemError;
 use crate::optim::weights::{WeightGeneration, generate, grid_sizes_around};
 
 /// One DTLZ problem.
@@ -21,15 +23,29 @@ impl Dtlz {
     /// DTLZ `id` (1..=7) with `m >= 2` objectives and `k >= 1` distance variables.
     ///
     /// # Errors
-    /// [`BoundsError::Empty`] for an unknown id, `m < 2` or `k == 0`.
-    pub fn new(id: u8, m: usize, k: usize) -> Result<Self, BoundsError> {
-        if !(1..=7).contains(&id) || m < 2 || k == 0 {
-            return Err(BoundsError::Empty);
+    /// [`TestProblemError`] for an unknown id, `m < 2` or `k == 0`.
+    pub fn new(id: u8, m: usize, k: usize) -> Result<Self, TestProblemError> {
+        if !(1..=7).contains(&id) {
+            return Err(TestProblemError::UnknownDtlz { id });
         }
+        if m < 2 {
+            return Err(TestProblemError::TooFewObjectives {
+                problem: format!("dtlz{id}"),
+                given: m,
+            });
+        }
+        if k == 0 {
+            return Err(TestProblemError::TooFewVariables {
+                problem: format!("dtlz{id}"),
+                given: m - 1,
+                minimum: m,
+            });
+        }
+        let n = m + k - 1;
         Ok(Self {
             id,
             m,
-            bounds: Bounds::uniform(m + k - 1, 0.0, 1.0)?,
+            bounds: Bounds::from_checked(vec![0.0; n], vec![1.0; n]),
         })
     }
 
@@ -37,7 +53,7 @@ impl Dtlz {
     ///
     /// # Errors
     /// As [`Dtlz::new`].
-    pub fn standard(id: u8, m: usize) -> Result<Self, BoundsError> {
+    pub fn standard(id: u8, m: usize) -> Result<Self, TestProblemError> {
         let k = match id {
             1 => 5,
             7 => 20,

@@ -3,9 +3,11 @@
 
 use std::f64::consts::PI;
 
-use crate::optim::error::{BoundsError, EvalError};
+use crate::optim::error::EvalError;
 use crate::optim::pareto::non_dominated;
 use crate::optim::problem::{Bounds, Evaluation, Problem, RealProblem};
+
+use super::TestProblemError;
 
 /// One ZDT problem.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,19 +40,26 @@ impl Zdt {
     /// 10; at least 2).
     ///
     /// # Errors
-    /// [`BoundsError::Empty`] for `dim < 2` or an unknown id.
-    pub fn new(id: u8, dim: usize) -> Result<Self, BoundsError> {
-        if dim < 2 || !matches!(id, 1 | 2 | 3 | 4 | 6) {
-            return Err(BoundsError::Empty);
+    /// [`TestProblemError`] for an unknown id or `dim < 2`.
+    pub fn new(id: u8, dim: usize) -> Result<Self, TestProblemError> {
+        if !matches!(id, 1 | 2 | 3 | 4 | 6) {
+            return Err(TestProblemError::UnknownZdt { id });
+        }
+        if dim < 2 {
+            return Err(TestProblemError::TooFewVariables {
+                problem: format!("zdt{id}"),
+                given: dim,
+                minimum: 2,
+            });
         }
         let bounds = if id == 4 {
             let mut lo = vec![-5.0; dim];
             let mut hi = vec![5.0; dim];
             lo[0] = 0.0;
             hi[0] = 1.0;
-            Bounds::new(lo, hi)?
+            Bounds::from_checked(lo, hi)
         } else {
-            Bounds::uniform(dim, 0.0, 1.0)?
+            Bounds::from_checked(vec![0.0; dim], vec![1.0; dim])
         };
         Ok(Self { id, bounds })
     }
@@ -59,7 +68,7 @@ impl Zdt {
     ///
     /// # Errors
     /// As [`Zdt::new`].
-    pub fn standard(id: u8) -> Result<Self, BoundsError> {
+    pub fn standard(id: u8) -> Result<Self, TestProblemError> {
         Self::new(id, if id <= 3 { 30 } else { 10 })
     }
 

@@ -412,6 +412,10 @@ impl<P: RealProblem> Algorithm<P> for Mhaco {
         self.evaluations
     }
 
+    fn is_told(&self, index: usize) -> bool {
+        self.batch.is_told(index)
+    }
+
     fn is_finished(&self) -> bool {
         self.finished
     }

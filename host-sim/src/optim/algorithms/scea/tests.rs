@@ -6,12 +6,15 @@
 use std::sync::Arc;
 
 use super::*;
+use crate::optim::algorithm::Algorithm;
 use crate::optim::chromosome::{CountRange, FixedLength, Layout};
+use crate::optim::error::OptimError;
 use crate::optim::error::{ConfigError, EvalError};
 use crate::optim::evaluate::{Rayon, Serial, evolve};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::observe::NoObserver;
 use crate::optim::population::feasible_front;
+use crate::optim::problem::Evaluation;
 use crate::optim::problem::{Bounds, Problem};
 use crate::optim::problems::{Dtlz, TestProblem, Vlmop, Zdt};
 use crate::optim::weights::WeightGeneration;
@@ -121,9 +124,18 @@ fn scea_same_seed_same_run_whatever_tell_order_and_thread_count() {
         )
     };
     let make = || {
-        let mut s = scea(20, NewGenes::History, 42);
-        s.config.moead.batch_size = 7;
-        s
+        Scea::new(
+            SceaConfig {
+                moead: MoeadConfig {
+                    population: 20,
+                    neighbours: 5,
+                    batch_size: 7,
+                    ..MoeadConfig::default()
+                },
+                ..SceaConfig::default()
+            },
+            42,
+        )
     };
     let mut a = make();
     evolve(&mut a, &p, &Rayon::with_pool(pool(1)), 6, &mut NoObserver).unwrap();
@@ -141,7 +153,7 @@ fn scea_same_seed_same_run_whatever_tell_order_and_thread_count() {
     }
     assert_eq!(a, b);
     assert_eq!(a, c);
-    let other = run(scea(20, NewGenes::History, 43), &p, 6);
+    let other = run(scea(20, NewGenes::Population, 43), &p, 6);
     assert_ne!(a.population(), other.population());
 }
 
@@ -149,7 +161,7 @@ fn scea_same_seed_same_run_whatever_tell_order_and_thread_count() {
 fn scea_checkpoint_and_resume_give_the_bit_identical_run() {
     let vl = Vlmop::standard(1).unwrap();
     let nodes = Nodes::new();
-    for genes in [NewGenes::Random, NewGenes::History] {
+    for genes in [NewGenes::Random, NewGenes::Population] {
         let straight = run(scea(20, genes, 5), &vl, 10);
         let first = run(scea(20, genes, 5), &vl, 4);
         let json = serde_json::to_string(&first).unwrap();
@@ -166,7 +178,7 @@ fn scea_checkpoint_and_resume_give_the_bit_identical_run() {
 #[test]
 fn scea_chromosomes_keep_their_layout_and_dictated_lengths() {
     let vl = Vlmop::standard(2).unwrap();
-    let a = run(scea(30, NewGenes::History, 1), &vl, 10);
+    let a = run(scea(30, NewGenes::Population, 1), &vl, 10);
     for ind in a.population() {
         let c = &ind.decision;
         assert_eq!(c.node_counts(), vec![vl.length(&c.fixed)]);
@@ -188,10 +200,10 @@ fn scea_chromosomes_keep_their_layout_and_dictated_lengths() {
 
 #[test]
 fn scea_finds_every_length_of_the_free_count_problem() {
-    // Twelve front points, one per total node count; history genes.
+    // Twelve front points, one per total node count; both gene sources.
     let p = Nodes::new();
     let mut counts = Vec::new();
-    for genes in [NewGenes::Random, NewGenes::History] {
+    for genes in [NewGenes::Random, NewGenes::Population] {
         let a = run(scea(50, genes, 3), &p, 100);
         let mut found: Vec<usize> = a
             .population()
@@ -205,25 +217,26 @@ fn scea_finds_every_length_of_the_free_count_problem() {
         counts.push(found.len());
     }
     assert!(counts[0] >= SCEA_NODES_LENGTHS[0], "random: {counts:?}");
-    assert!(counts[1] >= SCEA_NODES_LENGTHS[1], "history: {counts:?}");
+    assert!(counts[1] >= SCEA_NODES_LENGTHS[1], "population: {counts:?}");
 }
 
 // Thresholds: measured values of these seeds (docs/OPTIMISERS.md) less about 2 %.
-// Free-count problem: lengths 9-11 (three legs) are not reached in 100 generations.
-const SCEA_NODES_LENGTHS: [usize; 2] = [8, 9];
-/// [random genes, history genes][vlmop1..=5].
+// Free-count problem: lengths 10-11 (three legs) are not reached in 100 generations.
+const SCEA_NODES_LENGTHS: [usize; 2] = [9, 8];
+/// [random genes, population genes][vlmop1..=5].
 const SCEA_VL: [[f64; 5]; 2] = [
-    [0.97, 0.97, 0.76, 0.89, 0.82],
-    [0.96, 0.97, 0.79, 0.90, 0.85],
+    [0.95, 0.97, 0.84, 0.89, 0.78],
+    [0.96, 0.96, 0.81, 0.90, 0.85],
 ];
-const SCEA_ZDT1: f64 = 0.96;
+const SCEA_ZDT1: f64 = 0.95;
 const SCEA_DTLZ2: f64 = 0.76;
 
 /// Li & Deb's problems with the thesis' constraint: population 100 (91 for three objectives),
 /// 30 generations (20 for three objectives), seed 1, both gene sources.
 #[test]
 fn scea_converges_on_the_variable_length_problems() {
-    for (k, genes) in [NewGenes::Random, NewGenes::History]
+    let mut failures = Vec::new();
+    for (k, genes) in [NewGenes::Random, NewGenes::Population]
         .into_iter()
         .enumerate()
     {
@@ -233,13 +246,13 @@ fn scea_converges_on_the_variable_length_problems() {
             let a = run(scea(pop, genes, 1), &p, gens);
             let r = vl_ratio(&a, &p);
             println!("scea {genes:?} vlmop{id} ratio {r:.4}");
-            assert!(
-                r > SCEA_VL[k][usize::from(id) - 1],
-                "vlmop{id} {genes:?}: {r}"
-            );
+            if r <= SCEA_VL[k][usize::from(id) - 1] {
+                failures.push(format!("vlmop{id} {genes:?}: {r}"));
+            }
             assert!(a.population().iter().filter(|i| i.is_feasible()).count() > pop / 3);
         }
     }
+    assert!(failures.is_empty(), "{failures:?}");
 }
 
 /// Every variable-length problem, both gene sources, seeds 1..=3 (release: `cargo test
@@ -252,7 +265,7 @@ fn scea_table() {
         let pop = if id <= 3 { 100 } else { 91 };
         for gens in [10, 20, 50] {
             let mut line = format!("vlmop{id} {gens:3} gens");
-            for genes in [NewGenes::Random, NewGenes::History] {
+            for genes in [NewGenes::Random, NewGenes::Population] {
                 for seed in 1..=3 {
                     let r = vl_ratio(&run(scea(pop, genes, seed), &p, gens), &p);
                     line += &format!(" {genes:?} {r:.4}");
@@ -267,7 +280,7 @@ fn scea_table() {
 #[ignore = "heavy in debug builds: run in release"]
 fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
     let zdt1 = FixedLength::new(TestProblem::Zdt(Zdt::standard(1).unwrap()));
-    let a = run(scea(100, NewGenes::History, 1), &zdt1, 250);
+    let a = run(scea(100, NewGenes::Population, 1), &zdt1, 250);
     let r = [1.1, 1.1];
     let ratio = hypervolume(&feasible_front(a.population()), &r).unwrap()
         / zdt1.inner().front_hypervolume(&r, 2000).unwrap();

@@ -16,7 +16,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::optim::chromosome::{Chromosome, CountRange, Layout, StructuredProblem};
 use crate::optim::operators::{de_step, polynomial_mutation, random_point};
-use crate::optim::population::Individual;
 use crate::optim::rng::OptimRng;
 
 /// Where the genes of an appended node come from.
@@ -25,28 +24,11 @@ use crate::optim::rng::OptimRng;
 pub enum NewGenes {
     /// Uniformly random inside the node bounds (the thesis' SCEA).
     Random,
-    /// From the population's history (the thesis' recommendation, sec. 10.2): the same node
-    /// (leg, position) of a random population member that has it, else the last values that
-    /// node had in any member that entered the population, else random.
-    History,
-}
-
-/// The last values seen at each node position, `memory[leg][node]`.
-pub type NodeMemory = Vec<Vec<Option<Vec<f64>>>>;
-
-/// Remember the nodes of `c`.
-pub fn remember(memory: &mut NodeMemory, c: &Chromosome) {
-    if memory.len() < c.legs.len() {
-        memory.resize_with(c.legs.len(), Vec::new);
-    }
-    for (l, leg) in c.legs.iter().enumerate() {
-        if memory[l].len() < leg.len() {
-            memory[l].resize(leg.len(), None);
-        }
-        for (k, node) in leg.iter().enumerate() {
-            memory[l][k] = Some(node.clone());
-        }
-    }
+    /// From the population (the thesis' recommendation, sec. 10.2: "data taken from
+    /// individuals in the population that use these nodes"): the same node (leg, position) of
+    /// one of the two mating parents, population members from the child's neighbourhood
+    /// (drawn between them when both have it); random when neither has it.
+    Population,
 }
 
 /// A uniformly random count in the range.
@@ -109,46 +91,31 @@ pub struct Settings {
     pub new_genes: NewGenes,
 }
 
-/// Genes for node `(l, k)` of a child.
+/// Genes for node `(l, k)` of a child of parents `a`, `b`.
 fn new_node(
     layout: &Layout,
-    l: usize,
-    k: usize,
-    population: &[Individual<Chromosome>],
-    memory: &NodeMemory,
+    (l, k): (usize, usize),
+    parents: [&Chromosome; 2],
     new_genes: NewGenes,
     rng: &mut OptimRng,
 ) -> Vec<f64> {
-    if new_genes == NewGenes::History {
-        let having: Vec<usize> = (0..population.len())
-            .filter(|&i| {
-                population[i]
-                    .decision
-                    .legs
-                    .get(l)
-                    .is_some_and(|leg| leg.len() > k)
-            })
-            .collect();
-        if !having.is_empty() {
-            let i = having[rng.below(having.len())];
-            return population[i].decision.legs[l][k].clone();
-        }
-        if let Some(Some(node)) = memory.get(l).and_then(|m| m.get(k)) {
-            return node.clone();
+    if new_genes == NewGenes::Population {
+        let node = |c: &Chromosome| c.legs.get(l).and_then(|leg| leg.get(k)).cloned();
+        match (node(parents[0]), node(parents[1])) {
+            (Some(x), Some(y)) => return if rng.uniform() < 0.5 { x } else { y },
+            (Some(x), None) | (None, Some(x)) => return x,
+            (None, None) => {}
         }
     }
     random_point(layout.node(), rng)
 }
 
 /// The child of `base` with parents `a`, `b` (see the module documentation).
-#[allow(clippy::too_many_arguments)] // the variation needs exactly these inputs
 pub fn child<P: StructuredProblem>(
     problem: &P,
     base: &Chromosome,
     a: &Chromosome,
     b: &Chromosome,
-    population: &[Individual<Chromosome>],
-    memory: &NodeMemory,
     settings: &Settings,
     rng: &mut OptimRng,
 ) -> Chromosome {
@@ -194,15 +161,7 @@ pub fn child<P: StructuredProblem>(
         for k in 0..n {
             let inherited = base.legs.get(l).and_then(|leg| leg.get(k));
             let Some(x) = inherited else {
-                leg.push(new_node(
-                    layout,
-                    l,
-                    k,
-                    population,
-                    memory,
-                    settings.new_genes,
-                    rng,
-                ));
+                leg.push(new_node(layout, (l, k), [a, b], settings.new_genes, rng));
                 continue;
             };
             let pa = a.legs.get(l).and_then(|leg| leg.get(k));
@@ -247,7 +206,7 @@ pub fn child<P: StructuredProblem>(
             }
             c.legs[l].truncate(n);
             for k in c.legs[l].len()..n {
-                let node = new_node(layout, l, k, population, memory, settings.new_genes, rng);
+                let node = new_node(layout, (l, k), [a, b], settings.new_genes, rng);
                 c.legs[l].push(node);
             }
         }

@@ -6,8 +6,9 @@
 //! its neighbourhood, else from the whole population; two distinct parents `a, b` are drawn;
 //! the child is `x_n + F (x_a - x_b)` per variable with probability `CR` (bound repair as in
 //! pagmo), then polynomial mutation (probability `1/dim` unless set, index `eta_m`). The child
-//! updates the ideal point and then replaces, in random order, members of the same pool whose
-//! subproblem it solves better, at most `limit` of them when `preserve_diversity` is on.
+//! updates the ideal point, replaces the member of subproblem `n` if it solves `n` better, and
+//! then, in random order, members of the same pool whose subproblems it solves better, at most
+//! `limit` replacements in all when `preserve_diversity` is on.
 //!
 //! "Better" follows Lampinen (2002): a feasible child beats an infeasible member; of two
 //! infeasible the child wins with a violation lower or equal; of two feasible the child wins
@@ -18,15 +19,20 @@
 //! index order when all are told. `batch_size = 1` (default) is pagmo's steady-state loop;
 //! larger batches allow parallel evaluation at the price of slightly staler parents.
 
+use std::fmt::Debug;
+
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use crate::optim::algorithm::{Algorithm, Batch, check_objectives};
+use crate::optim::algorithm::{Algorithm, Batch, Scratch, check_objectives};
 use crate::optim::error::{ConfigError, OptimError};
 use crate::optim::operators::{de_step, polynomial_mutation, random_point};
 use crate::optim::population::Individual;
-use crate::optim::problem::{Evaluation, RealProblem};
+use crate::optim::problem::{Decision, Evaluation, Problem, RealProblem};
 use crate::optim::rng::OptimRng;
-use crate::optim::weights::{Decomposition, WeightGeneration, decompose, generate, neighbourhoods};
+use crate::optim::weights::{
+    Decomposition, WeightGeneration, decompose, generate, neighbourhoods, tchebycheff,
+};
 
 use super::check_range;
 
@@ -82,7 +88,7 @@ impl Default for MoeadConfig {
 }
 
 impl MoeadConfig {
-    pub(crate) fn check(&self, dim: usize, objectives: usize) -> Result<(), ConfigError> {
+    fn check(&self, objectives: usize) -> Result<(), ConfigError> {
         if objectives < 2 {
             return Err(ConfigError::TooFewObjectives {
                 algorithm: NAME,
@@ -125,7 +131,6 @@ impl MoeadConfig {
         if let Some(p) = self.mutation_probability {
             check_range(NAME, "mutation_probability", p, 0.0, 1.0, "[0, 1]")?;
         }
-        let _ = dim;
         Ok(())
     }
 }
@@ -137,33 +142,134 @@ struct ChildOrigin {
     whole_population: bool,
 }
 
-/// MOEA/D state (serialisable: checkpoint and resume give the bit-identical run).
+/// How MOEA/D makes decisions: the random initial ones, and the child of a subproblem's
+/// member and two parents. [`DeVariation`] is pagmo's operator for real vectors; a
+/// structured-chromosome variation (SCEA) plugs in here and inherits the rest of MOEA/D
+/// (weights, neighbourhoods, decomposition, Lampinen's rules, ask/tell, checkpoints).
+pub trait MoeadVariation<P: Problem>:
+    Clone + Debug + PartialEq + Serialize + DeserializeOwned
+{
+    /// Check the settings against the problem (called by the first `ask`).
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the setting to change.
+    fn check(&self, _problem: &P, _config: &MoeadConfig) -> Result<(), ConfigError> {
+        Ok(())
+    }
+
+    /// A random decision for the initial population.
+    fn random(&self, problem: &P, rng: &mut OptimRng) -> P::Decision;
+
+    /// The child of subproblem member `x` with parents `a` and `b`. `reuse` is a spent
+    /// decision whose allocation may be recycled (its contents are meaningless).
+    #[allow(clippy::too_many_arguments)] // the operator has exactly these inputs
+    fn child(
+        &self,
+        problem: &P,
+        config: &MoeadConfig,
+        x: &P::Decision,
+        a: &P::Decision,
+        b: &P::Decision,
+        reuse: Option<P::Decision>,
+        rng: &mut OptimRng,
+    ) -> P::Decision;
+}
+
+/// pagmo's MOEA/D operator for real vectors: the DE step `x + F (a - b)` per variable with
+/// probability CR (pagmo's bound repair), then polynomial mutation with probability
+/// `mutation_probability` (default 1/dim) and index `eta_m`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DeVariation;
+
+impl<P: RealProblem> MoeadVariation<P> for DeVariation {
+    fn random(&self, problem: &P, rng: &mut OptimRng) -> Vec<f64> {
+        random_point(problem.bounds(), rng)
+    }
+
+    fn child(
+        &self,
+        problem: &P,
+        config: &MoeadConfig,
+        x: &Vec<f64>,
+        a: &Vec<f64>,
+        b: &Vec<f64>,
+        reuse: Option<Vec<f64>>,
+        rng: &mut OptimRng,
+    ) -> Vec<f64> {
+        let bounds = problem.bounds();
+        let rate = config
+            .mutation_probability
+            .unwrap_or(1.0 / bounds.dim() as f64);
+        let mut child = reuse.unwrap_or_default();
+        de_step(x, a, b, config.f, config.cr, bounds, rng, &mut child);
+        polynomial_mutation(&mut child, bounds, rate, config.eta_m, rng);
+        child
+    }
+}
+
+/// MOEA/D on real vectors with pagmo's operator.
+pub type Moead = MoeadWith<Vec<f64>, DeVariation>;
+
+/// MOEA/D state for decisions `D` made by variation `V` (serialisable: checkpoint and resume
+/// give the bit-identical run).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Moead {
+#[serde(bound(
+    serialize = "D: Serialize, V: Serialize",
+    deserialize = "D: DeserializeOwned, V: DeserializeOwned"
+))]
+pub struct MoeadWith<D, V> {
     config: MoeadConfig,
+    variation: V,
     rng: OptimRng,
-    population: Vec<Individual<Vec<f64>>>,
+    population: Vec<Individual<D>>,
     weights: Vec<Vec<f64>>,
     neighbourhoods: Vec<Vec<usize>>,
     ideal: Vec<f64>,
     /// Subproblem order of the current generation and the next position in it.
     order: Vec<usize>,
     cursor: usize,
-    batch: Batch<Vec<f64>>,
+    batch: Batch<D>,
     origins: Vec<ChildOrigin>,
     initialised: bool,
     generation: u64,
     evaluations: u64,
     #[serde(skip)]
-    scratch: Vec<usize>,
+    scratch: Scratch<Buffers<D>>,
+}
+
+/// Reused allocations (not state).
+#[derive(Clone, Debug)]
+struct Buffers<D> {
+    pool: Vec<usize>,
+    told: Vec<Individual<D>>,
+    spare: Vec<D>,
+}
+
+impl<D> Default for Buffers<D> {
+    fn default() -> Self {
+        Self {
+            pool: Vec::new(),
+            told: Vec::new(),
+            spare: Vec::new(),
+        }
+    }
 }
 
 impl Moead {
-    /// A new run with `config`, seeded with `seed`.
+    /// A new run with `config` and pagmo's operator, seeded with `seed`.
     #[must_use]
     pub fn new(config: MoeadConfig, seed: u64) -> Self {
+        Self::with_variation(config, DeVariation, seed)
+    }
+}
+
+impl<D: Decision, V> MoeadWith<D, V> {
+    /// A new run with `config` and `variation`, seeded with `seed`.
+    #[must_use]
+    pub fn with_variation(config: MoeadConfig, variation: V, seed: u64) -> Self {
         Self {
             config,
+            variation,
             rng: OptimRng::new(seed),
             population: Vec::new(),
             weights: Vec::new(),
@@ -176,13 +282,13 @@ impl Moead {
             initialised: false,
             generation: 0,
             evaluations: 0,
-            scratch: Vec::new(),
+            scratch: Scratch::default(),
         }
     }
 
     /// The current population (parents).
     #[must_use]
-    pub fn population(&self) -> &[Individual<Vec<f64>>] {
+    pub fn population(&self) -> &[Individual<D>] {
         &self.population
     }
 
@@ -223,16 +329,27 @@ impl Moead {
         &self.ideal
     }
 
-    fn start<P: RealProblem>(&mut self, problem: &P) -> Result<(), OptimError> {
+    /// The variation operator.
+    #[must_use]
+    pub fn variation(&self) -> &V {
+        &self.variation
+    }
+
+    fn start<P>(&mut self, problem: &P) -> Result<(), OptimError>
+    where
+        P: Problem<Decision = D>,
+        V: MoeadVariation<P>,
+    {
         check_objectives(problem)?;
         let m = problem.objectives();
-        self.config.check(problem.bounds().dim(), m)?;
+        self.config.check(m)?;
+        self.variation.check(problem, &self.config)?;
         let n = self.config.population;
         self.weights = generate(n, m, self.config.weights, &mut self.rng)?;
         self.neighbourhoods = neighbourhoods(&self.weights, self.config.neighbours);
         self.ideal = vec![f64::MAX; m];
         let decisions = (0..n)
-            .map(|_| random_point(problem.bounds(), &mut self.rng))
+            .map(|_| self.variation.random(problem, &mut self.rng))
             .collect();
         self.batch.open(decisions);
         Ok(())
@@ -256,41 +373,50 @@ impl Moead {
         [a, b]
     }
 
-    fn make_offspring(&mut self, bounds: &crate::optim::problem::Bounds) {
+    fn make_offspring<P>(&mut self, problem: &P)
+    where
+        P: Problem<Decision = D>,
+        V: MoeadVariation<P>,
+    {
         let np = self.config.population;
         let count = self.config.batch_size.min(np - self.cursor);
-        let rate = self
-            .config
-            .mutation_probability
-            .unwrap_or(1.0 / bounds.dim() as f64);
-        let mut decisions = Vec::with_capacity(count);
+        let mut batch = std::mem::take(&mut self.batch);
+        let mut spare = std::mem::take(&mut self.scratch.0.spare);
         self.origins.clear();
-        for k in 0..count {
-            let n = self.order[self.cursor + k];
-            let whole = self.config.preserve_diversity && self.rng.uniform() >= self.config.realb;
-            let [a, b] = self.select_parents(n, whole);
-            let mut child = Vec::with_capacity(bounds.dim());
-            de_step(
-                &self.population[n].decision,
-                &self.population[a].decision,
-                &self.population[b].decision,
-                self.config.f,
-                self.config.cr,
-                bounds,
-                &mut self.rng,
-                &mut child,
-            );
-            polynomial_mutation(&mut child, bounds, rate, self.config.eta_m, &mut self.rng);
-            decisions.push(child);
-            self.origins.push(ChildOrigin {
-                subproblem: n,
-                whole_population: whole,
-            });
-        }
-        self.batch.open(decisions);
+        batch.open_with(|decisions| {
+            for k in 0..count {
+                decisions.push(self.offspring(problem, k, &mut spare));
+            }
+        });
+        self.batch = batch;
+        self.scratch.0.spare = spare;
     }
 
-    fn update_ideal(ideal: &mut [f64], ind: &Individual<Vec<f64>>) {
+    fn offspring<P>(&mut self, problem: &P, k: usize, spare: &mut Vec<D>) -> D
+    where
+        P: Problem<Decision = D>,
+        V: MoeadVariation<P>,
+    {
+        let n = self.order[self.cursor + k];
+        let whole = self.config.preserve_diversity && self.rng.uniform() >= self.config.realb;
+        let [a, b] = self.select_parents(n, whole);
+        let child = self.variation.child(
+            problem,
+            &self.config,
+            &self.population[n].decision,
+            &self.population[a].decision,
+            &self.population[b].decision,
+            spare.pop(),
+            &mut self.rng,
+        );
+        self.origins.push(ChildOrigin {
+            subproblem: n,
+            whole_population: whole,
+        });
+        child
+    }
+
+    fn update_ideal(ideal: &mut [f64], ind: &Individual<D>) {
         if ind.is_feasible() {
             for (z, &f) in ideal.iter_mut().zip(&ind.objectives) {
                 if f < *z {
@@ -301,25 +427,25 @@ impl Moead {
     }
 
     /// Lampinen's selection: does `child` replace `member` on subproblem `weight`?
-    fn child_wins(
-        &self,
-        child: &Individual<Vec<f64>>,
-        member: &Individual<Vec<f64>>,
-        weight: &[f64],
-    ) -> bool {
+    fn child_wins(&self, child: &Individual<D>, member: &Individual<D>, weight: &[f64]) -> bool {
         match (child.is_feasible(), member.is_feasible()) {
-            (true, true) => {
-                let kind = self.config.decomposition;
-                decompose(kind, &child.objectives, weight, &self.ideal)
-                    < decompose(kind, &member.objectives, weight, &self.ideal)
-            }
+            (true, true) => match self.config.decomposition {
+                Decomposition::Tchebycheff => {
+                    tchebycheff(&child.objectives, weight, &self.ideal)
+                        < tchebycheff(&member.objectives, weight, &self.ideal)
+                }
+                kind => {
+                    decompose(kind, &child.objectives, weight, &self.ideal)
+                        < decompose(kind, &member.objectives, weight, &self.ideal)
+                }
+            },
             (true, false) => true,
             (false, true) => false,
             (false, false) => child.violation <= member.violation,
         }
     }
 
-    fn apply(&mut self, child: &Individual<Vec<f64>>, origin: ChildOrigin) {
+    fn apply(&mut self, child: &Individual<D>, origin: ChildOrigin) {
         Self::update_ideal(&mut self.ideal, child);
         let np = self.population.len();
         let size = if origin.whole_population {
@@ -327,11 +453,18 @@ impl Moead {
         } else {
             self.neighbourhoods[origin.subproblem].len()
         };
-        let mut pool = std::mem::take(&mut self.scratch);
+        // First the child's own subproblem (pagmo: "first try on problem n"), then the pool in
+        // random order; both count towards `limit`.
+        let n = origin.subproblem;
+        let mut replaced = 0;
+        if self.child_wins(child, &self.population[n], &self.weights[n]) {
+            self.population[n].clone_from(child);
+            replaced += 1;
+        }
+        let mut pool = std::mem::take(&mut self.scratch.0.pool);
         pool.clear();
         pool.extend(0..size);
         self.rng.shuffle(&mut pool);
-        let mut replaced = 0;
         for &k in &pool {
             let pick = if origin.whole_population {
                 k
@@ -346,7 +479,7 @@ impl Moead {
                 break;
             }
         }
-        self.scratch = pool;
+        self.scratch.0.pool = pool;
     }
 
     fn new_generation_order(&mut self) {
@@ -356,15 +489,19 @@ impl Moead {
     }
 }
 
-impl<P: RealProblem> Algorithm<P> for Moead {
+impl<P, V> Algorithm<P> for MoeadWith<P::Decision, V>
+where
+    P: Problem,
+    V: MoeadVariation<P>,
+{
     fn name(&self) -> &'static str {
         NAME
     }
 
-    fn ask(&mut self, problem: &P) -> Result<&[Vec<f64>], OptimError> {
+    fn ask(&mut self, problem: &P) -> Result<&[P::Decision], OptimError> {
         if !self.batch.is_open() {
             if self.initialised {
-                self.make_offspring(problem.bounds());
+                self.make_offspring(problem);
             } else {
                 self.start(problem)?;
             }
@@ -388,19 +525,26 @@ impl<P: RealProblem> Algorithm<P> for Moead {
         if !complete {
             return Ok(());
         }
-        let told = self.batch.take();
         if self.initialised {
+            let mut told = std::mem::take(&mut self.scratch.0.told);
+            self.batch.take_into(&mut told);
             let origins = std::mem::take(&mut self.origins);
             for (child, origin) in told.iter().zip(&origins) {
                 self.apply(child, *origin);
             }
             self.origins = origins;
             self.cursor += told.len();
+            self.scratch
+                .0
+                .spare
+                .extend(told.drain(..).map(|i| i.decision));
+            self.scratch.0.told = told;
             if self.cursor >= self.config.population {
                 self.generation += 1;
                 self.new_generation_order();
             }
         } else {
+            let told = self.batch.take();
             for ind in &told {
                 Self::update_ideal(&mut self.ideal, ind);
             }
@@ -411,7 +555,7 @@ impl<P: RealProblem> Algorithm<P> for Moead {
         Ok(())
     }
 
-    fn population(&self) -> &[Individual<Vec<f64>>] {
+    fn population(&self) -> &[Individual<P::Decision>] {
         &self.population
     }
 
@@ -426,4 +570,11 @@ impl<P: RealProblem> Algorithm<P> for Moead {
     fn evaluations(&self) -> u64 {
         self.evaluations
     }
+
+    fn is_told(&self, index: usize) -> bool {
+        self.batch.is_told(index)
+    }
 }
+
+#[cfg(test)]
+mod tests;
