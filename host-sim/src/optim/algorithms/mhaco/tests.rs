@@ -198,6 +198,17 @@ fn mhaco_checkpoint_and_resume_give_the_bit_identical_run() {
         resumed.tell(&zdt, i, zdt.evaluate(x).unwrap()).unwrap();
     }
     assert_eq!(resumed, straight);
+    // Mid-batch through `evolve`: only the untold decisions are evaluated.
+    let mut part = mhaco(16, 8, 3);
+    run_shuffled(&mut part, &zdt, 2, 1);
+    let batch = part.ask(&zdt).unwrap().to_vec();
+    for (i, x) in batch.iter().enumerate().skip(9) {
+        part.tell(&zdt, i, zdt.evaluate(x).unwrap()).unwrap();
+    }
+    let mut resumed: Mhaco = serde_json::from_str(&serde_json::to_string(&part).unwrap()).unwrap();
+    evolve(&mut resumed, &zdt, &Serial, 1, &mut NoObserver).unwrap();
+    assert_eq!(resumed.evaluations(), straight.evaluations());
+    assert_eq!(resumed, straight);
 }
 
 /// ZDT1 whose objectives turn NaN or infinite in part of the space (pygmo's `maco` crashes
