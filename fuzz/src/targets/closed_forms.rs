@@ -113,10 +113,10 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
         final_speed_m_s: s(i.final_speed),
         max_skips: i.max_skips,
     };
-    if let Ok(p) = predict(&planet, &atmosphere, &vehicle, &lift, &entry, &predictor) {
-        if !finite_prediction(&p) {
-            return Err(format!("{ty}: predict gave {p:?} for {i:?}"));
-        }
+    if let Ok(p) = predict(&planet, &atmosphere, &vehicle, &lift, &entry, &predictor)
+        && !finite_prediction(&p)
+    {
+        return Err(format!("{ty}: predict gave {p:?} for {i:?}"));
     }
     let config = ReplanConfig {
         lambda: s(i.lift[0]),
