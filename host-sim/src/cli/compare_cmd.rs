@@ -6,9 +6,10 @@ use std::path::PathBuf;
 use crate::analytic::{self, AnalyticVehicle, GlideEnd, Placement};
 use crate::compare::{
     AnalyticOutcome, CompareConfig, CompareError, GridKind, NumericalSettings, run_grid_with,
-    write_case, write_grid,
+    write_case_into, write_grid_into,
 };
 use crate::env::Preset;
+use crate::report::RunDir;
 
 fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> CompareError {
     CompareError::setting(field, value, reason)
@@ -225,18 +226,21 @@ pub(super) fn run(
             cfg.vehicle.name.replace([' ', '/', '\\'], "_")
         ))
     });
-    let mut files = Vec::new();
+    // The whole output (grid, heat maps, trajectories) is one run directory, put in place
+    // only when complete.
+    let mut rd = RunDir::begin(&dir)?;
     let scenario = format!("compare {} {phase}", cfg.vehicle.name);
     let grid = run_grid_with(&cfg, &mut |done, total, _, runs| {
         if a.trajectories {
-            let sub = dir.join(format!("point_{}", done - 1));
-            files.extend(write_case(&sub, runs, &cfg.vehicle, &scenario)?);
+            let sub = PathBuf::from(format!("point_{}", done - 1));
+            write_case_into(&mut rd, &sub, runs, &cfg.vehicle, &scenario)?;
         }
         eprint!("\rcompare: {done}/{total} points");
         Ok(())
     })?;
     eprintln!();
-    files.extend(write_grid(&dir, &grid, &cfg.fidelities)?);
+    write_grid_into(&mut rd, &grid, &cfg.fidelities)?;
+    let files = rd.commit()?;
     writeln!(
         out,
         "{} {phase}: {} points, {} out of the closed form's domain; exponential atmosphere \

@@ -42,6 +42,12 @@ pub enum SimError {
         /// The next tick the source reported \[s\].
         next_tick_s: f64,
     },
+    /// The run was stopped on request (Ctrl-C: [`super::request_stop`]).
+    #[error("interrupted at t = {time_s} s")]
+    Interrupted {
+        /// Mission time \[s\].
+        time_s: f64,
+    },
     /// The integrator reported an event the loop does not define.
     #[error("integrator reported unknown event index {0}")]
     UnknownEvent(usize),

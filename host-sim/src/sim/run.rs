@@ -176,6 +176,11 @@ pub fn simulate<A: AttitudeSource>(
         }
     };
     let reason = loop {
+        // A stop request (Ctrl-C) ends the run at the next breakpoint, where progress is
+        // reported.
+        if super::stop_requested() {
+            return Err(SimError::Interrupted { time_s: t });
+        }
         let t_tick = lp.source.next_tick_s();
         let t_tick = if t_tick.is_finite() && t_tick > t {
             t_tick

@@ -11,5 +11,6 @@ mod hypervolume_pagmo2;
 mod layering;
 mod pil;
 mod replan_loop;
+mod run_dir_kill;
 mod scenario_files;
 mod support;
