@@ -8,6 +8,7 @@ mod env_validation;
 mod hypervolume;
 mod hypervolume_cli;
 mod hypervolume_pagmo2;
+mod input_ranges;
 mod layering;
 mod pil;
 mod replan_loop;
