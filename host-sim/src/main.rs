@@ -10,11 +10,15 @@ const INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     // Ctrl-C asks the running simulation to stop at its next breakpoint; the command then
-    // fails without putting a run directory in place (nothing half-written). A second Ctrl-C
-    // exits at once; a temporary directory it leaves is removed by the next run.
+    // fails without putting a run directory in place (nothing half-written). With no
+    // simulation running (optimiser, hypervolume, writing), or at a second Ctrl-C, it exits
+    // at once: a run directory is swapped into place in one step, and a temporary directory
+    // left behind is removed by the next run.
     let second = std::sync::atomic::AtomicBool::new(false);
     let handler = ctrlc::set_handler(move || {
-        if second.swap(true, std::sync::atomic::Ordering::SeqCst) {
+        if second.swap(true, std::sync::atomic::Ordering::SeqCst) || !sim::runs_active() {
+            // The handler runs on its own thread (ctrlc), not in signal context.
+            eprintln!("interrupted; no run directory written");
             std::process::exit(i32::from(INTERRUPTED));
         }
         sim::request_stop();

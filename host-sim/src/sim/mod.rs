@@ -37,4 +37,4 @@ pub use source::{
     AttitudeSource, CoreGuidance, FixedAttitude, FlightGuidance, GuidanceSource, TickError,
     ramp_kink,
 };
-pub use stop::{request_stop, stop_requested};
+pub use stop::{request_stop, runs_active, stop_requested};

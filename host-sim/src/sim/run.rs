@@ -127,6 +127,7 @@ pub fn simulate<A: AttitudeSource>(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(SimResult, A), SimError> {
     validate_config(cfg, dynm.planet.radius_m)?;
+    let _active = super::stop::ActiveRun::start();
     let energy = EnergyNormalizer::<f64>::new(
         dynm.planet.mu_m3_s2,
         dynm.planet.radius_m,

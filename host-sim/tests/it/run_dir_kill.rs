@@ -184,6 +184,33 @@ fn ctrl_c_stops_the_run_and_keeps_the_previous_one() {
 }
 
 #[test]
+fn ctrl_c_stops_a_long_optimisation_without_writing() {
+    let root = temp_dir("sigint-optimize");
+    let out = root.join("opt");
+    let child = bin()
+        .args(["optimize", "--problem", "zdt1", "--algorithm", "nsga2"])
+        .args(["--generations", "100000000", "--out"])
+        .arg(&out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    let _ = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status();
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
 fn an_output_path_that_is_a_file_or_a_foreign_directory_is_left_alone() {
     let root = temp_dir("foreign-out");
     let file = root.join("notes.txt");
