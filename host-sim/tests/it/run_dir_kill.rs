@@ -230,3 +230,49 @@ fn an_output_path_that_is_a_file_or_a_foreign_directory_is_left_alone() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
     let _ = std::fs::remove_dir_all(&root);
 }
+
+#[test]
+fn compare_output_is_one_run_directory_replaced_whole() {
+    let root = temp_dir("compare-whole");
+    let out = root.join("cmp");
+    let compare = |trajectories: bool| {
+        let mut c = bin();
+        c.args(["compare", "--phase", "glide", "--altitudes-km", "60"])
+            .args([
+                "--cl-vertical",
+                "0.3",
+                "--environments",
+                "simplified",
+                "--out",
+            ])
+            .arg(&out)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null());
+        if trajectories {
+            c.arg("--trajectories");
+        }
+        assert!(c.status().unwrap().success());
+        tree(&out).unwrap()
+    };
+    let with = compare(true);
+    assert!(
+        with.contains_key("point_0/analytic/trajectory.csv"),
+        "{:?}",
+        with.keys()
+    );
+    // A later run without trajectories replaces the directory: no stale point_0 beside the
+    // new grid.
+    let without = compare(false);
+    assert!(
+        without.keys().all(|k| !k.starts_with("point_")),
+        "{:?}",
+        without.keys()
+    );
+    assert_eq!(without.get("grid.csv"), with.get("grid.csv"));
+    assert!(
+        siblings(&root).iter().all(|n| n == "cmp"),
+        "{:?}",
+        siblings(&root)
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}
