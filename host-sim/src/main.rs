@@ -11,9 +11,9 @@ const INTERRUPTED: u8 = 130;
 fn main() -> ExitCode {
     // Ctrl-C asks the running simulation to stop at its next breakpoint; the command then
     // fails without putting a run directory in place (nothing half-written). With no
-    // simulation running (optimiser, hypervolume, writing), or at a second Ctrl-C, it exits
-    // at once: a run directory is swapped into place in one step, and a temporary directory
-    // left behind is removed by the next run.
+    // simulation running and no run directory being written (optimiser, hypervolume), or at
+    // a second Ctrl-C, it exits at once. A run directory being written stops at its next file
+    // and removes its temporary directory; one is swapped into place in one step.
     let second = std::sync::atomic::AtomicBool::new(false);
     let handler = ctrlc::set_handler(move || {
         if second.swap(true, std::sync::atomic::Ordering::SeqCst) || !sim::runs_active() {

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
-pub use plot::{Series, line_plot_svg, standard_plots};
+pub use plot::{Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, clean_stale};
 pub use summary::{FinalState, PeakOut, SummaryReport, ViolationsOut, summary_report};
 
@@ -32,6 +32,10 @@ pub enum ReportError {
     /// JSON serialisation failed.
     #[error("cannot serialise summary: {0}")]
     Json(#[from] serde_json::Error),
+    /// A stop was requested (Ctrl-C) while a run directory was being written: nothing was
+    /// put in place and the temporary directory is removed.
+    #[error("interrupted while writing {0}")]
+    Interrupted(PathBuf),
     /// A plot could not be drawn.
     #[error("cannot draw plot {name}: {source}")]
     Plot {
@@ -118,8 +122,8 @@ pub fn write_run_files(
     let mut text = serde_json::to_string_pretty(summary)?;
     text.push('\n');
     rd.write(sub.join("summary.json"), text.as_bytes())?;
-    for (name, svg) in standard_plots(res, heat_limit_w_m2, g_limit)? {
-        rd.write(sub.join(name), svg.as_bytes())?;
+    for (name, bytes) in standard_plots(res, heat_limit_w_m2, g_limit)? {
+        rd.write(sub.join(name), &bytes)?;
     }
     Ok(())
 }

@@ -1,18 +1,39 @@
-//! Line charts through `plotters` (SVG backend): the four standard plots of a run (altitude
-//! against velocity, heat flux, g-load, attitude) with titles, axis labels with units, a
-//! legend and dashed limit lines. Axis ranges are rounded out to "nice" tick steps.
+//! Line charts through `plotters`: the four standard plots of a run (altitude against
+//! velocity, heat flux, g-load, attitude) with titles, axis labels with units, a legend and
+//! dashed limit lines, each as SVG and as PNG (the same drawing code on `plotters`' SVG and
+//! bitmap backends). Axis ranges are rounded out to "nice" tick steps.
 //!
-//! SVG only: `plotters`' bitmap (PNG) backend needs a rasterised font, i.e. either its `ttf`
-//! feature (font-kit, which links the system's fontconfig and FreeType) or `ab_glyph` with a
-//! font file shipped in the repository; SVG needs neither (the viewer renders the text).
+//! Text is laid out and rasterised with `plotters`' `ab_glyph` feature and the DejaVu Sans
+//! font embedded by the `dejavu` crate, so neither backend needs a system font library
+//! (fontconfig, FreeType); PNGs are encoded with the `png` crate.
 
+use std::sync::OnceLock;
+
+use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
 
 use super::ReportError;
 use crate::sim::{Sample, SimResult};
 
 type PlotError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Plot size \[px\] (SVG user units and PNG pixels).
+const SIZE: (u32, u32) = (720, 460);
+
+/// Register the embedded font as `plotters`' "sans-serif" once per process.
+fn ensure_font() -> Result<(), PlotError> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular()).is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err("the embedded DejaVu Sans font could not be loaded".into())
+    }
+}
 
 /// One polyline series of a plot.
 #[derive(Clone, Debug)]
@@ -96,19 +117,22 @@ fn bounds(series: &[Series]) -> (f64, f64, f64, f64) {
     (x0, x1, y0, y1)
 }
 
-fn draw(
-    svg: &mut String,
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
     title: &str,
     x_label: &str,
     y_label: &str,
     series: &[Series],
-) -> Result<(), PlotError> {
+) -> Result<(), PlotError>
+where
+    DB::ErrorType: 'static,
+{
+    ensure_font()?;
     let (x0, x1, y0, y1) = bounds(series);
     let (x0, x1, xs) = nice_range(x0, x1, 8.0);
     let (y0, y1, ys) = nice_range(y0, y1, 6.0);
-    let root = SVGBackend::with_string(svg, (720, 460)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 16))
         .margin(12)
         .x_label_area_size(44)
@@ -183,14 +207,70 @@ pub fn line_plot_svg(
     series: &[Series],
 ) -> Result<String, ReportError> {
     let mut svg = String::new();
-    draw(&mut svg, title, x_label, y_label, series).map_err(|source| ReportError::Plot {
-        name: title.to_string(),
-        source,
-    })?;
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        draw(&root, title, x_label, y_label, series).map_err(|source| ReportError::Plot {
+            name: title.to_string(),
+            source,
+        })?;
+    }
     Ok(svg)
 }
 
-/// The four standard plots of a run: `(file name, svg)`.
+/// The same line chart as a PNG image (8-bit RGB, [`SIZE`] pixels).
+///
+/// # Errors
+/// [`ReportError::Plot`] if `plotters` fails to draw or the PNG cannot be encoded.
+pub fn line_plot_png(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<Vec<u8>, ReportError> {
+    let plot_err = |source: PlotError| ReportError::Plot {
+        name: title.to_string(),
+        source,
+    };
+    let (w, h) = SIZE;
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
+        draw(&root, title, x_label, y_label, series).map_err(plot_err)?;
+    }
+    let mut png_bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut png_bytes, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header().map_err(|e| plot_err(Box::new(e)))?;
+        writer
+            .write_image_data(&rgb)
+            .map_err(|e| plot_err(Box::new(e)))?;
+    }
+    Ok(png_bytes)
+}
+
+/// One chart as its SVG and PNG files: `[(stem.svg, bytes), (stem.png, bytes)]`.
+fn svg_and_png(
+    stem: &str,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<[(String, Vec<u8>); 2], ReportError> {
+    Ok([
+        (
+            format!("{stem}.svg"),
+            line_plot_svg(title, x_label, y_label, series)?.into_bytes(),
+        ),
+        (
+            format!("{stem}.png"),
+            line_plot_png(title, x_label, y_label, series)?,
+        ),
+    ])
+}
+
+/// The four standard plots of a run, each as SVG and PNG: `(file name, bytes)`.
 ///
 /// # Errors
 /// [`ReportError::Plot`] if a plot cannot be drawn.
@@ -198,7 +278,7 @@ pub fn standard_plots(
     res: &SimResult,
     heat_limit_w_m2: f64,
     g_limit: f64,
-) -> Result<Vec<(&'static str, String)>, ReportError> {
+) -> Result<Vec<(String, Vec<u8>)>, ReportError> {
     let smp = &res.samples;
     let t_end = smp.last().map_or(1.0, |s| s.time_s);
     let series = |label: &str, f: &dyn Fn(&Sample) -> (f64, f64)| Series {
@@ -211,57 +291,50 @@ pub fn standard_plots(
         points: vec![(0.0, v), (t_end, v)],
         dashed: true,
     };
-    Ok(vec![
-        (
-            "altitude_velocity.svg",
-            line_plot_svg(
-                "Altitude against velocity",
-                "planet-relative speed [km/s]",
-                "altitude [km]",
-                &[series("trajectory", &|s| {
-                    (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3)
-                })],
-            )?,
-        ),
-        (
-            "heat_flux.svg",
-            line_plot_svg(
-                "Stagnation heat flux (Chapman)",
-                "time [s]",
-                "heat flux [kW/m^2]",
-                &[
-                    series("heat flux", &|s| {
-                        (s.time_s, s.conditions.heat_flux_w_m2 / 1e3)
-                    }),
-                    limit("limit", heat_limit_w_m2 / 1e3),
-                ],
-            )?,
-        ),
-        (
-            "g_load.svg",
-            line_plot_svg(
-                "Aerodynamic load factor",
-                "time [s]",
-                "g-load [-]",
-                &[
-                    series("g-load", &|s| (s.time_s, s.conditions.g_load)),
-                    limit("limit", g_limit),
-                ],
-            )?,
-        ),
-        (
-            "attitude.svg",
-            line_plot_svg(
-                "Angle of attack and bank angle",
-                "time [s]",
-                "angle [deg]",
-                &[
-                    series("alpha", &|s| (s.time_s, s.attitude.alpha_rad.to_degrees())),
-                    series("sigma", &|s| (s.time_s, s.attitude.sigma_rad.to_degrees())),
-                ],
-            )?,
-        ),
-    ])
+    let charts = [
+        svg_and_png(
+            "altitude_velocity",
+            "Altitude against velocity",
+            "planet-relative speed [km/s]",
+            "altitude [km]",
+            &[series("trajectory", &|s| {
+                (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3)
+            })],
+        )?,
+        svg_and_png(
+            "heat_flux",
+            "Stagnation heat flux (Chapman)",
+            "time [s]",
+            "heat flux [kW/m^2]",
+            &[
+                series("heat flux", &|s| {
+                    (s.time_s, s.conditions.heat_flux_w_m2 / 1e3)
+                }),
+                limit("limit", heat_limit_w_m2 / 1e3),
+            ],
+        )?,
+        svg_and_png(
+            "g_load",
+            "Aerodynamic load factor",
+            "time [s]",
+            "g-load [-]",
+            &[
+                series("g-load", &|s| (s.time_s, s.conditions.g_load)),
+                limit("limit", g_limit),
+            ],
+        )?,
+        svg_and_png(
+            "attitude",
+            "Angle of attack and bank angle",
+            "time [s]",
+            "angle [deg]",
+            &[
+                series("alpha", &|s| (s.time_s, s.attitude.alpha_rad.to_degrees())),
+                series("sigma", &|s| (s.time_s, s.attitude.sigma_rad.to_degrees())),
+            ],
+        )?,
+    ];
+    Ok(charts.into_iter().flatten().collect())
 }
 
 #[cfg(test)]

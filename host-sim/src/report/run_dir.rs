@@ -60,6 +60,9 @@ pub struct RunDir {
     tmp: PathBuf,
     written: Vec<PathBuf>,
     done: bool,
+    /// While writing, Ctrl-C asks this writer to stop (it then removes its temporary
+    /// directory) instead of exiting the process with the directory left behind.
+    _active: crate::sim::ActiveRun,
 }
 
 /// A step of [`RunDir::commit`] where a test can inject a fault.
@@ -147,6 +150,7 @@ impl RunDir {
             tmp,
             written: Vec::new(),
             done: false,
+            _active: crate::sim::ActiveRun::start(),
         })
     }
 
@@ -168,6 +172,9 @@ impl RunDir {
     ) -> Result<PathBuf, ReportError> {
         let rel = rel.as_ref();
         let final_path = self.target.join(rel);
+        if crate::sim::stop_requested() {
+            return Err(ReportError::Interrupted(self.target.clone()));
+        }
         if rel.as_os_str().is_empty()
             || !rel.components().all(|c| matches!(c, Component::Normal(_)))
         {
@@ -213,6 +220,9 @@ impl RunDir {
         mut self,
         hook: &mut dyn FnMut(CommitStep) -> Result<(), Fault>,
     ) -> Result<Vec<PathBuf>, ReportError> {
+        if crate::sim::stop_requested() {
+            return Err(ReportError::Interrupted(self.target.clone()));
+        }
         let mut step = |me: &mut Self, s: CommitStep| match hook(s) {
             Ok(()) => Ok(()),
             Err(f) => {

@@ -37,4 +37,5 @@ pub use source::{
     AttitudeSource, CoreGuidance, FixedAttitude, FlightGuidance, GuidanceSource, TickError,
     ramp_kink,
 };
+pub(crate) use stop::ActiveRun;
 pub use stop::{request_stop, runs_active, stop_requested};

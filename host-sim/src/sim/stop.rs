@@ -8,11 +8,13 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 static STOP: AtomicBool = AtomicBool::new(false);
 static ACTIVE: AtomicUsize = AtomicUsize::new(0);
 
-/// Marks a simulation as running (and so able to stop on request) while it lives.
-pub(super) struct ActiveRun;
+/// Marks work that stops cleanly on request (a running simulation, a run directory being
+/// written) while it lives, so Ctrl-C asks it to stop instead of exiting the process.
+#[derive(Debug)]
+pub(crate) struct ActiveRun;
 
 impl ActiveRun {
-    pub(super) fn start() -> Self {
+    pub(crate) fn start() -> Self {
         ACTIVE.fetch_add(1, Ordering::SeqCst);
         Self
     }

@@ -102,6 +102,15 @@ fn simulate_tiny_scenario_writes_csv_json_svg() {
             "{svg}"
         );
         assert!(text.contains("<polyline"), "{svg}");
+        // The same chart as a PNG image of the plot size (8-bit RGB).
+        let png_path = out.join(svg.replace(".svg", ".png"));
+        let decoder = png::Decoder::new(std::io::BufReader::new(
+            std::fs::File::open(&png_path).unwrap(),
+        ));
+        let reader = decoder.read_info().unwrap();
+        let info = reader.info();
+        assert_eq!((info.width, info.height), (720, 460), "{svg}");
+        assert_eq!(info.color_type, png::ColorType::Rgb, "{svg}");
     }
     // No temporary files left behind by the atomic writes.
     for e in std::fs::read_dir(&out).unwrap() {
