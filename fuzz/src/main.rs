@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 
 use targets::Target;
 
-const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link] [--case I]";
+const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link|lateral] [--case I]";
 
 struct Options {
     seed: u64,

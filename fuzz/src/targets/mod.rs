@@ -1,6 +1,7 @@
 //! The fuzz targets and the per-case generator.
 
 mod guidance;
+mod lateral;
 mod link;
 mod nodes;
 
@@ -16,11 +17,18 @@ pub enum Target {
     Guidance,
     /// The PIL frame decoder.
     Link,
+    /// Lateral guidance (bank reversals) with hostile configurations and states.
+    Lateral,
 }
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 3] = [Target::Nodes, Target::Guidance, Target::Link];
+    pub const ALL: [Target; 4] = [
+        Target::Nodes,
+        Target::Guidance,
+        Target::Link,
+        Target::Lateral,
+    ];
 
     /// The target's command-line name.
     pub fn name(self) -> &'static str {
@@ -28,6 +36,7 @@ impl Target {
             Target::Nodes => "nodes",
             Target::Guidance => "guidance",
             Target::Link => "link",
+            Target::Lateral => "lateral",
         }
     }
 
@@ -48,6 +57,7 @@ impl Target {
             Target::Nodes => nodes::run(&mut rng),
             Target::Guidance => guidance::run(&mut rng),
             Target::Link => link::run(&mut rng),
+            Target::Lateral => lateral::run(&mut rng),
         }
     }
 }
