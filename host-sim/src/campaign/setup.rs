@@ -258,7 +258,7 @@ impl CampaignSetup {
                 mode: PredictorMode::Auto,
             },
             model,
-            apply_out_of_reach: false,
+            apply_out_of_reach: true,
             steps_per_tick: 0,
         };
         let r_f = end.radius_m;

@@ -126,10 +126,12 @@ fn bad_dispersion_settings_name_the_field() {
         parse_settings("", "d.toml").unwrap(),
         DispersionSettings::default()
     );
-    let mut s = DispersionSettings::default();
-    s.drag = Dispersion {
-        distribution: "uniform".into(),
-        three_sigma: 0.06,
+    let s = DispersionSettings {
+        drag: Dispersion {
+            distribution: "uniform".into(),
+            three_sigma: 0.06,
+        },
+        ..DispersionSettings::default()
     };
     assert!(s.validate("x").is_ok());
 }
