@@ -87,7 +87,11 @@ impl ModeStats {
         let over = |i: usize| {
             cases
                 .iter()
-                .filter(|c| c.limit_ratios.get(i).is_none_or(|r| r.is_nan() || *r > 1.05))
+                .filter(|c| {
+                    c.limit_ratios
+                        .get(i)
+                        .is_none_or(|r| r.is_nan() || *r > 1.05)
+                })
                 .count()
         };
         Self {
