@@ -121,7 +121,10 @@ fn fly<S: Real>(cfg: &[f64; 9], max_rev: u8, navs: &[[f64; 7]]) -> Result<(), St
             return Err(format!("heading error {e:?} at {n:?}"));
         }
         if !(s.corridor_rad.is_finite() && s.corridor_rad > S::ZERO) {
-            return Err(format!("corridor {:?} at {n:?}", s.corridor_rad));
+            return Err(format!(
+                "corridor {:?} at {n:?}, config {cfg:?}",
+                s.corridor_rad
+            ));
         }
         if !s.range_angle_rad.is_finite() || s.reversals > max_rev {
             return Err(format!("status {s:?} at {n:?}"));

@@ -68,7 +68,8 @@ impl<S: Real> Corridor<S> {
         }
     }
 
-    /// Half-width \[rad\] at `x` (clamped ramp; a NaN `x` gives the narrower width).
+    /// Half-width \[rad\] at `x` (clamped ramp, always between the two end widths, so
+    /// positive for a valid corridor; a NaN `x` gives the narrower width).
     #[must_use]
     pub fn width_rad(&self, x: S) -> S {
         if x >= self.x_high {
@@ -76,11 +77,11 @@ impl<S: Real> Corridor<S> {
         } else if x > self.x_low {
             let t = (x - self.x_low) / (self.x_high - self.x_low);
             let w = self.width_low_rad + t * (self.width_high_rad - self.width_low_rad);
-            if w.is_finite() {
-                w
-            } else {
-                self.width_low_rad.min(self.width_high_rad)
-            }
+            let lo = self.width_low_rad.min(self.width_high_rad);
+            let hi = self.width_low_rad.max(self.width_high_rad);
+            // Rounding can leave the ramp's range (e.g. 0 for a tiny end width): clamp into it,
+            // so the width stays positive.
+            if w.is_finite() { w.clamp(lo, hi) } else { lo }
         } else if x <= self.x_low {
             self.width_low_rad
         } else {

@@ -52,6 +52,17 @@ fn corridor_narrows_linearly_with_speed() {
     assert_eq!(c.width_rad(2000.0), 4.0 * DEG);
     assert!((c.width_rad(4500.0) - 7.0 * DEG).abs() < 1e-12);
     assert_eq!(c.width_rad(f64::NAN), 4.0 * DEG);
+    // Fuzz finding (seed 20261130, case 5268): end widths 5e-324 (at x_high) and 0.317 rad,
+    // x_low = -1e300: t rounds to 1 and `0.317 + (5e-324 - 0.317)` is 0. The width stays
+    // within the end widths, hence positive.
+    let tiny = Corridor {
+        x_high: 7997.45,
+        width_high_rad: 5e-324,
+        x_low: -1e300,
+        width_low_rad: 0.317,
+        ..c
+    };
+    assert!(tiny.width_rad(5832.2) >= 5e-324);
 }
 
 #[test]
