@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 
 use targets::Target;
 
-const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link|closed-forms] [--case I]";
+const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link|closed-forms|lateral] [--case I]";
 
 struct Options {
     seed: u64,
@@ -62,7 +62,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
                 o.target = match v.as_str() {
                     "all" => None,
                     name => Some(Target::from_name(name).ok_or_else(|| {
-                        format!("--target: unknown target {name:?} (all, nodes, guidance, link, closed-forms)")
+                        format!("--target: unknown target {name:?} (all, nodes, guidance, link, closed-forms, lateral)")
                     })?),
                 };
             }

@@ -36,6 +36,40 @@ impl<S: Scalar> Command<S> {
     }
 }
 
+/// Sign of the bank angle imposed by a lateral logic (see [`crate::lateral`]): the command's
+/// bank magnitude is kept and its sign set (positive bank turns the heading clockwise, to the
+/// right).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum BankSign {
+    /// Bank right, `sigma >= 0`.
+    Positive,
+    /// Bank left, `sigma <= 0`.
+    Negative,
+}
+
+impl BankSign {
+    /// `sigma_rad` \[rad\] with its magnitude kept and this sign (a NaN stays NaN: callers
+    /// clamp afterwards).
+    #[must_use]
+    pub fn apply<S: Scalar>(self, sigma_rad: S) -> S {
+        let m = sigma_rad.abs();
+        match self {
+            Self::Positive => m,
+            Self::Negative => S::ZERO - m,
+        }
+    }
+
+    /// The other sign.
+    #[must_use]
+    pub fn reversed(self) -> Self {
+        match self {
+            Self::Positive => Self::Negative,
+            Self::Negative => Self::Positive,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -49,5 +83,17 @@ mod tests {
         assert!(c.is_finite());
         assert!(Command::<f64>::from_deg(f64::NAN, 0.0).is_none());
         assert!(Command::<Fixed>::from_deg(1e15, 0.0).is_none());
+    }
+
+    #[test]
+    fn bank_sign_keeps_the_magnitude() {
+        assert_eq!(BankSign::Negative.apply(0.5_f64), -0.5);
+        assert_eq!(BankSign::Negative.apply(-0.5_f64), -0.5);
+        assert_eq!(BankSign::Positive.apply(-0.5_f64), 0.5);
+        assert_eq!(BankSign::Positive.reversed(), BankSign::Negative);
+        assert_eq!(
+            BankSign::Negative.apply(Fixed::from_f64(0.25)),
+            Fixed::from_f64(-0.25)
+        );
     }
 }

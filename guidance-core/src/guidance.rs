@@ -69,7 +69,7 @@ use crate::plausibility::{TimeGate, TimeVerdict, TimeWindow};
 use crate::rate::{RampEnd, limit_command, ramp_end};
 use crate::scalar::Scalar;
 
-pub use crate::command::Command;
+pub use crate::command::{BankSign, Command};
 pub use crate::rate::RateLimits;
 
 /// Guidance configuration.
@@ -147,6 +147,8 @@ pub struct Guidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     time_gate: TimeGate<S>,
     /// Number of time-base re-synchronisations so far.
     time_resyncs: u32,
+    /// Bank sign imposed by a lateral logic (`None`: the table's own sign).
+    bank_sign: Option<BankSign>,
 }
 
 impl<S: Scalar, const N: usize> Guidance<S, N> {
@@ -187,6 +189,7 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
             ramp_start_s: None,
             time_gate: TimeGate::new(TimeWindow::for_period(config.period_s)),
             time_resyncs: 0,
+            bank_sign: None,
         })
     }
 
@@ -233,9 +236,18 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
             // The old ramp's times mean nothing in the new time base: start from its end.
             TimeVerdict::Resync => self.command,
         };
-        let target = self.interp.evaluate(x);
-        let limited = limit_command(start, target, self.config.rates, self.config.period_s);
         let bounds = self.table.bounds();
+        let target = self.interp.evaluate(x);
+        // A lateral logic's sign applies to the interpolated target, *before* the rate limit,
+        // so that a bank reversal is flown as a rate-limited ramp, never a step.
+        let target = match self.bank_sign {
+            Some(sign) => Command {
+                alpha_rad: target.alpha_rad,
+                sigma_rad: bounds.clamp_sigma(sign.apply(target.sigma_rad)),
+            },
+            None => target,
+        };
+        let limited = limit_command(start, target, self.config.rates, self.config.period_s);
         let command = Command {
             alpha_rad: bounds.clamp_alpha(limited.alpha_rad),
             sigma_rad: bounds.clamp_sigma(limited.sigma_rad),
@@ -388,6 +400,21 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
     #[must_use]
     pub fn interpolator(&self) -> &Interpolator<S, N> {
         &self.interp
+    }
+
+    /// Impose the sign of the bank angle from the next tick on (`None`: the table's own sign),
+    /// keeping the interpolated magnitude; the signed target is clamped into the table's bounds
+    /// and then rate-limited like any command, so a reversal is a ramp at the bank-rate limit.
+    /// The table's bounds must allow both signs (`sigma_min_rad <= -sigma_max_rad` for a full
+    /// reversal), else the reversed bank is clamped (with thesis bounds 0..90 deg: to 0).
+    pub fn set_bank_sign(&mut self, sign: Option<BankSign>) {
+        self.bank_sign = sign;
+    }
+
+    /// The imposed bank sign (`None`: the table's own).
+    #[must_use]
+    pub fn bank_sign(&self) -> Option<BankSign> {
+        self.bank_sign
     }
 
     /// Replace the node table (onboard re-planning), keeping the interpolation kind. Takes

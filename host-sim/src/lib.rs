@@ -12,11 +12,13 @@
 #![forbid(unsafe_code)]
 
 pub mod analytic;
+pub mod campaign;
 pub mod cli;
 pub mod compare;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;
+pub mod lateral_loop;
 pub mod num_fmt;
 pub mod optim;
 pub mod pil;

@@ -2,6 +2,7 @@
 
 mod closed_forms;
 mod guidance;
+mod lateral;
 mod link;
 mod nodes;
 
@@ -19,15 +20,18 @@ pub enum Target {
     Link,
     /// The Vinh closed forms through the predictor, and the re-planning solver.
     ClosedForms,
+    /// Lateral guidance (bank reversals) with hostile configurations and states.
+    Lateral,
 }
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 4] = [
+    pub const ALL: [Target; 5] = [
         Target::Nodes,
         Target::Guidance,
         Target::Link,
         Target::ClosedForms,
+        Target::Lateral,
     ];
 
     /// The target's command-line name.
@@ -37,6 +41,7 @@ impl Target {
             Target::Guidance => "guidance",
             Target::Link => "link",
             Target::ClosedForms => "closed-forms",
+            Target::Lateral => "lateral",
         }
     }
 
@@ -58,6 +63,7 @@ impl Target {
             Target::Guidance => guidance::run(&mut rng),
             Target::Link => link::run(&mut rng),
             Target::ClosedForms => closed_forms::run(&mut rng),
+            Target::Lateral => lateral::run(&mut rng),
         }
     }
 }

@@ -78,7 +78,8 @@
 
 use crate::energy::EnergyNormalizer;
 use crate::error::GuidanceError;
-use crate::guidance::{Command, Guidance, GuidanceConfig, GuidanceOutput};
+use crate::geo::{central_angle, initial_bearing};
+use crate::guidance::{BankSign, Command, Guidance, GuidanceConfig, GuidanceOutput};
 use crate::interp::Interpolation;
 use crate::nav::NavState;
 use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeTable};
@@ -306,20 +307,6 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     pending: Option<Pending<S>>,
 }
 
-/// Great-circle angle \[rad\] between two points (haversine form); `None` if non-finite.
-fn central_angle<S: Real>(lat1: S, lon1: S, lat2: S, lon2: S) -> Option<S> {
-    let two = S::ONE + S::ONE;
-    let s_dlat = ((lat2 - lat1) / two).sin();
-    let s_dlon = ((lon2 - lon1) / two).sin();
-    let a = s_dlat * s_dlat + lat1.cos() * lat2.cos() * s_dlon * s_dlon;
-    if !a.is_finite() {
-        return None;
-    }
-    let a = a.clamp(S::ZERO, S::ONE);
-    let theta = two * a.sqrt_raw().atan2((S::ONE - a).sqrt_raw());
-    theta.is_finite().then_some(theta)
-}
-
 /// Signed range to go \[m\] from `nav`'s position to `target` on a sphere of radius
 /// `planet_radius_m` \[m\]: great-circle angle (haversine form, accurate for small and large
 /// angles) times the radius, negative when the bearing to the target differs from the heading
@@ -342,17 +329,10 @@ pub fn range_to_go_m<S: Real>(
         return None;
     }
     let (lat1, lat2) = (nav.latitude_rad, target.latitude_rad);
-    let dlon = target.longitude_rad - nav.longitude_rad;
     let theta = central_angle(lat1, nav.longitude_rad, lat2, target.longitude_rad)?;
-    let (c1, c2) = (lat1.cos(), lat2.cos());
-    // Initial bearing to the target, clockwise from north.
-    let y = dlon.sin() * c2;
-    let x = c1 * lat2.sin() - lat1.sin() * c2 * dlon.cos();
-    let ahead = if x == S::ZERO && y == S::ZERO {
-        true
-    } else {
-        (y.atan2(x) - nav.heading_rad).cos() >= S::ZERO
-    };
+    // Initial bearing to the target, clockwise from north (0 when on the target: ahead).
+    let bearing = initial_bearing(lat1, nav.longitude_rad, lat2, target.longitude_rad)?;
+    let ahead = theta == S::ZERO || (bearing - nav.heading_rad).cos() >= S::ZERO;
     let r = theta * planet_radius_m;
     let r = if ahead { r } else { -r };
     r.is_finite().then_some(r)
@@ -574,6 +554,12 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
         } else {
             (report, None)
         }
+    }
+
+    /// Impose the bank sign (lateral logic, [`crate::lateral`]) from the next tick on; the
+    /// magnitude stays the corrector's (see [`Guidance::set_bank_sign`]).
+    pub fn set_bank_sign(&mut self, sign: Option<BankSign>) {
+        self.guidance.set_bank_sign(sign);
     }
 
     /// The wrapped guidance (command, attitude ramp, table in use, clock).

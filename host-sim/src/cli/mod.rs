@@ -5,6 +5,7 @@
 
 mod atmosphere_cmd;
 mod compare_cmd;
+mod dispersions_cmd;
 mod hypervolume_cmd;
 mod optimize_cmd;
 mod optimize_structured;
@@ -20,6 +21,7 @@ use crate::{report, scenario, vehicle};
 
 pub use atmosphere_cmd::{AtmosphereArgs, AtmosphereModel};
 pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
+pub use dispersions_cmd::DispersionsArgs;
 pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 pub use simulate_cmd::SimulateArgs;
@@ -51,6 +53,8 @@ pub enum Command {
     Optimize(OptimizeArgs),
     /// Exact hypervolume of a front CSV (minimised objectives as columns) for a reference point.
     Hypervolume(HypervolumeArgs),
+    /// Monte Carlo dispersion campaign of a scenario in three guidance modes.
+    Dispersions(DispersionsArgs),
 }
 
 /// CLI failures; the message names file, field and value where there is one.
@@ -93,6 +97,9 @@ pub enum CliError {
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
+    /// A dispersion campaign failed.
+    #[error("{0}")]
+    Campaign(Box<crate::campaign::CampaignError>),
 }
 
 /// Run the CLI with `args` (including the program name), writing normal output to `out`.
@@ -116,5 +123,6 @@ where
         Command::Vehicles => vehicles_cmd::run(out),
         Command::Optimize(a) => Ok(optimize_cmd::run(&a, out)?),
         Command::Hypervolume(a) => hypervolume_cmd::run(&a, out),
+        Command::Dispersions(a) => dispersions_cmd::run(&a, out),
     }
 }

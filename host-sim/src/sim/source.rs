@@ -3,7 +3,7 @@
 //! ([`CoreGuidance`]) or with onboard re-planning (`crate::replan_loop::ReplanLoop`), at the
 //! guidance's own clock ([`GuidanceSource`]).
 
-use guidance_core::guidance::{Command, Guidance, HostGuidance};
+use guidance_core::guidance::{BankSign, Command, Guidance, HostGuidance};
 use guidance_core::replan::{ReplanReport, ReplanningGuidance};
 use guidance_core::{GuidanceError, NavState};
 
@@ -67,6 +67,9 @@ pub trait FlightGuidance {
     fn next_tick_s(&self) -> f64;
     /// The next end of a ramp after `time_s` ([`Guidance::next_ramp_kink_s`]) \[s\].
     fn next_ramp_kink_s(&self, time_s: f64) -> Option<f64>;
+    /// Impose the bank sign from the next tick on ([`Guidance::set_bank_sign`]; lateral
+    /// guidance, `guidance_core::lateral`).
+    fn set_bank_sign(&mut self, sign: Option<BankSign>);
 }
 
 /// The clocked-guidance part of [`FlightGuidance`], the same for every wrapper of a
@@ -95,6 +98,9 @@ impl<const N: usize> FlightGuidance for Guidance<f64, N> {
     ) -> Result<(bool, Option<Self::Report>), GuidanceError> {
         Ok((Guidance::update(self, nav)?.ticked, None))
     }
+    fn set_bank_sign(&mut self, sign: Option<BankSign>) {
+        Guidance::set_bank_sign(self, sign);
+    }
     clocked_guidance!();
 }
 
@@ -106,6 +112,9 @@ impl<const N: usize> FlightGuidance for ReplanningGuidance<f64, N> {
     ) -> Result<(bool, Option<Self::Report>), GuidanceError> {
         let out = ReplanningGuidance::update(self, nav)?;
         Ok((out.guidance.ticked, out.replan))
+    }
+    fn set_bank_sign(&mut self, sign: Option<BankSign>) {
+        ReplanningGuidance::set_bank_sign(self, sign);
     }
     clocked_guidance!(.guidance());
 }

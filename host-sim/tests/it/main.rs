@@ -1,6 +1,7 @@
 //! The host-sim integration-test binary (one per crate). Each module is one topic.
 
 mod analytic_validation;
+mod campaign;
 mod cli;
 mod closed_loop;
 mod dynamics_validation;

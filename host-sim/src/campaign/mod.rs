@@ -1,0 +1,133 @@
+//! Dispersion campaigns (Monte Carlo): N closed-loop flights of one scenario with dispersed
+//! entry state, atmosphere, aerodynamics and mass, flown with three guidance modes on the same
+//! cases, with statistics, a footprint and histograms (docs/DISPERSIONS.md).
+//!
+//! * [`settings`]: the `[dispersions]` TOML section, defaults, validation naming the field;
+//! * [`draw`]: the dispersed values of case `i`, from a generator seeded by (seed, i) only;
+//! * [`models`]: the dispersed atmosphere (altitude-varying, bounded density scale) and aero;
+//! * [`setup`]: what the cases share (terminal interface, target, stored profile, settings of
+//!   the lateral logic and the re-planner), from nominal flights of the scenario;
+//! * [`flight`]: one flight in one mode -> [`flight::CaseResult`];
+//! * [`run`]: the campaign (rayon, bit-identical whatever the thread count, resumable per case
+//!   with atomic writes, progress bar);
+//! * [`stats`] and [`plot`]: statistics and SVG plots.
+
+pub mod draw;
+pub mod flight;
+pub mod models;
+pub mod output;
+pub mod plot;
+pub mod run;
+pub mod settings;
+pub mod setup;
+pub mod stats;
+
+use serde::{Deserialize, Serialize};
+
+pub use flight::CaseResult;
+pub use run::{CampaignOutput, run_campaign};
+pub use settings::{Dispersion, DispersionSettings, parse_settings};
+pub use setup::CampaignSetup;
+pub use stats::{ModeStats, Stats};
+
+/// A guidance mode of the comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Mode {
+    /// The stored profile with its own (constant) bank sign.
+    Stored,
+    /// The stored profile's magnitude with bank reversals.
+    StoredReversals,
+    /// Re-planned magnitude (predictor-corrector on the target's range to go) with reversals.
+    ReplanReversals,
+}
+
+impl Mode {
+    /// Every mode, in report order.
+    pub const ALL: [Mode; 3] = [Mode::Stored, Mode::StoredReversals, Mode::ReplanReversals];
+
+    /// Short name (file and directory names).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Stored => "stored",
+            Mode::StoredReversals => "stored-reversals",
+            Mode::ReplanReversals => "replan-reversals",
+        }
+    }
+}
+
+/// Why a campaign failed.
+#[derive(Debug, thiserror::Error)]
+pub enum CampaignError {
+    /// A bad setting.
+    #[error("{file}: {field} = {value}: {reason}")]
+    Setting {
+        /// Settings file.
+        file: String,
+        /// Dotted field name.
+        field: String,
+        /// The value as written.
+        value: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Malformed TOML.
+    #[error("{file}: {message}")]
+    Toml {
+        /// Settings file.
+        file: String,
+        /// The parser's message.
+        message: String,
+    },
+    /// The scenario could not be loaded or flown.
+    #[error("{file}: scenario: {source}")]
+    Scenario {
+        /// Scenario file.
+        file: String,
+        /// The cause.
+        source: Box<crate::scenario::ScenarioError>,
+    },
+    /// Guidance could not be set up.
+    #[error("{file}: {field}: {source}")]
+    Guidance {
+        /// Scenario file.
+        file: String,
+        /// What was being built.
+        field: &'static str,
+        /// The core's error.
+        source: guidance_core::GuidanceError,
+    },
+    /// The predictor model could not be built.
+    #[error("{file}: predictor model: {source}")]
+    Predictor {
+        /// Scenario file.
+        file: String,
+        /// The cause.
+        source: crate::analytic::AnalyticError,
+    },
+    /// A flight failed.
+    #[error("flight {index:?}: {source}")]
+    Sim {
+        /// Case index (`None`: nominal).
+        index: Option<u32>,
+        /// The simulator's error.
+        source: crate::sim::SimError,
+    },
+    /// A flight produced no sample.
+    #[error("a flight produced no sample")]
+    EmptyFlight,
+    /// Writing results failed.
+    #[error(transparent)]
+    Report(#[from] crate::report::ReportError),
+    /// A stored case result could not be read.
+    #[error("{path}: cannot read case result: {source}")]
+    CaseFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: serde_json::Error,
+    },
+    /// The thread pool could not be built.
+    #[error("thread pool: {0}")]
+    Pool(#[from] rayon::ThreadPoolBuildError),
+}

@@ -1,0 +1,147 @@
+//! The campaign: every case in every requested mode, in parallel on rayon threads, each case
+//! a pure function of (setup, settings, index, mode) so the results are bit-identical whatever
+//! the thread count; resumable: each case's result is written atomically to
+//! `<out>/cases/<mode>/<index>.json` as soon as it is done and reused by a later run with the
+//! same settings (a stored case whose draw differs is recomputed).
+
+use std::path::{Path, PathBuf};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::draw::draw_case;
+use super::flight::{CaseResult, fly_case};
+use super::settings::DispersionSettings;
+use super::setup::CampaignSetup;
+use super::stats::ModeStats;
+use super::{CampaignError, Mode};
+use crate::report::write_atomic;
+
+/// Options of a run.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Modes to fly, in report order.
+    pub modes: Vec<Mode>,
+    /// Output directory (case results, summary, plots); `None`: nothing written, no resume.
+    pub out_dir: Option<PathBuf>,
+    /// Rayon threads (`None`: rayon's default).
+    pub threads: Option<usize>,
+    /// Show a progress bar.
+    pub progress: bool,
+}
+
+/// What a campaign gives.
+#[derive(Clone, Debug, Serialize)]
+pub struct CampaignOutput {
+    /// The nominal (undispersed) flight of each mode.
+    pub nominal: Vec<CaseResult>,
+    /// Every case of each mode, by index.
+    pub cases: Vec<(Mode, Vec<CaseResult>)>,
+    /// Statistics of each mode.
+    pub stats: Vec<ModeStats>,
+    /// Cases reused from an earlier run.
+    pub resumed: usize,
+}
+
+fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
+    dir.join("cases")
+        .join(mode.name())
+        .join(format!("{index:06}.json"))
+}
+
+/// Run the campaign.
+///
+/// # Errors
+/// [`CampaignError`] for a failed flight, a bad stored case file or a write failure.
+pub fn run_campaign(
+    setup: &CampaignSetup,
+    settings: &DispersionSettings,
+    opts: &RunOptions,
+) -> Result<CampaignOutput, CampaignError> {
+    settings.validate(&setup.file)?;
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = opts.threads {
+        pool = pool.num_threads(t);
+    }
+    let pool = pool.build()?;
+    if let Some(dir) = &opts.out_dir {
+        for m in &opts.modes {
+            let d = dir.join("cases").join(m.name());
+            std::fs::create_dir_all(&d).map_err(|source| crate::report::ReportError::Io {
+                path: d.clone(),
+                source,
+            })?;
+        }
+    }
+    let n = settings.cases;
+    let jobs: Vec<(Mode, u32)> = opts
+        .modes
+        .iter()
+        .flat_map(|&m| (0..n).map(move |i| (m, i)))
+        .collect();
+    let bar = if opts.progress {
+        let b = ProgressBar::new(jobs.len() as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} flights, {per_sec}, eta {eta}")
+        {
+            b.set_style(style);
+        }
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let results: Vec<Result<(CaseResult, bool), CampaignError>> = pool.install(|| {
+        jobs.par_iter()
+            .map(|&(mode, index)| {
+                let draw = draw_case(settings, index);
+                let path = opts.out_dir.as_ref().map(|d| case_path(d, mode, index));
+                if let Some(p) = &path
+                    && let Ok(text) = std::fs::read_to_string(p)
+                {
+                    let stored: CaseResult =
+                        serde_json::from_str(&text).map_err(|source| CampaignError::CaseFile {
+                            path: p.clone(),
+                            source,
+                        })?;
+                    if stored.draw == Some(draw) && stored.mode == mode {
+                        bar.inc(1);
+                        return Ok((stored, true));
+                    }
+                }
+                let r = fly_case(setup, Some(&draw), mode)?;
+                if let Some(p) = &path {
+                    let json =
+                        serde_json::to_vec_pretty(&r).map_err(crate::report::ReportError::from)?;
+                    write_atomic(p, &json)?;
+                }
+                bar.inc(1);
+                Ok((r, false))
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    let mut by_mode: Vec<(Mode, Vec<CaseResult>)> =
+        opts.modes.iter().map(|&m| (m, Vec::new())).collect();
+    let mut resumed = 0;
+    for r in results {
+        let (c, reused) = r?;
+        resumed += usize::from(reused);
+        if let Some((_, v)) = by_mode.iter_mut().find(|(m, _)| *m == c.mode) {
+            v.push(c);
+        }
+    }
+    let nominal = pool.install(|| {
+        opts.modes
+            .par_iter()
+            .map(|&m| fly_case(setup, None, m))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
+    let stats = by_mode.iter().map(|(m, v)| ModeStats::of(*m, v)).collect();
+    Ok(CampaignOutput {
+        nominal,
+        cases: by_mode,
+        stats,
+        resumed,
+    })
+}

@@ -1,0 +1,331 @@
+//! What every case of a campaign shares: the nominal world, the terminal interface, the
+//! target point, the stored profile (energy-indexed, two-sided bank bounds) and the settings of
+//! the lateral logic and of the re-planner. Built once from a scenario by flying it nominally.
+
+use guidance_core::energy::EnergyNormalizer;
+use guidance_core::geo::central_angle;
+use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
+use guidance_core::interp::Interpolation;
+use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
+use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
+use guidance_core::replan::{
+    PredictorMode, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
+};
+use guidance_core::vinh::PredictorConfig;
+
+use super::CampaignError;
+use crate::dynamics::SphericalState;
+use crate::env::{Environment, ExponentialAtmosphere};
+use crate::replan_loop::predictor_model;
+use crate::scenario::{Scenario, build_guidance};
+use crate::sim::SimResult;
+
+const DEG: f64 = std::f64::consts::PI / 180.0;
+
+/// Mach number of the polar the predictor uses (as the closed-loop re-planning tests).
+pub const PREDICTOR_POLAR_MACH: f64 = 20.0;
+
+/// Nominal flights used to place the target (module docs of [`CampaignSetup::new`]).
+pub const RETARGET_ITERATIONS: usize = 6;
+
+/// The shared part of a campaign.
+#[derive(Clone, Debug)]
+pub struct CampaignSetup {
+    /// The scenario (nominal entry, vehicle, environment, guidance).
+    pub scenario: Scenario,
+    /// Name of the scenario file (for messages).
+    pub file: String,
+    /// Energy normaliser of the nominal entry (onboard constant of every case).
+    pub energy: EnergyNormalizer<f64>,
+    /// Terminal interface: specific energy `V^2/2 - mu/r` \[J/kg\] of the nominal end.
+    pub interface_energy_j_kg: f64,
+    /// Speed at the nominal end \[m/s\] (the predictor's final speed).
+    pub interface_speed_m_s: f64,
+    /// Altitude floor of every case \[m\] (an end there is reported: interface not reached).
+    pub floor_altitude_m: f64,
+    /// Planet radius \[m\].
+    pub planet_radius_m: f64,
+    /// The target point at the terminal interface.
+    pub target: TargetPoint<f64>,
+    /// Downrange of the target along the nominal entry great circle \[rad\].
+    pub target_downrange_rad: f64,
+    /// Energy-indexed stored profile with two-sided bank bounds.
+    pub table: HostNodeTable<f64>,
+    /// Guidance period and rate limits.
+    pub guidance_config: GuidanceConfig<f64>,
+    /// Lateral logic settings.
+    pub lateral: LateralConfig<f64>,
+    /// Re-planner settings.
+    pub replanning: ReplanningConfig<f64>,
+}
+
+/// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
+fn along_heading(e: &SphericalState, downrange_rad: f64) -> TargetPoint<f64> {
+    let (lat1, lon1, b, d) = (
+        e.latitude_rad,
+        e.longitude_rad,
+        e.heading_rad,
+        downrange_rad,
+    );
+    let lat2 = (lat1.sin() * d.cos() + lat1.cos() * d.sin() * b.cos()).asin();
+    let lon2 = lon1 + (b.sin() * d.sin() * lat1.cos()).atan2(d.cos() - lat1.sin() * lat2.sin());
+    TargetPoint {
+        latitude_rad: lat2,
+        longitude_rad: lon2,
+    }
+}
+
+/// Energy-indexed version of the scenario's table (a time-indexed table is mapped through the
+/// nominal flight's E-hat at the node times), with two-sided bank bounds `[-max, max]`.
+fn energy_table(
+    sc: &Scenario,
+    nominal: &SimResult,
+    file: &str,
+) -> Result<HostNodeTable<f64>, CampaignError> {
+    let g = &sc.guidance;
+    let e_at = |t: f64| -> f64 {
+        let s = &nominal.samples;
+        let i = s.partition_point(|p| p.time_s < t);
+        match (i.checked_sub(1).and_then(|j| s.get(j)), s.get(i)) {
+            (Some(a), Some(b)) if b.time_s > a.time_s => {
+                let w = (t - a.time_s) / (b.time_s - a.time_s);
+                a.normalized_energy + w * (b.normalized_energy - a.normalized_energy)
+            }
+            (_, Some(b)) => b.normalized_energy,
+            (Some(a), None) => a.normalized_energy,
+            (None, None) => 1.0,
+        }
+    };
+    let mut nodes: Vec<Node<f64>> = Vec::new();
+    for n in &g.nodes {
+        let x = match g.independent {
+            Independent::NormalizedEnergy => n[0],
+            Independent::TimeS => e_at(n[0]),
+        };
+        // Strictly decreasing E-hat (drop nodes past the nominal end).
+        if nodes.last().is_some_and(|p| x >= p.x) {
+            continue;
+        }
+        nodes.push(Node {
+            x,
+            alpha_rad: n[1],
+            sigma_rad: n[2].abs(),
+        });
+    }
+    // Close the table below the interface with the last node's attitude.
+    if let Some(last) = nodes.last().copied()
+        && last.x > 0.0
+    {
+        nodes.push(Node { x: 0.0, ..last });
+    }
+    let b = g.bounds;
+    let smax = b.sigma_max_rad.abs().max(b.sigma_min_rad.abs());
+    let bounds = AngleBounds {
+        alpha_min_rad: b.alpha_min_rad,
+        alpha_max_rad: b.alpha_max_rad,
+        sigma_min_rad: -smax,
+        sigma_max_rad: smax,
+    };
+    HostNodeTable::new(Independent::NormalizedEnergy, &nodes, bounds).map_err(|e| {
+        CampaignError::Guidance {
+            file: file.into(),
+            field: "guidance.nodes",
+            source: e.into(),
+        }
+    })
+}
+
+impl CampaignSetup {
+    /// Build from `sc`: fly it nominally with its own guidance (the stored profile), take the
+    /// end as the terminal interface, build the energy-indexed two-sided table, then place the
+    /// target on the entry great circle at the downrange that the stored profile flown with
+    /// bank reversals reaches (at most [`RETARGET_ITERATIONS`] nominal flights, until the
+    /// downrange error is below 100 m), so the nominal case is on target. With
+    /// `interface_speed_m_s` the terminal interface is where the nominal flight slows to that
+    /// speed (its energy), else the nominal end.
+    ///
+    /// # Errors
+    /// [`CampaignError`] if the scenario cannot be flown or its guidance built.
+    pub fn new(
+        sc: &Scenario,
+        file: &str,
+        interface_speed_m_s: Option<f64>,
+    ) -> Result<Self, CampaignError> {
+        let scen = |source| CampaignError::Scenario {
+            file: file.into(),
+            source: Box::new(source),
+        };
+        let vehicle = sc.load_vehicle().map_err(|e| scen(e.into()))?;
+        let env: Environment = sc.environment.build();
+        let planet = env.planet;
+        let g0 = build_guidance(sc, &planet, file).map_err(scen)?;
+        let nominal = super::flight::fly_plain(sc, &env, &vehicle, g0)?;
+        let last = nominal
+            .samples
+            .last()
+            .map(|s| s.state)
+            .ok_or(CampaignError::EmptyFlight)?;
+        // The terminal interface: the nominal state where the speed first falls to the given
+        // interface speed (linear between output samples), else the nominal end.
+        let end = match interface_speed_m_s {
+            Some(v_if) => nominal
+                .samples
+                .windows(2)
+                .find_map(|w| match w {
+                    [a, b] if a.state.speed_m_s > v_if && b.state.speed_m_s <= v_if => {
+                        let f =
+                            (a.state.speed_m_s - v_if) / (a.state.speed_m_s - b.state.speed_m_s);
+                        let mut s = a.state;
+                        s.radius_m += f * (b.state.radius_m - a.state.radius_m);
+                        s.speed_m_s = v_if;
+                        Some(s)
+                    }
+                    _ => None,
+                })
+                .ok_or_else(|| CampaignError::Setting {
+                    file: file.into(),
+                    field: "dispersions.interface_speed_m_s".into(),
+                    value: v_if.to_string(),
+                    reason: "the nominal flight never slows down to it".into(),
+                })?,
+            None => last,
+        };
+        let energy = EnergyNormalizer::new(
+            planet.mu_m3_s2,
+            planet.radius_m,
+            sc.entry.radius_m,
+            sc.entry.speed_m_s,
+        )
+        .map_err(|source| CampaignError::Guidance {
+            file: file.into(),
+            field: "entry",
+            source,
+        })?;
+        let table = energy_table(sc, &nominal, file)?;
+        let g = &sc.guidance;
+        let guidance_config = GuidanceConfig {
+            period_s: g.period_s,
+            rates: RateLimits {
+                alpha_rad_s: g.alpha_rate_rad_s,
+                sigma_rad_s: g.sigma_rate_rad_s,
+            },
+        };
+        let v_e = sc.entry.speed_m_s;
+        let v_f = end.speed_m_s;
+        let lateral = LateralConfig {
+            target: along_heading(&sc.entry, nominal.summary.range_angle_rad),
+            corridor: Corridor {
+                axis: CorridorAxis::Speed,
+                x_high: v_e,
+                width_high_rad: 15.0 * DEG,
+                x_low: v_f + 0.1 * (v_e - v_f),
+                width_low_rad: 3.0 * DEG,
+            },
+            hysteresis_rad: 1.0 * DEG,
+            max_reversals: 12,
+            freeze_angle_rad: 30e3 / planet.radius_m,
+        };
+        let fit = ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3).map_err(
+            |e| CampaignError::Predictor {
+                file: file.into(),
+                source: e.into(),
+            },
+        )?;
+        let model =
+            predictor_model(&vehicle, &fit, &planet, PREDICTOR_POLAR_MACH).map_err(|source| {
+                CampaignError::Predictor {
+                    file: file.into(),
+                    source,
+                }
+            })?;
+        let replanning = ReplanningConfig {
+            every_n_ticks: 5,
+            target: RangeTarget::Point(lateral.target),
+            limits: ReplanLimits {
+                heat_flux_w_m2: vehicle.limits.heat_flux_w_m2,
+                g_load: vehicle.limits.g_load,
+            },
+            solver: ReplanConfig {
+                lambda: 1.0,
+                min_vertical_fraction: 0.05,
+                max_vertical_fraction: 1.0,
+                tolerance_m: 1000.0,
+                max_iterations: 20,
+                predictor: PredictorConfig {
+                    final_speed_m_s: v_f,
+                    max_skips: 4,
+                },
+                mode: PredictorMode::Auto,
+            },
+            model,
+            apply_out_of_reach: true,
+            steps_per_tick: 0,
+        };
+        let r_f = end.radius_m;
+        let mut setup = Self {
+            scenario: sc.clone(),
+            file: file.into(),
+            energy,
+            interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
+            interface_speed_m_s: v_f,
+            floor_altitude_m: (r_f - planet.radius_m - 10e3).max(1e3),
+            planet_radius_m: planet.radius_m,
+            target: lateral.target,
+            target_downrange_rad: nominal.summary.range_angle_rad,
+            table,
+            guidance_config,
+            lateral,
+            replanning,
+        };
+        // Re-aim at where the stored profile with reversals ends, on the entry great circle
+        // (a fixed-point iteration: the reversals depend on the target).
+        for _ in 0..RETARGET_ITERATIONS {
+            let f = super::flight::fly_case(&setup, None, super::Mode::StoredReversals)?;
+            if f.downrange_error_m.abs() < 100.0 {
+                break;
+            }
+            setup.retarget(setup.target_downrange_rad + f.downrange_error_m / planet.radius_m);
+        }
+        Ok(setup)
+    }
+
+    /// Put the target `downrange_rad` along the entry great circle.
+    pub fn retarget(&mut self, downrange_rad: f64) {
+        let t = along_heading(&self.scenario.entry, downrange_rad);
+        self.target = t;
+        self.target_downrange_rad = downrange_rad;
+        self.lateral.target = t;
+        self.replanning.target = RangeTarget::Point(t);
+    }
+
+    /// Great-circle distance \[m\] from (lat, lon) to the target.
+    #[must_use]
+    pub fn distance_to_target_m(&self, lat: f64, lon: f64, radius_m: f64) -> f64 {
+        central_angle(
+            lat,
+            lon,
+            self.target.latitude_rad,
+            self.target.longitude_rad,
+        )
+        .map_or(f64::INFINITY, |a| a * radius_m)
+    }
+
+    /// The guidance of the stored profile (energy-indexed, two-sided bounds).
+    ///
+    /// # Errors
+    /// [`CampaignError::Guidance`] (cannot happen for a table this setup built).
+    pub fn stored_guidance(&self) -> Result<HostGuidance<f64>, CampaignError> {
+        Guidance::new(
+            self.guidance_config,
+            self.table.clone(),
+            Interpolation::Linear,
+            self.energy,
+            self.scenario.guidance.initial,
+        )
+        .map_err(|source| CampaignError::Guidance {
+            file: self.file.clone(),
+            field: "guidance",
+            source,
+        })
+    }
+}
