@@ -10,7 +10,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-use onboard_spec::machines::{MACHINES, PIL_MACHINE, QEMU_SYSTEM, QemuMachine, RUNNER_TIMEOUT_S};
+use onboard_spec::machines::{
+    MACHINES, PIL_MACHINE, QEMU_SYSTEM, QemuMachine, RUNNER_KILL_AFTER_S, RUNNER_TIMEOUT_S,
+};
 
 mod elf;
 mod golden;
@@ -345,10 +347,10 @@ fn build_firmware(target: &str) -> Result<PathBuf, String> {
     Ok(firmware_elf(target))
 }
 
-/// QEMU on `machine` (the table of `onboard_spec::machines`) running `elf`, under `timeout`.
+/// QEMU on `machine` (the table of `onboard_spec::machines`) running `elf`, under `timeout -k`.
 fn qemu(machine: &QemuMachine, elf: &Path, icount: bool) -> Command {
     let mut q = Command::new("timeout");
-    q.args([RUNNER_TIMEOUT_S, QEMU_SYSTEM]);
+    q.args(["-k", RUNNER_KILL_AFTER_S, RUNNER_TIMEOUT_S, QEMU_SYSTEM]);
     if icount {
         q.args(["-icount", "shift=0"]);
     }

@@ -44,7 +44,26 @@ fn pil_run(
     out: &mut dyn Write,
 ) -> Result<RunOutput, CliError> {
     let started = std::time::Instant::now();
-    let (result, stats) = pil::fly_reference_pil(pil::PilConfig::new(elf.to_path_buf()))?;
+    let (run, record) = pil::fly_reference_pil_recorded(pil::PilConfig::new(elf.to_path_buf()));
+    let (result, stats) = match run {
+        Ok(r) => r,
+        Err(e) => {
+            // Keep the record up to the failure, marked, beside (not in) the run directory.
+            let failed = failed_record_path(dir);
+            if !record.exchanges().is_empty() {
+                if let Some(parent) = failed.parent().filter(|p| !p.as_os_str().is_empty()) {
+                    std::fs::create_dir_all(parent)?;
+                }
+                crate::report::write_atomic(&failed, record.to_csv().as_bytes())?;
+                writeln!(
+                    out,
+                    "PIL run failed; frames exchanged up to the failure (marked): {}",
+                    failed.display()
+                )?;
+            }
+            return Err(e.into());
+        }
+    };
     let wall = started.elapsed().as_secs_f64();
     writeln!(
         out,
@@ -64,6 +83,14 @@ fn pil_run(
         flight,
         dir,
     )?)
+}
+
+/// Where a failed PIL run's frame record goes: `<dir>.failed-pil-record.csv`.
+#[must_use]
+pub fn failed_record_path(dir: &Path) -> PathBuf {
+    let mut name = dir.file_name().unwrap_or_default().to_os_string();
+    name.push(".failed-pil-record.csv");
+    dir.with_file_name(name)
 }
 
 /// Run `simulate` with arguments `a`, writing normal output to `out`.

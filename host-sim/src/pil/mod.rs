@@ -8,12 +8,22 @@
 //! `<dir>/nav` and `<dir>/cmd`, that the firmware opens through semihosting; `<dir>` is passed
 //! to the firmware as QEMU's `-append` command line.
 //!
-//! Nothing hangs: QEMU runs under `timeout`, opening the FIFOs and every answer wait at most
-//! [`PilConfig::reply_timeout`] (a reader thread with a channel), and on any failure QEMU is
-//! killed and the FIFOs are removed (also on drop).
+//! QEMU runs with the FIFO directory as its working directory and `-append .`, so the firmware
+//! opens `./nav` and `./cmd` whatever the directory's length or characters.
+//!
+//! Nothing hangs and nothing is left behind: QEMU runs in its own process group under
+//! `timeout -k`; opening the FIFOs and every answer wait at most [`PilConfig::reply_timeout`]
+//! and stop at once if QEMU exits (its status and stderr are the error); on every exit path
+//! (error, drop, unwinding panic, and Ctrl-C through [`interrupt_cleanup`]) the process group is
+//! SIGKILLed and the FIFO directory removed. Every command frame is checked
+//! ([`FrameLimits::check`]) before it is flown; the exchanged frames are kept in a
+//! [`PilRecord`] that outlives a failed run.
 
+mod check;
 mod fifo;
 mod guidance;
+mod qemu;
+mod record;
 mod reference;
 
 use std::path::PathBuf;
@@ -24,8 +34,15 @@ use guidance_core::link::LinkError;
 use crate::scenario::ScenarioError;
 use crate::sim;
 
+pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
+pub use fifo::FIFO_DIR_PREFIX;
 pub use guidance::PilGuidance;
-pub use reference::{fly_reference, fly_reference_pil, fly_reference_sil, reference_sil_guidance};
+pub use qemu::{QemuExit, interrupt_cleanup};
+pub use record::{Exchange, PilRecord};
+pub use reference::{
+    fly_reference, fly_reference_pil, fly_reference_pil_recorded, fly_reference_sil,
+    reference_sil_guidance,
+};
 
 /// Where the firmware ELF is looked for by default (relative to the workspace root).
 pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
@@ -35,10 +52,10 @@ pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
 pub struct PilConfig {
     /// Firmware ELF (`onboard-demo`'s `pil` binary for `thumbv7em-none-eabihf`).
     pub elf: PathBuf,
-    /// QEMU program.
+    /// QEMU program (`$REENTRY_PIL_QEMU`, else `qemu-system-arm`).
     pub qemu: String,
-    /// Directory created for the FIFOs (removed afterwards); must not exist.
-    pub fifo_dir: PathBuf,
+    /// Where the run's FIFO directory (`reentry-pil-<pid>-<n>`, removed afterwards) is made.
+    pub fifo_parent: PathBuf,
     /// Longest wait for the firmware to open a FIFO or answer one frame.
     pub reply_timeout: Duration,
     /// Wall-time limit of the whole QEMU run (`timeout`) \[s\].
@@ -46,16 +63,14 @@ pub struct PilConfig {
 }
 
 impl PilConfig {
-    /// Settings for `elf` with a FIFO directory unique to this process and call.
+    /// Settings for `elf`, the FIFO directory made in the system temporary directory.
     #[must_use]
     pub fn new(elf: PathBuf) -> Self {
-        use std::sync::atomic::{AtomicU32, Ordering};
-        static N: AtomicU32 = AtomicU32::new(0);
-        let n = N.fetch_add(1, Ordering::Relaxed);
         Self {
             elf,
-            qemu: onboard_spec::machines::QEMU_SYSTEM.into(),
-            fifo_dir: std::env::temp_dir().join(format!("reentry-pil-{}-{n}", std::process::id())),
+            qemu: std::env::var("REENTRY_PIL_QEMU")
+                .unwrap_or_else(|_| onboard_spec::machines::QEMU_SYSTEM.into()),
+            fifo_parent: std::env::temp_dir(),
             reply_timeout: Duration::from_secs(10),
             qemu_timeout_s: 600,
         }
@@ -84,6 +99,20 @@ pub enum PilError {
     /// QEMU could not be started or failed.
     #[error("QEMU: {0}")]
     Qemu(String),
+    /// QEMU exited before the run ended (bad ELF, firmware failure, ...).
+    #[error("{0}")]
+    QemuExited(QemuExit),
+    /// A command frame failed the checks against the configuration; the run ends there.
+    #[error("command frame {seq} (tick at t = {time_s} s) rejected: {violation}")]
+    BadCommand {
+        /// Sequence number.
+        seq: u32,
+        /// Time of the nav sample it answered \[s\].
+        time_s: f64,
+        /// What it violated.
+        #[source]
+        violation: FrameViolation,
+    },
     /// The firmware did not answer in time.
     #[error("timeout after {0:?} waiting for {1}")]
     Timeout(Duration, &'static str),

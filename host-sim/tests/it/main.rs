@@ -7,6 +7,7 @@ mod dynamics_validation;
 mod env_validation;
 mod layering;
 mod pil;
+mod pil_reliability;
 mod replan_loop;
 mod scenario_files;
 mod support;

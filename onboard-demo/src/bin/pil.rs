@@ -4,7 +4,9 @@
 //! `SYS_READ`, `SYS_WRITE`): `<dir>/nav` (host -> firmware, [`NavFrame`]s) and `<dir>/cmd`
 //! (firmware -> host, [`CommandFrame`]s), frames as defined in `guidance_core::link`.
 //! `<dir>` is the semihosting command line (QEMU `-append DIR`, read with `SYS_GET_CMDLINE`;
-//! its last word), or else the build-time `PIL_FIFO_DIR`, or else `/tmp/reentry-pil`.
+//! its last word; host-sim passes `.` and runs QEMU in the FIFO directory, so the path is always
+//! short), or else the build-time `PIL_FIFO_DIR`, or else `.` (when the command line is too
+//! long for the buffer, e.g. a very long ELF path).
 //!
 //! Guidance: `Guidance<f32>` of the HORUS-2B reference mission compiled in
 //! (`guidance_core::missions::horus2b_reference`: time-indexed table of thesis eq. 2.3, thesis
@@ -44,7 +46,8 @@ mod firmware {
     /// Default FIFO directory when the command line names none.
     const DEFAULT_DIR: &str = match option_env!("PIL_FIFO_DIR") {
         Some(d) => d,
-        None => "/tmp/reentry-pil",
+        // The host runs QEMU in the FIFO directory.
+        None => ".",
     };
 
     /// Longest FIFO path \[bytes\] (including the terminating NUL).
