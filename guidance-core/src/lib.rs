@@ -38,6 +38,7 @@ pub mod math;
 pub mod missions;
 pub mod monitor;
 pub mod nav;
+pub mod navconv;
 pub mod nodes;
 pub mod plausibility;
 pub mod rate;

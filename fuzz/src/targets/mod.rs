@@ -2,6 +2,7 @@
 
 mod guidance;
 mod link;
+mod navconv;
 mod nodes;
 
 use rand::SeedableRng;
@@ -16,11 +17,18 @@ pub enum Target {
     Guidance,
     /// The PIL frame decoder.
     Link,
+    /// The navigation interface (Cartesian -> guidance variables).
+    Navconv,
 }
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 3] = [Target::Nodes, Target::Guidance, Target::Link];
+    pub const ALL: [Target; 4] = [
+        Target::Nodes,
+        Target::Guidance,
+        Target::Link,
+        Target::Navconv,
+    ];
 
     /// The target's command-line name.
     pub fn name(self) -> &'static str {
@@ -28,6 +36,7 @@ impl Target {
             Target::Nodes => "nodes",
             Target::Guidance => "guidance",
             Target::Link => "link",
+            Target::Navconv => "navconv",
         }
     }
 
@@ -48,6 +57,7 @@ impl Target {
             Target::Nodes => nodes::run(&mut rng),
             Target::Guidance => guidance::run(&mut rng),
             Target::Link => link::run(&mut rng),
+            Target::Navconv => navconv::run(&mut rng),
         }
     }
 }

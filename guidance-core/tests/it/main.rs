@@ -1,6 +1,7 @@
 //! The guidance-core integration-test binary (one per crate). Each module is one topic.
 
 mod guidance_props;
+mod navconv;
 mod node_capacity;
 mod vinh_props;
 mod vinh_replan;

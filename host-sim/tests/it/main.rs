@@ -6,6 +6,7 @@ mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
 mod layering;
+mod navconv;
 mod pil;
 mod pil_reliability;
 mod replan_loop;
