@@ -44,6 +44,7 @@ pub mod plausibility;
 pub mod rate;
 pub mod replan;
 pub mod scalar;
+pub mod setup;
 pub mod vinh;
 
 pub use command::Command;

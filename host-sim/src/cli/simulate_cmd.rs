@@ -28,23 +28,25 @@ pub struct SimulateArgs {
     /// Do not show a progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Processor in the loop: fly the HORUS-2B reference mission with the guidance of this
-    /// firmware ELF (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`).
-    /// Only with the default scenario, whose table the firmware has compiled in.
-    #[arg(long, value_name = "ELF", conflicts_with_all = ["scenario", "builtin"])]
+    /// Processor in the loop: fly the scenario with the guidance of this firmware ELF
+    /// (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`): the scenario's
+    /// guidance is uploaded as set-up frames; a hard-float ELF runs on the Cortex-M4F (`f32`),
+    /// a soft-float one on the Cortex-M3 (fixed point).
+    #[arg(long, value_name = "ELF")]
     pub pil: Option<PathBuf>,
 }
 
-/// Fly the reference mission in PIL with firmware `elf`, write the run directory and print
-/// the link statistics.
+/// Fly scenario `sc` in PIL with firmware `elf`, write the run directory and print the link
+/// statistics.
 fn pil_run(
     sc: &Scenario,
+    file: &str,
     elf: &Path,
     dir: &Path,
     out: &mut dyn Write,
 ) -> Result<RunOutput, CliError> {
     let started = std::time::Instant::now();
-    let (run, record) = pil::fly_reference_pil_recorded(pil::PilConfig::new(elf.to_path_buf()));
+    let (run, record) = pil::fly_scenario_pil(sc, file, pil::PilConfig::new(elf.to_path_buf()));
     let (result, stats) = match run {
         Ok(r) => r,
         Err(e) => {
@@ -130,7 +132,7 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
     };
     let run = if let Some(elf) = &a.pil {
         bar.finish_and_clear();
-        pil_run(&sc, elf, &dir, out)?
+        pil_run(&sc, &file, elf, &dir, out)?
     } else {
         let res = simulate_scenario(&sc, &file, &dir, &mut progress);
         bar.finish_and_clear();

@@ -10,7 +10,10 @@ use std::time::{Duration, Instant};
 
 use guidance_core::NavState;
 use guidance_core::guidance::Command;
-use guidance_core::link::{CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode};
+use guidance_core::link::{
+    CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
+};
+use guidance_core::setup::SetupItem;
 
 use super::fifo::{FifoDir, mkfifo, open_fifo};
 use super::qemu::Qemu;
@@ -53,15 +56,20 @@ impl PilGuidance {
             initial: mission.initial,
             period_s: mission.config.period_s,
         };
-        Self::start_with(cfg, limits)
+        Self::start_with(cfg, limits, &[])
     }
 
-    /// As [`PilGuidance::start`], checking command frames against `limits` (the configuration
-    /// the firmware flies).
+    /// As [`PilGuidance::start`], first uploading `setup` (the items of
+    /// [`super::scenario_setup`]; none: the firmware's compiled-in reference mission) and
+    /// checking command frames against `limits` (the configuration the firmware flies).
     ///
     /// # Errors
-    /// As [`PilGuidance::start`].
-    pub fn start_with(cfg: PilConfig, limits: FrameLimits) -> Result<Self, PilError> {
+    /// As [`PilGuidance::start`]; [`PilError::SetupRejected`] if the firmware rejects an item.
+    pub fn start_with(
+        cfg: PilConfig,
+        limits: FrameLimits,
+        setup: &[SetupItem],
+    ) -> Result<Self, PilError> {
         let ok = std::process::Command::new(&cfg.qemu)
             .arg("--version")
             .stdout(Stdio::null())
@@ -111,7 +119,56 @@ impl PilGuidance {
             }
         });
         me.replies = Some(rx);
+        for (index, item) in setup.iter().enumerate() {
+            me.upload(index, *item)?;
+        }
         Ok(me)
+    }
+
+    /// Send one set-up item and wait for its status.
+    fn upload(&mut self, index: usize, item: SetupItem) -> Result<(), PilError> {
+        let seq = self.seq;
+        self.seq = self.seq.wrapping_add(1);
+        let mut buf = [0u8; FRAME_LEN];
+        encode(&Frame::Setup(SetupFrame { seq, item }), &mut buf).map_err(PilError::Link)?;
+        let nav_path = self.paths().0;
+        let reply = match (self.nav.as_mut(), self.replies.as_ref()) {
+            (Some(f), Some(rx)) => {
+                if let Err(e) = f.write_all(&buf) {
+                    let err = PilError::Fifo {
+                        path: nav_path,
+                        reason: format!("write failed: {e}"),
+                    };
+                    return Err(self.dead_or(err));
+                }
+                rx.recv_timeout(self.cfg.reply_timeout)
+            }
+            _ => {
+                return Err(PilError::Timeout(
+                    Duration::ZERO,
+                    "a set-up answer (link closed)",
+                ));
+            }
+        };
+        let bytes = match reply {
+            Ok(Ok(b)) => b,
+            _ => {
+                let err = PilError::Timeout(self.cfg.reply_timeout, "a set-up answer");
+                return Err(self.dead_or(err));
+            }
+        };
+        match decode(&bytes).map_err(PilError::Link)? {
+            Frame::Command(c) if c.seq == seq && c.status == LinkStatus::Ok => Ok(()),
+            Frame::Command(c) if c.seq == seq => Err(PilError::SetupRejected {
+                index,
+                item,
+                status: c.status,
+            }),
+            other => Err(PilError::Firmware {
+                seq,
+                what: format!("unexpected answer to set-up: {other:?}"),
+            }),
+        }
     }
 
     /// The record of the frames exchanged (a handle: clone it before the run to keep it after

@@ -25,6 +25,7 @@ mod guidance;
 mod qemu;
 mod record;
 mod reference;
+mod scenario;
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -43,6 +44,7 @@ pub use reference::{
     fly_reference, fly_reference_pil, fly_reference_pil_recorded, fly_reference_sil,
     reference_sil_guidance,
 };
+pub use scenario::{fly_scenario_pil, scenario_setup};
 
 /// Where the firmware ELF is looked for by default (relative to the workspace root).
 pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
@@ -60,6 +62,34 @@ pub struct PilConfig {
     pub reply_timeout: Duration,
     /// Wall-time limit of the whole QEMU run (`timeout`) \[s\].
     pub qemu_timeout_s: u32,
+    /// The QEMU machine (`None`: from the ELF, see [`machine_of_elf`]).
+    pub machine: Option<onboard_spec::machines::QemuMachine>,
+}
+
+/// The machine an ELF is built for: the Cortex-M4F for a hard-float ELF (`EF_ARM_ABI_FLOAT_HARD`
+/// in `e_flags`), else the Cortex-M3 (`onboard_spec::machines`). An unreadable or non-ELF file
+/// gives the PIL machine (QEMU then reports what is wrong with it).
+#[must_use]
+pub fn machine_of_elf(elf: &std::path::Path) -> onboard_spec::machines::QemuMachine {
+    use onboard_spec::machines::{CORTEX_M3, CORTEX_M4F, PIL_MACHINE};
+    const EF_ARM_ABI_FLOAT_HARD: u32 = 0x400;
+    let Ok(bytes) = std::fs::read(elf) else {
+        return PIL_MACHINE;
+    };
+    // ELF32 (class 1), ARM (e_machine 40); e_flags at byte 36.
+    let is_arm32 = bytes.get(..4) == Some(b"\x7fELF".as_slice())
+        && bytes.get(4) == Some(&1)
+        && bytes.get(18..20) == Some([40u8, 0].as_slice());
+    match bytes.get(36..40) {
+        Some(&[a, b, c, d]) if is_arm32 => {
+            if u32::from_le_bytes([a, b, c, d]) & EF_ARM_ABI_FLOAT_HARD != 0 {
+                CORTEX_M4F
+            } else {
+                CORTEX_M3
+            }
+        }
+        _ => PIL_MACHINE,
+    }
 }
 
 impl PilConfig {
@@ -73,6 +103,7 @@ impl PilConfig {
             fifo_parent: std::env::temp_dir(),
             reply_timeout: Duration::from_secs(10),
             qemu_timeout_s: 600,
+            machine: None,
         }
     }
 }
@@ -119,6 +150,16 @@ pub enum PilError {
     /// A received frame was malformed.
     #[error("bad frame from the firmware: {0}")]
     Link(LinkError),
+    /// The firmware rejected a set-up item (its status names the core's check).
+    #[error("firmware rejected set-up item {index} ({item:?}) with status {status:?}")]
+    SetupRejected {
+        /// Position of the item in the set-up sequence.
+        index: usize,
+        /// The item.
+        item: guidance_core::setup::SetupItem,
+        /// The firmware's status.
+        status: guidance_core::link::LinkStatus,
+    },
     /// The firmware answered with an error status or an unexpected frame.
     #[error("firmware answered frame {seq} with {what}")]
     Firmware {

@@ -113,7 +113,11 @@ impl Qemu {
             .arg(KILL_AFTER_S.to_string())
             .arg(cfg.qemu_timeout_s.to_string())
             .arg(&cfg.qemu)
-            .args(onboard_spec::machines::PIL_MACHINE.qemu_args())
+            .args(
+                cfg.machine
+                    .unwrap_or_else(|| super::machine_of_elf(&elf))
+                    .qemu_args(),
+            )
             .arg(&elf)
             .arg("-append")
             .arg(".")

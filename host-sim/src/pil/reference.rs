@@ -7,7 +7,7 @@ use crate::scenario::{Scenario, ScenarioError, build_guidance};
 use crate::sim::{self, AttitudeSource, SimResult};
 use crate::vehicle::Vehicle;
 
-use super::{PilConfig, PilError, PilGuidance, PilRecord, PilStats};
+use super::{PilConfig, PilError, PilRecord, PilStats};
 
 /// The HORUS-2B reference mission's models and settings (the default scenario, full
 /// environment), as flown by SIL and PIL.
@@ -62,23 +62,12 @@ pub fn fly_reference_pil(cfg: PilConfig) -> Result<(SimResult, PilStats), PilErr
 }
 
 /// As [`fly_reference_pil`], also returning the record of the frames exchanged (complete up to
-/// a failure, whose exchange is marked).
+/// a failure, whose exchange is marked). The mission is uploaded as set-up frames, like any
+/// scenario.
 pub fn fly_reference_pil_recorded(
     cfg: PilConfig,
 ) -> (Result<(SimResult, PilStats), PilError>, PilRecord) {
-    let record = std::cell::RefCell::new(PilRecord::default());
-    let run = || -> Result<(SimResult, PilStats), PilError> {
-        let (sc, env, veh) = reference_setup()?;
-        let source = PilGuidance::start(cfg)?;
-        record.replace(source.record());
-        let dynm = Dynamics::from_environment(&env, &veh);
-        let (result, source) =
-            sim::simulate(dynm, source, &sc.sim_config(), &mut |_| {}).map_err(unwrap_pil_error)?;
-        let stats = source.finish()?;
-        Ok((result, stats))
-    };
-    let r = run();
-    (r, record.into_inner())
+    super::fly_scenario_pil(&Scenario::default(), "(built-in)", cfg)
 }
 
 /// The firmware link's own error, as it was raised (not wrapped as a guidance failure).

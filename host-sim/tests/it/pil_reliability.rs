@@ -19,7 +19,6 @@ use guidance_core::guidance::{Command, RateLimits};
 use guidance_core::link::{CommandFrame, FRAME_LEN, Frame, LinkStatus, encode};
 use host_sim::pil::{
     FIFO_DIR_PREFIX, FrameViolation, PilConfig, PilError, PilGuidance, fly_reference_pil,
-    fly_reference_pil_recorded,
 };
 
 fn target_dir() -> PathBuf {
@@ -252,7 +251,20 @@ fn pil_rejects_command_frames_outside_the_configuration() {
             &dir,
             &format!("exec 3<nav 4>cmd\ncat '{}' >&4", fpath.display()),
         );
-        let (r, record) = fly_reference_pil_recorded(config(&dir, qemu));
+        // The compiled-in reference mission (no set-up): the fake answers the first nav frame.
+        let mut pil = PilGuidance::start(config(&dir, qemu)).unwrap();
+        let record = pil.record();
+        let nav = guidance_core::NavState {
+            time_s: 0.0,
+            radius_m: 6.5e6,
+            speed_m_s: 7500.0,
+            flight_path_angle_rad: -0.02,
+            heading_rad: 1.0,
+            latitude_rad: 0.1,
+            longitude_rad: 0.2,
+        };
+        let r = pil.exchange(&nav);
+        drop(pil);
         match r {
             Err(PilError::BadCommand { seq, violation, .. }) => {
                 assert_eq!(seq, 0);
@@ -268,7 +280,7 @@ fn pil_rejects_command_frames_outside_the_configuration() {
                 }
             }
             Err(e) => panic!("{name}: expected BadCommand, got {e}"),
-            Ok(_) => panic!("{name}: a bad frame was flown"),
+            Ok(_) => panic!("{name}: a bad frame was accepted"),
         }
         let ex = record.exchanges();
         assert_eq!(ex.len(), 1);

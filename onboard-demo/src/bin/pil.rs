@@ -8,13 +8,17 @@
 //! short), or else the build-time `PIL_FIFO_DIR`, or else `.` (when the command line is too
 //! long for the buffer, e.g. a very long ELF path).
 //!
-//! Guidance: `Guidance<f32>` of the HORUS-2B reference mission compiled in
-//! (`guidance_core::missions::horus2b_reference`: time-indexed table of thesis eq. 2.3, thesis
-//! bounds, linear interpolation, 2 s period, rate limits, initial attitude 40 deg / 0 deg; E-hat
-//! of the thesis' spherical Earth), the same mission host-sim flies in SIL.
+//! Guidance: `f32` on the Cortex-M4F (`thumbv7em-none-eabihf`), fixed point (`I32F32`) on the
+//! Cortex-M3 (`thumbv7m-none-eabi`). The host first uploads its scenario's guidance as set-up
+//! frames (`guidance_core::setup`: node table in either independent variable, interpolation,
+//! bounds, period, rates, initial attitude, E-hat map); every item is answered with a typed
+//! status, and the commit builds `Guidance` with the core's own checks. Without a set-up the
+//! firmware flies the compiled-in HORUS-2B reference mission
+//! (`guidance_core::missions::horus2b_reference`).
 //!
-//! Loop: read a nav frame, `update`, answer with a command frame (same sequence number) until
-//! an end frame arrives, then exit 0. A link failure, panic or HardFault exits 1.
+//! Loop: read a frame; set-up items are collected; a nav frame is an `update`, answered with a
+//! command frame (same sequence number); an end frame exits 0. A link failure, panic or
+//! HardFault exits 1.
 //!
 //! Firmware only: built for the host (as `cargo test --workspace` and `cargo clippy
 //! --workspace` do) this binary is a stub that says so and exits 2.
@@ -38,9 +42,10 @@ mod firmware {
     use cortex_m_semihosting::{hprintln, nr};
     use guidance_core::guidance::{Command, Guidance};
     use guidance_core::link::{
-        CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode,
+        CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
     };
     use guidance_core::missions::horus2b_reference;
+    use guidance_core::setup::{SetupBuilder, SetupItem};
     use guidance_core::{NavState, Scalar};
 
     /// Default FIFO directory when the command line names none.
@@ -137,51 +142,81 @@ mod firmware {
         }
     }
 
-    fn to_f32(n: &NavState<f64>) -> NavState<f32> {
+    /// The guidance scalar: `f32` on the Cortex-M4F (hard float), fixed point on the Cortex-M3.
+    #[cfg(target_abi = "eabihf")]
+    type S = f32;
+    /// The guidance scalar: `f32` on the Cortex-M4F (hard float), fixed point on the Cortex-M3.
+    #[cfg(not(target_abi = "eabihf"))]
+    type S = guidance_core::Fixed;
+
+    /// Node capacity of uploaded tables.
+    const CAPACITY: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
+
+    fn narrow(n: &NavState<f64>) -> NavState<S> {
         NavState {
-            time_s: n.time_s as f32,
-            radius_m: n.radius_m as f32,
-            speed_m_s: n.speed_m_s as f32,
-            flight_path_angle_rad: n.flight_path_angle_rad as f32,
-            heading_rad: n.heading_rad as f32,
-            latitude_rad: n.latitude_rad as f32,
-            longitude_rad: n.longitude_rad as f32,
+            time_s: S::from_f64(n.time_s),
+            radius_m: S::from_f64(n.radius_m),
+            speed_m_s: S::from_f64(n.speed_m_s),
+            flight_path_angle_rad: S::from_f64(n.flight_path_angle_rad),
+            heading_rad: S::from_f64(n.heading_rad),
+            latitude_rad: S::from_f64(n.latitude_rad),
+            longitude_rad: S::from_f64(n.longitude_rad),
         }
     }
 
-    fn wide(c: Command<f32>) -> Command<f64> {
+    fn wide(c: Command<S>) -> Command<f64> {
         Command {
-            alpha_rad: f64::from(c.alpha_rad),
-            sigma_rad: f64::from(c.sigma_rad),
+            alpha_rad: c.alpha_rad.to_f64(),
+            sigma_rad: c.sigma_rad.to_f64(),
         }
     }
 
-    fn answer(g: &Guidance<f32>, seq: u32, status: LinkStatus) -> CommandFrame {
-        let tick = g.last_tick_s().unwrap_or(f32::ZERO);
+    fn answer(g: Option<&Guidance<S>>, seq: u32, status: LinkStatus) -> CommandFrame {
+        let zero = Command {
+            alpha_rad: 0.0,
+            sigma_rad: 0.0,
+        };
+        let Some(g) = g else {
+            return CommandFrame {
+                seq,
+                status,
+                tick_time_s: 0.0,
+                command: zero,
+                ramp_start: zero,
+                rates: guidance_core::guidance::RateLimits {
+                    alpha_rad_s: 0.0,
+                    sigma_rad_s: 0.0,
+                },
+            };
+        };
+        let tick = g.last_tick_s().unwrap_or(S::ZERO);
         let rates = g.config().rates;
         CommandFrame {
             seq,
             status,
-            tick_time_s: f64::from(tick),
+            tick_time_s: tick.to_f64(),
             command: wide(g.command()),
             ramp_start: wide(g.attitude_at(tick)),
             rates: guidance_core::guidance::RateLimits {
-                alpha_rad_s: f64::from(rates.alpha_rad_s),
-                sigma_rad_s: f64::from(rates.sigma_rad_s),
+                alpha_rad_s: rates.alpha_rad_s.to_f64(),
+                sigma_rad_s: rates.sigma_rad_s.to_f64(),
             },
         }
     }
 
-    fn run() -> Result<u32, &'static str> {
-        let mission = horus2b_reference::<f32>().map_err(|_| "reference mission rejected")?;
+    /// The compiled-in HORUS-2B reference mission (flown when the host sends no set-up).
+    fn reference() -> Result<Guidance<S>, &'static str> {
+        let mission = horus2b_reference::<S>().map_err(|_| "reference mission rejected")?;
         // Time-indexed table: the energy normaliser is required but unused.
         let energy = mission
             .earth_energy_normalizer()
             .map_err(|_| "energy normaliser rejected")?;
-        let mut g = mission
+        mission
             .guidance(energy)
-            .map_err(|_| "guidance rejected its configuration")?;
+            .map_err(|_| "guidance rejected its configuration")
+    }
 
+    fn run() -> Result<u32, &'static str> {
         let mut dir = [0u8; PATH_MAX];
         let dir_len = match cmdline_dir(&mut dir) {
             Some(n) => n,
@@ -200,6 +235,8 @@ mod firmware {
         let n = join(dir, b"cmd", &mut path).ok_or("FIFO path too long")?;
         let cmd_fd = open(&path, n, MODE_WB)?;
 
+        let mut setup = SetupBuilder::<S, CAPACITY>::new();
+        let mut guidance: Option<Guidance<S>> = None;
         let mut inb = [0u8; FRAME_LEN];
         let mut outb = [0u8; FRAME_LEN];
         let mut frames = 0u32;
@@ -207,16 +244,40 @@ mod firmware {
             read_frame(nav_fd, &mut inb)?;
             let reply = match decode(&inb) {
                 Ok(Frame::End(_)) => return Ok(frames),
-                Ok(Frame::Nav(NavFrame { seq, nav })) => {
-                    let status = match g.update(&to_f32(&nav)) {
-                        Ok(o) if o.ticked => LinkStatus::Ok,
-                        Ok(_) => LinkStatus::NotTicked,
-                        Err(e) => LinkStatus::from_error(e),
+                Ok(Frame::Setup(SetupFrame { seq, item })) => {
+                    let status = match item {
+                        SetupItem::Commit => match setup.build() {
+                            Ok(g) => {
+                                guidance = Some(g);
+                                LinkStatus::Ok
+                            }
+                            Err(e) => e.status(),
+                        },
+                        other => match setup.apply(&other) {
+                            Ok(()) => LinkStatus::Ok,
+                            Err(e) => e.status(),
+                        },
                     };
-                    answer(&g, seq, status)
+                    answer(guidance.as_ref(), seq, status)
                 }
-                Ok(Frame::Command(c)) => answer(&g, c.seq, LinkStatus::BadFrame),
-                Err(_) => answer(&g, 0, LinkStatus::BadFrame),
+                Ok(Frame::Nav(NavFrame { seq, nav })) => {
+                    if guidance.is_none() {
+                        guidance = Some(reference()?);
+                    }
+                    match guidance.as_mut() {
+                        Some(g) => {
+                            let status = match g.update(&narrow(&nav)) {
+                                Ok(o) if o.ticked => LinkStatus::Ok,
+                                Ok(_) => LinkStatus::NotTicked,
+                                Err(e) => LinkStatus::from_error(e),
+                            };
+                            answer(Some(g), seq, status)
+                        }
+                        None => answer(None, seq, LinkStatus::InvalidConfig),
+                    }
+                }
+                Ok(Frame::Command(c)) => answer(guidance.as_ref(), c.seq, LinkStatus::BadFrame),
+                Err(_) => answer(guidance.as_ref(), 0, LinkStatus::BadFrame),
             };
             encode(&Frame::Command(reply), &mut outb).map_err(|_| "non-finite command")?;
             write_frame(cmd_fd, &outb)?;
