@@ -371,21 +371,30 @@ fn firmware() -> Result<(), String> {
     Ok(())
 }
 
-/// Processor in the loop: build the `pil` firmware for the M4F and run host-sim's PIL test,
-/// which flies the HORUS-2B reference mission with it under QEMU and compares with SIL
-/// (`PIL_REQUIRED` turns the test's skip on a missing QEMU or ELF into a failure).
+/// Processor in the loop: build the `pil` firmware for both machines and run host-sim's PIL
+/// tests: the HORUS-2B reference mission and the SRM glide uploaded as set-up frames and flown
+/// on the Cortex-M4F (`f32`) and the Cortex-M3 (fixed point) under QEMU against SIL, and the
+/// link's reliability tests (clean-up on every exit path, frame checks, bad ELFs, FIFO paths).
+/// `PIL_REQUIRED` turns a test's skip on a missing QEMU or ELF into a failure.
 fn pil() -> Result<(), String> {
-    let elf = build_firmware(PIL_MACHINE.target)?.with_file_name("pil");
+    for m in &MACHINES {
+        build_firmware(m.target)?;
+    }
+    let elf = firmware_elf(PIL_MACHINE.target).with_file_name("pil");
     let mut c = cargo();
-    c.args(["test", "-p", "host-sim", "--test", "it", "--"])
-        .args([
-            "--exact",
-            "pil::pil_reference_mission_matches_sil",
-            "--nocapture",
-        ])
-        .env("PIL_ELF", &elf)
-        .env("PIL_REQUIRED", "1");
-    run(c, "PIL closed loop (host-sim test)")
+    c.args([
+        "test",
+        "-p",
+        "host-sim",
+        "--test",
+        "it",
+        "--",
+        "pil",
+        "--nocapture",
+    ])
+    .env("PIL_ELF", &elf)
+    .env("PIL_REQUIRED", "1");
+    run(c, "PIL closed loop (host-sim tests)")
 }
 
 /// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`.

@@ -9,6 +9,7 @@ mod layering;
 mod navconv;
 mod pil;
 mod pil_reliability;
+mod pil_scenarios;
 mod replan_loop;
 mod scenario_files;
 mod support;
