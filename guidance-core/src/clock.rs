@@ -100,7 +100,7 @@ impl<S: Scalar> GuidanceClock<S> {
     /// the scalar type's largest value (never infinite).
     #[must_use]
     pub fn tick_time_s(&self, k: u32) -> S {
-        let t = self.start_s.unwrap_or(S::ZERO) + S::from_f64(f64::from(k)) * self.period_s;
+        let t = self.start_s.unwrap_or(S::ZERO) + S::from_u32(k) * self.period_s;
         if t.is_finite() { t } else { S::MAX }
     }
 

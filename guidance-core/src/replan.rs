@@ -7,20 +7,29 @@
 //! [`PredictorMode`]) meets the range target, while the predicted peak heat flux and g-load stay
 //! within the limits.
 //!
-//! # Algorithm (bounded)
-//! 1. Predict at both ends `f_min`, `f_max` of the allowed interval (more vertical lift flies
-//!    farther). A predictor domain error at either end (in [`PredictorMode::Auto`]: of the
-//!    chain and then of the glide), or a range that does not increase with `f`, is
-//!    [`ReplanCase::FallBack`]: keep the stored profile.
+//! # Algorithm (bounded; [`ReplanSolver`], one predictor call per step)
+//! 1. Range-only predictions ([`crate::vinh::PeakMode::RangeOnly`]: no peak search) at both
+//!    ends `f_min`, `f_max` of the allowed interval (more vertical lift flies farther). A
+//!    predictor domain error at either end (in [`PredictorMode::Auto`]: of the chain and then of
+//!    the glide), or a range that does not increase with `f`, is [`ReplanCase::FallBack`]: keep
+//!    the stored profile.
 //! 2. Target outside `[range(f_min), range(f_max)]`: the nearest end is taken
-//!    ([`ReplanCase::TargetOutOfReach`]). Otherwise bisection on `f` until the predicted range is
-//!    within `tolerance_m` or [`ReplanConfig::max_iterations`] halvings (a domain error inside
-//!    the bracket is also a fall-back).
-//! 3. Limits: if the prediction at that `f` exceeds the heat-flux or g-load limit, a fixed grid
-//!    of [`LIMIT_GRID`] fractions over `[f_min, f_max]` is predicted and the feasible one whose
-//!    range is closest to the target is returned as [`ReplanCase::LimitsBind`] (the loads are not
-//!    monotone in `f`: more lift can turn a captured glide into a skip with a higher peak). No
-//!    feasible grid point: [`ReplanCase::FallBack`] with [`ReplanFallBack::LimitsInfeasible`].
+//!    ([`ReplanCase::TargetOutOfReach`]). Otherwise Brent's method on `range(f) - target`
+//!    (secant and inverse quadratic interpolation, bisection when they stall), range-only,
+//!    until the miss is within `tolerance_m`, the bracket reaches the working precision of the
+//!    scalar type, or [`ReplanConfig::max_iterations`] predictions (a domain error inside the
+//!    bracket is also a fall-back). Not within tolerance at the end:
+//!    [`ReplanCase::TargetOutOfReach`] at the best fraction.
+//! 3. One prediction with peaks at that `f` ([`crate::vinh::PeakMode::Limits`]).
+//! 4. Limits: if it exceeds the heat-flux or g-load limit, a fixed grid of [`LIMIT_GRID`]
+//!    fractions over `[f_min, f_max]` is predicted (each stops at the first phase proven to
+//!    exceed a limit) and the feasible one whose range is closest to the target is returned as
+//!    [`ReplanCase::LimitsBind`] (the loads are not monotone in `f`: more lift can turn a
+//!    captured glide into a skip with a higher peak). No feasible grid point:
+//!    [`ReplanCase::FallBack`] with [`ReplanFallBack::LimitsInfeasible`].
+//!
+//! Every fraction evaluated or returned is clamped into `[f_min, f_max]`: the output is never
+//! outside its bounds, not even by rounding (issue 8, item 6).
 //!
 //! # In the guidance loop
 //! [`ReplanningGuidance`] wraps [`crate::guidance::Guidance`] and runs [`replan`] on every N-th
@@ -35,29 +44,37 @@
 //! glide when the chain is out of domain ([`PredictorMode::Auto`]).
 //!
 //! # Worst-case cost
-//! `max_iterations + 4 + LIMIT_GRID` predictor calls (at most
-//! [`MAX_PREDICTOR_CALLS`]` = 40 + 4 + 16 = 60`; `+ 2` instead of `+ 4` outside
+//! `max_iterations + 5 + LIMIT_GRID` predictor calls (at most
+//! [`MAX_PREDICTOR_CALLS`]` = 40 + 5 + 16 = 61`; `+ 3` instead of `+ 5` outside
 //! [`PredictorMode::Auto`]); each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
-//! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide.
-//! Measured host times (docs/VINH.md, `cargo bench -p guidance-core --bench closed_forms`,
-//! AMD EPYC, release): chain call with 2 skips 87 us (f64) / 63 us (f32), glide 28 / 20 us,
-//! the 58-call worst case 3.1 ms / 2.2 ms. On the Cortex-M4F one `f32` chain call (2-3 skips)
-//! is 1.09 M instructions (docs/PERFORMANCE.md), so 60 calls of that length are <= 66 M.
+//! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
+//! all but the last and the limit grid are range-only. In practice Brent's method converges in
+//! a handful of predictions and stops at the scalar type's working precision (the worst-case
+//! benchmark with an unreachable 1e-6 m tolerance: 29 calls in `f32`). Measured on the
+//! Cortex-M4F in `f32` (docs/PERFORMANCE.md, `cargo xtask bench-firmware`): predictor chain
+//! 81 k instructions, converged re-plan 0.44 M, worst case 1.1 M; spread over ticks with one
+//! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
+//! 115 k instructions.
 
 mod replanning;
+mod solver;
 
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
     ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,
     range_to_go_m,
 };
+pub use solver::ReplanSolver;
 
 use crate::nav::NavState;
 use crate::scalar::Real;
 use crate::vinh::VinhError;
 use crate::vinh::glide::GlideSolution;
 use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
-use crate::vinh::predict::{Prediction, PredictorConfig, glide_start_radius, predict};
+use crate::vinh::predict::{
+    PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_validity,
+};
+use crate::vinh::validity::{Extrapolation, GLIDE_MAX_START_OFFSET_PER_LD_M, Validity};
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
 pub const MAX_ITERATIONS: u8 = 40;
@@ -65,10 +82,10 @@ pub const MAX_ITERATIONS: u8 = 40;
 /// Fractions scanned when a limit binds.
 pub const LIMIT_GRID: u8 = 16;
 
-/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 4 + LIMIT_GRID` (two end
+/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 5 + LIMIT_GRID` (two end
 /// points of a failed [`PredictorMode::Auto`] chain attempt, two end points of the glide
-/// attempt, the bisection, the limit grid).
-pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 4 + LIMIT_GRID;
+/// attempt, the range search, one prediction with peaks at the result, the limit grid).
+pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 5 + LIMIT_GRID;
 
 /// How far above the current radius a glide-mode prediction may start \[m\]. A vehicle given
 /// more lift than its equilibrium glide needs climbs to a higher equilibrium: in an
@@ -96,15 +113,8 @@ pub enum PredictorMode {
     Auto,
 }
 
-/// Vehicle limits checked on the prediction.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ReplanLimits<S> {
-    /// Peak Chapman heat flux limit \[W/m^2\].
-    pub heat_flux_w_m2: S,
-    /// Peak g-load limit \[-\].
-    pub g_load: S,
-}
+/// Vehicle limits checked on the prediction (the predictor's [`crate::vinh::LoadLimits`]).
+pub use crate::vinh::predict::LoadLimits as ReplanLimits;
 
 /// Re-planner settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -118,7 +128,7 @@ pub struct ReplanConfig<S> {
     pub max_vertical_fraction: S,
     /// Accepted range miss \[m\].
     pub tolerance_m: S,
-    /// Bisection halvings per search (at most [`MAX_ITERATIONS`]).
+    /// Corrector predictions per range search (Brent steps; at most [`MAX_ITERATIONS`]).
     pub max_iterations: u8,
     /// Predictor settings (final glide speed, skip budget).
     pub predictor: PredictorConfig<S>,
@@ -169,51 +179,11 @@ pub struct ReplanResult<S> {
     pub predictor_calls: u8,
 }
 
-struct Ctx<'a, S> {
-    planet: &'a Planet<S>,
-    atmosphere: &'a ExpAtmosphere<S>,
-    vehicle: &'a VehicleParams<S>,
-    state: EntryState<S>,
-    config: &'a ReplanConfig<S>,
-    calls: u8,
-    glide: bool,
-}
-
-impl<S: Real> Ctx<'_, S> {
-    fn eval(&mut self, f: S) -> Result<Prediction<S>, VinhError> {
-        self.calls = self.calls.saturating_add(1);
-        let lift = LiftControl {
-            lambda: self.config.lambda,
-            vertical_fraction: f,
-        };
-        if self.glide {
-            predict_glide(
-                self.planet,
-                self.atmosphere,
-                self.vehicle,
-                &lift,
-                &self.state,
-                &self.config.predictor,
-            )
-        } else {
-            predict(
-                self.planet,
-                self.atmosphere,
-                self.vehicle,
-                &lift,
-                &self.state,
-                &self.config.predictor,
-            )
-        }
-    }
-}
-
-/// Glide-only prediction ([`PredictorMode::Glide`]) from `state` with constant `lift`.
+/// Glide-only prediction ([`PredictorMode::Glide`]) from `state` with constant `lift`, with
+/// peaks ([`predict_glide_with`] and [`PeakMode::Full`]).
 ///
 /// # Errors
-/// Input validation errors, and the domain errors of [`glide_start_radius`] and
-/// [`GlideSolution`] (e.g. [`VinhError::GlideNearCircular`] when the speed is above the imposed
-/// speed even [`GLIDE_CLIMB_MARGIN_M`] above the state).
+/// As [`predict_glide_with`].
 pub fn predict_glide<S: Real>(
     planet: &Planet<S>,
     atmosphere: &ExpAtmosphere<S>,
@@ -221,6 +191,32 @@ pub fn predict_glide<S: Real>(
     lift: &LiftControl<S>,
     state: &EntryState<S>,
     config: &PredictorConfig<S>,
+) -> Result<Prediction<S>, VinhError> {
+    predict_glide_with(
+        planet,
+        atmosphere,
+        vehicle,
+        lift,
+        state,
+        config,
+        PeakMode::Full,
+    )
+}
+
+/// Glide-only prediction from `state` with constant `lift`, peaks as `peaks` asks.
+///
+/// # Errors
+/// Input validation errors, and the domain errors of [`glide_start_radius`] and
+/// [`GlideSolution`] (e.g. [`VinhError::GlideNearCircular`] when the speed is above the imposed
+/// speed even [`GLIDE_CLIMB_MARGIN_M`] above the state).
+pub fn predict_glide_with<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+    peaks: PeakMode<S>,
 ) -> Result<Prediction<S>, VinhError> {
     if !(config.final_speed_m_s.is_finite()
         && state.radius_m.is_finite()
@@ -238,38 +234,66 @@ pub fn predict_glide<S: Real>(
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, state.speed_m_s, r_max)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
-    let q = glide.peak_heat_flux(config.final_speed_m_s)?;
-    let g = glide.peak_g_load(config.final_speed_m_s)?;
     let theta = end.range_angle_rad;
     let range = theta * planet.radius_m;
-    let all = [theta, range, q.heat_flux_w_m2, g.g_load];
+    let (q, n, status) = match peaks {
+        PeakMode::RangeOnly => (S::ZERO, S::ZERO, PeakStatus::NotComputed),
+        PeakMode::Full | PeakMode::Limits(_) => {
+            let start = glide.point_at_u(glide.u_entry())?;
+            let (qb, nb) = (
+                start.heat_flux_w_m2.max(end.heat_flux_w_m2),
+                start.g_load.max(end.g_load),
+            );
+            match peaks {
+                PeakMode::Limits(l) if qb > l.heat_flux_w_m2 || nb > l.g_load => {
+                    (qb, nb, PeakStatus::LimitExceeded)
+                }
+                _ => {
+                    let q = glide.peak_heat_flux(config.final_speed_m_s)?.heat_flux_w_m2;
+                    let n = glide.peak_g_load(config.final_speed_m_s)?.g_load;
+                    let over = match peaks {
+                        PeakMode::Limits(l) => q > l.heat_flux_w_m2 || n > l.g_load,
+                        _ => false,
+                    };
+                    let status = if over {
+                        PeakStatus::LimitExceeded
+                    } else {
+                        PeakStatus::Computed
+                    };
+                    (q, n, status)
+                }
+            }
+        }
+    };
+    let all = [theta, range, q, n];
     if all.iter().any(|v| !v.is_finite()) {
         return Err(VinhError::NonFiniteResult);
     }
     Ok(Prediction {
         range_angle_rad: theta,
         range_m: range,
-        peak_heat_flux_w_m2: q.heat_flux_w_m2,
-        peak_g_load: g.g_load,
+        peak_heat_flux_w_m2: q,
+        peak_g_load: n,
         skips: 0,
         arcs: 0,
         glide_start_radius_m: r_g,
         glide_range_angle_rad: theta,
+        peak_status: status,
+        validity: glide_validity(
+            Validity::InDomain,
+            &glide,
+            planet,
+            r_g,
+            config.final_speed_m_s,
+        )
+        .and(
+            // Total L/D = vertical L/D / vertical fraction (> 0 for a glide).
+            !((r_g - state.radius_m).abs() * lift.vertical_fraction
+                <= S::from_f64(GLIDE_MAX_START_OFFSET_PER_LD_M)
+                    * glide.nondim().constants().e_vertical),
+            Extrapolation::GlideStartOffset,
+        ),
     })
-}
-
-fn fall_back<S: Real>(reason: ReplanFallBack, calls: u8) -> ReplanResult<S> {
-    ReplanResult {
-        case: ReplanCase::FallBack(reason),
-        vertical_fraction: S::ONE,
-        bank_rad: S::ZERO,
-        prediction: None,
-        predictor_calls: calls,
-    }
-}
-
-fn load_ratio<S: Real>(p: &Prediction<S>, l: &ReplanLimits<S>) -> S {
-    (p.peak_heat_flux_w_m2 / l.heat_flux_w_m2).max(p.peak_g_load / l.g_load)
 }
 
 /// Re-plan the vertical lift fraction for `target_range_m` \[m\] of surface range to go from `nav`.
@@ -285,132 +309,20 @@ pub fn replan<S: Real>(
     limits: &ReplanLimits<S>,
     config: &ReplanConfig<S>,
 ) -> ReplanResult<S> {
-    let bad = |e| fall_back(ReplanFallBack::OutOfDomain(e), 0);
-    let scalars = [
-        target_range_m,
-        limits.heat_flux_w_m2,
-        limits.g_load,
-        config.lambda,
-        config.min_vertical_fraction,
-        config.max_vertical_fraction,
-        config.tolerance_m,
-    ];
-    if scalars.iter().any(|v| !v.is_finite()) || nav.validate().is_err() {
-        return bad(VinhError::NonFiniteInput);
-    }
-    if !(config.min_vertical_fraction > S::ZERO
-        && config.min_vertical_fraction <= config.max_vertical_fraction
-        && config.max_vertical_fraction <= S::ONE
-        && config.tolerance_m > S::ZERO
-        && limits.heat_flux_w_m2 > S::ZERO
-        && limits.g_load > S::ZERO
-        && config.max_iterations <= MAX_ITERATIONS)
-    {
-        return bad(VinhError::InvalidConfig);
-    }
-    let mut ctx = Ctx {
+    let mut solver = ReplanSolver::new(
         planet,
         atmosphere,
         vehicle,
-        state: EntryState {
-            radius_m: nav.radius_m,
-            speed_m_s: nav.speed_m_s,
-            flight_path_angle_rad: nav.flight_path_angle_rad,
-        },
+        nav,
+        target_range_m,
+        limits,
         config,
-        calls: 0,
-        glide: config.mode == PredictorMode::Glide,
-    };
-    let (f_lo, f_hi) = (config.min_vertical_fraction, config.max_vertical_fraction);
-    let ends = |ctx: &mut Ctx<'_, S>| -> Result<(Prediction<S>, Prediction<S>), VinhError> {
-        let p_lo = ctx.eval(f_lo)?;
-        let p_hi = ctx.eval(f_hi)?;
-        Ok((p_lo, p_hi))
-    };
-    let (p_lo, p_hi) = match ends(&mut ctx) {
-        Ok(p) => p,
-        Err(_) if config.mode == PredictorMode::Auto => {
-            ctx.glide = true;
-            match ends(&mut ctx) {
-                Ok(p) => p,
-                Err(e) => return fall_back(ReplanFallBack::OutOfDomain(e), ctx.calls),
-            }
+    );
+    // Each step makes at most one predictor call and the solver stops at
+    // MAX_PREDICTOR_CALLS, so this loop ends.
+    loop {
+        if let Some(r) = solver.step() {
+            return r;
         }
-        Err(e) => return fall_back(ReplanFallBack::OutOfDomain(e), ctx.calls),
-    };
-    if p_hi.range_m < p_lo.range_m {
-        return fall_back(ReplanFallBack::NotMonotone, ctx.calls);
-    }
-    // Range search.
-    let (mut f, mut p, mut case) = if target_range_m <= p_lo.range_m {
-        (f_lo, p_lo, ReplanCase::TargetOutOfReach)
-    } else if target_range_m >= p_hi.range_m {
-        (f_hi, p_hi, ReplanCase::TargetOutOfReach)
-    } else {
-        let (mut a, mut b) = (f_lo, f_hi);
-        let (mut best_f, mut best_p) = (f_lo, p_lo);
-        let mut i = 0;
-        while i < config.max_iterations {
-            let mid = (a + b).half();
-            let pm = match ctx.eval(mid) {
-                Ok(p) => p,
-                Err(e) => return fall_back(ReplanFallBack::OutOfDomain(e), ctx.calls),
-            };
-            best_f = mid;
-            best_p = pm;
-            let miss = pm.range_m - target_range_m;
-            if miss.abs() <= config.tolerance_m {
-                break;
-            }
-            if miss < S::ZERO {
-                a = mid;
-            } else {
-                b = mid;
-            }
-            i += 1;
-        }
-        (best_f, best_p, ReplanCase::Converged)
-    };
-    if (p.range_m - target_range_m).abs() > config.tolerance_m && case == ReplanCase::Converged {
-        case = ReplanCase::TargetOutOfReach;
-    }
-    // Limits: the loads need not be monotone in f (more lift can turn a captured glide into a
-    // skip with a higher peak), so scan a fixed grid and keep the feasible fraction whose range
-    // is closest to the target.
-    if load_ratio(&p, limits) > S::ONE {
-        let mut best: Option<(S, Prediction<S>)> = None;
-        let n: S = S::from_f64(f64::from(LIMIT_GRID - 1));
-        let mut i = 0_u8;
-        while i < LIMIT_GRID {
-            let fi = f_lo + (f_hi - f_lo) * S::from_f64(f64::from(i)) / n;
-            i += 1;
-            let Ok(pi) = ctx.eval(fi) else { continue };
-            if load_ratio(&pi, limits) > S::ONE {
-                continue;
-            }
-            let miss = (pi.range_m - target_range_m).abs();
-            let better = match &best {
-                None => true,
-                Some((_, pb)) => miss < (pb.range_m - target_range_m).abs(),
-            };
-            if better {
-                best = Some((fi, pi));
-            }
-        }
-        match best {
-            None => return fall_back(ReplanFallBack::LimitsInfeasible, ctx.calls),
-            Some((fb, pb)) => {
-                f = fb;
-                p = pb;
-                case = ReplanCase::LimitsBind;
-            }
-        }
-    }
-    ReplanResult {
-        case,
-        vertical_fraction: f,
-        bank_rad: f.clamp(-S::ONE, S::ONE).acos(),
-        prediction: Some(p),
-        predictor_calls: ctx.calls,
     }
 }

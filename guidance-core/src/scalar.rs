@@ -41,6 +41,13 @@ pub trait Scalar:
     fn from_f64(v: f64) -> Self;
     /// Convert from `f64`, returning `None` for a non-finite value or one outside the range.
     fn from_f64_checked(v: f64) -> Option<Self>;
+    /// Convert a count (a tick index), saturating at the type's range. Exact for `f64` and
+    /// `Fixed` below 2^31; `f32` rounds above 2^24. [`Fixed`] converts without going through
+    /// `f64` (which is soft float on an FPU-less core).
+    #[inline]
+    fn from_u32(v: u32) -> Self {
+        Self::from_f64(f64::from(v))
+    }
     /// Convert to `f64` (exact for `f32`, `f64` and `Fixed`).
     fn to_f64(self) -> f64;
     /// False for NaN and infinities (always true for [`Fixed`]).
@@ -119,6 +126,13 @@ macro_rules! float_scalar {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const MAX: Self = <$t>::MAX;
+            #[inline]
+            #[allow(clippy::cast_precision_loss)]
+            fn from_u32(v: u32) -> Self {
+                // One rounding, as `(v as f64) as f32`, without the f64 step (soft float on a
+                // single-precision FPU).
+                v as $t
+            }
             #[inline]
             #[allow(clippy::cast_possible_truncation)]
             fn from_f64(v: f64) -> Self {
@@ -295,6 +309,10 @@ impl Scalar for Fixed {
     const ONE: Self = Fixed(I32F32::ONE);
     const MAX: Self = Fixed(I32F32::MAX);
     #[inline]
+    fn from_u32(v: u32) -> Self {
+        Fixed(I32F32::saturating_from_num(v))
+    }
+    #[inline]
     fn from_f64(v: f64) -> Self {
         if v.is_nan() {
             Self::ZERO
@@ -355,6 +373,16 @@ fn isqrt_u128(n: u128) -> u128 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `from_u32` agrees with the `f64` route (exact for `f64` and `Fixed`; rounded for `f32`).
+    #[test]
+    fn from_u32_matches_from_f64() {
+        for v in [0, 1, 2, 1000, 1 << 24, (1 << 31) - 1, 1 << 31, u32::MAX] {
+            assert_eq!(Fixed::from_u32(v), Fixed::from_f64(f64::from(v)), "{v}");
+            assert_eq!(f64::from_u32(v), f64::from(v));
+            assert_eq!(f32::from_u32(v), f32::from_f64(f64::from(v)));
+        }
+    }
 
     #[test]
     fn fixed_saturates_instead_of_panicking() {

@@ -23,4 +23,5 @@ pub mod replan_loop;
 pub mod report;
 pub mod scenario;
 pub mod sim;
+pub mod toml_input;
 pub mod vehicle;

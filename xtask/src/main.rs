@@ -2,7 +2,8 @@
 //!
 //! * `cargo xtask test`      every check CI runs (installs what it needs first)
 //! * `cargo xtask firmware`  build the firmware for each target and run it under QEMU
-//! * `cargo xtask bench-firmware`  instruction counts of the core on each target (QEMU -icount)
+//! * `cargo xtask bench-firmware [--json]`  instruction counts of the core on each target
+//!   (QEMU -icount); `--json` prints them as one object, target -> benchmark -> instructions
 //! * `cargo xtask size`      check the firmware's flash/RAM footprint against its budget
 //! * `cargo xtask golden`    regenerate the firmware's golden commands on the host
 //! * `cargo xtask setup`     install rustup targets/components and QEMU
@@ -16,6 +17,7 @@ use onboard_spec::machines::{
 
 mod elf;
 mod golden;
+mod insn;
 
 /// Thumb targets the flight core must build for.
 const CORE_TARGETS: [&str; 3] = [
@@ -29,6 +31,7 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|g
   firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
   pil       fly the HORUS-2B reference mission with the firmware's guidance in QEMU, compare with SIL\n\
   bench-firmware  instruction counts of guidance-core on the M4F and M3 under QEMU -icount\n\
+                  (--json: one JSON object target -> benchmark -> instructions on stdout)\n\
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
@@ -42,7 +45,10 @@ fn main() -> ExitCode {
         Some("firmware") => setup().and_then(|()| firmware()),
         Some("size") => size(),
         Some("pil") => setup().and_then(|()| pil()),
-        Some("bench-firmware") => setup().and_then(|()| bench_firmware()),
+        Some("bench-firmware") => {
+            let json = args.iter().skip(1).any(|a| a == "--json");
+            setup().and_then(|()| bench_firmware(json).map(|_| ()))
+        }
         Some("golden") => golden::write(&root()),
         Some("setup") => setup(),
         Some("fuzz") => fuzz(args.get(1..).unwrap_or_default()),
@@ -303,8 +309,8 @@ fn test() -> Result<(), String> {
     steps.push(("firmware under QEMU", Box::new(firmware)));
     steps.push(("PIL closed loop", Box::new(pil)));
     steps.push((
-        "firmware instruction counter (calibrated run)",
-        Box::new(bench_firmware),
+        "firmware instruction counts within onboard-demo/insn-budget.toml",
+        Box::new(insn_budget),
     ));
     steps.push(("firmware size budget", Box::new(size)));
 
@@ -397,8 +403,11 @@ fn pil() -> Result<(), String> {
     run(c, "PIL closed loop (host-sim tests)")
 }
 
-/// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`.
-fn bench_firmware() -> Result<(), String> {
+/// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`
+/// and collect its counts (the firmware checks its own calibration and exits 1 if it is off).
+/// Its output goes to stderr; with `json`, the counts go to stdout as one JSON object.
+fn bench_firmware(json: bool) -> Result<insn::Counts, String> {
+    let mut counts = insn::Counts::new();
     for m in &MACHINES {
         build_firmware(m.target)?;
         let elf = firmware_elf(m.target).with_file_name("insn-bench");
@@ -406,12 +415,44 @@ fn bench_firmware() -> Result<(), String> {
             "xtask: instruction counts on {} ({}):",
             m.description, m.target
         );
-        run(
-            qemu(m, &elf, true),
-            &format!("insn-bench on {}", m.description),
-        )?;
+        let what = format!("insn-bench on {}", m.description);
+        let mut cmd = qemu(m, &elf, true);
+        eprintln!("xtask: {what}: {cmd:?}");
+        let out = cmd
+            .output()
+            .map_err(|e| format!("{what}: cannot start {cmd:?}: {e}"))?;
+        let text = String::from_utf8_lossy(&out.stdout);
+        eprint!("{text}{}", String::from_utf8_lossy(&out.stderr));
+        if !out.status.success() {
+            return Err(format!("{what} failed ({})", out.status));
+        }
+        let parsed = insn::parse(&text);
+        if parsed.is_empty() {
+            return Err(format!("{what}: no `bench` lines in its output"));
+        }
+        counts.insert(m.target.to_string(), parsed);
     }
-    Ok(())
+    if json {
+        println!("{}", insn::to_json(&counts));
+    }
+    Ok(counts)
+}
+
+/// Measure the instruction counts and check them against onboard-demo/insn-budget.toml.
+fn insn_budget() -> Result<(), String> {
+    let file = root().join("onboard-demo").join("insn-budget.toml");
+    let text = std::fs::read_to_string(&file)
+        .map_err(|e| format!("{}: cannot read: {e}", file.display()))?;
+    let budget = insn::parse_budget(&text, &file)?;
+    let counts = bench_firmware(false)?;
+    for (target, benches) in &budget {
+        for (name, max) in benches {
+            if let Some(n) = counts.get(target).and_then(|m| m.get(name)) {
+                println!("xtask: insn {target} {name}: {n} / {max}");
+            }
+        }
+    }
+    insn::check(&counts, &budget, &file)
 }
 
 /// Parse `key = integer` lines of the budget file.

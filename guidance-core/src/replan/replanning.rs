@@ -45,16 +45,32 @@
 //!   high L/D and no bank reversals the heading turns by tens of degrees and only this form
 //!   is consistent with the predictor.
 //!
+//! # Bounded work per tick
+//! With [`ReplanningConfig::steps_per_tick`] `= 0` a re-plan runs to completion inside its tick.
+//! With `k >= 1` the solve is a [`ReplanSolver`] kept across ticks: the re-planning tick starts
+//! it (range to go, effective planet and state of that tick) and makes at most `k` predictor
+//! calls; every following tick makes at most `k` more, until it completes. Meanwhile the table
+//! in use (stored profile or last re-plan) flies unchanged and the command of every tick is
+//! computed as without re-planning, so it is always on time. When the solve completes its
+//! result is applied at that tick, to the nodes below that tick's E-hat, and reported
+//! ([`ReplanReport::start_tick`], [`ReplanReport::tick`]). A new solve starts at the first
+//! re-planning tick (multiple of `every_n_ticks`) after the previous one completed. The answer
+//! is bit for bit that of [`super::replan`] from the start state (tested).
+//!
+//! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
+//! below 200 k instructions with `k = 1` (measured maximum 115 k: the tick that runs the chain
+//! prediction with peaks; docs/PERFORMANCE.md); a worst-case solve then takes at most
+//! [`super::MAX_PREDICTOR_CALLS`] ticks, in practice 5-30.
+//!
 //! # Cost (worst case, bounded)
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
-//! angle (the odometer). An update with a re-plan adds: one E-hat evaluation, one range to go
-//! (a great-circle angle and a bearing: about 10 trig functions), one solver call of at most
-//! [`super::MAX_PREDICTOR_CALLS`]` = 60` predictor calls (58 outside
-//! [`super::PredictorMode::Auto`]; each chain call at most
-//! [`crate::vinh::predict::MAX_SKIPS`] skips and arcs plus one glide), a copy of the table (at
-//! most `N` nodes, the table's capacity) and one interpolator rebuild. The worst case of one
-//! update is therefore `60 x` (the cost of the longest predictor call); measured host times
-//! are in `docs/VINH.md` ("Re-planning"). No allocation, no recursion, no panics.
+//! angle (the odometer). An update with re-planning work adds: one E-hat evaluation, at the
+//! start one range to go (a great-circle angle and a bearing: about 10 trig functions), the
+//! predictor calls (all of a solve, at most [`super::MAX_PREDICTOR_CALLS`]` = 61`, or at most
+//! `steps_per_tick`; each chain call at most [`crate::vinh::predict::MAX_SKIPS`] skips and
+//! arcs plus one glide), and at completion a copy of the table (at most
+//! `N` nodes, the table's capacity) and one interpolator rebuild. No allocation, no
+//! recursion, no panics.
 //!
 //! # Rotating planet
 //! The closed forms assume a non-rotating planet. [`PredictorModel::rotation_rate_rad_s`]
@@ -69,7 +85,7 @@ use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeT
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
-use super::{ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, ReplanResult, replan};
+use super::{ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver};
 use crate::vinh::VinhError;
 
 /// Largest accepted [`ReplanningConfig::every_n_ticks`] (one re-plan per 65535 ticks, about
@@ -169,6 +185,11 @@ pub struct ReplanningConfig<S> {
     /// Also apply the nearest end of the vertical-fraction interval when the target is out of
     /// reach (a saturated corrector). `false`: out of reach keeps the current table.
     pub apply_out_of_reach: bool,
+    /// Work budget per guidance tick \[predictor calls\]: 0 runs a whole re-plan inside its
+    /// tick (at most [`super::MAX_PREDICTOR_CALLS`] calls); `k >= 1` spreads it over ticks, at
+    /// most `k` predictor calls per tick ([`super::ReplanSolver`]), the table in use flying
+    /// until the solve completes (module docs, "Bounded work per tick").
+    pub steps_per_tick: u8,
 }
 
 /// What one re-plan did.
@@ -185,8 +206,10 @@ pub struct ReplanReport<S> {
     pub range_to_go_m: S,
     /// What the solver reported.
     pub case: ReplanCase,
-    /// Predictor calls made (at most 58).
+    /// Predictor calls made by the whole solve (at most [`super::MAX_PREDICTOR_CALLS`]).
     pub predictor_calls: u8,
+    /// Tick at which the solve started (equal to `tick` without a per-tick budget).
+    pub start_tick: u32,
     /// Solved bank-angle magnitude \[rad\] (0 for a fall-back).
     pub bank_rad: S,
     /// Predicted range at the solved bank \[m\] (`None` for a fall-back).
@@ -244,8 +267,21 @@ impl ReplanCounts {
 pub struct ReplanningOutput<S> {
     /// The guidance output of this sample (held command, tick flag, E-hat).
     pub guidance: GuidanceOutput<S>,
-    /// The re-plan run at this sample, if any.
+    /// The re-plan completed at this sample, if any.
     pub replan: Option<ReplanReport<S>>,
+    /// Predictor calls made during this sample (0 without re-planning work; at most
+    /// [`ReplanningConfig::steps_per_tick`] when that is not 0).
+    pub predictor_calls: u8,
+}
+
+/// A re-plan in progress ([`ReplanningConfig::steps_per_tick`] `> 0`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Pending<S> {
+    solver: ReplanSolver<S>,
+    start_tick: u32,
+    time_s: S,
+    range_to_go_m: S,
 }
 
 /// [`ReplanningGuidance`] over a host-sized node table ([`HOST_NODE_CAPACITY`] nodes).
@@ -266,6 +302,8 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     flown_rad: S,
     /// Position of the last accepted sample (latitude, longitude) \[rad\].
     last_position: Option<(S, S)>,
+    /// The solve in progress.
+    pending: Option<Pending<S>>,
 }
 
 /// Great-circle angle \[rad\] between two points (haversine form); `None` if non-finite.
@@ -355,6 +393,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             counts: ReplanCounts::default(),
             flown_rad: S::ZERO,
             last_position: None,
+            pending: None,
         })
     }
 
@@ -381,11 +420,29 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
         let n = u32::from(self.config.every_n_ticks.max(1));
         let mut report = None;
         let mut previous = None;
-        if will_tick && self.ticks.is_multiple_of(n) {
+        let pending_before = self.pending;
+        let mut calls = 0_u8;
+        if will_tick && (self.pending.is_some() || self.ticks.is_multiple_of(n)) {
             let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
-            let (r, old) = self.replan_now(nav, e_hat, flown);
-            report = Some(r);
-            previous = old;
+            let mut p = match self.pending {
+                Some(p) => p,
+                None => self.start_solve(nav, flown),
+            };
+            let before = p.solver.predictor_calls();
+            let done = match self.config.steps_per_tick {
+                0 => p.solver.run(u8::MAX),
+                k => p.solver.run(k),
+            };
+            calls = p.solver.predictor_calls().saturating_sub(before);
+            match done {
+                Some(res) => {
+                    self.pending = None;
+                    let (r, old) = self.apply(&p, &res, e_hat);
+                    report = Some(r);
+                    previous = old;
+                }
+                None => self.pending = Some(p),
+            }
         }
         let out = match self.guidance.update(nav) {
             Ok(o) => o,
@@ -394,6 +451,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
                     // Restore the table in use before this sample (it was valid).
                     let _ = self.guidance.replace_table(t);
                 }
+                self.pending = pending_before;
                 return Err(e);
             }
         };
@@ -409,17 +467,12 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
         Ok(ReplanningOutput {
             guidance: out,
             replan: report,
+            predictor_calls: calls,
         })
     }
 
-    /// Run the solver and, if applicable, install the re-planned table. Returns the report and
-    /// the replaced table (to restore on a later error).
-    fn replan_now(
-        &mut self,
-        nav: &NavState<S>,
-        e_hat: S,
-        flown_rad: S,
-    ) -> (ReplanReport<S>, Option<NodeTable<S, N>>) {
+    /// Set up a solve from `nav` (range to go, effective planet): a solver that has not run.
+    fn start_solve(&self, nav: &NavState<S>, flown_rad: S) -> Pending<S> {
         let cfg = &self.config;
         let m = &cfg.model;
         let rtg = match cfg.target {
@@ -430,26 +483,39 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             }
         };
         let planet = m.effective_planet(nav, cfg.solver.predictor.final_speed_m_s);
-        let res = match rtg {
-            Some(rtg) => replan(
-                &planet,
-                &m.atmosphere,
-                &m.vehicle,
-                nav,
-                rtg,
-                &cfg.limits,
-                &cfg.solver,
-            ),
-            // Non-finite range to go (non-finite model radius or target sum): out of domain.
-            None => ReplanResult {
-                case: ReplanCase::FallBack(ReplanFallBack::OutOfDomain(VinhError::NonFiniteInput)),
-                vertical_fraction: S::ONE,
-                bank_rad: S::ZERO,
-                prediction: None,
-                predictor_calls: 0,
+        let solver = ReplanSolver::new(
+            &planet,
+            &m.atmosphere,
+            &m.vehicle,
+            nav,
+            rtg.unwrap_or(S::ZERO),
+            &cfg.limits,
+            &cfg.solver,
+        );
+        Pending {
+            // A non-finite range to go (non-finite model radius or target sum): out of domain.
+            solver: if rtg.is_some() {
+                solver
+            } else {
+                solver.fallen_back(VinhError::NonFiniteInput)
             },
-        };
-        let rtg = rtg.unwrap_or(S::ZERO);
+            start_tick: self.ticks,
+            time_s: nav.time_s,
+            range_to_go_m: rtg.unwrap_or(S::ZERO),
+        }
+    }
+
+    /// Report a finished solve and, if applicable, install the re-planned table (nodes below
+    /// the current `e_hat`). Returns the report and the replaced table (to restore on a later
+    /// error).
+    fn apply(
+        &mut self,
+        p: &Pending<S>,
+        res: &ReplanResult<S>,
+        e_hat: S,
+    ) -> (ReplanReport<S>, Option<NodeTable<S, N>>) {
+        let cfg = &self.config;
+        let rtg = p.range_to_go_m;
         let apply = match res.case {
             ReplanCase::Converged | ReplanCase::LimitsBind => true,
             ReplanCase::TargetOutOfReach => cfg.apply_out_of_reach,
@@ -457,7 +523,8 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
         };
         let mut report = ReplanReport {
             tick: self.ticks,
-            time_s: nav.time_s,
+            start_tick: p.start_tick,
+            time_s: p.time_s,
             normalized_energy: e_hat,
             range_to_go_m: rtg,
             case: res.case,

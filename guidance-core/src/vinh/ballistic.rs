@@ -26,7 +26,7 @@
 
 use super::error::VinhError;
 use super::nondim::{EntryState, Planet};
-use super::num::{finite, k};
+use super::num::{finite, k, sin_cos};
 use crate::scalar::Real;
 
 /// Newton/bisection steps for Kepler's equation: the bracket `[M - e, M + e]` halves at least
@@ -68,8 +68,9 @@ pub struct BallisticArc<S> {
 
 /// Eccentric anomaly in `[0, 2 pi)` for true anomaly `nu` in `[0, 2 pi)`.
 fn ecc_from_true<S: Real>(e: S, nu: S) -> S {
-    let s = (S::ONE - e * e).sqrt() * nu.sin();
-    let c = e + nu.cos();
+    let (sn, cn) = sin_cos(nu);
+    let s = (S::ONE - e * e).sqrt() * sn;
+    let c = e + cn;
     let mut ea = s.atan2(c);
     if ea < S::ZERO {
         ea = ea + S::PI + S::PI;
@@ -118,12 +119,12 @@ impl<S: Real> BallisticArc<S> {
         let v0 = exit.speed_m_s;
         // S0^2 = V0^2 r0 / mu; p/r0 = S0^2 cos^2(gamma0).
         let s02 = finite(v0 * v0 * r0 / mu)?;
-        let cg = g0.cos();
+        let (sg, cg) = sin_cos(g0);
         let p_r0 = s02 * cg * cg;
         let p = finite(p_r0 * r0)?;
         let ec = p_r0 - S::ONE;
         // sqrt(p/mu) V0 sin(gamma0) = sqrt(p_r0 * S0^2) sin(gamma0) = S0^2 cos sin.
-        let es = s02 * cg * g0.sin();
+        let es = s02 * cg * sg;
         let e = finite((ec * ec + es * es).sqrt())?;
         if e >= S::ONE {
             return Err(VinhError::EscapeTrajectory);
@@ -142,8 +143,8 @@ impl<S: Real> BallisticArc<S> {
         let n = finite((mu / (a * a * a)).sqrt_raw())?;
         let ecc0 = ecc_from_true(e, nu0);
         let ecc1 = ecc_from_true(e, nu1);
-        let mean0 = ecc0 - e * ecc0.sin();
-        let mean1 = ecc1 - e * ecc1.sin();
+        let mean0 = ecc0 - e * sin_cos(ecc0).0;
+        let mean1 = ecc1 - e * sin_cos(ecc1).0;
         let t1 = finite((mean1 - mean0) / n)?;
         // A flight-path angle too small to resolve at apoapsis gives a zero-length arc.
         if !(nu1 > nu0 && t1 > S::ZERO) {
@@ -174,11 +175,12 @@ impl<S: Real> BallisticArc<S> {
 
     fn point_at_true_anomaly(&self, nu: S, time_s: S) -> Result<ArcPoint<S>, VinhError> {
         let e = self.e;
-        let den = S::ONE + e * nu.cos();
+        let (sn, cn) = sin_cos(nu);
+        let den = S::ONE + e * cn;
         let r = finite(self.p / den)?;
         let v2 = self.mu * (k::<S>(2.0) / r - S::ONE / self.a);
         let speed = finite(v2.sqrt())?;
-        let fpa = (e * nu.sin()).atan2(den);
+        let fpa = (e * sn).atan2(den);
         Ok(ArcPoint {
             time_s: finite(time_s)?,
             range_angle_rad: finite(nu - self.nu0)?,

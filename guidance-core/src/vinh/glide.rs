@@ -38,7 +38,7 @@ use super::nondim::{
     CHAPMAN_SPEED_EXPONENT, EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
     k1_min,
 };
-use super::num::{finite, k, maximize};
+use super::num::{brent, finite, k, maximize};
 use crate::scalar::Real;
 
 /// Smallest accepted `1 - u_E` (glide entry speed ratio to circular, `u_E = 1/(1 + k1)`).
@@ -309,14 +309,42 @@ impl<S: Real> GlideSolution<S> {
         self.point_at_u(u)
     }
 
-    fn peak_by<F: Fn(&GlidePoint<S>) -> S>(
+    /// Maximum of a log-score between the final speed and the glide start, located from its
+    /// analytic derivative `deriv(u, y1, y1')` (the closed form's own derivative): Brent's
+    /// method on the derivative when it falls through zero on `[u_f, u_E]`, else the better
+    /// end; a derivative rising through zero (a minimum inside) falls back to the dense scan
+    /// and golden-section search of `score`.
+    fn peak_by<D: Fn(S, S, S) -> S, F: Fn(&GlidePoint<S>) -> S>(
         &self,
         final_speed_m_s: S,
+        deriv: D,
         score: F,
     ) -> Result<GlidePoint<S>, VinhError> {
         let end = self.point_at_speed(final_speed_m_s)?;
-        let (u, _) = maximize(|u| self.point_at_u(u).map(|p| score(&p)), end.u, self.u_e)?;
-        self.point_at_u(u)
+        let (lo, hi) = (end.u, self.u_e);
+        let d = |u: S| -> Result<S, VinhError> {
+            let y = self.y1(u);
+            finite(deriv(u, y.y, y.dy))
+        };
+        if !(hi > lo) {
+            return Ok(end);
+        }
+        let (d_lo, d_hi) = (d(lo)?, d(hi)?);
+        if d_lo > S::ZERO && d_hi < S::ZERO {
+            let tol = S::EPSILON.sqrt_raw() * (hi - lo);
+            let u = brent(d, lo, hi, d_lo, d_hi, tol)?;
+            return self.point_at_u(u.clamp(lo, hi));
+        }
+        if d_lo < S::ZERO && d_hi > S::ZERO {
+            let (u, _) = maximize(|u| self.point_at_u(u).map(|p| score(&p)), lo, hi)?;
+            return self.point_at_u(u);
+        }
+        let start = self.point_at_u(hi)?;
+        Ok(if score(&start) > score(&end) {
+            start
+        } else {
+            end
+        })
     }
 
     /// Peak Chapman heat flux between the glide start and `final_speed_m_s` \[m/s\].
@@ -326,9 +354,11 @@ impl<S: Real> GlideSolution<S> {
     pub fn peak_heat_flux(&self, final_speed_m_s: S) -> Result<GlidePoint<S>, VinhError> {
         let m2: S = k(CHAPMAN_SPEED_EXPONENT / 2.0);
         let ue = self.u_e;
-        self.peak_by(final_speed_m_s, |p| {
-            p.density_ratio.ln().half() - m2 * (ue / p.u).ln()
-        })
+        self.peak_by(
+            final_speed_m_s,
+            |u, y, dy| dy / (y + y) + m2 / u,
+            |p| p.density_ratio.ln().half() - m2 * (ue / p.u).ln(),
+        )
     }
 
     /// Peak g-load between the glide start and `final_speed_m_s` \[m/s\].
@@ -337,8 +367,10 @@ impl<S: Real> GlideSolution<S> {
     /// As [`GlideSolution::point_at_u`] for the final speed.
     pub fn peak_g_load(&self, final_speed_m_s: S) -> Result<GlidePoint<S>, VinhError> {
         let ue = self.u_e;
-        self.peak_by(final_speed_m_s, |p| {
-            p.density_ratio.ln() + p.u.ln() - ue.ln()
-        })
+        self.peak_by(
+            final_speed_m_s,
+            |u, y, dy| dy / y + S::ONE / u,
+            |p| p.density_ratio.ln() + p.u.ln() - ue.ln(),
+        )
     }
 }

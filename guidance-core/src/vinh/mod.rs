@@ -7,11 +7,15 @@
 //! * [`glide`]: atmospheric glide, second order (eq. 3.62-3.79).
 //! * [`ballistic`]: Kepler arc from exit to re-entry (eq. 3.80-3.82, corrected).
 //! * [`mod@predict`]: skip -> arc -> ... -> final glide chain: range, peak heat flux and g-load.
+//! * [`validity`]: whether a prediction lies in the validated region ([`Validity`]).
 //!
 //! Everything is generic over [`crate::Real`] (`f32`, `f64`), `no_std`, allocation-free and
-//! panic-free; every iteration is bounded (bracketing root finders: 64 scan + 200 bisection
-//! evaluations; peak searches: 48 scan + 62 golden-section evaluations; Kepler's equation: 120
-//! safeguarded Newton steps; predictor: at most 8 skips). Inputs outside the domain of a
+//! panic-free; every iteration is bounded (roots: a short scan for the bracket, then Brent's
+//! method to the working precision of the scalar type, at most 128 evaluations; skip peaks: an
+//! 8-interval scan and Brent maximisation, at most 64 evaluations; glide peaks: Brent on the
+//! analytic derivative; Kepler's equation: 120 safeguarded Newton steps; predictor: at most 8
+//! skips). Predictions can skip the peak searches ([`PeakMode::RangeOnly`]) or stop at the first
+//! phase proven to exceed a load limit ([`PeakMode::Limits`]). Inputs outside the domain of a
 //! solution return a [`VinhError`], detected before the operation that would produce a complex
 //! number, NaN or infinity; every output is checked finite.
 //!
@@ -39,9 +43,10 @@ pub mod ballistic;
 pub mod error;
 pub mod glide;
 pub mod nondim;
-mod num;
+pub(crate) mod num;
 pub mod predict;
 pub mod skip;
+pub mod validity;
 
 pub use ballistic::{ArcPoint, BallisticArc};
 pub use error::VinhError;
@@ -49,5 +54,8 @@ pub use glide::{GlidePoint, GlideSolution};
 pub use nondim::{
     Constants, EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
 };
-pub use predict::{Prediction, PredictorConfig, predict};
+pub use predict::{
+    LoadLimits, PeakMode, PeakStatus, Prediction, PredictorConfig, predict, predict_with,
+};
 pub use skip::{Leg, SkipOptions, SkipPoint, SkipSolution};
+pub use validity::{Extrapolation, Validity, validity_of};

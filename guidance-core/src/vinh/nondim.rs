@@ -31,7 +31,7 @@
 //! `(0, MAX_ENTRY_SPEED_M_S]`, `|gamma_E| < 90 deg`.
 
 use super::error::VinhError;
-use super::num::{finite, k};
+use super::num::{asin_signed, finite, k, sin_cos};
 use crate::scalar::Real;
 
 /// Chapman heat-flux constant `c*` (thesis eq. 2.2) \[W/m^2 with the nose radius in m\].
@@ -383,7 +383,7 @@ impl<S: Real> NonDim<S> {
         let alpha = finite(g_e * r_e / (v_e * v_e))?;
         let lambda = lift.lambda;
         let k1 = finite(b * lambda * lift.vertical_fraction)?;
-        let c = finite(-sqrt_s * entry.flight_path_angle_rad.sin())?;
+        let c = finite(-sqrt_s * sin_cos(entry.flight_path_angle_rad).0)?;
         let one_l2 = S::ONE + lambda * lambda;
         let e_vertical = finite(two * e_star * lambda * lift.vertical_fraction / one_l2)?;
         let q_e = finite(
@@ -482,7 +482,7 @@ impl<S: Real> NonDim<S> {
         if sn.abs() >= S::ONE {
             return Err(VinhError::FlightPathAngleOutOfDomain);
         }
-        Ok(sn.asin())
+        Ok(asin_signed(sn))
     }
 
     /// Range angle `theta = tau / sqrt(s)` \[rad\] (eq. 3.22).

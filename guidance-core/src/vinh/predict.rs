@@ -32,8 +32,12 @@ use super::ballistic::BallisticArc;
 use super::error::VinhError;
 use super::glide::GlideSolution;
 use super::nondim::{EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams};
-use super::num::{bisect, finite, k};
+use super::num::{brent, finite, k};
 use super::skip::SkipSolution;
+use super::validity::{
+    Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE,
+    SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_SPEED_RANGE_M_S, Validity,
+};
 use crate::scalar::Real;
 
 /// Largest accepted [`PredictorConfig::max_skips`].
@@ -47,6 +51,51 @@ pub struct PredictorConfig<S> {
     pub final_speed_m_s: S,
     /// Maximum number of skips before the final glide (at most [`MAX_SKIPS`]).
     pub max_skips: u8,
+}
+
+/// Peak heat-flux and g-load limits (re-planner and [`PeakMode::Limits`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct LoadLimits<S> {
+    /// Peak Chapman heat flux limit \[W/m^2\].
+    pub heat_flux_w_m2: S,
+    /// Peak g-load limit \[-\].
+    pub g_load: S,
+}
+
+impl<S: Real> LoadLimits<S> {
+    /// Whether a heat flux \[W/m^2\] or g-load \[-\] exceeds a limit.
+    fn exceeded(&self, heat_flux_w_m2: S, g_load: S) -> bool {
+        heat_flux_w_m2 > self.heat_flux_w_m2 || g_load > self.g_load
+    }
+}
+
+/// Which peak loads a prediction computes (the range is always computed, except after a
+/// [`PeakStatus::LimitExceeded`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PeakMode<S> {
+    /// Range only: no peak search (the corrector's predictions).
+    RangeOnly,
+    /// Peak heat flux and g-load of every phase.
+    Full,
+    /// As [`PeakMode::Full`], but stop at the first phase whose loads are proven to exceed a
+    /// limit: first from a point the phase computes anyway (the skip's deepest point, the
+    /// glide's ends; a peak is at least as large), then from its peaks.
+    Limits(LoadLimits<S>),
+}
+
+/// What the peak fields of a [`Prediction`] hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PeakStatus {
+    /// Not computed ([`PeakMode::RangeOnly`]): the peak fields are 0.
+    NotComputed,
+    /// The peaks over all modelled phases.
+    Computed,
+    /// [`PeakMode::Limits`]: a phase exceeded a limit and the prediction stopped there; the
+    /// peak fields hold the loads that exceeded, the range fields only the phases before.
+    LimitExceeded,
 }
 
 /// How the predicted trajectory ended.
@@ -69,17 +118,17 @@ pub struct Prediction<S> {
     pub glide_start_radius_m: S,
     /// Range angle of the final glide \[rad\].
     pub glide_range_angle_rad: S,
+    /// What the peak fields hold.
+    pub peak_status: PeakStatus,
+    /// Whether every phase lies in the validated region ([`super::validity`]).
+    pub validity: Validity,
 }
 
-/// Predict range and peak loads from `state` with constant lift `lift`.
-///
-/// Cost: at most `max_skips` skips and arcs, plus one glide and a bounded (200-step) bisection
-/// for the glide start radius.
+/// Predict range and peak loads from `state` with constant lift `lift`
+/// ([`predict_with`] and [`PeakMode::Full`]).
 ///
 /// # Errors
-/// Input validation errors, [`VinhError::PhaseLimit`], and any domain error of a phase
-/// (e.g. [`VinhError::EscapeTrajectory`], [`VinhError::GlideNearCircular`],
-/// [`VinhError::GlideSpeedOutOfDomain`], [`VinhError::NoDeepestPoint`]).
+/// As [`predict_with`].
 pub fn predict<S: Real>(
     planet: &Planet<S>,
     atmosphere: &ExpAtmosphere<S>,
@@ -87,6 +136,36 @@ pub fn predict<S: Real>(
     lift: &LiftControl<S>,
     state: &EntryState<S>,
     config: &PredictorConfig<S>,
+) -> Result<Prediction<S>, VinhError> {
+    predict_with(
+        planet,
+        atmosphere,
+        vehicle,
+        lift,
+        state,
+        config,
+        PeakMode::Full,
+    )
+}
+
+/// Predict the range and, as `peaks` asks, the peak loads from `state` with constant lift
+/// `lift`.
+///
+/// Cost: at most `max_skips` skips and arcs, plus one glide and one Brent search for the glide
+/// start radius; [`PeakMode::RangeOnly`] skips every peak search.
+///
+/// # Errors
+/// Input validation errors, [`VinhError::PhaseLimit`], and any domain error of a phase
+/// (e.g. [`VinhError::EscapeTrajectory`], [`VinhError::GlideNearCircular`],
+/// [`VinhError::GlideSpeedOutOfDomain`], [`VinhError::NoDeepestPoint`]).
+pub fn predict_with<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+    peaks: PeakMode<S>,
 ) -> Result<Prediction<S>, VinhError> {
     if !config.final_speed_m_s.is_finite() {
         return Err(VinhError::NonFiniteInput);
@@ -104,6 +183,7 @@ pub fn predict<S: Real>(
     let mut arcs = 0_u8;
     let r_i = state.radius_m;
     let mut phase = 0_u8;
+    let mut validity = Validity::InDomain;
     // Each pass is a skip (descending) or an arc (ascending); at most 2 max_skips + 1 passes.
     let max_phases = config.max_skips.saturating_mul(2).saturating_add(1);
     loop {
@@ -141,11 +221,24 @@ pub fn predict<S: Real>(
         let nd = NonDim::new(planet, atmosphere, vehicle, lift, &cur)?;
         match SkipSolution::new(&nd) {
             Ok(skip) => {
-                let q = skip.peak_heat_flux()?;
-                let g = skip.peak_g_load()?;
-                q_max = q_max.max(q.heat_flux_w_m2);
-                n_max = n_max.max(g.g_load);
                 let ex = skip.exit();
+                validity = skip_validity(validity, &cur, ex.eta_v);
+                if let PeakMode::Limits(l) = peaks {
+                    let b = skip.deepest_point()?;
+                    if l.exceeded(b.heat_flux_w_m2, b.g_load) {
+                        return Ok(exceeded(theta, planet, b.heat_flux_w_m2, b.g_load));
+                    }
+                }
+                if peaks != PeakMode::RangeOnly {
+                    let (q, g) = skip.peaks()?;
+                    q_max = q_max.max(q.heat_flux_w_m2);
+                    n_max = n_max.max(g.g_load);
+                    if let PeakMode::Limits(l) = peaks
+                        && l.exceeded(q_max, n_max)
+                    {
+                        return Ok(exceeded(theta, planet, q_max, n_max));
+                    }
+                }
                 theta = theta + ex.range_angle_rad;
                 cur = EntryState {
                     radius_m: r_i,
@@ -166,10 +259,28 @@ pub fn predict<S: Real>(
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, cur.speed_m_s, r_i)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
-    let q = glide.peak_heat_flux(config.final_speed_m_s)?;
-    let g = glide.peak_g_load(config.final_speed_m_s)?;
-    q_max = q_max.max(q.heat_flux_w_m2);
-    n_max = n_max.max(g.g_load);
+    validity = glide_validity(validity, &glide, planet, r_g, config.final_speed_m_s);
+    if let PeakMode::Limits(l) = peaks {
+        let start = glide.point_at_u(glide.u_entry())?;
+        let (qb, nb) = (
+            start.heat_flux_w_m2.max(end.heat_flux_w_m2),
+            start.g_load.max(end.g_load),
+        );
+        if l.exceeded(qb, nb) {
+            return Ok(exceeded(theta, planet, qb, nb));
+        }
+    }
+    if peaks != PeakMode::RangeOnly {
+        let q = glide.peak_heat_flux(config.final_speed_m_s)?;
+        let g = glide.peak_g_load(config.final_speed_m_s)?;
+        q_max = q_max.max(q.heat_flux_w_m2);
+        n_max = n_max.max(g.g_load);
+        if let PeakMode::Limits(l) = peaks
+            && l.exceeded(q_max, n_max)
+        {
+            return Ok(exceeded(theta, planet, q_max, n_max));
+        }
+    }
     theta = theta + end.range_angle_rad;
     Ok(Prediction {
         range_angle_rad: finite(theta)?,
@@ -180,7 +291,71 @@ pub fn predict<S: Real>(
         arcs,
         glide_start_radius_m: r_g,
         glide_range_angle_rad: end.range_angle_rad,
+        peak_status: if peaks == PeakMode::RangeOnly {
+            PeakStatus::NotComputed
+        } else {
+            PeakStatus::Computed
+        },
+        validity,
     })
+}
+
+/// `v` updated with a skip from `entry` whose exit has `exit_eta_v`.
+fn skip_validity<S: Real>(v: Validity, entry: &EntryState<S>, exit_eta_v: S) -> Validity {
+    let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
+    v.and(
+        !inside(entry.speed_m_s, SKIP_SPEED_RANGE_M_S),
+        Extrapolation::SkipEntrySpeed,
+    )
+    .and(
+        !inside(entry.flight_path_angle_rad.abs(), SKIP_FPA_RANGE_RAD),
+        Extrapolation::SkipFlightPathAngle,
+    )
+    .and(
+        !(exit_eta_v.abs() <= k(SKIP_MAX_EXIT_ETA_V)),
+        Extrapolation::SkipSpeedExpansion,
+    )
+}
+
+/// `v` updated with a glide started at `r_g` \[m\] and run to `final_speed_m_s` \[m/s\].
+pub(crate) fn glide_validity<S: Real>(
+    v: Validity,
+    glide: &GlideSolution<S>,
+    planet: &Planet<S>,
+    r_g: S,
+    final_speed_m_s: S,
+) -> Validity {
+    let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
+    let e = glide.nondim().constants().e_vertical;
+    let ratio = final_speed_m_s / glide.imposed_entry().speed_m_s;
+    v.and(
+        !inside(r_g - planet.radius_m, GLIDE_ALTITUDE_RANGE_M),
+        Extrapolation::GlideAltitude,
+    )
+    .and(
+        !inside(e, GLIDE_VERTICAL_LD_RANGE),
+        Extrapolation::GlideVerticalLiftToDrag,
+    )
+    .and(
+        !(ratio >= k(GLIDE_MIN_FINAL_SPEED_RATIO)),
+        Extrapolation::GlideFinalSpeedRatio,
+    )
+}
+
+/// A prediction stopped by [`PeakMode::Limits`] (range so far; the loads that exceeded).
+fn exceeded<S: Real>(theta: S, planet: &Planet<S>, q: S, n: S) -> Prediction<S> {
+    Prediction {
+        range_angle_rad: theta,
+        range_m: theta * planet.radius_m,
+        peak_heat_flux_w_m2: q,
+        peak_g_load: n,
+        skips: 0,
+        arcs: 0,
+        glide_start_radius_m: S::ZERO,
+        glide_range_angle_rad: S::ZERO,
+        peak_status: PeakStatus::LimitExceeded,
+        validity: Validity::InDomain,
+    }
 }
 
 /// Imposed glide entry speed (eq. 3.78) at reference radius `r` \[m/s\].
@@ -236,5 +411,5 @@ pub fn glide_start_radius<S: Real>(
     if f_lo > S::ZERO {
         return Err(VinhError::GlideSpeedOutOfDomain);
     }
-    bisect(f, lo, r_max, f_lo, f_hi)
+    brent(f, lo, r_max, f_lo, f_hi, S::ZERO)
 }

@@ -42,7 +42,10 @@
 
 use super::error::VinhError;
 use super::nondim::{NonDim, k1_min};
-use super::num::{expm1mx_over_x2, finite, first_root, k, maximize};
+use super::num::{
+    asin_unit, brent, brent_max, expm1mx_over_x2, finite, first_root, first_root_from, k, maximize,
+    sin_cos_reduced,
+};
 use crate::scalar::Real;
 
 /// Largest accepted `|eta v|` along the skip: the speed-ratio range `V/V_E` in
@@ -194,26 +197,88 @@ impl<S: Real> Quad<S> {
     }
 
     fn x(&self, tau: S) -> S {
-        let h = (self.omega * (tau - self.tau_bottom)).half().sin() / self.omega;
-        self.x1 - self.sd * h * h
+        self.x_phi_a(tau).0
+    }
+
+    /// `(x, phi_a)` at `tau` from one sine and cosine of `theta = omega (tau - tau_b)/2`
+    /// (`|theta| <= pi/2` on the skip; `sin(2 theta) = 2 sin(theta) cos(theta)`), by the
+    /// single-precision kernels of [`super::num::sin_cos_reduced`] in `f32`.
+    fn x_phi_a(&self, tau: S) -> (S, S) {
+        let (sn, cs) = sin_cos_reduced((self.omega * (tau - self.tau_bottom)).half());
+        let h = sn / self.omega;
+        (
+            self.x1 - self.sd * h * h,
+            -self.sd * (sn + sn) * cs / (k::<S>(2.0) * self.omega),
+        )
     }
 
     fn phi_a(&self, tau: S) -> S {
-        -self.sd * (self.omega * (tau - self.tau_bottom)).sin() / (k::<S>(2.0) * self.omega)
+        self.x_phi_a(tau).1
     }
 
     /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
     fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
         let depth = (self.x1 - x).max(S::ZERO);
         let arg = (self.omega * (depth / self.sd).sqrt()).min(S::ONE);
-        let half = k::<S>(2.0) / self.omega * arg.asin();
-        let tau = match leg {
-            Leg::Descending => (self.tau_bottom - half).max(S::ZERO),
-            Leg::Ascending => (self.tau_bottom + half).min(self.tau_exit),
-        };
-        (tau, self.phi_a(tau))
+        let half = k::<S>(2.0) / self.omega * asin_unit(arg);
+        // phi_a = -sd sin(omega Delta)/(2 omega) with sin(omega half/2) = arg (no second sine).
+        let pa = self.sd * arg * (S::ONE - arg * arg).max(S::ZERO).sqrt() / self.omega;
+        match leg {
+            Leg::Descending => {
+                let tau = self.tau_bottom - half;
+                if tau >= S::ZERO {
+                    (tau, pa)
+                } else {
+                    (S::ZERO, self.phi_a(S::ZERO))
+                }
+            }
+            Leg::Ascending => {
+                let tau = self.tau_bottom + half;
+                if tau <= self.tau_exit {
+                    (tau, -pa)
+                } else {
+                    (self.tau_exit, self.phi_a(self.tau_exit))
+                }
+            }
+        }
     }
 }
+
+/// First-order deepest point: root of `f1 = c^2 - 2 k1 (e^x - 1) - 2 (1 - alpha) x` on
+/// `(0, x_surf]` (`f1(0) = c^2 > 0`). With upward lift (`k1 > 0`) `f1` is concave, so it has
+/// exactly one positive root; it is bracketed by `x_g = ln(1 + c^2/(2 k1))` (where the lift
+/// term alone cancels `c^2`: an upper bound for `alpha <= 1`, a lower bound above circular
+/// speed) and solved by Brent's method to the working precision. With downward lift (`k1 < 0`,
+/// convex, zero or two roots) the first sign change of a 64-point scan, as in the thesis set-up.
+fn first_order_root<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
+    mut f1: F,
+    c2: S,
+    k1: S,
+    x_surf: S,
+) -> Result<S, VinhError> {
+    if !(k1 > S::ZERO) {
+        return first_root(f1, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint);
+    }
+    let f_surf = f1(x_surf)?;
+    if f_surf > S::ZERO {
+        return Err(VinhError::NoDeepestPoint);
+    }
+    let x_g = finite((S::ONE + c2 / (k::<S>(2.0) * k1)).ln())?;
+    let (a, fa, b, fb) = if x_g < x_surf && x_g > S::ZERO {
+        let f_g = f1(x_g)?;
+        if f_g > S::ZERO {
+            (x_g, f_g, x_surf, f_surf)
+        } else {
+            (S::ZERO, c2, x_g, f_g)
+        }
+    } else {
+        (S::ZERO, c2, x_surf, f_surf)
+    };
+    brent(f1, a, b, fa, fb, S::ZERO)
+}
+
+/// Scan intervals of the peak searches ([`SkipSolution::peaks`]).
+pub const PEAK_SCAN_INTERVALS: u32 = 8;
 
 /// Second-order skip solution from a descending reference state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -244,8 +309,12 @@ impl<S: Real> SkipSolution<S> {
 
     /// Solve the skip from the reference state of `nd`.
     ///
-    /// Cost: two bracketed roots (each at most 64 scan + 200 bisection evaluations), plus the
-    /// same per refinement pass.
+    /// Cost: two bracketed roots, each solved by Brent's method to the working precision
+    /// (typically 6-10 evaluations in `f32`; at most 64 scan points + 128 evaluations), plus
+    /// the second root again per refinement pass. The first-order root (upward lift) is
+    /// bracketed by `x_g = ln(1 + c^2/(2 k1))`, the second-order root by the first sign change
+    /// on a grid of step `x1f/2` (the roots lie close together); with downward lift both use
+    /// the 64-interval scan of the thesis set-up.
     ///
     /// # Errors
     /// [`VinhError::NotDescending`], [`VinhError::VerticalLiftTooSmall`],
@@ -267,7 +336,7 @@ impl<S: Real> SkipSolution<S> {
         let f1 = |x: S| -> Result<S, VinhError> {
             finite(c2 - two * c.k1 * (x.exp() - S::ONE) - two * oma * x)
         };
-        let x1_first = first_root(f1, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?;
+        let x1_first = first_order_root(f1, c2, c.k1, x_surf)?;
         let mut q = Quad::new(c.c, c.k1, oma, x1_first)?;
         let mut remedy_used = false;
         let passes = 1 + options.deepest_point_refinements.min(8);
@@ -289,7 +358,15 @@ impl<S: Real> SkipSolution<S> {
                         + two * c.eta * c.alpha * i,
                 )
             };
-            let x1 = first_root(f2, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?;
+            // First sign change on a grid of step x1f/2 (the second-order root lies near the
+            // first-order one), then Brent to the working precision. With downward lift the
+            // first-order phi^2 is convex and may have two roots: the original fine scan.
+            let x1 = if c.k1 > S::ZERO {
+                first_root_from(f2, S::ZERO, x_surf, c2, x1_first.half())?
+            } else {
+                first_root(f2, S::ZERO, x_surf, c2)?
+            }
+            .ok_or(VinhError::NoDeepestPoint)?;
             if pass == 0 {
                 remedy_used = froze && x1 > q_fit.x1;
             }
@@ -344,8 +421,8 @@ impl<S: Real> SkipSolution<S> {
         Terms { phi2, i, j }
     }
 
-    /// Second-order point at `(tau, x, phi_a)` with the `phi` sign of `leg`.
-    fn point(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<SkipPoint<S>, VinhError> {
+    /// Second-order `phi` (sign of `leg`), `eta v` and the terms at `(tau, x, phi_a)`.
+    fn phi_eta_v(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<(S, S, Terms<S>), VinhError> {
         let nd = &self.nd;
         let c = nd.c;
         let t = Self::terms_raw(nd, &self.q, tau, x, phi_a);
@@ -369,6 +446,13 @@ impl<S: Real> SkipSolution<S> {
         if eta_v.abs() > k(MAX_ETA_V) {
             return Err(VinhError::SpeedExpansionInvalid);
         }
+        Ok((phi, eta_v, t))
+    }
+
+    /// Second-order point at `(tau, x, phi_a)` with the `phi` sign of `leg`.
+    fn point(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<SkipPoint<S>, VinhError> {
+        let nd = &self.nd;
+        let (phi, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
         let gamma = nd.fpa_from_phi(phi)?;
         SkipPoint {
             tau,
@@ -387,6 +471,33 @@ impl<S: Real> SkipSolution<S> {
         .check()
     }
 
+    /// `(x, phi_a, leg)` of the closed form at `tau` in `[0, tau_exit]`.
+    fn depth_at_tau(&self, tau: S) -> (S, S, Leg) {
+        let (x, phi_a) = if tau == self.q.tau_exit {
+            (S::ZERO, self.q.phi_a(tau))
+        } else if tau == S::ZERO {
+            (S::ZERO, self.nd.c.c)
+        } else {
+            let (x, phi_a) = self.q.x_phi_a(tau);
+            (x.max(S::ZERO), phi_a)
+        };
+        let leg = if tau <= self.q.tau_bottom {
+            Leg::Descending
+        } else {
+            Leg::Ascending
+        };
+        (x, phi_a, leg)
+    }
+
+    /// Log heat flux and log g-load (up to constants) at `tau`: `x/2 - (m/2) eta v` and
+    /// `x - eta v` (see [`SkipSolution::peaks`]); no dimensional point is built.
+    fn log_loads(&self, tau: S) -> Result<(S, S), VinhError> {
+        let (x, phi_a, leg) = self.depth_at_tau(tau);
+        let (_, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
+        let m2: S = k(super::nondim::CHAPMAN_SPEED_EXPONENT / 2.0);
+        Ok((x.half() - m2 * eta_v, x - eta_v))
+    }
+
     /// State at non-dimensional range angle `tau` in `[0, tau_exit]`.
     ///
     /// # Errors
@@ -400,18 +511,7 @@ impl<S: Real> SkipSolution<S> {
         if tau < S::ZERO || tau > self.q.tau_exit {
             return Err(VinhError::OutsideSkip);
         }
-        let (x, phi_a) = if tau == self.q.tau_exit {
-            (S::ZERO, self.q.phi_a(tau))
-        } else if tau == S::ZERO {
-            (S::ZERO, self.nd.c.c)
-        } else {
-            (self.q.x(tau).max(S::ZERO), self.q.phi_a(tau))
-        };
-        let leg = if tau <= self.q.tau_bottom {
-            Leg::Descending
-        } else {
-            Leg::Ascending
-        };
+        let (x, phi_a, leg) = self.depth_at_tau(tau);
         self.point(tau, x, phi_a, leg)
     }
 
@@ -518,13 +618,96 @@ impl<S: Real> SkipSolution<S> {
         &self.nd
     }
 
-    /// Peak Chapman heat flux over the skip: `(point, heat flux [W/m^2])`.
+    /// Peak Chapman heat flux and peak g-load over the skip: `(heat-flux peak, g-load peak)`.
     ///
-    /// Cost: 48 scan + 62 golden-section evaluations.
+    /// Both log-loads (`x/2 - (m/2) eta v`, `x - eta v`: no exponentials, no dimensional point)
+    /// are sampled on one shared grid of [`PEAK_SCAN_INTERVALS`] intervals over the skip; each
+    /// maximum is then refined by Brent's method (parabolic interpolation with golden-section
+    /// safeguard) on the two intervals around its best sample, to `sqrt(EPSILON)` of the range
+    /// angle: the peak value is then exact to the working precision (the peak is flat), and
+    /// `f32` stops after fewer steps than `f64`.
+    ///
+    /// Why not a root of the analytic derivative: the closed-form `phi` changes sign at the
+    /// deepest point while eq. 3.50's `phi^2` is not exactly zero there, so `v` (eq. 3.54) and
+    /// the loads jump at `tau_bottom`, and `dphi/dtau = (dphi^2/dtau)/(2 phi)` swings through
+    /// large values next to it; the derivative then has spurious sign changes near the bottom,
+    /// where the g-load peak lies (measured during development: peaks 0.4 % low).
+    ///
+    /// Cost: `PEAK_SCAN_INTERVALS + 1` log-load evaluations, two Brent searches (typically 6-12
+    /// evaluations each in `f32`) and two points.
+    ///
+    /// # Errors
+    /// The point errors.
+    pub fn peaks(&self) -> Result<(SkipPoint<S>, SkipPoint<S>), VinhError> {
+        let te = self.q.tau_exit;
+        let n: S = k(f64::from(PEAK_SCAN_INTERVALS));
+        let mut heat = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
+        let mut load = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
+        let tau_at = |i: usize| -> S {
+            if i >= PEAK_SCAN_INTERVALS as usize {
+                te
+            } else {
+                te * k::<S>(i as f64) / n
+            }
+        };
+        for (i, (h, l)) in heat.iter_mut().zip(load.iter_mut()).enumerate() {
+            (*h, *l) = self.log_loads(tau_at(i))?;
+        }
+        let argmax = |v: &[S]| -> usize {
+            let mut best = 0;
+            for (i, &x) in v.iter().enumerate() {
+                if v.get(best).is_some_and(|&b| x > b) {
+                    best = i;
+                }
+            }
+            best
+        };
+        let (ih, il) = (argmax(&heat), argmax(&load));
+        let tol = S::EPSILON * te;
+        let refine = |i: usize, v: S, which: usize| -> Result<SkipPoint<S>, VinhError> {
+            let a = if i == 0 { S::ZERO } else { tau_at(i - 1) };
+            let b = tau_at(i + 1);
+            let (t, _) = brent_max(
+                |t| {
+                    let (h, l) = self.log_loads(t)?;
+                    Ok(if which == 0 { h } else { l })
+                },
+                a,
+                b,
+                tau_at(i),
+                v,
+                tol,
+            )?;
+            self.point_at_tau(t.clamp(S::ZERO, te))
+        };
+        let hv = heat.get(ih).copied().unwrap_or(S::ZERO);
+        let lv = load.get(il).copied().unwrap_or(S::ZERO);
+        Ok((refine(ih, hv, 0)?, refine(il, lv, 1)?))
+    }
+
+    /// Peak Chapman heat flux over the skip (see [`SkipSolution::peaks`]).
     ///
     /// # Errors
     /// The point errors.
     pub fn peak_heat_flux(&self) -> Result<SkipPoint<S>, VinhError> {
+        self.peaks().map(|(h, _)| h)
+    }
+
+    /// Peak g-load over the skip (see [`SkipSolution::peaks`]).
+    ///
+    /// # Errors
+    /// The point errors.
+    pub fn peak_g_load(&self) -> Result<SkipPoint<S>, VinhError> {
+        self.peaks().map(|(_, l)| l)
+    }
+
+    /// Peak heat flux by a dense scan (48 intervals) and a golden-section search (62
+    /// evaluations): the reference the derivative-based [`SkipSolution::peaks`] is tested
+    /// against, and its fall-back.
+    ///
+    /// # Errors
+    /// The point errors.
+    pub fn peak_heat_flux_dense(&self) -> Result<SkipPoint<S>, VinhError> {
         let m2: S = k(super::nondim::CHAPMAN_SPEED_EXPONENT / 2.0);
         let (tau, _) = maximize(
             |t| {
@@ -537,11 +720,12 @@ impl<S: Real> SkipSolution<S> {
         self.point_at_tau(tau)
     }
 
-    /// Peak g-load over the skip.
+    /// Peak g-load by a dense scan and golden-section search (see
+    /// [`SkipSolution::peak_heat_flux_dense`]).
     ///
     /// # Errors
     /// The point errors.
-    pub fn peak_g_load(&self) -> Result<SkipPoint<S>, VinhError> {
+    pub fn peak_g_load_dense(&self) -> Result<SkipPoint<S>, VinhError> {
         let (tau, _) = maximize(
             |t| {
                 let p = self.point_at_tau(t)?;

@@ -3,7 +3,11 @@
 mod guidance_props;
 mod navconv;
 mod node_capacity;
+mod vinh_error_map;
+mod vinh_peaks;
 mod vinh_props;
 mod vinh_replan;
+mod vinh_replan_budget;
 mod vinh_support;
 mod vinh_validation;
+mod vinh_validity;

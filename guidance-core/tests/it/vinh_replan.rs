@@ -17,20 +17,20 @@ use guidance_core::vinh::{
 };
 use proptest::prelude::*;
 
-fn planet() -> Planet<f64> {
+pub(crate) fn planet() -> Planet<f64> {
     Planet {
         mu_m3_s2: MU,
         radius_m: R_EARTH,
     }
 }
-fn atmosphere() -> ExpAtmosphere<f64> {
+pub(crate) fn atmosphere() -> ExpAtmosphere<f64> {
     ExpAtmosphere {
         rho0_kg_m3: RHO0,
         scale_height_m: H_S,
         ref_radius_m: R_EARTH,
     }
 }
-fn srm() -> VehicleParams<f64> {
+pub(crate) fn srm() -> VehicleParams<f64> {
     let v = vehicles::srm();
     VehicleParams {
         mass_kg: v.mass_kg,
@@ -40,7 +40,7 @@ fn srm() -> VehicleParams<f64> {
         nose_radius_m: v.nose_radius_m,
     }
 }
-fn nav(v: f64, g_deg: f64) -> NavState<f64> {
+pub(crate) fn nav(v: f64, g_deg: f64) -> NavState<f64> {
     NavState {
         time_s: 0.0,
         radius_m: R_EARTH + 122e3,
@@ -51,7 +51,7 @@ fn nav(v: f64, g_deg: f64) -> NavState<f64> {
         longitude_rad: 0.0,
     }
 }
-fn config() -> ReplanConfig<f64> {
+pub(crate) fn config() -> ReplanConfig<f64> {
     ReplanConfig {
         lambda: 1.0,
         min_vertical_fraction: 0.3,
@@ -65,7 +65,7 @@ fn config() -> ReplanConfig<f64> {
         mode: PredictorMode::Chain,
     }
 }
-fn range_at(n: &NavState<f64>, f: f64) -> guidance_core::vinh::Prediction<f64> {
+pub(crate) fn range_at(n: &NavState<f64>, f: f64) -> guidance_core::vinh::Prediction<f64> {
     let lift = LiftControl {
         lambda: 1.0,
         vertical_fraction: f,
@@ -85,7 +85,7 @@ fn range_at(n: &NavState<f64>, f: f64) -> guidance_core::vinh::Prediction<f64> {
     )
     .unwrap()
 }
-const NO_LIMITS: ReplanLimits<f64> = ReplanLimits {
+pub(crate) const NO_LIMITS: ReplanLimits<f64> = ReplanLimits {
     heat_flux_w_m2: 1e12,
     g_load: 1e6,
 };
@@ -258,11 +258,11 @@ proptest! {
 // ReplanningGuidance: the solver inside the guidance loop.
 // ---------------------------------------------------------------------------------------------
 
-const DEG: f64 = std::f64::consts::PI / 180.0;
+pub(crate) const DEG: f64 = std::f64::consts::PI / 180.0;
 
 /// SRM glide entry of thesis sec. 9.2 (100 km, 7658.34 m/s, -0.056 deg), on the equator
 /// heading east.
-fn glide_nav(t: f64) -> NavState<f64> {
+pub(crate) fn glide_nav(t: f64) -> NavState<f64> {
     NavState {
         time_s: t,
         radius_m: R_EARTH + 100e3,
@@ -274,7 +274,7 @@ fn glide_nav(t: f64) -> NavState<f64> {
     }
 }
 
-fn model() -> PredictorModel<f64> {
+pub(crate) fn model() -> PredictorModel<f64> {
     PredictorModel {
         planet: planet(),
         atmosphere: atmosphere(),
@@ -283,7 +283,7 @@ fn model() -> PredictorModel<f64> {
     }
 }
 
-fn glide_solver(mode: PredictorMode) -> ReplanConfig<f64> {
+pub(crate) fn glide_solver(mode: PredictorMode) -> ReplanConfig<f64> {
     ReplanConfig {
         min_vertical_fraction: 0.05,
         tolerance_m: 1000.0,
@@ -293,7 +293,11 @@ fn glide_solver(mode: PredictorMode) -> ReplanConfig<f64> {
     }
 }
 
-fn rcfg(target: RangeTarget<f64>, every: u16, mode: PredictorMode) -> ReplanningConfig<f64> {
+pub(crate) fn rcfg(
+    target: RangeTarget<f64>,
+    every: u16,
+    mode: PredictorMode,
+) -> ReplanningConfig<f64> {
     ReplanningConfig {
         every_n_ticks: every,
         target,
@@ -301,11 +305,12 @@ fn rcfg(target: RangeTarget<f64>, every: u16, mode: PredictorMode) -> Replanning
         solver: glide_solver(mode),
         model: model(),
         apply_out_of_reach: false,
+        steps_per_tick: 0,
     }
 }
 
 /// Energy table: E-hat 1.0 .. 0.0 with a negative bank on one node (sign convention kept).
-fn energy_table() -> NodeTable<f64> {
+pub(crate) fn energy_table() -> NodeTable<f64> {
     let rows = [
         (1.0, 5.0, 10.0),
         (0.8, 6.0, 40.0),
@@ -322,11 +327,11 @@ fn energy_table() -> NodeTable<f64> {
 }
 
 /// E-hat = 1 at 100 km and 7700 m/s: the glide entry state is at E-hat 0.99 (below node 0).
-fn normalizer() -> EnergyNormalizer<f64> {
+pub(crate) fn normalizer() -> EnergyNormalizer<f64> {
     EnergyNormalizer::new(MU, R_EARTH, R_EARTH + 100e3, 7700.0).unwrap()
 }
 
-fn replanning(cfg: ReplanningConfig<f64>) -> ReplanningGuidance<f64> {
+pub(crate) fn replanning(cfg: ReplanningConfig<f64>) -> ReplanningGuidance<f64> {
     ReplanningGuidance::new(
         GuidanceConfig::thesis_default(),
         energy_table(),
@@ -338,7 +343,7 @@ fn replanning(cfg: ReplanningConfig<f64>) -> ReplanningGuidance<f64> {
     .unwrap()
 }
 
-fn glide_range_m(f: f64) -> f64 {
+pub(crate) fn glide_range_m(f: f64) -> f64 {
     let lift = LiftControl {
         lambda: 1.0,
         vertical_fraction: f,
@@ -766,6 +771,7 @@ proptest! {
         every in 1u16..3,
         total in prop_oneof![4 => -1.0..3.0f64, 1 => Just(1e30)],
         point in any::<bool>(),
+        steps in 0u8..3,
     ) {
         let target = if point {
             RangeTarget::Point(TargetPoint { latitude_rad: 0.3, longitude_rad: total })
@@ -799,6 +805,7 @@ proptest! {
                     rotation_rate_rad_s: if point { 7.292_115e-5 } else { 0.0 },
                 },
                 apply_out_of_reach: true,
+                steps_per_tick: steps,
             },
         ).unwrap();
         let bounds = g.guidance().table().bounds();
@@ -819,6 +826,7 @@ proptest! {
             let n32 = NavState { time_s: t as f32, radius_m: r as f32, speed_m_s: v as f32, flight_path_angle_rad: gam as f32, heading_rad: h as f32, latitude_rad: lat as f32, longitude_rad: lon as f32 };
             if let Ok(out) = g32.update(&n32) {
                 prop_assert!(out.guidance.command.is_finite());
+                prop_assert!(steps == 0 || out.predictor_calls <= steps);
                 if let Some(rep) = out.replan {
                     prop_assert!(rep.predictor_calls <= MAX_PREDICTOR_CALLS);
                     prop_assert!(rep.bank_rad.is_finite() && rep.range_to_go_m.is_finite());
@@ -898,4 +906,67 @@ fn validate_dormand_prince_glide_predictor_range() {
     for w in errs[..3].windows(2) {
         assert!(w[0] < 0.0 && w[0] < w[1], "{errs:?}");
     }
+}
+
+/// Issue 8 item 6: the limit grid `f_min + (f_max - f_min) i / 15` rounds to one ulp above
+/// `f_max` for `f_min = 0.06`, `f_max = 0.85` (f64), and `replan` returned that fraction. In the
+/// glide the peak heat flux falls with more vertical lift, so a heat-flux limit between the
+/// peaks of the last two grid points leaves only the last one feasible: the result must be
+/// exactly `f_max`, never above.
+#[test]
+fn replan_output_is_clamped_exactly_into_its_bounds() {
+    let (f_min, f_max) = (0.06_f64, 0.85_f64);
+    let n = 15.0;
+    let f14 = f_min + (f_max - f_min) * 14.0 / n;
+    let f15 = f_min + (f_max - f_min) * 15.0 / n;
+    assert!(f15 > f_max, "the rounding this test needs: {f15}");
+    let s = glide_nav(0.0);
+    let state = EntryState {
+        radius_m: s.radius_m,
+        speed_m_s: s.speed_m_s,
+        flight_path_angle_rad: s.flight_path_angle_rad,
+    };
+    let q_at = |f: f64| {
+        predict_glide(
+            &planet(),
+            &atmosphere(),
+            &srm(),
+            &LiftControl {
+                lambda: 1.0,
+                vertical_fraction: f,
+            },
+            &state,
+            &config().predictor,
+        )
+        .unwrap()
+        .peak_heat_flux_w_m2
+    };
+    let (q14, q15) = (q_at(f14), q_at(f15));
+    assert!(q15 < q14, "{q15} {q14}");
+    let limits = ReplanLimits {
+        heat_flux_w_m2: 0.5 * (q14 + q15),
+        g_load: 1e3,
+    };
+    let solver = ReplanConfig {
+        min_vertical_fraction: f_min,
+        max_vertical_fraction: f_max,
+        mode: PredictorMode::Glide,
+        ..config()
+    };
+    let r = replan(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &s,
+        glide_range_m(0.3),
+        &limits,
+        &solver,
+    );
+    assert_eq!(r.case, ReplanCase::LimitsBind, "{r:?}");
+    assert!(
+        r.vertical_fraction >= f_min && r.vertical_fraction <= f_max,
+        "{}",
+        r.vertical_fraction
+    );
+    assert_eq!(r.vertical_fraction, f_max);
 }

@@ -5,6 +5,8 @@
 
 mod atmosphere_cmd;
 mod compare_cmd;
+mod hypervolume_cmd;
+mod optimize_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;
 
@@ -17,6 +19,8 @@ use crate::{report, scenario, vehicle};
 
 pub use atmosphere_cmd::{AtmosphereArgs, AtmosphereModel};
 pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
+pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
+pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 pub use simulate_cmd::SimulateArgs;
 
 /// `host-sim`: 3-DOF re-entry simulator flying guidance-core's guidance closed-loop.
@@ -41,6 +45,11 @@ pub enum Command {
     /// Analytical (Vinh closed forms) against numerical simulation over a grid of entry
     /// altitude or speed x vertical lift coefficient (thesis fig. 8.5): grid.csv + SVG heat maps.
     Compare(CompareCliArgs),
+    /// Multi-objective optimiser on a test problem (ZDT, DTLZ, CONSTR): summary, and with
+    /// --out the final population, front CSV and summary JSON.
+    Optimize(OptimizeArgs),
+    /// Exact hypervolume of a front CSV (minimised objectives as columns) for a reference point.
+    Hypervolume(HypervolumeArgs),
 }
 
 /// CLI failures; the message names file, field and value where there is one.
@@ -74,6 +83,12 @@ pub enum CliError {
     /// Analytical-vs-numerical comparison failed.
     #[error("{0}")]
     Compare(#[from] crate::compare::CompareError),
+    /// Optimisation failed.
+    #[error("{0}")]
+    Optimize(#[from] OptimizeError),
+    /// `hypervolume` failed.
+    #[error("{0}")]
+    Hypervolume(#[from] HypervolumeCmdError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -98,5 +113,7 @@ where
             Ok(())
         }
         Command::Vehicles => vehicles_cmd::run(out),
+        Command::Optimize(a) => Ok(optimize_cmd::run(&a, out)?),
+        Command::Hypervolume(a) => hypervolume_cmd::run(&a, out),
     }
 }

@@ -1,49 +1,81 @@
-//! SVG heat maps of a grid's errors.
+//! Heat maps of a grid's errors, drawn with `plotters`' SVG backend.
 
-use std::fmt::Write as _;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::{AnalyticOutcome, CompareGrid, Preset};
 use crate::analytic::Phase;
-use crate::report::xml_escape;
+use crate::report::ReportError;
+
+type PlotError = Box<dyn std::error::Error + Send + Sync>;
 
 /// Fill colour of a cell at fraction `f` in [0, 1] of the map's largest |error|: white to red.
-fn shade(f: f64) -> String {
+fn shade(f: f64) -> RGBColor {
     let gb = (255.0 * (1.0 - 0.85 * f)).round() as u8;
-    format!("rgb(255,{gb},{gb})")
+    RGBColor(255, gb, gb)
 }
+
+/// Out-of-domain cells.
+const GREY: RGBColor = RGBColor(0xbd, 0xbd, 0xbd);
+/// Cells whose numerical run failed.
+const PALE_YELLOW: RGBColor = RGBColor(0xff, 0xf3, 0xb0);
+/// Cell borders.
+const BORDER: RGBColor = RGBColor(0x55, 0x55, 0x55);
 
 /// Heat map of the error of metric `m` against `fidelity` over the grid, as a standalone SVG:
 /// x = grid x values, y = vertical lift coefficient, colour = |error| (white to red, scaled to
 /// the largest |error| of the map), value printed in each cell. Out-of-domain points are grey
-/// and marked "out of domain"; failed numerical runs are hatched yellow and marked "n/a".
-#[must_use]
-pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Preset) -> String {
+/// and marked "out of domain"; failed numerical runs are pale yellow and marked "n/a".
+///
+/// # Errors
+/// [`ReportError::Plot`] if `plotters` fails to draw.
+pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Preset) -> Result<String, ReportError> {
+    let mut svg = String::new();
+    let name = grid
+        .metrics
+        .get(m)
+        .map_or_else(|| format!("metric {m}"), |x| x.name.to_string());
+    draw(&mut svg, grid, m, fidelity).map_err(|source| ReportError::Plot { name, source })?;
+    Ok(svg)
+}
+
+fn draw(svg: &mut String, grid: &CompareGrid, m: usize, fidelity: Preset) -> Result<(), PlotError> {
     let Some(metric) = grid.metrics.get(m) else {
-        return String::new();
+        return Ok(());
     };
     let nx = grid.xs.len().max(1);
     let ny = grid.cl_vertical.len().max(1);
-    let (cw, ch) = (96.0, 44.0);
-    let (ml, mt, mr, mb) = (90.0, 56.0, 150.0, 60.0);
-    let pw = cw * nx as f64;
-    let ph = ch * ny as f64;
-    let (w, h) = (ml + pw + mr, mt + ph + mb);
+    let (cw, ch) = (96_i32, 44_i32);
+    let (ml, mt, mr, mb) = (90_i32, 56_i32, 150_i32, 60_i32);
+    let pw = cw * i32::try_from(nx)?;
+    let ph = ch * i32::try_from(ny)?;
+    // Tall enough for the legend (6 shades, a gap, 2 markers) when the grid has few rows.
+    let (w, h) = (
+        ml + pw + mr,
+        (mt + ph + mb).max(mt + 18 * 6 + 8 + 22 + 16 + 12),
+    );
     let scale = grid.max_abs_error(m, fidelity).unwrap_or(0.0).max(1e-12);
     let unit = if metric.relative {
         "%"
     } else {
         metric.error_unit
     };
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="11">"#
-    );
-    let _ = writeln!(
-        s,
-        r##"<defs><pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="#fff3b0"/><line x1="0" y1="0" x2="0" y2="6" stroke="#c8a800" stroke-width="2"/></pattern></defs>"##
-    );
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let root =
+        SVGBackend::with_string(svg, (u32::try_from(w)?, u32::try_from(h)?)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let font = ("sans-serif", 11).into_font();
+    let centred = font
+        .clone()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    let right = font
+        .clone()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Right, VPos::Center));
+    let left = font
+        .clone()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
     let title = format!(
         "{} {}: error of {} (analytical - numerical, {} environment) [{unit}]",
         grid.vehicle,
@@ -54,99 +86,91 @@ pub fn heat_map_svg(grid: &CompareGrid, m: usize, fidelity: Preset) -> String {
         metric.name,
         fidelity.name()
     );
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="22" text-anchor="middle" font-size="13">{}</text>"#,
-        w / 2.0,
-        xml_escape(&title)
-    );
-    for (iy, clv) in grid.cl_vertical.iter().enumerate() {
+    root.draw(&Text::new(
+        title,
+        (w / 2, 22),
+        ("sans-serif", 13)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Center, VPos::Center)),
+    ))?;
+    let cell = |ix: usize, iy: usize| -> Result<(i32, i32), PlotError> {
         // Highest C_L at the top.
-        let y = mt + ph - ch * (iy as f64 + 1.0);
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{clv}</text>"#,
-            ml - 6.0,
-            y + ch / 2.0 + 4.0
-        );
+        let x = ml + cw * i32::try_from(ix)?;
+        let y = mt + ph - ch * (i32::try_from(iy)? + 1);
+        Ok((x, y))
+    };
+    for (iy, clv) in grid.cl_vertical.iter().enumerate() {
+        let (_, y) = cell(0, iy)?;
+        root.draw(&Text::new(
+            clv.to_string(),
+            (ml - 6, y + ch / 2),
+            right.clone(),
+        ))?;
     }
     for (ix, x) in grid.xs.iter().enumerate() {
-        let xp = ml + cw * ix as f64;
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            xp + cw / 2.0,
-            mt + ph + 16.0,
-            grid.x_value(*x)
-        );
+        let (xp, _) = cell(ix, 0)?;
+        root.draw(&Text::new(
+            grid.x_value(*x).to_string(),
+            (xp + cw / 2, mt + ph + 16),
+            centred.clone(),
+        ))?;
     }
     for (k, p) in grid.points.iter().enumerate() {
-        let (ix, iy) = (k / ny, k % ny);
-        let x = ml + cw * ix as f64;
-        let y = mt + ph - ch * (iy as f64 + 1.0);
+        let (x, y) = cell(k / ny, k % ny)?;
         let (fill, label) = match (&p.analytic, grid.error(p, m, fidelity)) {
             (AnalyticOutcome::OutOfDomain(_), _) | (AnalyticOutcome::Failed(_), _) => {
-                ("#bdbdbd".to_string(), "out of domain".to_string())
+                (GREY, "out of domain".to_string())
             }
             (_, Some(e)) => {
                 let f = (e.abs() / scale).clamp(0.0, 1.0);
                 (shade(f), format!("{e:+.2}"))
             }
-            (_, None) => ("url(#hatch)".to_string(), "n/a".to_string()),
+            (_, None) => (PALE_YELLOW, "n/a".to_string()),
         };
-        let _ = writeln!(
-            s,
-            r##"<rect x="{x:.1}" y="{y:.1}" width="{cw}" height="{ch}" fill="{fill}" stroke="#555"/><text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            x + cw / 2.0,
-            y + ch / 2.0 + 4.0,
-            xml_escape(&label)
-        );
+        root.draw(&Rectangle::new([(x, y), (x + cw, y + ch)], fill.filled()))?;
+        root.draw(&Rectangle::new(
+            [(x, y), (x + cw, y + ch)],
+            BORDER.stroke_width(1),
+        ))?;
+        root.draw(&Text::new(label, (x + cw / 2, y + ch / 2), centred.clone()))?;
     }
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-        ml + pw / 2.0,
-        h - 18.0,
+    root.draw(&Text::new(
         match grid.phase {
             Phase::Skip => "entry speed [m/s]",
             Phase::Glide => "entry altitude [km]",
-        }
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="18" y="{:.1}" text-anchor="middle" transform="rotate(-90 18 {:.1})">vertical lift coefficient C_L cos(sigma) [-]</text>"#,
-        mt + ph / 2.0,
-        mt + ph / 2.0
-    );
+        },
+        (ml + pw / 2, h - 18),
+        centred.clone(),
+    ))?;
+    root.draw(&Text::new(
+        "vertical lift coefficient C_L cos(sigma) [-]",
+        (18, mt + ph / 2),
+        centred.clone().transform(FontTransform::Rotate270),
+    ))?;
     // Legend.
-    let lx = ml + pw + 20.0;
+    let lx = ml + pw + 20;
+    let swatch = |y: i32, fill: RGBColor, text: String| -> Result<(), PlotError> {
+        root.draw(&Rectangle::new([(lx, y), (lx + 16, y + 16)], fill.filled()))?;
+        root.draw(&Rectangle::new(
+            [(lx, y), (lx + 16, y + 16)],
+            BORDER.stroke_width(1),
+        ))?;
+        root.draw(&Text::new(text, (lx + 22, y + 8), left.clone()))?;
+        Ok(())
+    };
     let steps = 5;
     for i in 0..=steps {
         let f = f64::from(i) / f64::from(steps);
-        let fill = shade(f);
-        let ly = mt + 18.0 * f64::from(i);
-        let _ = writeln!(
-            s,
-            r##"<rect x="{lx:.1}" y="{ly:.1}" width="16" height="16" fill="{fill}" stroke="#555"/><text x="{:.1}" y="{:.1}">|err| {:.3} {unit}</text>"##,
-            lx + 22.0,
-            ly + 12.0,
-            f * scale
-        );
+        swatch(
+            mt + 18 * i,
+            shade(f),
+            format!("|err| {:.3} {unit}", f * scale),
+        )?;
     }
-    let ly = mt + 18.0 * f64::from(steps + 1) + 8.0;
-    let _ = writeln!(
-        s,
-        r##"<rect x="{lx:.1}" y="{ly:.1}" width="16" height="16" fill="#bdbdbd" stroke="#555"/><text x="{:.1}" y="{:.1}">out of domain</text>"##,
-        lx + 22.0,
-        ly + 12.0
-    );
-    let _ = writeln!(
-        s,
-        r##"<rect x="{lx:.1}" y="{:.1}" width="16" height="16" fill="url(#hatch)" stroke="#555"/><text x="{:.1}" y="{:.1}">numerical n/a</text>"##,
-        ly + 22.0,
-        lx + 22.0,
-        ly + 34.0
-    );
-    s.push_str("</svg>\n");
-    s
+    let ly = mt + 18 * (steps + 1) + 8;
+    swatch(ly, GREY, "out of domain".into())?;
+    swatch(ly + 22, PALE_YELLOW, "numerical n/a".into())?;
+    root.present()?;
+    Ok(())
 }

@@ -28,7 +28,7 @@ pub fn write_grid(
     for (m, metric) in grid.metrics.iter().enumerate() {
         for &f in fidelities {
             let p = dir.join(format!("{}_err_{}.svg", metric.name, f.name()));
-            report::write_atomic(&p, heat_map_svg(grid, m, f).as_bytes())?;
+            report::write_atomic(&p, heat_map_svg(grid, m, f)?.as_bytes())?;
             written.push(p);
         }
     }

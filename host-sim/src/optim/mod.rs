@@ -1,7 +1,41 @@
 //! Generic multi-objective optimisation (issue 9): problems, ask/tell algorithms (MOEA/D,
-//! NSGA-II, MHACO, SCEA), Pareto utilities, exact hypervolume and standard test problems.
+//! NSGA-II; MHACO and SCEA build on the same framework), Pareto utilities, exact hypervolume
+//! and standard test problems.
 //!
 //! Layering rule: this module imports nothing else of `host-sim` (no simulator, no CLI); a test
 //! enforces it. The re-entry problems live outside it and implement its `Problem` trait.
+//!
+//! * [`problem`]: [`Problem`] (associated decision type, objectives minimised, constraints
+//!   `g <= 0`), [`RealProblem`] (box [`Bounds`]), [`Evaluation`];
+//! * [`algorithm`]: the ask/tell [`Algorithm`] trait; [`evaluate`]: [`evolve`] with a
+//!   [`Serial`] or [`Rayon`] evaluator; [`observe`]: per-generation [`Observer`]s;
+//! * [`population`]: evaluated [`Individual`]s, constraint violation, feasible fronts;
+//! * [`pareto`]: dominance, non-dominated sorting, crowding distance; [`rng`]: the one seeded,
+//!   serialisable generator of a run;
+//! * [`hypervolume`]: exact hypervolume, contributions, least contributor.
+//!
+//! See docs/OPTIMISERS.md for the semantics and the measured convergence.
 
+pub mod algorithm;
+pub mod algorithms;
+pub mod error;
+pub mod evaluate;
 pub mod hypervolume;
+pub mod observe;
+pub mod operators;
+pub mod pareto;
+pub mod population;
+pub mod problem;
+pub mod problems;
+pub mod rng;
+pub mod weights;
+
+pub use algorithm::{Algorithm, Batch};
+pub use algorithms::{Moead, MoeadConfig, Nsga2, Nsga2Config};
+pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
+pub use evaluate::{Evaluator, Rayon, Serial, evolve};
+pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
+pub use population::Individual;
+pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
+pub use rng::OptimRng;
+pub use weights::{Decomposition, WeightGeneration};

@@ -12,7 +12,6 @@ use std::path::{Path, PathBuf};
 use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
-pub(crate) use plot::xml_escape;
 pub use plot::{Series, line_plot_svg, standard_plots};
 pub use summary::{FinalState, PeakOut, SummaryReport, ViolationsOut, summary_report};
 

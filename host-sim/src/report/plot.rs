@@ -59,13 +59,6 @@ fn fmt_tick(v: f64, step: f64) -> String {
     format!("{v:.decimals$}")
 }
 
-/// Escape text for SVG/XML content.
-pub(crate) fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
 /// Axis range covering `lo..hi`, rounded out to multiples of a nice step for about `n`
 /// ticks; returns `(lo, hi, step)`.
 fn nice_range(lo: f64, hi: f64, n: f64) -> (f64, f64, f64) {

@@ -6,32 +6,7 @@ use serde::Deserialize;
 
 use super::{AtmosphereKind, GravityKind};
 use crate::env::Preset;
-
-/// A number as written in a file: a TOML integer or float (range-checked by the resolver).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Num(pub f64);
-
-impl<'de> Deserialize<'de> for Num {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct V;
-        impl serde::de::Visitor<'_> for V {
-            type Value = Num;
-            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                f.write_str("a number")
-            }
-            fn visit_f64<E>(self, v: f64) -> Result<Num, E> {
-                Ok(Num(v))
-            }
-            fn visit_i64<E>(self, v: i64) -> Result<Num, E> {
-                Ok(Num(v as f64))
-            }
-            fn visit_u64<E>(self, v: u64) -> Result<Num, E> {
-                Ok(Num(v as f64))
-            }
-        }
-        d.deserialize_any(V)
-    }
-}
+pub use crate::toml_input::Num;
 
 /// The whole file.
 #[derive(Debug, Default, Deserialize)]

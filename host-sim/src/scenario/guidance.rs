@@ -2,9 +2,9 @@
 //! loop's attitude source.
 
 use guidance_core::energy::EnergyNormalizer;
-use guidance_core::guidance::{Guidance, GuidanceConfig, RateLimits};
+use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
 use guidance_core::interp::Interpolation;
-use guidance_core::nodes::{AngleBounds, Node, NodeTable};
+use guidance_core::nodes::{AngleBounds, HostNodeTable, Node};
 
 use super::{InterpolationKind, Scenario, ScenarioError};
 use crate::env::Planet;
@@ -18,7 +18,7 @@ pub fn build_guidance(
     sc: &Scenario,
     planet: &Planet,
     file: &str,
-) -> Result<Guidance<f64>, ScenarioError> {
+) -> Result<HostGuidance<f64>, ScenarioError> {
     let g = &sc.guidance;
     let energy = EnergyNormalizer::<f64>::new(
         planet.mu_m3_s2,
@@ -46,7 +46,7 @@ pub fn build_guidance(
         })
         .collect();
     let table =
-        NodeTable::new(g.independent, &nodes, g.bounds).map_err(|e| gerr("nodes", e.into()))?;
+        HostNodeTable::new(g.independent, &nodes, g.bounds).map_err(|e| gerr("nodes", e.into()))?;
     let kind = match g.interpolation {
         InterpolationKind::Linear => Interpolation::Linear,
         InterpolationKind::NaturalCubic => Interpolation::NaturalCubic,

@@ -84,6 +84,7 @@ pub mod file;
 mod flight;
 mod guidance;
 mod resolve;
+mod resolve_environment;
 mod resolve_guidance;
 mod to_toml;
 

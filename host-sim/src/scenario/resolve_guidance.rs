@@ -1,6 +1,6 @@
 //! The `[guidance]` section of a scenario file and its node table.
 
-use guidance_core::nodes::{Independent, MAX_NODES};
+use guidance_core::nodes::{HOST_NODE_CAPACITY, Independent};
 
 use super::file::{GuidanceFile, IndependentFile, InterpolationFile, Num};
 use super::resolve::Fields;
@@ -99,11 +99,11 @@ fn nodes(
     ind: Independent,
 ) -> Result<Vec<[f64; 3]>, ScenarioError> {
     let field = "guidance.nodes";
-    if rows.len() < 2 || rows.len() > MAX_NODES {
+    if rows.len() < 2 || rows.len() > HOST_NODE_CAPACITY {
         return Err(f.err(
             field,
             &format!("({} nodes)", rows.len()),
-            &format!("needs 2 to {MAX_NODES} nodes"),
+            &format!("needs 2 to {HOST_NODE_CAPACITY} nodes"),
         ));
     }
     let mut out: Vec<[f64; 3]> = Vec::with_capacity(rows.len());

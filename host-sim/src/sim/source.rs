@@ -3,7 +3,7 @@
 //! ([`CoreGuidance`]) or with onboard re-planning (`crate::replan_loop::ReplanLoop`), at the
 //! guidance's own clock ([`GuidanceSource`]).
 
-use guidance_core::guidance::{Command, Guidance};
+use guidance_core::guidance::{Command, Guidance, HostGuidance};
 use guidance_core::replan::{ReplanReport, ReplanningGuidance};
 use guidance_core::{GuidanceError, NavState};
 
@@ -61,11 +61,33 @@ pub trait FlightGuidance {
         &mut self,
         nav: &NavState<f64>,
     ) -> Result<(bool, Option<Self::Report>), GuidanceError>;
-    /// The clocked guidance: held command, ramp, ticks.
-    fn clocked(&self) -> &Guidance<f64>;
+    /// The clocked guidance's attitude at `time_s` ([`Guidance::attitude_at`]) \[rad\].
+    fn attitude_at(&self, time_s: f64) -> Command<f64>;
+    /// The clocked guidance's next tick ([`Guidance::next_tick_s`]) \[s\].
+    fn next_tick_s(&self) -> f64;
+    /// The next end of a ramp after `time_s` ([`Guidance::next_ramp_kink_s`]) \[s\].
+    fn next_ramp_kink_s(&self, time_s: f64) -> Option<f64>;
 }
 
-impl FlightGuidance for Guidance<f64> {
+/// The clocked-guidance part of [`FlightGuidance`], the same for every wrapper of a
+/// `Guidance<f64, N>` (any node capacity `N`).
+/// `$($to)*` is the path from `self` to the wrapped `Guidance` (empty for `Guidance` itself,
+/// whose inherent methods take precedence over the trait's).
+macro_rules! clocked_guidance {
+    ($($to:tt)*) => {
+        fn attitude_at(&self, time_s: f64) -> Command<f64> {
+            self$($to)*.attitude_at(time_s)
+        }
+        fn next_tick_s(&self) -> f64 {
+            self$($to)*.next_tick_s()
+        }
+        fn next_ramp_kink_s(&self, time_s: f64) -> Option<f64> {
+            self$($to)*.next_ramp_kink_s(time_s)
+        }
+    };
+}
+
+impl<const N: usize> FlightGuidance for Guidance<f64, N> {
     type Report = std::convert::Infallible;
     fn update(
         &mut self,
@@ -73,12 +95,10 @@ impl FlightGuidance for Guidance<f64> {
     ) -> Result<(bool, Option<Self::Report>), GuidanceError> {
         Ok((Guidance::update(self, nav)?.ticked, None))
     }
-    fn clocked(&self) -> &Guidance<f64> {
-        self
-    }
+    clocked_guidance!();
 }
 
-impl FlightGuidance for ReplanningGuidance<f64> {
+impl<const N: usize> FlightGuidance for ReplanningGuidance<f64, N> {
     type Report = ReplanReport<f64>;
     fn update(
         &mut self,
@@ -87,9 +107,7 @@ impl FlightGuidance for ReplanningGuidance<f64> {
         let out = ReplanningGuidance::update(self, nav)?;
         Ok((out.guidance.ticked, out.replan))
     }
-    fn clocked(&self) -> &Guidance<f64> {
-        self.guidance()
-    }
+    clocked_guidance!(.guidance());
 }
 
 /// Why a tick of a [`GuidanceSource`] failed.
@@ -120,8 +138,9 @@ pub struct GuidanceSource<G: FlightGuidance> {
     pub reports: Vec<G::Report>,
 }
 
-/// `guidance-core`'s [`Guidance`] in the loop.
-pub type CoreGuidance = GuidanceSource<Guidance<f64>>;
+/// `guidance-core`'s [`Guidance`] in the loop, with a host-sized node table (up to
+/// [`guidance_core::nodes::HOST_NODE_CAPACITY`] nodes).
+pub type CoreGuidance = GuidanceSource<HostGuidance<f64>>;
 
 impl<G: FlightGuidance> GuidanceSource<G> {
     /// Wrap a configured guidance.
@@ -144,19 +163,18 @@ impl<G: FlightGuidance> AttitudeSource for GuidanceSource<G> {
         } else {
             Err(TickError::NoTick {
                 time_s: nav.time_s,
-                next_tick_s: self.guidance.clocked().next_tick_s(),
+                next_tick_s: self.guidance.next_tick_s(),
             })
         }
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
-        self.guidance.clocked().attitude_at(time_s)
+        self.guidance.attitude_at(time_s)
     }
     fn next_tick_s(&self) -> f64 {
-        self.guidance.clocked().next_tick_s()
+        self.guidance.next_tick_s()
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
         self.guidance
-            .clocked()
             .next_ramp_kink_s(time_s)
             .unwrap_or(f64::INFINITY)
     }

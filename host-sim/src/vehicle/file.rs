@@ -28,20 +28,104 @@
 //!   polynomial in alpha_deg); optional alpha clamps.
 //! * `kind = "trim"`: fixed `cl`, `cd` (bank-angle control only).
 //!
-//! Every error names the file, the field (dotted path) and the offending value, e.g.
-//! `vehicle.toml: field `mass_kg` = -3: must be positive`. Unknown fields are rejected (a
-//! misspelt field would otherwise be silently ignored).
+//! The file is read through host-sim's one TOML reading path ([`crate::toml_input`]) into
+//! serde structs that reject unknown fields (a misspelt field would otherwise be silently
+//! ignored), then range-checked. Every error names the file, the field (dotted path) and the
+//! offending value, e.g. `vehicle.toml: field `mass_kg` = -3: must be positive`.
+
+use serde::Deserialize;
+use toml::Table;
 
 use super::models::{
     DragPolar, PolarAerodynamics, PolynomialAerodynamics, TableAerodynamics, TrimAerodynamics,
 };
 use super::table::CoefficientTable;
 use super::{AeroCoefficients, Aerodynamics, Vehicle, VehicleFileError, VehicleLimits};
-use toml::{Table, Value};
+use crate::toml_input::{Num, TomlInputError, shown};
 
-/// Field-access context: file name for error messages.
+/// The whole file (required fields are `Option` so a missing one is reported as such).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct VehicleFile {
+    name: Option<String>,
+    mass_kg: Option<Num>,
+    reference_area_m2: Option<Num>,
+    nose_radius_m: Option<Num>,
+    limits: Option<LimitsFile>,
+    aero: Option<AeroFile>,
+}
+
+/// `[limits]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LimitsFile {
+    heat_flux_kw_m2: Option<Num>,
+    g_load: Option<Num>,
+    g_load_rate_per_s: Option<Num>,
+    alpha_rate_deg_s: Option<Num>,
+    sigma_rate_deg_s: Option<Num>,
+}
+
+/// `[aero]` kinds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum AeroKind {
+    Table,
+    Polynomial,
+    DragPolar,
+    Trim,
+}
+
+/// A coefficient entry: a number (trim), a list (polynomial) or rows (table).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum Coef {
+    Number(Num),
+    List(Vec<Num>),
+    Rows(Vec<Vec<Num>>),
+}
+
+/// `[aero]`: the union of every kind's keys; each kind checks it has only its own.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AeroFile {
+    kind: Option<AeroKind>,
+    mach: Option<Vec<Num>>,
+    alpha_deg: Option<Vec<Num>>,
+    cl: Option<Coef>,
+    cd: Option<Coef>,
+    cd0: Option<Num>,
+    k: Option<Num>,
+    alpha_min_deg: Option<Num>,
+    alpha_max_deg: Option<Num>,
+}
+
+impl AeroFile {
+    /// The keys present.
+    fn present(&self) -> Vec<&'static str> {
+        let mut p = vec!["kind"];
+        for (k, there) in [
+            ("mach", self.mach.is_some()),
+            ("alpha_deg", self.alpha_deg.is_some()),
+            ("cl", self.cl.is_some()),
+            ("cd", self.cd.is_some()),
+            ("cd0", self.cd0.is_some()),
+            ("k", self.k.is_some()),
+            ("alpha_min_deg", self.alpha_min_deg.is_some()),
+            ("alpha_max_deg", self.alpha_max_deg.is_some()),
+        ] {
+            if there {
+                p.push(k);
+            }
+        }
+        p
+    }
+}
+
+/// Range checks against the parsed document (to show values as written).
 struct Ctx<'a> {
     file: &'a str,
+    doc: &'a Table,
 }
 
 impl Ctx<'_> {
@@ -59,162 +143,114 @@ impl Ctx<'_> {
         }
     }
 
-    fn path(prefix: &str, key: &str) -> String {
-        if prefix.is_empty() {
-            key.to_string()
+    /// The error naming `field` with its value as written.
+    fn bad(&self, field: &str, reason: impl Into<String>) -> VehicleFileError {
+        self.err(field, shown(self.doc, field), reason)
+    }
+
+    fn required<T>(&self, field: &str, v: Option<T>) -> Result<T, VehicleFileError> {
+        v.ok_or_else(|| self.err(field, "(missing)", "required"))
+    }
+
+    fn finite(&self, field: &str, v: Num) -> Result<f64, VehicleFileError> {
+        if v.0.is_finite() {
+            Ok(v.0)
         } else {
-            format!("{prefix}.{key}")
+            Err(self.bad(field, "must be finite"))
         }
     }
 
-    fn get<'t>(
-        &self,
-        t: &'t Table,
-        prefix: &str,
-        key: &str,
-    ) -> Result<&'t Value, VehicleFileError> {
-        t.get(key)
-            .ok_or_else(|| self.err(&Self::path(prefix, key), "(missing)", "required"))
+    fn number(&self, field: &str, v: Option<Num>) -> Result<f64, VehicleFileError> {
+        let v = self.required(field, v)?;
+        self.finite(field, v)
     }
 
-    fn number(&self, field: &str, v: &Value) -> Result<f64, VehicleFileError> {
-        let x = match v {
-            Value::Float(f) => *f,
-            Value::Integer(i) => *i as f64,
-            other => return Err(self.err(field, other.to_string(), "must be a number")),
-        };
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(self.err(field, v.to_string(), "must be finite"))
-        }
+    fn opt_number(&self, field: &str, v: Option<Num>) -> Result<Option<f64>, VehicleFileError> {
+        v.map(|x| self.finite(field, x)).transpose()
     }
 
-    fn f64(&self, t: &Table, prefix: &str, key: &str) -> Result<f64, VehicleFileError> {
-        self.number(&Self::path(prefix, key), self.get(t, prefix, key)?)
-    }
-
-    fn opt_f64(&self, t: &Table, prefix: &str, key: &str) -> Result<Option<f64>, VehicleFileError> {
-        t.get(key)
-            .map(|v| self.number(&Self::path(prefix, key), v))
-            .transpose()
-    }
-
-    fn positive(&self, t: &Table, prefix: &str, key: &str) -> Result<f64, VehicleFileError> {
-        let x = self.f64(t, prefix, key)?;
+    fn positive(&self, field: &str, v: Option<Num>) -> Result<f64, VehicleFileError> {
+        let x = self.number(field, v)?;
         if x > 0.0 {
             Ok(x)
         } else {
-            let v = self.get(t, prefix, key)?;
-            Err(self.err(&Self::path(prefix, key), v.to_string(), "must be positive"))
+            Err(self.err(field, x.to_string(), "must be positive"))
         }
     }
 
-    fn non_negative(&self, t: &Table, prefix: &str, key: &str) -> Result<f64, VehicleFileError> {
-        let x = self.f64(t, prefix, key)?;
+    fn non_negative(&self, field: &str, v: Option<Num>) -> Result<f64, VehicleFileError> {
+        let x = self.number(field, v)?;
         if x >= 0.0 {
             Ok(x)
         } else {
-            let v = self.get(t, prefix, key)?;
-            Err(self.err(
-                &Self::path(prefix, key),
-                v.to_string(),
-                "must not be negative",
-            ))
+            Err(self.err(field, x.to_string(), "must not be negative"))
         }
     }
 
-    fn table<'t>(
-        &self,
-        t: &'t Table,
-        prefix: &str,
-        key: &str,
-    ) -> Result<&'t Table, VehicleFileError> {
-        let field = Self::path(prefix, key);
-        match self.get(t, prefix, key)? {
-            Value::Table(inner) => Ok(inner),
-            other => Err(self.err(&field, other.to_string(), "must be a table")),
-        }
-    }
-
-    fn array<'t>(&self, field: &str, v: &'t Value) -> Result<&'t Vec<Value>, VehicleFileError> {
-        match v {
-            Value::Array(a) => Ok(a),
-            other => Err(self.err(field, other.to_string(), "must be an array")),
-        }
-    }
-
-    fn numbers(&self, field: &str, v: &Value) -> Result<Vec<f64>, VehicleFileError> {
-        let a = self.array(field, v)?;
-        a.iter()
+    fn numbers(&self, field: &str, xs: &[Num]) -> Result<Vec<f64>, VehicleFileError> {
+        xs.iter()
             .enumerate()
-            .map(|(i, x)| self.number(&format!("{field}[{i}]"), x))
+            .map(|(i, x)| self.finite(&format!("{field}[{i}]"), *x))
             .collect()
     }
 
-    fn num_array(&self, t: &Table, prefix: &str, key: &str) -> Result<Vec<f64>, VehicleFileError> {
-        let field = Self::path(prefix, key);
-        let v = self.get(t, prefix, key)?;
-        let xs = self.numbers(&field, v)?;
+    fn list(&self, field: &str, v: Option<&[Num]>) -> Result<Vec<f64>, VehicleFileError> {
+        let xs = self.numbers(field, self.required(field, v)?)?;
         if xs.is_empty() {
-            return Err(self.err(&field, v.to_string(), "must not be empty"));
+            return Err(self.bad(field, "must not be empty"));
         }
         Ok(xs)
     }
 
-    fn increasing(&self, t: &Table, prefix: &str, key: &str) -> Result<Vec<f64>, VehicleFileError> {
-        let xs = self.num_array(t, prefix, key)?;
+    fn increasing(&self, field: &str, v: Option<&[Num]>) -> Result<Vec<f64>, VehicleFileError> {
+        let xs = self.list(field, v)?;
         if xs.windows(2).all(|w| matches!(w, [a, b] if b > a)) {
             Ok(xs)
         } else {
-            let v = self.get(t, prefix, key)?;
-            Err(self.err(
-                &Self::path(prefix, key),
-                v.to_string(),
-                "must be strictly increasing",
-            ))
+            Err(self.bad(field, "must be strictly increasing"))
         }
     }
 
-    fn reject_unknown(
-        &self,
-        t: &Table,
-        prefix: &str,
-        known: &[&str],
-    ) -> Result<(), VehicleFileError> {
-        match t.iter().find(|(k, _)| !known.contains(&k.as_str())) {
-            Some((k, v)) => Err(self.err(
-                &Self::path(prefix, k),
-                v.to_string(),
-                format!("unknown field (expected one of: {})", known.join(", ")),
-            )),
-            None => Ok(()),
+    /// A coefficient list (polynomial kinds).
+    fn coef_list(&self, field: &str, c: Option<&Coef>) -> Result<Vec<f64>, VehicleFileError> {
+        match self.required(field, c)? {
+            Coef::List(xs) => self.list(field, Some(xs)),
+            _ => Err(self.bad(field, "must be an array of numbers")),
+        }
+    }
+
+    /// A coefficient number (trim kind).
+    fn coef_number(&self, field: &str, c: Option<&Coef>) -> Result<Num, VehicleFileError> {
+        match self.required(field, c)? {
+            Coef::Number(x) => Ok(*x),
+            _ => Err(self.bad(field, "must be a number")),
         }
     }
 
     /// Mach x alpha rows: `rows` arrays of `cols` numbers each.
     fn rows(
         &self,
-        t: &Table,
-        prefix: &str,
-        key: &str,
+        field: &str,
+        c: Option<&Coef>,
         rows: usize,
         cols: usize,
     ) -> Result<Vec<Vec<f64>>, VehicleFileError> {
-        let field = Self::path(prefix, key);
-        let v = self.get(t, prefix, key)?;
-        let a = self.array(&field, v)?;
-        if a.len() != rows {
-            return Err(self.err(
-                &field,
-                v.to_string(),
+        let rs: Vec<Vec<Num>> = match self.required(field, c)? {
+            Coef::Rows(r) => r.clone(),
+            // An empty array parses as a list.
+            Coef::List(l) if l.is_empty() => Vec::new(),
+            _ => return Err(self.bad(field, "must be an array of rows")),
+        };
+        if rs.len() != rows {
+            return Err(self.bad(
+                field,
                 format!(
                     "must have {rows} rows (one per Mach number), found {}",
-                    a.len()
+                    rs.len()
                 ),
             ));
         }
-        a.iter()
+        rs.iter()
             .enumerate()
             .map(|(i, r)| {
                 let f = format!("{field}[{i}]");
@@ -222,9 +258,8 @@ impl Ctx<'_> {
                 if xs.len() == cols {
                     Ok(xs)
                 } else {
-                    Err(self.err(
+                    Err(self.bad(
                         &f,
-                        r.to_string(),
                         format!(
                             "must have {cols} values (one per alpha), found {}",
                             xs.len()
@@ -235,40 +270,43 @@ impl Ctx<'_> {
             .collect()
     }
 
-    fn alpha_clamps(&self, t: &Table) -> Result<(Option<f64>, Option<f64>), VehicleFileError> {
-        let lo = self.opt_f64(t, "aero", "alpha_min_deg")?;
-        let hi = self.opt_f64(t, "aero", "alpha_max_deg")?;
+    fn alpha_clamps(&self, a: &AeroFile) -> Result<(Option<f64>, Option<f64>), VehicleFileError> {
+        let lo = self.opt_number("aero.alpha_min_deg", a.alpha_min_deg)?;
+        let hi = self.opt_number("aero.alpha_max_deg", a.alpha_max_deg)?;
         if let (Some(l), Some(h)) = (lo, hi)
             && h < l
         {
-            let v = t
-                .get("alpha_max_deg")
-                .map(Value::to_string)
-                .unwrap_or_default();
-            return Err(self.err(
+            return Err(self.bad(
                 "aero.alpha_max_deg",
-                v,
                 "must not be below `aero.alpha_min_deg`",
             ));
         }
         Ok((lo, hi))
     }
+
+    /// Reject keys of `[aero]` that the kind does not use.
+    fn only(&self, a: &AeroFile, kind: &str, allowed: &[&str]) -> Result<(), VehicleFileError> {
+        match a.present().into_iter().find(|k| !allowed.contains(k)) {
+            Some(k) => Err(self.bad(
+                &format!("aero.{k}"),
+                format!(
+                    "unknown field for kind \"{kind}\" (expected one of: {})",
+                    allowed.join(", ")
+                ),
+            )),
+            None => Ok(()),
+        }
+    }
 }
 
-fn aero(ctx: &Ctx<'_>, t: &Table) -> Result<Box<dyn Aerodynamics>, VehicleFileError> {
-    let kind_v = ctx.get(t, "aero", "kind")?;
-    let kind = match kind_v {
-        Value::String(s) => s.as_str(),
-        other => return Err(ctx.err("aero.kind", other.to_string(), "must be a string")),
-    };
-    const KINDS: &str = "expected \"table\", \"polynomial\", \"drag_polar\" or \"trim\"";
-    match kind {
-        "table" => {
-            ctx.reject_unknown(t, "aero", &["kind", "mach", "alpha_deg", "cl", "cd"])?;
-            let mach = ctx.increasing(t, "aero", "mach")?;
-            let alpha_deg = ctx.increasing(t, "aero", "alpha_deg")?;
-            let cl = ctx.rows(t, "aero", "cl", mach.len(), alpha_deg.len())?;
-            let cd = ctx.rows(t, "aero", "cd", mach.len(), alpha_deg.len())?;
+fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFileError> {
+    match ctx.required("aero.kind", a.kind)? {
+        AeroKind::Table => {
+            ctx.only(a, "table", &["kind", "mach", "alpha_deg", "cl", "cd"])?;
+            let mach = ctx.increasing("aero.mach", a.mach.as_deref())?;
+            let alpha_deg = ctx.increasing("aero.alpha_deg", a.alpha_deg.as_deref())?;
+            let cl = ctx.rows("aero.cl", a.cl.as_ref(), mach.len(), alpha_deg.len())?;
+            let cd = ctx.rows("aero.cd", a.cd.as_ref(), mach.len(), alpha_deg.len())?;
             let alpha_rad: Vec<f64> = alpha_deg.iter().map(|a| a.to_radians()).collect();
             let table_err = |e: super::table::TableError| ctx.err("aero", "(table)", e.to_string());
             Ok(Box::new(TableAerodynamics {
@@ -278,47 +316,48 @@ fn aero(ctx: &Ctx<'_>, t: &Table) -> Result<Box<dyn Aerodynamics>, VehicleFileEr
                 polar: None,
             }))
         }
-        "polynomial" => {
-            ctx.reject_unknown(
-                t,
-                "aero",
+        AeroKind::Polynomial => {
+            ctx.only(
+                a,
+                "polynomial",
                 &["kind", "cl", "cd", "alpha_min_deg", "alpha_max_deg"],
             )?;
-            let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(t)?;
+            let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(a)?;
             Ok(Box::new(PolynomialAerodynamics {
-                cl: ctx.num_array(t, "aero", "cl")?,
-                cd: ctx.num_array(t, "aero", "cd")?,
+                cl: ctx.coef_list("aero.cl", a.cl.as_ref())?,
+                cd: ctx.coef_list("aero.cd", a.cd.as_ref())?,
                 alpha_min_deg,
                 alpha_max_deg,
             }))
         }
-        "drag_polar" => {
-            ctx.reject_unknown(
-                t,
-                "aero",
+        AeroKind::DragPolar => {
+            ctx.only(
+                a,
+                "drag_polar",
                 &["kind", "cd0", "k", "cl", "alpha_min_deg", "alpha_max_deg"],
             )?;
-            let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(t)?;
+            let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(a)?;
             Ok(Box::new(PolarAerodynamics {
                 polar: DragPolar {
-                    cd0: ctx.positive(t, "aero", "cd0")?,
-                    k: ctx.non_negative(t, "aero", "k")?,
+                    cd0: ctx.positive("aero.cd0", a.cd0)?,
+                    k: ctx.non_negative("aero.k", a.k)?,
                 },
-                cl: ctx.num_array(t, "aero", "cl")?,
+                cl: ctx.coef_list("aero.cl", a.cl.as_ref())?,
                 alpha_min_deg,
                 alpha_max_deg,
             }))
         }
-        "trim" => {
-            ctx.reject_unknown(t, "aero", &["kind", "cl", "cd"])?;
+        AeroKind::Trim => {
+            ctx.only(a, "trim", &["kind", "cl", "cd"])?;
+            let cl = ctx.coef_number("aero.cl", a.cl.as_ref())?;
+            let cd = ctx.coef_number("aero.cd", a.cd.as_ref())?;
             Ok(Box::new(TrimAerodynamics {
                 trim: AeroCoefficients {
-                    cl: ctx.f64(t, "aero", "cl")?,
-                    cd: ctx.positive(t, "aero", "cd")?,
+                    cl: ctx.number("aero.cl", Some(cl))?,
+                    cd: ctx.positive("aero.cd", Some(cd))?,
                 },
             }))
         }
-        _ => Err(ctx.err("aero.kind", kind_v.to_string(), KINDS)),
     }
 }
 
@@ -328,61 +367,46 @@ fn aero(ctx: &Ctx<'_>, t: &Table) -> Result<Box<dyn Aerodynamics>, VehicleFileEr
 /// [`VehicleFileError::Toml`] for malformed TOML, [`VehicleFileError::Field`] for a missing,
 /// mistyped, out-of-range or unknown field (naming file, field and value).
 pub fn from_toml_str(text: &str, file: &str) -> Result<Vehicle, VehicleFileError> {
-    let doc: Table = text
-        .parse()
-        .map_err(|e: toml::de::Error| VehicleFileError::Toml {
+    let (vf, doc): (VehicleFile, Table) = crate::toml_input::parse(text).map_err(|e| match e {
+        TomlInputError::Syntax(message) => VehicleFileError::Toml {
             file: file.to_string(),
-            message: e.to_string().trim_end().to_string(),
-        })?;
-    let ctx = Ctx { file };
-    ctx.reject_unknown(
-        &doc,
-        "",
-        &[
-            "name",
-            "mass_kg",
-            "reference_area_m2",
-            "nose_radius_m",
-            "limits",
-            "aero",
-        ],
-    )?;
-    let name = match doc.get("name") {
+            message,
+        },
+        TomlInputError::Field {
+            field,
+            value,
+            reason,
+        } => VehicleFileError::Field {
+            file: file.to_string(),
+            field,
+            value,
+            reason,
+        },
+    })?;
+    let ctx = Ctx { file, doc: &doc };
+    let name = match vf.name {
         None => std::path::Path::new(file)
             .file_stem()
             .map_or_else(|| file.to_string(), |s| s.to_string_lossy().into_owned()),
-        Some(Value::String(s)) if !s.trim().is_empty() => s.clone(),
-        Some(other) => {
-            return Err(ctx.err("name", other.to_string(), "must be a non-empty string"));
-        }
+        Some(s) if !s.trim().is_empty() => s,
+        Some(_) => return Err(ctx.bad("name", "must be a non-empty string")),
     };
-    let mass_kg = ctx.positive(&doc, "", "mass_kg")?;
-    let reference_area_m2 = ctx.positive(&doc, "", "reference_area_m2")?;
-    let nose_radius_m = ctx.positive(&doc, "", "nose_radius_m")?;
-    let lim = ctx.table(&doc, "", "limits")?;
-    ctx.reject_unknown(
-        lim,
-        "limits",
-        &[
-            "heat_flux_kw_m2",
-            "g_load",
-            "g_load_rate_per_s",
-            "alpha_rate_deg_s",
-            "sigma_rate_deg_s",
-        ],
-    )?;
+    let mass_kg = ctx.positive("mass_kg", vf.mass_kg)?;
+    let reference_area_m2 = ctx.positive("reference_area_m2", vf.reference_area_m2)?;
+    let nose_radius_m = ctx.positive("nose_radius_m", vf.nose_radius_m)?;
+    let lim = ctx.required("limits", vf.limits)?;
     let limits = VehicleLimits {
-        heat_flux_w_m2: ctx.positive(lim, "limits", "heat_flux_kw_m2")? * 1.0e3,
-        g_load: ctx.positive(lim, "limits", "g_load")?,
-        g_load_rate_per_s: ctx.positive(lim, "limits", "g_load_rate_per_s")?,
+        heat_flux_w_m2: ctx.positive("limits.heat_flux_kw_m2", lim.heat_flux_kw_m2)? * 1.0e3,
+        g_load: ctx.positive("limits.g_load", lim.g_load)?,
+        g_load_rate_per_s: ctx.positive("limits.g_load_rate_per_s", lim.g_load_rate_per_s)?,
         alpha_rate_rad_s: ctx
-            .positive(lim, "limits", "alpha_rate_deg_s")?
+            .positive("limits.alpha_rate_deg_s", lim.alpha_rate_deg_s)?
             .to_radians(),
         sigma_rate_rad_s: ctx
-            .positive(lim, "limits", "sigma_rate_deg_s")?
+            .positive("limits.sigma_rate_deg_s", lim.sigma_rate_deg_s)?
             .to_radians(),
     };
-    let aero = aero(&ctx, ctx.table(&doc, "", "aero")?)?;
+    let aero = aero(&ctx, &ctx.required("aero", vf.aero)?)?;
     Ok(Vehicle {
         name,
         mass_kg,

@@ -508,3 +508,39 @@ fn toml_vehicle_shipped_example_parses() {
     let c = v.aero.coefficients(10.0, 20.0_f64.to_radians());
     assert_eq!((c.cl, c.cd), (0.35, 0.18));
 }
+
+#[test]
+fn toml_vehicle_unknown_and_misplaced_fields_are_named() {
+    let e = |text: &str| {
+        vehicle::from_toml_str(text, "v.toml")
+            .unwrap_err()
+            .to_string()
+    };
+    let m = e(&VALID_TOML.replace("mass_kg = 1200.0", "mass_kg = 1200.0\nmas_kg = 3"));
+    assert!(
+        m.starts_with("v.toml: field `mas_kg` = 3: unknown field"),
+        "{m}"
+    );
+    let m = e(&VALID_TOML.replace("g_load = 4.0", "g_load = 4.0\ng_laod = 4.0"));
+    assert!(
+        m.starts_with("v.toml: field `limits.g_laod` = 4.0: unknown field"),
+        "{m}"
+    );
+    // A key of another aero kind.
+    let m = e(&VALID_TOML.replace("kind = \"table\"", "kind = \"table\"\ncd0 = 0.05"));
+    assert!(
+        m.starts_with("v.toml: field `aero.cd0` = 0.05: unknown field for kind \"table\""),
+        "{m}"
+    );
+    // A trim vehicle with a list where a number belongs.
+    let base = VALID_TOML.split("[aero]").next().unwrap();
+    let m = e(&format!(
+        "{base}[aero]\nkind = \"trim\"\ncl = [0.3]\ncd = 0.9\n"
+    ));
+    assert!(
+        m.starts_with("v.toml: field `aero.cl` = [0.3]: must be a number"),
+        "{m}"
+    );
+    let m = e(&format!("{base}[aero]\nkind = \"trim\"\ncl = 0.3\n"));
+    assert_eq!(m, "v.toml: field `aero.cd` = (missing): required");
+}

@@ -13,7 +13,7 @@ use guidance_core::vinh::{PredictorConfig, VinhError};
 use host_sim::dynamics::{Dynamics, SphericalState};
 use host_sim::env::{Environment, ExponentialAtmosphere};
 use host_sim::replan_loop::{ReplanLoop, predictor_model};
-use host_sim::sim::{CoreGuidance, SimConfig, SimResult, TerminationReason, simulate};
+use host_sim::sim::{GuidanceSource, SimConfig, SimResult, TerminationReason, simulate};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
@@ -124,7 +124,7 @@ fn fly_stored(s: &Setup) -> SimResult {
     )
     .unwrap();
     let dynm = Dynamics::from_environment(&s.env, &s.veh);
-    simulate(dynm, CoreGuidance::new(g), &s.cfg, &mut |_| {})
+    simulate(dynm, GuidanceSource::new(g), &s.cfg, &mut |_| {})
         .unwrap()
         .0
 }
@@ -157,6 +157,7 @@ fn replanning_config(
         },
         model: predictor_model(&veh, &ExponentialAtmosphere::earth(), &p, 20.0).unwrap(),
         apply_out_of_reach: false,
+        steps_per_tick: 0,
     }
 }
 
@@ -383,7 +384,7 @@ fn full_environment(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<(f64, f64, Rep
     )
     .unwrap();
     let fly = |dg: f64| {
-        simulate(dynm, CoreGuidance::new(g.clone()), &mk(dg), &mut |_| {})
+        simulate(dynm, GuidanceSource::new(g.clone()), &mk(dg), &mut |_| {})
             .unwrap()
             .0
     };

@@ -225,3 +225,49 @@ fn heat_flux_constants_reach_the_dynamics() {
         ) < 1e-12
     );
 }
+
+/// Issue 7.7: a scenario may carry a profile exported from an optimal-control solver as is:
+/// 256 energy nodes fly, and the same bank profile sampled on 4 nodes gives the same flight to
+/// interpolation accuracy; 257 nodes are rejected naming the field and the limit.
+#[test]
+fn host_scenarios_take_256_nodes() {
+    let rows = |n: usize| -> String {
+        (0..n)
+            .map(|i| {
+                #[allow(clippy::cast_precision_loss)]
+                let e = 1.0 - i as f64 / (n - 1) as f64;
+                // Linear bank profile 0 -> 60 deg: the same on any node grid.
+                format!("[{e}, 0, {}]", 60.0 * (1.0 - e))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let scenario = |n: usize| {
+        format!(
+            "name = \"srm-{n}\"\nvehicle = \"srm\"\n[environment]\npreset = \"simplified\"\n\
+             [entry]\naltitude_km = 100.0\nspeed_m_s = 7658.34\nflight_path_angle_deg = -0.056\n\
+             heading_deg = 90.0\nlatitude_deg = 0.0\nlongitude_deg = 0.0\n\
+             [guidance]\nindependent = \"energy\"\ninitial_alpha_deg = 0.0\n\
+             nodes = [{}]\n",
+            rows(n)
+        )
+    };
+    let fine = parse_scenario(&scenario(256), "fine.toml", Path::new(".")).unwrap();
+    assert_eq!(fine.guidance.nodes.len(), 256);
+    let coarse = parse_scenario(&scenario(4), "coarse.toml", Path::new(".")).unwrap();
+    let a = fly(&fine, "fine.toml", &mut |_| {}).unwrap().result.summary;
+    let b = fly(&coarse, "coarse.toml", &mut |_| {})
+        .unwrap()
+        .result
+        .summary;
+    assert!(
+        rel(a.range_angle_rad, b.range_angle_rad) < 1e-6,
+        "{} vs {} rad",
+        a.range_angle_rad,
+        b.range_angle_rad
+    );
+    let e = parse_scenario(&scenario(257), "big.toml", Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("guidance.nodes") && e.contains("256"), "{e}");
+}

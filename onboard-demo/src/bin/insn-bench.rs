@@ -25,11 +25,15 @@ fn main() {
 mod firmware {
     use cortex_m_rt::{ExceptionFrame, entry, exception};
     use cortex_m_semihosting::hprintln;
-    use guidance_core::energy::EARTH_RADIUS_M;
+    use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
     use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
     use guidance_core::interp::Interpolation;
     use guidance_core::missions::horus2b_reference;
-    use guidance_core::replan::{PredictorMode, ReplanConfig, ReplanLimits, replan};
+    use guidance_core::nodes::{AngleBounds, Independent, NodeTable};
+    use guidance_core::replan::{
+        PredictorMode, PredictorModel, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig,
+        ReplanningGuidance, replan,
+    };
     use guidance_core::vinh::glide::GlideSolution;
     use guidance_core::vinh::nondim::{
         EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
@@ -86,22 +90,22 @@ mod firmware {
             return false;
         };
         let mut ok = true;
-        // Every call is a tick: times 2 s apart, crossing the bank-angle step of the reference mission.
-        let mut k = 0u32;
+        // Every call is a tick: times 2 s apart, crossing the bank-angle step of the reference
+        // mission. The samples are built before the measurement (f64 -> Num conversions are
+        // soft float on the M3), so only the guidance updates are counted; subtracting a
+        // separately measured construction loop was fragile to inlining.
+        let mut samples = [nav(0.0, 0.0); REPS as usize];
+        for (k, s) in (0u32..).zip(samples.iter_mut()) {
+            *s = nav(250.0 + 2.0 * f64::from(k), 7000.0 - f64::from(k));
+        }
         let ticks = c.ticks(|| {
-            for _ in 0..REPS {
-                let t = 250.0 + 2.0 * f64::from(k);
-                ok &= g.update(&nav(t, 7000.0 - f64::from(k))).is_ok();
-                k += 1;
+            for s in &samples {
+                ok &= g.update(core::hint::black_box(s)).is_ok();
             }
         });
-        // The nav-state construction (f64 -> Num conversions) is measured separately and removed.
-        let mut j = 0u32;
         let overhead = c.ticks(|| {
-            for _ in 0..REPS {
-                let s = nav(250.0 + 2.0 * f64::from(j), 7000.0 - f64::from(j));
+            for s in &samples {
                 core::hint::black_box(s);
-                j += 1;
             }
         });
         let per_call = (ticks.saturating_sub(overhead)) * INSN_PER_TICK / REPS;
@@ -145,6 +149,19 @@ mod firmware {
         hprintln!(
             "bench vinh_skip_solution_f32: {} insn/call",
             skip * INSN_PER_TICK / reps
+        );
+        let skip_peaks = c.ticks(|| {
+            for _ in 0..reps {
+                let r = NonDim::new(&planet, &atm, &veh, &lift, &entry)
+                    .and_then(|nd| SkipSolution::new(&nd))
+                    .and_then(|s| Ok((s.exit(), s.peaks()?)));
+                ok &= r.is_ok();
+                core::hint::black_box(r.ok());
+            }
+        });
+        hprintln!(
+            "bench vinh_skip_with_peaks_f32: {} insn/call",
+            skip_peaks * INSN_PER_TICK / reps
         );
         let glide = c.ticks(|| {
             for _ in 0..reps {
@@ -299,6 +316,143 @@ mod firmware {
         calls.iter().all(|&n| n > 0)
     }
 
+    /// Guidance ticks with re-planning spread over ticks (`steps_per_tick = 1`, f32): the largest
+    /// instruction count of one tick (guidance update plus at most one predictor call) over the
+    /// whole solve, for the converged and the worst-case solve of [`bench_replan`]; the tick that
+    /// runs the prediction with peaks is the most expensive.
+    fn bench_replanning_tick(c: &mut InsnCounter) -> bool {
+        let planet = Planet::<f32>::earth();
+        let atm = ExpAtmosphere::<f32>::earth();
+        let veh = srm();
+        let deg = core::f32::consts::PI / 180.0;
+        let Ok(bounds) = AngleBounds::<f32>::from_deg(0.0, 45.0, -90.0, 90.0) else {
+            return false;
+        };
+        let rows = [(1.0, 20.0, 0.0), (0.5, 20.0, 45.0), (0.0, 20.0, 45.0)];
+        let Ok(table) = NodeTable::<f32>::from_deg(Independent::NormalizedEnergy, &rows, bounds)
+        else {
+            return false;
+        };
+        let Ok(energy) = EnergyNormalizer::<f32>::new(
+            EARTH_MU_M3_S2,
+            EARTH_RADIUS_M,
+            EARTH_RADIUS_M + 122_000.0,
+            7_500.0,
+        ) else {
+            return false;
+        };
+        let nav = |t: f32| NavState {
+            time_s: t,
+            radius_m: 6_378_137.0 + 122e3,
+            speed_m_s: 7_000.0,
+            flight_path_angle_rad: -4.0 * deg,
+            heading_rad: 0.0,
+            latitude_rad: 0.0,
+            longitude_rad: 0.0,
+        };
+        let predictor = PredictorConfig {
+            final_speed_m_s: 2_500.0,
+            max_skips: 4,
+        };
+        let solver = ReplanConfig {
+            lambda: 1.0,
+            min_vertical_fraction: 0.3,
+            max_vertical_fraction: 1.0,
+            tolerance_m: 1_000.0,
+            max_iterations: 40,
+            predictor,
+            mode: PredictorMode::Chain,
+        };
+        let state = EntryState {
+            radius_m: nav(0.0).radius_m,
+            speed_m_s: 7_000.0,
+            flight_path_angle_rad: -4.0 * deg,
+        };
+        let lift = LiftControl {
+            lambda: 1.0,
+            vertical_fraction: 0.7,
+        };
+        let Ok(target) = predict(&planet, &atm, &veh, &lift, &state, &predictor).map(|p| p.range_m)
+        else {
+            return false;
+        };
+        let cases = [
+            (solver, 1e9_f32, "converged"),
+            (
+                ReplanConfig {
+                    tolerance_m: 1e-6,
+                    ..solver
+                },
+                1.0,
+                "worst_case",
+            ),
+        ];
+        let mut ok = true;
+        let mut worst = 0_u32;
+        for (solver, heat, name) in cases {
+            let config = ReplanningConfig {
+                every_n_ticks: 1000,
+                target: RangeTarget::FlownRangeAngle {
+                    total_rad: target / 6_378_137.0,
+                },
+                limits: ReplanLimits {
+                    heat_flux_w_m2: heat,
+                    g_load: 1e3,
+                },
+                solver,
+                model: PredictorModel {
+                    planet,
+                    atmosphere: atm,
+                    vehicle: veh,
+                    rotation_rate_rad_s: 0.0,
+                },
+                apply_out_of_reach: false,
+                steps_per_tick: 1,
+            };
+            let initial = Command {
+                alpha_rad: 20.0 * deg,
+                sigma_rad: 0.0,
+            };
+            let Ok(mut g) = ReplanningGuidance::new(
+                GuidanceConfig::thesis_default(),
+                table.clone(),
+                Interpolation::Linear,
+                energy,
+                initial,
+                config,
+            ) else {
+                return false;
+            };
+            let mut max = 0_u32;
+            let mut done = None;
+            let mut k = 0_u16;
+            while k < 100 && done.is_none() {
+                let n = nav(2.0 * f32::from(k));
+                let mut out = None;
+                let t = c.ticks(|| out = Some(g.update(&core::hint::black_box(n))));
+                max = max.max(t * INSN_PER_TICK);
+                match out {
+                    Some(Ok(o)) => done = o.replan.map(|r| (k, r.predictor_calls)),
+                    _ => ok = false,
+                }
+                k += 1;
+            }
+            let Some((k_done, calls)) = done else {
+                return false;
+            };
+            hprintln!(
+                "bench replanning_tick_max_{}_f32: {} insn/call ({} ticks, {} predictor calls)",
+                name,
+                max,
+                k_done + 1,
+                calls
+            );
+            worst = worst.max(max);
+        }
+        hprintln!("bench replanning_tick_max_f32: {} insn/call", worst);
+        ok
+    }
+
     #[entry]
     fn main() -> ! {
         let Some(p) = cortex_m::Peripherals::take() else {
@@ -334,6 +488,7 @@ mod firmware {
         );
         ok &= bench_closed_forms(&mut c);
         ok &= bench_replan(&mut c);
+        ok &= bench_replanning_tick(&mut c);
         onboard_demo::exit(ok)
     }
 

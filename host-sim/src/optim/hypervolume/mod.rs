@@ -1,1 +1,116 @@
-//! Exact hypervolume of a set of points (minimisation) with respect to a reference point.
+//! Exact hypervolume of a set of points (minimisation) with respect to a reference point,
+//! each point's exclusive contribution, and the least contributor.
+//!
+//! Conventions:
+//! * every objective is minimised; the hypervolume is the Lebesgue measure of the region
+//!   dominated by the points and bounded above by the reference point `r`;
+//! * a point that does not strictly dominate `r` (some coordinate `>= r`) dominates no
+//!   volume: it contributes 0 and is otherwise ignored; weakly dominated points and duplicates
+//!   change nothing (a duplicated point's copies each have exclusive contribution 0);
+//! * an empty set has hypervolume 0;
+//! * a zero-dimensional reference point, non-finite coordinates and points whose dimension
+//!   differs from the reference point's are [`HypervolumeError`]s naming the point and
+//!   coordinate. Nothing panics and no NaN is returned.
+//!
+//! Algorithms (see docs/HYPERVOLUME.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
+//! dimension sweep with a bit-set staircase (O(n log n)); 4-D by sweeping the fourth
+//! coordinate and adding each point's exclusive 3-D contribution (O(n^2)); 5-D and more by
+//! WFG slicing the last objective down to the 4-D case. Exclusive contributions: a sweep in
+//! 2-D (O(n log n)), an O(n) box sweep per point in 3-D, and `vol(box) - HV(limit set)` per
+//! point otherwise.
+
+mod contributions;
+mod error;
+mod hv2d;
+mod hv3d;
+mod hv4d;
+mod staircase;
+mod wfg;
+
+pub use contributions::{contributions, least_contributor};
+pub use error::HypervolumeError;
+
+/// The exact hypervolume of `points` with respect to `reference` (minimisation).
+///
+/// Points that do not strictly dominate `reference` contribute 0; an empty set gives 0.
+///
+/// # Errors
+/// [`HypervolumeError`] for a zero-dimensional or non-finite reference point, a point with
+/// the wrong number of coordinates or a non-finite coordinate, or a volume overflowing `f64`.
+pub fn hypervolume<P: AsRef<[f64]>>(
+    points: &[P],
+    reference: &[f64],
+) -> Result<f64, HypervolumeError> {
+    let (flat, _) = prepare(points, reference)?;
+    finite(hypervolume_of(&flat, reference.len(), reference))
+}
+
+/// Check the inputs and gather the points that strictly dominate the reference point,
+/// row-major, with their original indices.
+fn prepare<P: AsRef<[f64]>>(
+    points: &[P],
+    reference: &[f64],
+) -> Result<(Vec<f64>, Vec<usize>), HypervolumeError> {
+    let d = reference.len();
+    if d == 0 {
+        return Err(HypervolumeError::ZeroDimension);
+    }
+    if let Some((coordinate, &value)) = reference.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(HypervolumeError::NonFiniteReference { coordinate, value });
+    }
+    let mut flat = Vec::with_capacity(points.len() * d);
+    let mut index = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        let p = p.as_ref();
+        if p.len() != d {
+            return Err(HypervolumeError::DimensionMismatch {
+                index: i,
+                expected: d,
+                found: p.len(),
+            });
+        }
+        if let Some((coordinate, &value)) = p.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(HypervolumeError::NonFinitePoint {
+                index: i,
+                coordinate,
+                value,
+            });
+        }
+        if p.iter().zip(reference).all(|(a, r)| a < r) {
+            flat.extend_from_slice(p);
+            index.push(i);
+        }
+    }
+    Ok((flat, index))
+}
+
+/// `x` clamped at 0 from below (rounding can leave a difference of equal volumes slightly
+/// negative), keeping NaN: a NaN from overflowing intermediates (inf - inf) must reach
+/// [`finite`] and become [`HypervolumeError::Overflow`], which `f64::max` would hide.
+#[inline]
+fn nonneg(x: f64) -> f64 {
+    if x < 0.0 { 0.0 } else { x }
+}
+
+/// A finite result, or [`HypervolumeError::Overflow`].
+fn finite(v: f64) -> Result<f64, HypervolumeError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(HypervolumeError::Overflow { value: v })
+    }
+}
+
+/// Hypervolume of the points `pts` (row-major, stride `d = r.len()`), every one strictly
+/// dominating `r`.
+fn hypervolume_of(pts: &[f64], d: usize, r: &[f64]) -> f64 {
+    match (pts.len() / d, d) {
+        (0, _) => 0.0,
+        (1, _) => pts.iter().zip(r).map(|(p, r)| r - p).product(),
+        (_, 1) => r[0] - pts.iter().copied().fold(f64::INFINITY, f64::min),
+        (_, 2) => hv2d::hypervolume(pts, r),
+        (_, 3) => hv3d::hypervolume(pts, r),
+        (_, 4) => hv4d::hypervolume(pts, r),
+        _ => wfg::hypervolume(pts, d, r),
+    }
+}

@@ -1,0 +1,408 @@
+//! [`ReplanSolver`]: the re-planning predictor-corrector as a resumable state machine, one
+//! predictor call per [`ReplanSolver::step`], so a solve can be spread over several guidance
+//! ticks with a bounded amount of work in each. [`super::replan`] runs it to completion.
+//!
+//! # Steps
+//! 1. Range-only predictions ([`PeakMode::RangeOnly`]) at both ends `f_min`, `f_max` (in
+//!    [`PredictorMode::Auto`], a chain failure at either end restarts with the glide).
+//! 2. Target inside `[range(f_min), range(f_max)]`: Brent's method on `range(f) - target`
+//!    ([`crate::vinh`]'s `Zeroin`: secant and inverse quadratic steps, bisection when they are
+//!    slow), range-only, until the miss is within `tolerance_m`, the bracket is at the working
+//!    precision of the scalar type, or [`ReplanConfig::max_iterations`] predictions.
+//! 3. One prediction with peaks at the chosen fraction ([`PeakMode::Limits`]: it stops as soon
+//!    as a phase is proven to exceed a limit).
+//! 4. Only if that exceeds a limit: the [`LIMIT_GRID`] fractions, each with
+//!    [`PeakMode::Limits`] (most infeasible ones stop at the first skip's deepest point).
+//!
+//! Every fraction evaluated or returned is clamped into `[f_min, f_max]` (no rounding can put
+//! the output an ulp outside its bounds).
+
+use crate::nav::NavState;
+use crate::scalar::Real;
+use crate::vinh::VinhError;
+use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
+use crate::vinh::num::{Zeroin, ZeroinStep};
+use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
+
+use super::{
+    LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
+    ReplanFallBack, ReplanLimits, ReplanResult, predict_glide_with,
+};
+
+/// Where the solver is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+enum Phase<S> {
+    /// Next: the range at `f_min`.
+    EndLo,
+    /// Next: the range at `f_max` (`range(f_min)` known).
+    EndHi { range_lo: S },
+    /// Brent's search on the fraction.
+    Search {
+        z: Zeroin<S>,
+        best_f: S,
+        best_miss: S,
+        iterations: u8,
+    },
+    /// Next: the prediction with peaks at `f`.
+    Final { f: S, case: ReplanCase },
+    /// Limit grid: next index `i`, best feasible fraction so far.
+    Grid {
+        i: u8,
+        best: Option<(S, Prediction<S>)>,
+    },
+    /// Finished.
+    Done(ReplanResult<S>),
+}
+
+/// Resumable re-planning solve (see the module docs). Holds copies of its inputs (a few hundred
+/// bytes), so it can live across guidance ticks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ReplanSolver<S> {
+    planet: Planet<S>,
+    atmosphere: ExpAtmosphere<S>,
+    vehicle: VehicleParams<S>,
+    state: EntryState<S>,
+    target_range_m: S,
+    limits: ReplanLimits<S>,
+    config: ReplanConfig<S>,
+    glide: bool,
+    calls: u8,
+    phase: Phase<S>,
+}
+
+fn fall_back<S: Real>(reason: ReplanFallBack, calls: u8) -> ReplanResult<S> {
+    ReplanResult {
+        case: ReplanCase::FallBack(reason),
+        vertical_fraction: S::ONE,
+        bank_rad: S::ZERO,
+        prediction: None,
+        predictor_calls: calls,
+    }
+}
+
+impl<S: Real> ReplanSolver<S> {
+    /// Set up a solve for `target_range_m` \[m\] of surface range to go from `nav` (arguments as
+    /// [`super::replan`]). Invalid input gives a solver that is already done with a
+    /// [`ReplanCase::FallBack`].
+    #[must_use]
+    pub fn new(
+        planet: &Planet<S>,
+        atmosphere: &ExpAtmosphere<S>,
+        vehicle: &VehicleParams<S>,
+        nav: &NavState<S>,
+        target_range_m: S,
+        limits: &ReplanLimits<S>,
+        config: &ReplanConfig<S>,
+    ) -> Self {
+        let mut s = Self {
+            planet: *planet,
+            atmosphere: *atmosphere,
+            vehicle: *vehicle,
+            state: EntryState {
+                radius_m: nav.radius_m,
+                speed_m_s: nav.speed_m_s,
+                flight_path_angle_rad: nav.flight_path_angle_rad,
+            },
+            target_range_m,
+            limits: *limits,
+            config: *config,
+            glide: config.mode == PredictorMode::Glide,
+            calls: 0,
+            phase: Phase::EndLo,
+        };
+        let scalars = [
+            target_range_m,
+            limits.heat_flux_w_m2,
+            limits.g_load,
+            config.lambda,
+            config.min_vertical_fraction,
+            config.max_vertical_fraction,
+            config.tolerance_m,
+        ];
+        if scalars.iter().any(|v| !v.is_finite()) || nav.validate().is_err() {
+            s.phase = Phase::Done(fall_back(
+                ReplanFallBack::OutOfDomain(VinhError::NonFiniteInput),
+                0,
+            ));
+        } else if !(config.min_vertical_fraction > S::ZERO
+            && config.min_vertical_fraction <= config.max_vertical_fraction
+            && config.max_vertical_fraction <= S::ONE
+            && config.tolerance_m > S::ZERO
+            && limits.heat_flux_w_m2 > S::ZERO
+            && limits.g_load > S::ZERO
+            && config.max_iterations <= MAX_ITERATIONS)
+        {
+            s.phase = Phase::Done(fall_back(
+                ReplanFallBack::OutOfDomain(VinhError::InvalidConfig),
+                0,
+            ));
+        }
+        s
+    }
+
+    /// This solver, finished as a fall-back for `e` (out of domain) without a predictor call.
+    #[must_use]
+    pub(crate) fn fallen_back(mut self, e: VinhError) -> Self {
+        self.phase = Phase::Done(fall_back(ReplanFallBack::OutOfDomain(e), 0));
+        self
+    }
+
+    /// The result, once the solve is done.
+    #[must_use]
+    pub fn result(&self) -> Option<ReplanResult<S>> {
+        match self.phase {
+            Phase::Done(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// Predictor calls made so far (at most [`MAX_PREDICTOR_CALLS`]).
+    #[must_use]
+    pub fn predictor_calls(&self) -> u8 {
+        self.calls
+    }
+
+    /// Advance by at most `max_steps` predictor calls; the result if the solve is done.
+    pub fn run(&mut self, max_steps: u8) -> Option<ReplanResult<S>> {
+        let mut n = 0;
+        while n < max_steps {
+            if let Some(r) = self.step() {
+                return Some(r);
+            }
+            n += 1;
+        }
+        self.result()
+    }
+
+    fn clamp_f(&self, f: S) -> S {
+        f.clamp(
+            self.config.min_vertical_fraction,
+            self.config.max_vertical_fraction,
+        )
+    }
+
+    fn eval(&mut self, f: S, peaks: PeakMode<S>) -> Result<Prediction<S>, VinhError> {
+        self.calls = self.calls.saturating_add(1);
+        let lift = LiftControl {
+            lambda: self.config.lambda,
+            vertical_fraction: f,
+        };
+        if self.glide {
+            predict_glide_with(
+                &self.planet,
+                &self.atmosphere,
+                &self.vehicle,
+                &lift,
+                &self.state,
+                &self.config.predictor,
+                peaks,
+            )
+        } else {
+            predict_with(
+                &self.planet,
+                &self.atmosphere,
+                &self.vehicle,
+                &lift,
+                &self.state,
+                &self.config.predictor,
+                peaks,
+            )
+        }
+    }
+
+    fn finish(&mut self, r: ReplanResult<S>) -> Option<ReplanResult<S>> {
+        self.phase = Phase::Done(r);
+        Some(r)
+    }
+
+    fn fail(&mut self, reason: ReplanFallBack) -> Option<ReplanResult<S>> {
+        let r = fall_back(reason, self.calls);
+        self.finish(r)
+    }
+
+    fn success(&mut self, case: ReplanCase, f: S, p: Prediction<S>) -> Option<ReplanResult<S>> {
+        let f = self.clamp_f(f);
+        let r = ReplanResult {
+            case,
+            vertical_fraction: f,
+            bank_rad: f.clamp(-S::ONE, S::ONE).acos(),
+            prediction: Some(p),
+            predictor_calls: self.calls,
+        };
+        self.finish(r)
+    }
+
+    /// End of the search at the best fraction found.
+    fn enter_final(&mut self, best_f: S, best_miss: S) {
+        let case = if best_miss.abs() <= self.config.tolerance_m {
+            ReplanCase::Converged
+        } else {
+            ReplanCase::TargetOutOfReach
+        };
+        self.phase = Phase::Final { f: best_f, case };
+    }
+
+    /// Make exactly one predictor call (or finish without one); the result when done.
+    pub fn step(&mut self) -> Option<ReplanResult<S>> {
+        let (f_lo, f_hi) = (
+            self.config.min_vertical_fraction,
+            self.config.max_vertical_fraction,
+        );
+        let target = self.target_range_m;
+        // Transitions that need no predictor call are taken in this loop (bounded: each
+        // pass either calls the predictor and returns, or moves to a later phase; the search
+        // ends within MAX_BRENT_EVALS `next()` calls that each return an evaluation).
+        let mut guard = 0_u8;
+        loop {
+            guard = guard.saturating_add(1);
+            if guard > 8 || self.calls >= MAX_PREDICTOR_CALLS {
+                return match self.phase {
+                    Phase::Done(r) => Some(r),
+                    _ => self.fail(ReplanFallBack::OutOfDomain(VinhError::NoConvergence)),
+                };
+            }
+            match self.phase {
+                Phase::Done(r) => return Some(r),
+                Phase::EndLo => {
+                    return match self.eval(f_lo, PeakMode::RangeOnly) {
+                        Ok(p) => {
+                            self.phase = Phase::EndHi {
+                                range_lo: p.range_m,
+                            };
+                            None
+                        }
+                        Err(e) => self.end_failed(e),
+                    };
+                }
+                Phase::EndHi { range_lo } => {
+                    let range_hi = match self.eval(f_hi, PeakMode::RangeOnly) {
+                        Ok(p) => p.range_m,
+                        Err(e) => return self.end_failed(e),
+                    };
+                    if range_hi < range_lo {
+                        return self.fail(ReplanFallBack::NotMonotone);
+                    }
+                    self.phase = if target <= range_lo {
+                        Phase::Final {
+                            f: f_lo,
+                            case: ReplanCase::TargetOutOfReach,
+                        }
+                    } else if target >= range_hi {
+                        Phase::Final {
+                            f: f_hi,
+                            case: ReplanCase::TargetOutOfReach,
+                        }
+                    } else {
+                        let (m_lo, m_hi) = (range_lo - target, range_hi - target);
+                        let (best_f, best_miss) = if m_hi.abs() < m_lo.abs() {
+                            (f_hi, m_hi)
+                        } else {
+                            (f_lo, m_lo)
+                        };
+                        match Zeroin::new(f_lo, m_lo, f_hi, m_hi, S::ZERO) {
+                            Ok(z) => Phase::Search {
+                                z,
+                                best_f,
+                                best_miss,
+                                iterations: 0,
+                            },
+                            Err(e) => return self.fail(ReplanFallBack::OutOfDomain(e)),
+                        }
+                    };
+                    return None;
+                }
+                Phase::Search {
+                    mut z,
+                    mut best_f,
+                    mut best_miss,
+                    iterations,
+                } => {
+                    if iterations >= self.config.max_iterations {
+                        self.enter_final(best_f, best_miss);
+                        continue;
+                    }
+                    let f = match z.next() {
+                        ZeroinStep::Done(_) => {
+                            self.enter_final(best_f, best_miss);
+                            continue;
+                        }
+                        ZeroinStep::Eval(f) => self.clamp_f(f),
+                    };
+                    let miss = match self.eval(f, PeakMode::RangeOnly) {
+                        Ok(p) => p.range_m - target,
+                        Err(e) => return self.fail(ReplanFallBack::OutOfDomain(e)),
+                    };
+                    if miss.abs() < best_miss.abs() {
+                        best_f = f;
+                        best_miss = miss;
+                    }
+                    if miss.abs() <= self.config.tolerance_m {
+                        self.phase = Phase::Final {
+                            f,
+                            case: ReplanCase::Converged,
+                        };
+                        return None;
+                    }
+                    z.supply(miss);
+                    self.phase = Phase::Search {
+                        z,
+                        best_f,
+                        best_miss,
+                        iterations: iterations + 1,
+                    };
+                    return None;
+                }
+                Phase::Final { f, case } => {
+                    let limits = self.limits;
+                    return match self.eval(f, PeakMode::Limits(limits)) {
+                        Ok(p) if p.peak_status == PeakStatus::Computed => self.success(case, f, p),
+                        Ok(_) => {
+                            self.phase = Phase::Grid { i: 0, best: None };
+                            None
+                        }
+                        Err(e) => self.fail(ReplanFallBack::OutOfDomain(e)),
+                    };
+                }
+                Phase::Grid { i, best } => {
+                    if i >= LIMIT_GRID {
+                        return match best {
+                            None => self.fail(ReplanFallBack::LimitsInfeasible),
+                            Some((f, p)) => self.success(ReplanCase::LimitsBind, f, p),
+                        };
+                    }
+                    let n = S::from_f64(f64::from(LIMIT_GRID - 1));
+                    let fi = self.clamp_f(f_lo + (f_hi - f_lo) * S::from_f64(f64::from(i)) / n);
+                    let limits = self.limits;
+                    let mut best = best;
+                    if let Ok(p) = self.eval(fi, PeakMode::Limits(limits))
+                        && p.peak_status == PeakStatus::Computed
+                    {
+                        let miss = (p.range_m - target).abs();
+                        if best.is_none_or(|(_, pb)| miss < (pb.range_m - target).abs()) {
+                            best = Some((fi, p));
+                        }
+                    }
+                    self.phase = Phase::Grid { i: i + 1, best };
+                    if i + 1 >= LIMIT_GRID {
+                        continue;
+                    }
+                    return None;
+                }
+            }
+        }
+    }
+
+    /// A prediction at an end of the interval failed: in [`PredictorMode::Auto`] redo the ends
+    /// with the glide (once), else fall back.
+    fn end_failed(&mut self, e: VinhError) -> Option<ReplanResult<S>> {
+        if self.config.mode == PredictorMode::Auto && !self.glide {
+            self.glide = true;
+            self.phase = Phase::EndLo;
+            None
+        } else {
+            self.fail(ReplanFallBack::OutOfDomain(e))
+        }
+    }
+}

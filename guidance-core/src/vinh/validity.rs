@@ -1,0 +1,94 @@
+//! How far a prediction can be trusted: [`Validity`] of every [`super::Prediction`].
+//!
+//! The closed forms return a typed [`VinhError`] outside their mathematical domain (out of
+//! domain). Inside it, their accuracy was measured against numerical integration of the same
+//! equations only over the validation grids of docs/VINH.md; a prediction with any phase
+//! outside those grids is computed but *extrapolated*: its error is not known to be within the
+//! documented bounds (skip exit speed <= 0.8 %, glide range angle <= 3.2 %, ...). The limits
+//! below are the edges of the validated grids; the glide limits come from the range-error map
+//! of the glide-mode prediction against integration (`tests/it/vinh_error_map.rs`, L/D 0.3 to
+//! 2.5, 70-100 km, vertical fractions 0.3 to 1; docs/VINH.md): from an equilibrium start the
+//! error is <= 2.8 % for vertical L/D 0.72 to 2.5 and -4.4 % at 0.5; a start above the
+//! equilibrium of the commanded bank (the descent to it is not modelled) adds about
+//! `0.56 (dh_km / E)^2` percent for a start `dh_km` above the glide start radius and a total
+//! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5).
+
+use super::error::VinhError;
+use super::predict::Prediction;
+
+/// Skip entry speeds validated against integration \[m/s\] (`validate_vinh_skip_*`: 7435.5 to
+/// 10 500 m/s).
+pub const SKIP_SPEED_RANGE_M_S: (f64, f64) = (7_400.0, 10_500.0);
+/// Skip entry flight-path angles validated \[rad\] (-7 to -2 deg, as magnitudes).
+pub const SKIP_FPA_RANGE_RAD: (f64, f64) = (
+    2.0 * core::f64::consts::PI / 180.0 - 1e-9,
+    7.0 * core::f64::consts::PI / 180.0 + 1e-9,
+);
+/// Largest `|eta v|` at a validated skip exit (measured 0.33; the exit errors grow with it).
+pub const SKIP_MAX_EXIT_ETA_V: f64 = 0.35;
+/// Glide start altitudes validated to the documented accuracy \[m\] (70 to 110 km; at 50 km
+/// with little vertical lift the range error reached 8-12 %).
+pub const GLIDE_ALTITUDE_RANGE_M: (f64, f64) = (70_000.0, 110_000.0);
+/// Vertical lift-to-drag ratios of the validated glides (validation grid: 0.63 to 2.27; error
+/// map: <= 2.8 % from 0.72 to 2.5, -4.4 % at 0.5).
+pub const GLIDE_VERTICAL_LD_RANGE: (f64, f64) = (0.6, 2.5);
+/// Smallest validated ratio of final to glide start speed (0.3).
+pub const GLIDE_MIN_FINAL_SPEED_RATIO: f64 = 0.3;
+/// Largest distance between the state and the glide start radius of a glide-mode prediction,
+/// per unit of total L/D \[m\]: `0.56 (1.9)^2 = 2` % of added error (error map).
+pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
+
+/// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Extrapolation {
+    /// A skip entry speed outside [`SKIP_SPEED_RANGE_M_S`].
+    SkipEntrySpeed,
+    /// A skip entry flight-path angle outside [`SKIP_FPA_RANGE_RAD`].
+    SkipFlightPathAngle,
+    /// A skip exit with `|eta v|` above [`SKIP_MAX_EXIT_ETA_V`].
+    SkipSpeedExpansion,
+    /// Glide start altitude outside [`GLIDE_ALTITUDE_RANGE_M`].
+    GlideAltitude,
+    /// Glide vertical L/D outside [`GLIDE_VERTICAL_LD_RANGE`].
+    GlideVerticalLiftToDrag,
+    /// Final speed below [`GLIDE_MIN_FINAL_SPEED_RATIO`] of the glide start speed.
+    GlideFinalSpeedRatio,
+    /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
+    /// L/D from the state.
+    GlideStartOffset,
+}
+
+/// Validity of a prediction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Validity {
+    /// Every phase inside the validated region: the documented accuracy applies.
+    InDomain,
+    /// Computed, but a phase lies outside the validated region (the first reason).
+    Extrapolated(Extrapolation),
+    /// Not computed: outside the closed forms' domain (the predictor's error).
+    OutOfDomain(VinhError),
+}
+
+impl Validity {
+    /// Keep the first reason: `self` if already extrapolated, else `Extrapolated(reason)` when
+    /// `outside`.
+    #[must_use]
+    pub(crate) fn and(self, outside: bool, reason: Extrapolation) -> Self {
+        match self {
+            Validity::InDomain if outside => Validity::Extrapolated(reason),
+            v => v,
+        }
+    }
+}
+
+/// The validity of a predictor result: its [`Prediction::validity`], or out of domain with
+/// the error.
+#[must_use]
+pub fn validity_of<S>(result: &Result<Prediction<S>, VinhError>) -> Validity {
+    match result {
+        Ok(p) => p.validity,
+        Err(e) => Validity::OutOfDomain(*e),
+    }
+}

@@ -1,0 +1,137 @@
+//! Typed validity of predictor outputs (issue 10 item 6): in domain inside the validated grids
+//! of docs/VINH.md, extrapolated (with the reason) outside them, out of domain with the error.
+
+use crate::vinh_replan::{glide_nav, srm};
+use crate::vinh_support::vehicles::{H_S, MU, R_EARTH, RHO0};
+use guidance_core::replan::predict_glide;
+use guidance_core::vinh::{
+    EntryState, ExpAtmosphere, Extrapolation, LiftControl, Planet, PredictorConfig, Validity,
+    VehicleParams, predict, validity_of,
+};
+
+fn planet() -> Planet<f64> {
+    Planet {
+        mu_m3_s2: MU,
+        radius_m: R_EARTH,
+    }
+}
+fn atmosphere() -> ExpAtmosphere<f64> {
+    ExpAtmosphere {
+        rho0_kg_m3: RHO0,
+        scale_height_m: H_S,
+        ref_radius_m: R_EARTH,
+    }
+}
+fn lift(f: f64) -> LiftControl<f64> {
+    LiftControl {
+        lambda: 1.0,
+        vertical_fraction: f,
+    }
+}
+const TO_2500: PredictorConfig<f64> = PredictorConfig {
+    final_speed_m_s: 2500.0,
+    max_skips: 4,
+};
+
+fn glide_from(h: f64, v: f64, veh: &VehicleParams<f64>, f: f64) -> Validity {
+    let s = EntryState {
+        radius_m: R_EARTH + h,
+        speed_m_s: v,
+        flight_path_angle_rad: 0.0,
+    };
+    validity_of(&predict_glide(
+        &planet(),
+        &atmosphere(),
+        veh,
+        &lift(f),
+        &s,
+        &TO_2500,
+    ))
+}
+
+/// Glide mode from the SRM glide entry: in domain at the equilibrium start (validated +0.56 %),
+/// extrapolated when the start is far above the equilibrium of the bank (cos(sigma) = 0.3:
+/// validated -10 %) and for a vehicle of vertical L/D 0.3; out of domain with the error for a
+/// final speed above the current speed.
+#[test]
+fn glide_predictions_carry_their_validity() {
+    let n = glide_nav(0.0);
+    let h = n.radius_m - R_EARTH;
+    assert_eq!(glide_from(h, n.speed_m_s, &srm(), 1.0), Validity::InDomain);
+    assert_eq!(
+        glide_from(h, n.speed_m_s, &srm(), 0.3),
+        Validity::Extrapolated(Extrapolation::GlideStartOffset)
+    );
+    // Same polar shape, L/D 0.3 (K raised: E* = 1/(2 sqrt(K C_D0))).
+    let mut low = srm();
+    low.k_polar = 1.0 / (4.0 * 0.3 * 0.3 * low.cd0);
+    let v = glide_from(60e3, 5000.0, &low, 1.0);
+    assert!(
+        matches!(
+            v,
+            Validity::Extrapolated(
+                Extrapolation::GlideVerticalLiftToDrag | Extrapolation::GlideAltitude
+            )
+        ),
+        "{v:?}"
+    );
+    let s = EntryState {
+        radius_m: n.radius_m,
+        speed_m_s: 2000.0,
+        flight_path_angle_rad: 0.0,
+    };
+    let r = predict_glide(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500);
+    assert!(matches!(validity_of(&r), Validity::OutOfDomain(_)), "{r:?}");
+}
+
+/// Chain: the grid of validated skip entries (SRM, 122 km, 7435.5-9000 m/s, -5/-7 deg) at
+/// four vertical lift fractions. Only chains whose every skip starts inside the validated
+/// grid and whose glide starts at 70-110 km are in domain; the later skips of a multi-skip
+/// chain re-enter below 7.4 km/s, outside the grid, so those chains are extrapolated
+/// (`SkipEntrySpeed`). An entry at 11.5 km/s is never in domain.
+#[test]
+fn chain_predictions_carry_their_validity() {
+    let (mut in_domain, mut extrapolated) = (0, 0);
+    for &f in &[0.3, 0.5, 0.7, 1.0] {
+        for &(v, g) in &[
+            (7435.5, -7.0),
+            (7800.0, -7.0),
+            (7800.0, -5.0),
+            (9000.0, -7.0),
+        ] {
+            let s = EntryState {
+                radius_m: R_EARTH + 122e3,
+                speed_m_s: v,
+                flight_path_angle_rad: f64::to_radians(g),
+            };
+            let r = predict(&planet(), &atmosphere(), &srm(), &lift(f), &s, &TO_2500);
+            let val = validity_of(&r);
+            println!(
+                "f {f} {v} m/s {g} deg: {val:?}, {:?}",
+                r.map(|p| (p.skips, p.glide_start_radius_m - R_EARTH))
+            );
+            if let Ok(p) = r {
+                let later_skips = p.skips > 1;
+                let h_g = p.glide_start_radius_m - R_EARTH;
+                let glide_ok = (70e3..=110e3).contains(&h_g);
+                match val {
+                    Validity::InDomain => {
+                        assert!(!later_skips && glide_ok, "{p:?}");
+                        in_domain += 1;
+                    }
+                    Validity::Extrapolated(_) => extrapolated += 1,
+                    Validity::OutOfDomain(_) => unreachable!(),
+                }
+            }
+        }
+    }
+    println!("in domain {in_domain}, extrapolated {extrapolated}");
+    assert!(extrapolated > 0);
+    let s = EntryState {
+        radius_m: R_EARTH + 122e3,
+        speed_m_s: 11_500.0,
+        flight_path_angle_rad: f64::to_radians(-7.0),
+    };
+    let r = predict(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500);
+    assert_ne!(validity_of(&r), Validity::InDomain, "{r:?}");
+}

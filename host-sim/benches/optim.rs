@@ -1,0 +1,67 @@
+//! Optimiser benchmarks (single thread, serial evaluation): ZDT1 with 30 variables,
+//! population 100, 250 generations (25,100 evaluations), MOEA/D and NSGA-II with pagmo's
+//! defaults, seeds 1..=10 in turn (one run per iteration). The median hypervolume over the
+//! ten seeds (reference point (1.1, 1.1); true front 0.8767) is printed once per algorithm.
+//! Peer figures (pygmo 2.20): `scripts/compare_pygmo.py`, docs/PERFORMANCE.md.
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use host_sim::optim::hypervolume::hypervolume;
+use host_sim::optim::population::feasible_front;
+use host_sim::optim::problems::Zdt;
+use host_sim::optim::{
+    Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, Serial, evolve,
+};
+
+const GENERATIONS: u64 = 250;
+const SEEDS: u64 = 10;
+
+fn run_moead(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
+    let mut a = Moead::new(MoeadConfig::default(), seed);
+    evolve(&mut a, problem, &Serial, GENERATIONS, &mut NoObserver).expect("moead runs");
+    a.population().to_vec()
+}
+
+fn run_nsga2(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
+    let mut a = Nsga2::new(Nsga2Config::default(), seed);
+    evolve(&mut a, problem, &Serial, GENERATIONS, &mut NoObserver).expect("nsga2 runs");
+    a.population().to_vec()
+}
+
+fn median_hypervolume(run: fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>, problem: &Zdt) -> Vec<f64> {
+    let mut hv: Vec<f64> = (1..=SEEDS)
+        .map(|s| hypervolume(&feasible_front(&run(problem, s)), &[1.1, 1.1]).expect("hypervolume"))
+        .collect();
+    hv.sort_by(f64::total_cmp);
+    hv
+}
+
+fn bench(c: &mut Criterion) {
+    let problem = Zdt::standard(1).expect("zdt1");
+    type Run = fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>;
+    let algorithms: [(&str, Run); 2] = [("moead", run_moead), ("nsga2", run_nsga2)];
+    for (name, run) in algorithms {
+        let hv = median_hypervolume(run, &problem);
+        println!(
+            "{name} zdt1: hypervolume over seeds 1..={SEEDS}: median {:.4}, min {:.4}, max {:.4}",
+            0.5 * (hv[4] + hv[5]),
+            hv[0],
+            hv[9]
+        );
+        let mut seed = 0;
+        c.bench_function(&format!("optim/zdt1-30var-pop100-250gen/{name}"), |b| {
+            b.iter(|| {
+                seed = seed % SEEDS + 1;
+                black_box(run(black_box(&problem), seed).len())
+            });
+        });
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(30);
+    targets = bench
+}
+criterion_main!(benches);

@@ -1,0 +1,468 @@
+//! `host-sim optimize`: run a multi-objective optimiser on a standard test problem, print a
+//! summary, and with `--out DIR` write the final population, its feasible front (CSV) and a
+//! summary JSON (hypervolume, reference point, evaluations, wall time of the evolution alone).
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use clap::ValueEnum;
+use serde::Serialize;
+
+use crate::optim::hypervolume::{HypervolumeError, hypervolume};
+use crate::optim::population::{feasible_fraction, feasible_front_indices};
+use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
+use crate::optim::{
+    Algorithm, Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Problem,
+    Rayon, Serial, WeightGeneration, evolve,
+};
+use crate::report::{ReportError, write_atomic};
+
+/// The algorithms `optimize` offers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum AlgorithmName {
+    /// MOEA/D (pagmo semantics, Lampinen constraint rules).
+    Moead,
+    /// NSGA-II (Deb's constrained domination).
+    Nsga2,
+}
+
+impl AlgorithmName {
+    fn as_str(self) -> &'static str {
+        match self {
+            Self::Moead => "moead",
+            Self::Nsga2 => "nsga2",
+        }
+    }
+}
+
+/// MOEA/D weight generation on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum WeightsArg {
+    /// Simplex lattice (population must be C(H + m - 1, m - 1)).
+    Grid,
+    /// Unit vectors then a Halton sequence.
+    LowDiscrepancy,
+    /// Unit vectors then random simplex points.
+    Random,
+}
+
+/// Arguments of `optimize`.
+#[derive(Debug, clap::Args)]
+pub struct OptimizeArgs {
+    /// Test problem: zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr.
+    #[arg(long, default_value = "zdt1")]
+    pub problem: String,
+    /// Algorithm.
+    #[arg(long, value_enum, default_value = "moead")]
+    pub algorithm: AlgorithmName,
+    /// Population size.
+    #[arg(long, default_value_t = 100)]
+    pub population: usize,
+    /// Generations after the initial population.
+    #[arg(long, default_value_t = 250)]
+    pub generations: u64,
+    /// Seed of the run's random-number generator.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Objectives of a DTLZ problem.
+    #[arg(long, default_value_t = 3)]
+    pub objectives: usize,
+    /// MOEA/D weight generation.
+    #[arg(long, value_enum, default_value = "grid")]
+    pub weights: WeightsArg,
+    /// MOEA/D neighbourhood size (at most population - 1).
+    #[arg(long, default_value_t = 20)]
+    pub neighbours: usize,
+    /// MOEA/D per-variable mutation probability (default 1/variables; the thesis used
+    /// 1/population).
+    #[arg(long, value_name = "P")]
+    pub mutation_probability: Option<f64>,
+    /// MOEA/D offspring per ask/tell batch (1: pagmo's steady state; larger batches let
+    /// --threads evaluate in parallel).
+    #[arg(long, default_value_t = 1)]
+    pub batch_size: usize,
+    /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
+    /// gains only with --batch-size > 1.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Hypervolume reference point, comma-separated (default: the problem's).
+    #[arg(
+        long = "ref",
+        value_name = "R1,R2,...",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub reference: Option<Vec<f64>>,
+    /// Write population.csv, front.csv and summary.json here.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// Failures of `optimize`; each says what to change.
+#[derive(Debug, thiserror::Error)]
+pub enum OptimizeError {
+    /// Unknown problem name.
+    #[error("command line: --problem {name}: unknown; use one of {list}", list = NAMES.join(", "))]
+    UnknownProblem {
+        /// The name given.
+        name: String,
+    },
+    /// The problem could not be built (e.g. a DTLZ with fewer than 2 objectives).
+    #[error("command line: --problem {name} --objectives {objectives}: {source}")]
+    Problem {
+        /// Problem name.
+        name: String,
+        /// Objectives asked for.
+        objectives: usize,
+        /// Cause.
+        source: TestProblemError,
+    },
+    /// A reference point of the wrong dimension or with non-finite values.
+    #[error(
+        "command line: --ref has {got} values {values:?}; the problem has {expected} objectives and every value must be finite"
+    )]
+    Reference {
+        /// Objectives of the problem.
+        expected: usize,
+        /// Values given.
+        got: usize,
+        /// The values.
+        values: Vec<f64>,
+    },
+    /// `--threads 0`.
+    #[error("command line: --threads 0: use at least 1")]
+    Threads,
+    /// The rayon pool could not be built.
+    #[error("cannot start {threads} evaluation threads: {source}")]
+    Pool {
+        /// Threads asked for.
+        threads: usize,
+        /// Cause.
+        source: rayon::ThreadPoolBuildError,
+    },
+    /// The optimiser refused its settings or an evaluation failed.
+    #[error("command line: {0}")]
+    Optim(#[from] OptimError),
+    /// Hypervolume failed.
+    #[error("hypervolume: {0}")]
+    Hypervolume(#[from] HypervolumeError),
+    /// Output could not be written.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// Writing to the console failed.
+    #[error("cannot write output: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// The summary JSON.
+#[derive(Debug, Serialize)]
+struct Summary<'a> {
+    problem: &'a str,
+    algorithm: &'static str,
+    population: usize,
+    generations: u64,
+    seed: u64,
+    objectives: usize,
+    variables: usize,
+    constraints: usize,
+    evaluations: u64,
+    reference_point: &'a [f64],
+    hypervolume: f64,
+    true_front_hypervolume: Option<f64>,
+    hypervolume_ratio: Option<f64>,
+    feasible_fraction: f64,
+    front_size: usize,
+    /// Wall time of the evolution alone (no problem set-up, no output) [s].
+    wall_time_s: f64,
+    threads: usize,
+}
+
+struct Outcome {
+    population: Vec<Individual<Vec<f64>>>,
+    evaluations: u64,
+    wall_time_s: f64,
+}
+
+fn drive<A: Algorithm<TestProblem>>(
+    mut alg: A,
+    problem: &TestProblem,
+    generations: u64,
+    pool: Option<Arc<rayon::ThreadPool>>,
+) -> Result<Outcome, OptimError> {
+    let start = Instant::now();
+    match pool {
+        Some(pool) => evolve(
+            &mut alg,
+            problem,
+            &Rayon::with_pool(pool),
+            generations,
+            &mut NoObserver,
+        )?,
+        None => evolve(&mut alg, problem, &Serial, generations, &mut NoObserver)?,
+    }
+    let wall_time_s = start.elapsed().as_secs_f64();
+    Ok(Outcome {
+        population: alg.population().to_vec(),
+        evaluations: alg.evaluations(),
+        wall_time_s,
+    })
+}
+
+/// Run `optimize` with arguments `a`, printing the summary to `out`.
+///
+/// # Errors
+/// [`OptimizeError`].
+pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
+    let problem = TestProblem::by_name(&a.problem, a.objectives)
+        .map_err(|source| OptimizeError::Problem {
+            name: a.problem.clone(),
+            objectives: a.objectives,
+            source,
+        })?
+        .ok_or_else(|| OptimizeError::UnknownProblem {
+            name: a.problem.clone(),
+        })?;
+    let m = problem.objectives();
+    let reference = match &a.reference {
+        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => r.clone(),
+        Some(r) => {
+            return Err(OptimizeError::Reference {
+                expected: m,
+                got: r.len(),
+                values: r.clone(),
+            });
+        }
+        None => problem.reference_point(),
+    };
+    let pool = match a.threads {
+        0 => return Err(OptimizeError::Threads),
+        1 => None,
+        t => Some(Arc::new(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .map_err(|source| OptimizeError::Pool { threads: t, source })?,
+        )),
+    };
+    let outcome = match a.algorithm {
+        AlgorithmName::Moead => {
+            let weights = match a.weights {
+                WeightsArg::Grid => WeightGeneration::Grid,
+                WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
+                WeightsArg::Random => WeightGeneration::Random,
+            };
+            let config = MoeadConfig {
+                population: a.population,
+                weights,
+                neighbours: a.neighbours,
+                mutation_probability: a.mutation_probability,
+                batch_size: a.batch_size,
+                ..MoeadConfig::default()
+            };
+            drive(Moead::new(config, a.seed), &problem, a.generations, pool)?
+        }
+        AlgorithmName::Nsga2 => {
+            let config = Nsga2Config {
+                population: a.population,
+                ..Nsga2Config::default()
+            };
+            drive(Nsga2::new(config, a.seed), &problem, a.generations, pool)?
+        }
+    };
+    let pop = &outcome.population;
+    let front_idx = feasible_front_indices(pop);
+    let front: Vec<&[f64]> = front_idx
+        .iter()
+        .map(|&i| pop[i].objectives.as_slice())
+        .collect();
+    let hv = hypervolume(&front, &reference)?;
+    let true_hv = problem.front_hypervolume(&reference, 20_000);
+    let summary = Summary {
+        problem: &a.problem,
+        algorithm: a.algorithm.as_str(),
+        population: a.population,
+        generations: a.generations,
+        seed: a.seed,
+        objectives: m,
+        variables: crate::optim::RealProblem::bounds(&problem).dim(),
+        constraints: problem.constraints(),
+        evaluations: outcome.evaluations,
+        reference_point: &reference,
+        hypervolume: hv,
+        true_front_hypervolume: true_hv,
+        hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
+        feasible_fraction: feasible_fraction(pop),
+        front_size: front.len(),
+        wall_time_s: outcome.wall_time_s,
+        threads: a.threads,
+    };
+    let ratio = summary
+        .hypervolume_ratio
+        .map_or_else(String::new, |r| format!(" ({:.4} of the true front)", r));
+    writeln!(
+        out,
+        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
+        summary.algorithm,
+        summary.problem,
+        summary.evaluations,
+        summary.wall_time_s,
+        hv,
+        ratio,
+        reference,
+        front.len(),
+        100.0 * summary.feasible_fraction
+    )?;
+    if let Some(dir) = &a.out {
+        write_outputs(dir, pop, &front, &summary)?;
+        writeln!(out, "wrote {}", dir.display())?;
+    }
+    Ok(())
+}
+
+fn write_outputs(
+    dir: &Path,
+    pop: &[Individual<Vec<f64>>],
+    front: &[&[f64]],
+    summary: &Summary<'_>,
+) -> Result<(), OptimizeError> {
+    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let nf = summary.objectives;
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=summary.variables)
+        .map(|i| format!("x{i}"))
+        .chain((1..=nf).map(|i| format!("f{i}")))
+        .chain((1..=summary.constraints).map(|i| format!("g{i}")))
+        .chain(["violation".to_string()])
+        .collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for ind in pop {
+        let row: Vec<String> = ind
+            .decision
+            .iter()
+            .chain(&ind.objectives)
+            .chain(&ind.constraints)
+            .chain(std::iter::once(&ind.violation))
+            .map(|v| format!("{v:e}"))
+            .collect();
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    write_atomic(&dir.join("population.csv"), csv.as_bytes())?;
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=nf).map(|i| format!("f{i}")).collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for f in front {
+        let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    write_atomic(&dir.join("front.csv"), csv.as_bytes())?;
+    let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
+    write_atomic(&dir.join("summary.json"), json.as_bytes())?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(problem: &str, algorithm: AlgorithmName, out: Option<PathBuf>) -> OptimizeArgs {
+        OptimizeArgs {
+            problem: problem.into(),
+            algorithm,
+            population: 20,
+            generations: 5,
+            seed: 3,
+            objectives: 3,
+            weights: WeightsArg::Grid,
+            neighbours: 5,
+            mutation_probability: None,
+            batch_size: 1,
+            threads: 1,
+            reference: None,
+            out,
+        }
+    }
+
+    #[test]
+    fn optimize_writes_population_front_and_summary() {
+        let dir = std::env::temp_dir().join(format!("host-sim-optimize-{}", std::process::id()));
+        let mut out = Vec::new();
+        let mut a = args("zdt1", AlgorithmName::Nsga2, Some(dir.clone()));
+        a.generations = 60;
+        run(&a, &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains("nsga2 on zdt1: 1220 evaluations"), "{text}");
+        let pop = std::fs::read_to_string(dir.join("population.csv")).unwrap();
+        assert_eq!(pop.lines().count(), 21);
+        assert!(pop.starts_with("x1,x2,"));
+        let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();
+        assert!(front.starts_with("f1,f2\n") && front.lines().count() > 1);
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["evaluations"], 1220);
+        assert_eq!(json["reference_point"], serde_json::json!([1.1, 1.1]));
+        assert!(json["hypervolume"].as_f64().unwrap() > 0.0);
+        assert!(json["wall_time_s"].as_f64().unwrap() >= 0.0);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn optimize_bad_input_says_what_to_change() {
+        let mut out = Vec::new();
+        let e = run(&args("zdt5", AlgorithmName::Moead, None), &mut out).unwrap_err();
+        assert!(e.to_string().contains("--problem zdt5: unknown"), "{e}");
+        let e = run(&args("dtlz2", AlgorithmName::Moead, None), &mut out).unwrap_err();
+        assert!(
+            e.to_string().contains("nearest legal sizes are 15 and 21"),
+            "{e}"
+        );
+        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        a.reference = Some(vec![1.0]);
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(e.to_string().contains("--ref has 1 values"), "{e}");
+        let mut a = args("zdt1", AlgorithmName::Nsga2, None);
+        a.population = 22;
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(e.to_string().contains("use 20 or 24"), "{e}");
+        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        a.batch_size = 21;
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("batch_size = 21 is outside [1, population]"),
+            "{e}"
+        );
+        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        a.mutation_probability = Some(1.5);
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(e.to_string().contains("mutation_probability = 1.5"), "{e}");
+        let mut a = args("zdt1", AlgorithmName::Nsga2, None);
+        a.threads = 0;
+        assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads)));
+    }
+
+    #[test]
+    fn optimize_threads_do_not_change_the_result() {
+        let dir =
+            |t| std::env::temp_dir().join(format!("host-sim-optimize-t{t}-{}", std::process::id()));
+        for alg in [AlgorithmName::Nsga2, AlgorithmName::Moead] {
+            for t in [1usize, 3] {
+                let mut a = args("constr", alg, Some(dir(t)));
+                a.threads = t;
+                a.batch_size = 8;
+                run(&a, &mut Vec::new()).unwrap();
+            }
+            let read = |t| std::fs::read_to_string(dir(t).join("population.csv")).unwrap();
+            assert_eq!(read(1), read(3), "{alg:?}");
+            for t in [1usize, 3] {
+                std::fs::remove_dir_all(dir(t)).unwrap();
+            }
+        }
+    }
+}

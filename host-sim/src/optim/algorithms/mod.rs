@@ -1,0 +1,33 @@
+//! The algorithms, each an ask/tell [`crate::optim::Algorithm`] with serialisable state.
+
+pub mod moead;
+pub mod nsga2;
+
+pub use moead::{DeVariation, Moead, MoeadConfig, MoeadVariation, MoeadWith};
+pub use nsga2::{Nsga2, Nsga2Config};
+
+use super::error::ConfigError;
+
+/// Check `value` lies in `[lo, hi]`.
+pub(crate) fn check_range(
+    algorithm: &'static str,
+    name: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    range: &'static str,
+) -> Result<(), ConfigError> {
+    if value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(ConfigError::Parameter {
+            algorithm,
+            name,
+            value,
+            range,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;

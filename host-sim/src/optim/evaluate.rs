@@ -1,0 +1,138 @@
+//! Batch evaluators (serial, rayon) and [`evolve`], which drives an algorithm's ask/tell loop
+//! with one of them and reports every generation to an observer.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use super::algorithm::Algorithm;
+use super::error::{EvalError, OptimError};
+use super::observe::{GenerationReport, Observer};
+use super::problem::{Evaluation, Problem};
+
+/// Evaluates a batch of decisions; results are returned in batch order.
+pub trait Evaluator {
+    /// Evaluate every decision of `batch`.
+    fn evaluate<P: Problem>(
+        &self,
+        problem: &P,
+        batch: &[P::Decision],
+    ) -> Vec<Result<Evaluation, EvalError>>;
+}
+
+/// One decision after the other on the calling thread.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Serial;
+
+impl Evaluator for Serial {
+    fn evaluate<P: Problem>(
+        &self,
+        problem: &P,
+        batch: &[P::Decision],
+    ) -> Vec<Result<Evaluation, EvalError>> {
+        batch.iter().map(|d| problem.evaluate(d)).collect()
+    }
+}
+
+/// In parallel on rayon threads: the global pool, or a given one.
+#[derive(Clone, Debug, Default)]
+pub struct Rayon {
+    pool: Option<Arc<rayon::ThreadPool>>,
+}
+
+impl Rayon {
+    /// Use rayon's global pool.
+    #[must_use]
+    pub fn global() -> Self {
+        Self { pool: None }
+    }
+
+    /// Use this pool.
+    #[must_use]
+    pub fn with_pool(pool: Arc<rayon::ThreadPool>) -> Self {
+        Self { pool: Some(pool) }
+    }
+}
+
+impl Evaluator for Rayon {
+    fn evaluate<P: Problem>(
+        &self,
+        problem: &P,
+        batch: &[P::Decision],
+    ) -> Vec<Result<Evaluation, EvalError>> {
+        let run = || batch.par_iter().map(|d| problem.evaluate(d)).collect();
+        match &self.pool {
+            Some(pool) => pool.install(run),
+            None => run(),
+        }
+    }
+}
+
+/// Run `generations` more generations of `algorithm` on `problem` (first completing the
+/// initial population if needed), evaluating each batch with `evaluator`. The observer sees
+/// the initial population (generation 0) and every completed generation.
+///
+/// On an evaluation error the run stops with [`OptimError::Evaluation`]; the algorithm keeps
+/// the evaluations told before it.
+///
+/// # Errors
+/// [`OptimError`] from the algorithm or the evaluation.
+pub fn evolve<P, A, E, O>(
+    algorithm: &mut A,
+    problem: &P,
+    evaluator: &E,
+    generations: u64,
+    observer: &mut O,
+) -> Result<(), OptimError>
+where
+    P: Problem,
+    A: Algorithm<P> + ?Sized,
+    E: Evaluator + ?Sized,
+    O: Observer<P::Decision> + ?Sized,
+{
+    let target = if algorithm.is_initialised() {
+        algorithm.generation() + generations
+    } else {
+        generations
+    };
+    loop {
+        let before = (algorithm.is_initialised(), algorithm.generation());
+        if before.0 && before.1 >= target {
+            return Ok(());
+        }
+        // `ask` is idempotent while the batch is open: ask once for its size, once to borrow it.
+        let n = algorithm.ask(problem)?.len();
+        let generation = before.1 + u64::from(before.0);
+        let fail = |index| {
+            move |source| OptimError::Evaluation {
+                index,
+                generation,
+                source,
+            }
+        };
+        if (0..n).all(|i| !algorithm.is_told(i)) {
+            let results = evaluator.evaluate(problem, algorithm.ask(problem)?);
+            for (index, r) in results.into_iter().enumerate() {
+                algorithm.tell(problem, index, r.map_err(fail(index))?)?;
+            }
+        } else {
+            // Resumed from a checkpoint taken mid-batch: evaluate only what is missing.
+            let untold: Vec<usize> = (0..n).filter(|&i| !algorithm.is_told(i)).collect();
+            let batch = algorithm.ask(problem)?;
+            let missing: Vec<P::Decision> = untold.iter().map(|&i| batch[i].clone()).collect();
+            let results = evaluator.evaluate(problem, &missing);
+            for (&index, r) in untold.iter().zip(results) {
+                algorithm.tell(problem, index, r.map_err(fail(index))?)?;
+            }
+        }
+        let after = (algorithm.is_initialised(), algorithm.generation());
+        if after != before && after.0 {
+            observer.observe(&GenerationReport {
+                algorithm: algorithm.name(),
+                generation: after.1,
+                evaluations: algorithm.evaluations(),
+                population: algorithm.population(),
+            });
+        }
+    }
+}

@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Side-by-side exact hypervolume: host-sim against moocore and pygmo on identical fronts.
+
+Not part of CI. Setup (once):
+    python3 -m venv /tmp/venv-hv && /tmp/venv-hv/bin/pip install moocore==0.3.2 pygmo numpy
+    cargo build --release -p host-sim
+Run from the workspace root:
+    /tmp/venv-hv/bin/python scripts/compare_hypervolume.py [--repeat 51] [--rounds 5] [--out /tmp/hv-fronts]
+
+It writes each random front (points on the unit sphere or the unit simplex, non-negative
+orthant, reference point 1.1 in every objective) as CSV, times moocore.hypervolume and
+pygmo.hypervolume(...).compute (median of --repeat calls, in-process), runs
+`host-sim hypervolume FRONT.csv --ref ... --repeat K` on the same CSV (median it reports), and
+checks that the three values agree to 1e-12 relative. Prints a Markdown table.
+`--check-pagmo7 DIR` also prints moocore's and pygmo's value for pagmo2's 7-objective front.
+"""
+
+import argparse
+import pathlib
+import subprocess
+import sys
+import time
+
+import moocore
+import numpy as np
+import pygmo
+
+CASES = [(3, 2000), (4, 1000), (5, 1000)]
+
+
+def front(kind, d, n, seed):
+    rng = np.random.default_rng(seed)
+    if kind == "sphere":
+        v = np.abs(rng.standard_normal((n, d)))
+        return v / np.linalg.norm(v, axis=1, keepdims=True)
+    v = rng.exponential(size=(n, d))
+    return v / v.sum(axis=1, keepdims=True)
+
+
+def median_time(f, repeat):
+    times = []
+    value = None
+    for _ in range(repeat):
+        t = time.perf_counter()
+        value = f()
+        times.append(time.perf_counter() - t)
+    return value, float(np.median(times))
+
+
+def ours(binary, path, ref, repeat):
+    out = subprocess.run(
+        [binary, "hypervolume", str(path), "--ref", ",".join(repr(float(r)) for r in ref),
+         "--repeat", str(repeat)],
+        check=True, capture_output=True, text=True).stdout
+    kv = dict(line.split(": ", 1) for line in out.splitlines() if ": " in line)
+    return float(kv["hypervolume"]), float(kv["median_time_s"])
+
+
+def check_pagmo7(data_dir):
+    tok = (pathlib.Path(data_dir) / "testcases" / "c_max_t1_d7_n64").read_text().split()
+    v = [float(x) for x in tok]
+    d, n = int(v[1]), int(v[2])
+    ref = np.array(v[3:3 + d])
+    pts = np.array(v[3 + d:3 + d + n * d]).reshape(n, d)
+    print(f"pagmo2 c_max_t1_d7_n64: file {v[3 + d + n * d]!r}, "
+          f"moocore {moocore.hypervolume(pts, ref=ref)!r}, "
+          f"pygmo {pygmo.hypervolume(pts).compute(ref)!r}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=21)
+    ap.add_argument("--out", default="/tmp/hv-fronts")
+    ap.add_argument("--bin", default="target/release/host-sim")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--rounds", type=int, default=1,
+                    help="measure every case this many times and keep each tool's best "
+                         "median (damps the noise of a shared machine)")
+    ap.add_argument("--check-pagmo7", metavar="DIR")
+    a = ap.parse_args()
+    if a.check_pagmo7:
+        check_pagmo7(a.check_pagmo7)
+    out = pathlib.Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    print(f"moocore {moocore.__version__}, pygmo {pygmo.__version__}, numpy {np.__version__}; "
+          f"median of {a.repeat} runs (best of {a.rounds} rounds), times in ms")
+    print()
+    print("| front | d | n | hypervolume | host-sim | moocore | pygmo | max rel. diff |")
+    print("|---|---|---|---|---|---|---|---|")
+    worst = 0.0
+    for d, n in CASES:
+        for kind in ("sphere", "simplex"):
+            pts = front(kind, d, n, a.seed)
+            ref = np.full(d, 1.1)
+            path = out / f"{kind}_d{d}_n{n}.csv"
+            np.savetxt(path, pts, delimiter=",", fmt="%.17g")
+            pts = np.loadtxt(path, delimiter=",")  # exactly what host-sim reads
+            hv_obj = pygmo.hypervolume(pts)
+            t_m = t_p = t_o = float("inf")
+            for _ in range(a.rounds):  # rounds interleave the three tools
+                hv_m, t = median_time(lambda: moocore.hypervolume(pts, ref=ref), a.repeat)
+                t_m = min(t_m, t)
+                hv_p, t = median_time(lambda: hv_obj.compute(ref), a.repeat)
+                t_p = min(t_p, t)
+                hv_o, t = ours(a.bin, path, ref, a.repeat)
+                t_o = min(t_o, t)
+            rel = max(abs(hv_o - hv_m), abs(hv_o - hv_p)) / abs(hv_m)
+            worst = max(worst, rel)
+            print(f"| {kind} | {d} | {n} | {hv_o:.15g} | {t_o * 1e3:.3f} | {t_m * 1e3:.3f} "
+                  f"| {t_p * 1e3:.3f} | {rel:.1e} |")
+    print()
+    ok = worst <= 1e-12
+    print(f"values agree to 1e-12 relative: {'yes' if ok else 'NO'} (worst {worst:.1e})")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
