@@ -10,6 +10,8 @@
 
 #[cfg(target_os = "none")]
 pub mod insn;
+#[cfg(target_os = "none")]
+pub mod stack;
 
 /// Exit QEMU through semihosting with the given success flag, then idle.
 #[cfg(target_os = "none")]

@@ -18,6 +18,7 @@ use onboard_spec::machines::{
 mod elf;
 mod golden;
 mod insn;
+mod stack;
 
 /// Thumb targets the flight core must build for.
 const CORE_TARGETS: [&str; 3] = [
@@ -26,13 +27,15 @@ const CORE_TARGETS: [&str; 3] = [
     "thumbv7em-none-eabihf",
 ];
 
-const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|golden|setup> [--help]\n\
+const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|stack|golden|setup> [--help]\n\
   test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, PIL, size budget\n\
   firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
   pil       fly the HORUS-2B reference mission with the firmware's guidance in QEMU, compare with SIL\n\
   bench-firmware  instruction counts of guidance-core on the M4F and M3 under QEMU -icount\n\
                   (--json: one JSON object target -> benchmark -> instructions on stdout)\n\
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
+  stack     measured maximum stack (guidance tick, navigation conversion, re-plan) on both\n\
+            machines; static RAM + stack against onboard-demo/size-budget.toml\n\
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
   fuzz      fuzz the flight code (node tables, guidance with hostile times, frame decoder):\n\
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Some("test") => test(),
         Some("firmware") => setup().and_then(|()| firmware()),
         Some("size") => size(),
+        Some("stack") => setup().and_then(|()| stack::stack()),
         Some("pil") => setup().and_then(|()| pil()),
         Some("bench-firmware") => {
             let json = args.iter().skip(1).any(|a| a == "--json");
@@ -313,6 +317,10 @@ fn test() -> Result<(), String> {
         Box::new(insn_budget),
     ));
     steps.push(("firmware size budget", Box::new(size)));
+    steps.push((
+        "firmware static RAM + measured stack budget",
+        Box::new(stack::stack),
+    ));
 
     let total = steps.len();
     for (i, (name, step)) in steps.iter().enumerate() {

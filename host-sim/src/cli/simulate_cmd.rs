@@ -69,10 +69,13 @@ fn pil_run(
     let wall = started.elapsed().as_secs_f64();
     writeln!(
         out,
-        "PIL: {} frames with {} in {wall:.2} s ({:.0} frames/s)",
+        "PIL: {} frames with {} in {wall:.2} s ({:.0} frames/s); firmware stack {}",
         stats.frames,
         elf.display(),
-        stats.frames as f64 / wall.max(1e-9)
+        stats.frames as f64 / wall.max(1e-9),
+        stats
+            .firmware_stack_bytes
+            .map_or_else(|| "not reported".to_string(), |b| format!("{b} bytes"))
     )?;
     let flight = Flight {
         result,

@@ -325,7 +325,16 @@ impl PilGuidance {
             return Err(PilError::Qemu("not running".into()));
         };
         match q.wait(timeout) {
-            Some(_) if q.succeeded() => Ok(self.stats),
+            Some(e) if q.succeeded() => {
+                // "pil: end of run after N frames; stack M bytes"
+                self.stats.firmware_stack_bytes = e
+                    .stdout
+                    .split("; stack ")
+                    .nth(1)
+                    .and_then(|r| r.split(' ').next())
+                    .and_then(|n| n.parse().ok());
+                Ok(self.stats)
+            }
             Some(e) => Err(PilError::QemuExited(e)),
             None => Err(PilError::Timeout(
                 timeout,

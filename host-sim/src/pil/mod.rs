@@ -186,4 +186,7 @@ pub struct PilStats {
     pub frames: u64,
     /// Total time spent waiting for answers (write + read) \[s\].
     pub link_s: f64,
+    /// Deepest stack of the firmware's whole run, as it measured it (stack painting) and
+    /// printed at the end \[bytes\] (`None`: not reported).
+    pub firmware_stack_bytes: Option<u64>,
 }

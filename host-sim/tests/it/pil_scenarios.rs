@@ -137,6 +137,26 @@ fn check(sc: &Scenario, target: &str, fixed: bool) {
         }
         Err(e) => panic!("{name}: PIL run failed: {e}"),
     };
+    // The firmware's whole-run stack (painted) within its budget.
+    let budget_file =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../onboard-demo/size-budget.toml");
+    let text = std::fs::read_to_string(&budget_file).unwrap();
+    let key = format!("{}_pil_run_stack_bytes", target.replace('-', "_"));
+    let budget: u64 = text
+        .lines()
+        .find_map(|l| {
+            l.trim()
+                .strip_prefix(key.as_str())?
+                .trim()
+                .strip_prefix('=')
+        })
+        .map(|v| v.trim().replace('_', "").parse().unwrap())
+        .unwrap_or_else(|| panic!("{key} missing in {}", budget_file.display()));
+    let stack = stats
+        .firmware_stack_bytes
+        .expect("the firmware reports its stack");
+    println!("{name}: firmware whole-run stack {stack} bytes (budget {budget})");
+    assert!(stack <= budget, "{name}: stack {stack} > budget {budget}");
     let base = sil(sc, 0.0);
     assert_eq!(pil.summary.termination, base.summary.termination, "{name}");
     assert_eq!(pil.summary.ticks, base.summary.ticks, "{name}");

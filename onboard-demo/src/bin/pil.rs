@@ -287,9 +287,17 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
-        match run() {
+        // The whole run under stack painting: its deepest stack (guidance state, set-up
+        // builder, frame buffers and every update) is printed at the end.
+        let (stack, r) = onboard_demo::stack::max_stack_bytes(run);
+        match r {
             Ok(n) => {
-                hprintln!("pil: end of run after {} frames", n);
+                hprintln!(
+                    "pil: end of run after {} frames; stack {} bytes{}",
+                    n,
+                    stack.bytes,
+                    if stack.overflowed { " or more" } else { "" }
+                );
                 onboard_demo::exit(true)
             }
             Err(e) => {
