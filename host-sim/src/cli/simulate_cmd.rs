@@ -34,6 +34,18 @@ pub struct SimulateArgs {
     /// a soft-float one on the Cortex-M3 (fixed point).
     #[arg(long, value_name = "ELF")]
     pub pil: Option<PathBuf>,
+    /// With --pil: inject seeded link faults on the nav frames, each of drop, corruption and
+    /// delay past the tick with this probability (0 to 0.3).
+    #[arg(long, value_name = "P", requires = "pil")]
+    pub pil_fault_rate: Option<f64>,
+    /// Seed of the fault injector (with --pil-fault-rate).
+    #[arg(
+        long,
+        value_name = "SEED",
+        default_value_t = 1,
+        requires = "pil_fault_rate"
+    )]
+    pub pil_fault_seed: u64,
 }
 
 /// Fly scenario `sc` in PIL with firmware `elf`, write the run directory and print the link
@@ -42,11 +54,14 @@ fn pil_run(
     sc: &Scenario,
     file: &str,
     elf: &Path,
+    faults: Option<pil::FaultConfig>,
     dir: &Path,
     out: &mut dyn Write,
 ) -> Result<RunOutput, CliError> {
     let started = std::time::Instant::now();
-    let (run, record) = pil::fly_scenario_pil(sc, file, pil::PilConfig::new(elf.to_path_buf()));
+    let mut cfg = pil::PilConfig::new(elf.to_path_buf());
+    cfg.faults = faults;
+    let (run, record) = pil::fly_scenario_pil(sc, file, cfg);
     let (result, stats) = match run {
         Ok(r) => r,
         Err(e) => {
@@ -77,6 +92,21 @@ fn pil_run(
             .firmware_stack_bytes
             .map_or_else(|| "not reported".to_string(), |b| format!("{b} bytes"))
     )?;
+    if faults.is_some() {
+        let f = stats.faults;
+        writeln!(
+            out,
+            "PIL link faults: {} dropped, {} corrupted, {} delayed past their tick; {} retries, {} ticks on the held command; firmware counted {}",
+            f.dropped,
+            f.corrupted,
+            f.delayed,
+            f.retries,
+            f.missed_ticks,
+            stats
+                .firmware_faults
+                .map_or_else(|| "?".to_string(), |n| n.to_string())
+        )?;
+    }
     let flight = Flight {
         result,
         vehicle: sc.load_vehicle()?,
@@ -135,7 +165,23 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
     };
     let run = if let Some(elf) = &a.pil {
         bar.finish_and_clear();
-        pil_run(&sc, &file, elf, &dir, out)?
+        let faults = match a.pil_fault_rate {
+            Some(p) if (0.0..=0.3).contains(&p) => Some(pil::FaultConfig {
+                seed: a.pil_fault_seed,
+                p_drop: p,
+                p_corrupt: p,
+                p_delay: p,
+            }),
+            Some(p) => {
+                return Err(CliError::Argument {
+                    field: "--pil-fault-rate",
+                    value: p.to_string(),
+                    reason: "must be a probability in [0, 0.3]",
+                });
+            }
+            None => None,
+        };
+        pil_run(&sc, &file, elf, faults, &dir, out)?
     } else {
         let res = simulate_scenario(&sc, &file, &dir, &mut progress);
         bar.finish_and_clear();

@@ -28,15 +28,17 @@ pub struct PilGuidance {
     replies: Option<Receiver<Result<[u8; FRAME_LEN], String>>>,
     qemu: Option<Qemu>,
     dir: FifoDir,
-    last: Option<CommandFrame>,
-    next_tick_s: f64,
+    pub(super) last: Option<CommandFrame>,
+    pub(super) next_tick_s: f64,
     /// The firmware's guidance period \[s\].
-    period_s: f64,
+    pub(super) period_s: f64,
     /// What every command frame must respect.
     limits: FrameLimits,
     seq: u32,
-    stats: PilStats,
-    record: PilRecord,
+    pub(super) stats: PilStats,
+    pub(super) record: PilRecord,
+    /// The link fault injector (`None`: a clean link).
+    pub(super) faults: Option<super::faults::FaultInjector>,
 }
 
 impl PilGuidance {
@@ -83,6 +85,7 @@ impl PilGuidance {
             return Err(PilError::ElfMissing(cfg.elf.clone()));
         }
         let dir = FifoDir::create(&cfg.fifo_parent)?;
+        let faults = cfg.faults.map(super::faults::FaultInjector::new);
         let mut me = Self {
             cfg,
             nav: None,
@@ -96,6 +99,7 @@ impl PilGuidance {
             seq: 0,
             stats: PilStats::default(),
             record: PilRecord::default(),
+            faults: None,
         };
         let (nav_path, cmd_path) = me.paths();
         mkfifo(&nav_path)?;
@@ -122,7 +126,48 @@ impl PilGuidance {
         for (index, item) in setup.iter().enumerate() {
             me.upload(index, *item)?;
         }
+        // Faults only on the flight's nav frames, after a clean set-up.
+        me.faults = faults;
         Ok(me)
+    }
+
+    /// Write `buf` and wait for one answer frame (raw bytes).
+    pub(super) fn roundtrip(&mut self, buf: &[u8; FRAME_LEN]) -> Result<[u8; FRAME_LEN], PilError> {
+        let (nav_path, cmd_path) = self.paths();
+        let reply = match (self.nav.as_mut(), self.replies.as_ref()) {
+            (Some(f), Some(rx)) => {
+                if let Err(e) = f.write_all(buf) {
+                    let err = PilError::Fifo {
+                        path: nav_path,
+                        reason: format!("write failed: {e}"),
+                    };
+                    return Err(self.dead_or(err));
+                }
+                rx.recv_timeout(self.cfg.reply_timeout)
+            }
+            _ => return Err(PilError::Timeout(Duration::ZERO, "an answer (link closed)")),
+        };
+        match reply {
+            Ok(Ok(b)) => Ok(b),
+            Ok(Err(e)) => {
+                let err = PilError::Fifo {
+                    path: cmd_path,
+                    reason: format!("read failed: {e} (did the firmware exit?)"),
+                };
+                Err(self.dead_or(err))
+            }
+            Err(_) => {
+                let err = PilError::Timeout(self.cfg.reply_timeout, "an answer");
+                Err(self.dead_or(err))
+            }
+        }
+    }
+
+    /// Next sequence number.
+    pub(super) fn next_seq(&mut self) -> u32 {
+        let s = self.seq;
+        self.seq = self.seq.wrapping_add(1);
+        s
     }
 
     /// Send one set-up item and wait for its status.
@@ -219,6 +264,7 @@ impl PilGuidance {
             nav: *nav,
             reply: None,
             failure: None,
+            fault: None,
         });
         let r = self.exchange_inner(seq, nav);
         if let Err(e) = &r {
@@ -326,13 +372,19 @@ impl PilGuidance {
         };
         match q.wait(timeout) {
             Some(e) if q.succeeded() => {
-                // "pil: end of run after N frames; stack M bytes"
+                // "pil: end of run after N frames; faults F; stack M bytes"
                 self.stats.firmware_stack_bytes = e
                     .stdout
                     .split("; stack ")
                     .nth(1)
                     .and_then(|r| r.split(' ').next())
                     .and_then(|n| n.parse().ok());
+                self.stats.firmware_faults = e
+                    .stdout
+                    .split("; faults ")
+                    .nth(1)
+                    .and_then(|r| r.split(';').next())
+                    .and_then(|n| n.trim().parse().ok());
                 Ok(self.stats)
             }
             Some(e) => Err(PilError::QemuExited(e)),
@@ -366,6 +418,9 @@ impl Drop for PilGuidance {
 impl AttitudeSource for PilGuidance {
     type Error = PilError;
     fn tick(&mut self, nav: &NavState<f64>) -> Result<(), PilError> {
+        if self.faults.is_some() {
+            return self.tick_with_faults(nav);
+        }
         let c = self.exchange(nav)?;
         self.next_tick_s = c.tick_time_s + self.period_s;
         self.last = Some(c);

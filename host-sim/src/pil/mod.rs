@@ -20,6 +20,7 @@
 //! [`PilRecord`] that outlives a failed run.
 
 mod check;
+mod faults;
 mod fifo;
 mod guidance;
 mod qemu;
@@ -36,6 +37,7 @@ use crate::scenario::ScenarioError;
 use crate::sim;
 
 pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
+pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES};
 pub use fifo::FIFO_DIR_PREFIX;
 pub use guidance::PilGuidance;
 pub use qemu::{QemuExit, interrupt_cleanup};
@@ -62,6 +64,8 @@ pub struct PilConfig {
     pub reply_timeout: Duration,
     /// Wall-time limit of the whole QEMU run (`timeout`) \[s\].
     pub qemu_timeout_s: u32,
+    /// Link fault injection on the flight's nav frames (`None`: a clean link).
+    pub faults: Option<FaultConfig>,
     /// The QEMU machine (`None`: from the ELF, see [`machine_of_elf`]).
     pub machine: Option<onboard_spec::machines::QemuMachine>,
 }
@@ -104,6 +108,7 @@ impl PilConfig {
             reply_timeout: Duration::from_secs(10),
             qemu_timeout_s: 600,
             machine: None,
+            faults: None,
         }
     }
 }
@@ -189,4 +194,9 @@ pub struct PilStats {
     /// Deepest stack of the firmware's whole run, as it measured it (stack painting) and
     /// printed at the end \[bytes\] (`None`: not reported).
     pub firmware_stack_bytes: Option<u64>,
+    /// Link faults injected by the host and their outcomes.
+    pub faults: FaultCounts,
+    /// Faults the firmware counted (rejected frames and samples), as it printed at the end
+    /// (`None`: not reported).
+    pub firmware_faults: Option<u64>,
 }

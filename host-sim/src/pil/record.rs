@@ -18,6 +18,8 @@ pub struct Exchange {
     pub reply: Option<CommandFrame>,
     /// Why the exchange failed and ended the run (`None`: accepted).
     pub failure: Option<String>,
+    /// The link fault injected into this exchange (`None`: none).
+    pub fault: Option<String>,
 }
 
 /// Shared, append-only record of a PIL run (clone the handle before the run).
@@ -70,7 +72,7 @@ impl PilRecord {
     #[must_use]
     pub fn to_csv(&self) -> String {
         let mut s = String::from(
-            "seq,time_s,radius_m,speed_m_s,gamma_rad,heading_rad,latitude_rad,longitude_rad,status,tick_time_s,alpha_rad,sigma_rad,ramp_alpha_rad,ramp_sigma_rad,failure\n",
+            "seq,time_s,radius_m,speed_m_s,gamma_rad,heading_rad,latitude_rad,longitude_rad,status,tick_time_s,alpha_rad,sigma_rad,ramp_alpha_rad,ramp_sigma_rad,fault,failure\n",
         );
         for e in self.exchanges() {
             let n = &e.nav;
@@ -101,8 +103,9 @@ impl PilRecord {
                 }
                 None => s.push_str(",none,,,,,"),
             }
+            let fault = e.fault.unwrap_or_default();
             let why = e.failure.unwrap_or_default().replace([',', '\n'], ";");
-            let _ = writeln!(s, ",{why}");
+            let _ = writeln!(s, ",{fault},{why}");
         }
         s
     }

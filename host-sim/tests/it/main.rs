@@ -11,6 +11,7 @@ mod hypervolume_pagmo2;
 mod layering;
 mod navconv;
 mod pil;
+mod pil_faults;
 mod pil_reliability;
 mod pil_scenarios;
 mod replan_loop;

@@ -216,7 +216,7 @@ mod firmware {
             .map_err(|_| "guidance rejected its configuration")
     }
 
-    fn run() -> Result<u32, &'static str> {
+    fn run() -> Result<(u32, u32), &'static str> {
         let mut dir = [0u8; PATH_MAX];
         let dir_len = match cmdline_dir(&mut dir) {
             Some(n) => n,
@@ -240,10 +240,12 @@ mod firmware {
         let mut inb = [0u8; FRAME_LEN];
         let mut outb = [0u8; FRAME_LEN];
         let mut frames = 0u32;
+        // Link faults seen: frames that did not decode, nav samples guidance rejected.
+        let mut faults = 0u32;
         loop {
             read_frame(nav_fd, &mut inb)?;
             let reply = match decode(&inb) {
-                Ok(Frame::End(_)) => return Ok(frames),
+                Ok(Frame::End(_)) => return Ok((frames, faults)),
                 Ok(Frame::Setup(SetupFrame { seq, item })) => {
                     let status = match item {
                         SetupItem::Commit => match setup.build() {
@@ -266,10 +268,14 @@ mod firmware {
                     }
                     match guidance.as_mut() {
                         Some(g) => {
+                            // A rejected sample leaves the held command flying.
                             let status = match g.update(&narrow(&nav)) {
                                 Ok(o) if o.ticked => LinkStatus::Ok,
                                 Ok(_) => LinkStatus::NotTicked,
-                                Err(e) => LinkStatus::from_error(e),
+                                Err(e) => {
+                                    faults = faults.wrapping_add(1);
+                                    LinkStatus::from_error(e)
+                                }
                             };
                             answer(Some(g), seq, status)
                         }
@@ -277,7 +283,10 @@ mod firmware {
                     }
                 }
                 Ok(Frame::Command(c)) => answer(guidance.as_ref(), c.seq, LinkStatus::BadFrame),
-                Err(_) => answer(guidance.as_ref(), 0, LinkStatus::BadFrame),
+                Err(_) => {
+                    faults = faults.wrapping_add(1);
+                    answer(guidance.as_ref(), 0, LinkStatus::BadFrame)
+                }
             };
             encode(&Frame::Command(reply), &mut outb).map_err(|_| "non-finite command")?;
             write_frame(cmd_fd, &outb)?;
@@ -291,10 +300,11 @@ mod firmware {
         // builder, frame buffers and every update) is printed at the end.
         let (stack, r) = onboard_demo::stack::max_stack_bytes(run);
         match r {
-            Ok(n) => {
+            Ok((n, faults)) => {
                 hprintln!(
-                    "pil: end of run after {} frames; stack {} bytes{}",
+                    "pil: end of run after {} frames; faults {}; stack {} bytes{}",
                     n,
+                    faults,
                     stack.bytes,
                     if stack.overflowed { " or more" } else { "" }
                 );
