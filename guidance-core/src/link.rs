@@ -37,7 +37,7 @@ use crate::command::Command;
 use crate::error::{GuidanceError, NodeTableError};
 use crate::nav::NavState;
 use crate::rate::{RampEnd, RateLimits, limit_command, ramp_end};
-use crate::setup::SetupItem;
+use crate::setup::{SetupError, SetupItem};
 
 /// Length of every frame \[bytes\].
 pub const FRAME_LEN: usize = 66;
@@ -135,6 +135,16 @@ pub enum LinkStatus {
 }
 
 impl LinkStatus {
+    /// Status of a set-up error: the core's error as [`LinkStatus::from_error`], anything
+    /// else (malformed item, bad index, incomplete set-up) [`LinkStatus::BadSetup`].
+    #[must_use]
+    pub fn from_setup_error(e: SetupError) -> Self {
+        match e {
+            SetupError::Guidance(g) => Self::from_error(g),
+            _ => LinkStatus::BadSetup,
+        }
+    }
+
     /// Status of a guidance error.
     #[must_use]
     pub fn from_error(e: GuidanceError) -> Self {

@@ -76,17 +76,6 @@ pub enum SetupError {
     Guidance(GuidanceError),
 }
 
-impl SetupError {
-    /// The link status that reports this error.
-    #[must_use]
-    pub fn status(self) -> crate::link::LinkStatus {
-        match self {
-            SetupError::Guidance(e) => crate::link::LinkStatus::from_error(e),
-            _ => crate::link::LinkStatus::BadSetup,
-        }
-    }
-}
-
 impl From<GuidanceError> for SetupError {
     fn from(e: GuidanceError) -> Self {
         Self::Guidance(e)

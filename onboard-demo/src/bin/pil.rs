@@ -253,11 +253,11 @@ mod firmware {
                                 guidance = Some(g);
                                 LinkStatus::Ok
                             }
-                            Err(e) => e.status(),
+                            Err(e) => LinkStatus::from_setup_error(e),
                         },
                         other => match setup.apply(&other) {
                             Ok(()) => LinkStatus::Ok,
-                            Err(e) => e.status(),
+                            Err(e) => LinkStatus::from_setup_error(e),
                         },
                     };
                     answer(guidance.as_ref(), seq, status)
