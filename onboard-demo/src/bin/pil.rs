@@ -40,13 +40,9 @@ fn main() {
 mod firmware {
     use cortex_m_rt::{ExceptionFrame, entry, exception};
     use cortex_m_semihosting::{hprintln, nr};
-    use guidance_core::guidance::{Command, Guidance};
-    use guidance_core::link::{
-        CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
-    };
+    use guidance_core::guidance::Guidance;
     use guidance_core::missions::horus2b_reference;
-    use guidance_core::setup::{SetupBuilder, SetupItem};
-    use guidance_core::{NavState, Scalar};
+    use onboard_demo::app::{AppError, serve};
 
     /// Default FIFO directory when the command line names none.
     const DEFAULT_DIR: &str = match option_env!("PIL_FIFO_DIR") {
@@ -115,30 +111,72 @@ mod firmware {
         }
     }
 
-    fn read_frame(fd: usize, buf: &mut [u8; FRAME_LEN]) -> Result<(), &'static str> {
-        let mut got = 0;
-        while got < FRAME_LEN {
-            let rest = buf.get_mut(got..).ok_or("read overflow")?;
-            // SYS_READ returns the number of bytes NOT read.
-            let left = sys(nr::READ, &[fd, rest.as_mut_ptr() as usize, rest.len()]);
-            if left < 0 {
-                return Err("read failed");
-            }
-            let read = rest.len().saturating_sub(left as usize);
-            if read == 0 {
-                return Err("end of file on nav FIFO");
-            }
-            got += read;
-        }
-        Ok(())
+    /// The link: semihosting reads from the nav FIFO, writes to the cmd FIFO.
+    struct SemihostingLink {
+        nav_fd: usize,
+        cmd_fd: usize,
     }
 
-    fn write_frame(fd: usize, buf: &[u8; FRAME_LEN]) -> Result<(), &'static str> {
-        let left = sys(nr::WRITE, &[fd, buf.as_ptr() as usize, buf.len()]);
-        if left == 0 {
+    /// A semihosting call failed.
+    #[derive(Clone, Copy, Debug)]
+    struct SemihostingError;
+
+    impl embedded_io::Error for SemihostingError {
+        fn kind(&self) -> embedded_io::ErrorKind {
+            embedded_io::ErrorKind::Other
+        }
+    }
+
+    impl embedded_io::ErrorType for SemihostingLink {
+        type Error = SemihostingError;
+    }
+
+    impl embedded_io::Read for SemihostingLink {
+        fn read(&mut self, buf: &mut [u8]) -> Result<usize, SemihostingError> {
+            if buf.is_empty() {
+                return Ok(0);
+            }
+            // SYS_READ returns the number of bytes NOT read (all of them: end of file).
+            let left = sys(
+                nr::READ,
+                &[self.nav_fd, buf.as_mut_ptr() as usize, buf.len()],
+            );
+            if left < 0 {
+                return Err(SemihostingError);
+            }
+            Ok(buf.len().saturating_sub(left as usize))
+        }
+    }
+
+    impl embedded_io::Write for SemihostingLink {
+        fn write(&mut self, buf: &[u8]) -> Result<usize, SemihostingError> {
+            let left = sys(nr::WRITE, &[self.cmd_fd, buf.as_ptr() as usize, buf.len()]);
+            if left < 0 {
+                return Err(SemihostingError);
+            }
+            Ok(buf.len().saturating_sub(left as usize))
+        }
+        fn flush(&mut self) -> Result<(), SemihostingError> {
             Ok(())
-        } else {
-            Err("write to cmd FIFO failed")
+        }
+    }
+
+    /// The status discrete: QEMU's machines have none wired here, so the level is only kept
+    /// (a real board passes a GPIO pin).
+    struct StatusLevel(bool);
+
+    impl embedded_hal::digital::ErrorType for StatusLevel {
+        type Error = core::convert::Infallible;
+    }
+
+    impl embedded_hal::digital::OutputPin for StatusLevel {
+        fn set_low(&mut self) -> Result<(), Self::Error> {
+            self.0 = false;
+            Ok(())
+        }
+        fn set_high(&mut self) -> Result<(), Self::Error> {
+            self.0 = true;
+            Ok(())
         }
     }
 
@@ -152,68 +190,12 @@ mod firmware {
     /// Node capacity of uploaded tables.
     const CAPACITY: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
 
-    fn narrow(n: &NavState<f64>) -> NavState<S> {
-        NavState {
-            time_s: S::from_f64(n.time_s),
-            radius_m: S::from_f64(n.radius_m),
-            speed_m_s: S::from_f64(n.speed_m_s),
-            flight_path_angle_rad: S::from_f64(n.flight_path_angle_rad),
-            heading_rad: S::from_f64(n.heading_rad),
-            latitude_rad: S::from_f64(n.latitude_rad),
-            longitude_rad: S::from_f64(n.longitude_rad),
-        }
-    }
-
-    fn wide(c: Command<S>) -> Command<f64> {
-        Command {
-            alpha_rad: c.alpha_rad.to_f64(),
-            sigma_rad: c.sigma_rad.to_f64(),
-        }
-    }
-
-    fn answer(g: Option<&Guidance<S>>, seq: u32, status: LinkStatus) -> CommandFrame {
-        let zero = Command {
-            alpha_rad: 0.0,
-            sigma_rad: 0.0,
-        };
-        let Some(g) = g else {
-            return CommandFrame {
-                seq,
-                status,
-                tick_time_s: 0.0,
-                command: zero,
-                ramp_start: zero,
-                rates: guidance_core::guidance::RateLimits {
-                    alpha_rad_s: 0.0,
-                    sigma_rad_s: 0.0,
-                },
-            };
-        };
-        let tick = g.last_tick_s().unwrap_or(S::ZERO);
-        let rates = g.config().rates;
-        CommandFrame {
-            seq,
-            status,
-            tick_time_s: tick.to_f64(),
-            command: wide(g.command()),
-            ramp_start: wide(g.attitude_at(tick)),
-            rates: guidance_core::guidance::RateLimits {
-                alpha_rad_s: rates.alpha_rad_s.to_f64(),
-                sigma_rad_s: rates.sigma_rad_s.to_f64(),
-            },
-        }
-    }
-
     /// The compiled-in HORUS-2B reference mission (flown when the host sends no set-up).
-    fn reference() -> Result<Guidance<S>, &'static str> {
-        let mission = horus2b_reference::<S>().map_err(|_| "reference mission rejected")?;
+    fn reference() -> Option<Guidance<S, CAPACITY>> {
+        let mission = horus2b_reference::<S>().ok()?;
         // Time-indexed table: the energy normaliser is required but unused.
-        let energy = mission
-            .earth_energy_normalizer()
-            .map_err(|_| "energy normaliser rejected")?;
-        mission
-            .guidance(energy)
-            .map_err(|_| "guidance rejected its configuration")
+        let energy = mission.earth_energy_normalizer().ok()?;
+        mission.guidance(energy).ok()
     }
 
     fn run() -> Result<(u32, u32), &'static str> {
@@ -234,63 +216,15 @@ mod firmware {
         let nav_fd = open(&path, n, MODE_RB)?;
         let n = join(dir, b"cmd", &mut path).ok_or("FIFO path too long")?;
         let cmd_fd = open(&path, n, MODE_WB)?;
-
-        let mut setup = SetupBuilder::<S, CAPACITY>::new();
-        let mut guidance: Option<Guidance<S>> = None;
-        let mut inb = [0u8; FRAME_LEN];
-        let mut outb = [0u8; FRAME_LEN];
-        let mut frames = 0u32;
-        // Link faults seen: frames that did not decode, nav samples guidance rejected.
-        let mut faults = 0u32;
-        loop {
-            read_frame(nav_fd, &mut inb)?;
-            let reply = match decode(&inb) {
-                Ok(Frame::End(_)) => return Ok((frames, faults)),
-                Ok(Frame::Setup(SetupFrame { seq, item })) => {
-                    let status = match item {
-                        SetupItem::Commit => match setup.build() {
-                            Ok(g) => {
-                                guidance = Some(g);
-                                LinkStatus::Ok
-                            }
-                            Err(e) => LinkStatus::from_setup_error(e),
-                        },
-                        other => match setup.apply(&other) {
-                            Ok(()) => LinkStatus::Ok,
-                            Err(e) => LinkStatus::from_setup_error(e),
-                        },
-                    };
-                    answer(guidance.as_ref(), seq, status)
-                }
-                Ok(Frame::Nav(NavFrame { seq, nav })) => {
-                    if guidance.is_none() {
-                        guidance = Some(reference()?);
-                    }
-                    match guidance.as_mut() {
-                        Some(g) => {
-                            // A rejected sample leaves the held command flying.
-                            let status = match g.update(&narrow(&nav)) {
-                                Ok(o) if o.ticked => LinkStatus::Ok,
-                                Ok(_) => LinkStatus::NotTicked,
-                                Err(e) => {
-                                    faults = faults.wrapping_add(1);
-                                    LinkStatus::from_error(e)
-                                }
-                            };
-                            answer(Some(g), seq, status)
-                        }
-                        None => answer(None, seq, LinkStatus::InvalidConfig),
-                    }
-                }
-                Ok(Frame::Command(c)) => answer(guidance.as_ref(), c.seq, LinkStatus::BadFrame),
-                Err(_) => {
-                    faults = faults.wrapping_add(1);
-                    answer(guidance.as_ref(), 0, LinkStatus::BadFrame)
-                }
-            };
-            encode(&Frame::Command(reply), &mut outb).map_err(|_| "non-finite command")?;
-            write_frame(cmd_fd, &outb)?;
-            frames = frames.wrapping_add(1);
+        let mut link = SemihostingLink { nav_fd, cmd_fd };
+        let mut status = StatusLevel(false);
+        match serve::<S, CAPACITY, _, _>(&mut link, &mut status, reference) {
+            Ok(o) => Ok((o.frames, o.faults)),
+            Err(AppError::EndOfLink) => Err("end of file on nav FIFO"),
+            Err(AppError::Read(_)) => Err("read failed"),
+            Err(AppError::Write(_)) => Err("write to cmd FIFO failed"),
+            Err(AppError::Encode) => Err("non-finite command"),
+            Err(AppError::NoGuidance) => Err("reference mission rejected"),
         }
     }
 
