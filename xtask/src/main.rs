@@ -310,6 +310,44 @@ fn test() -> Result<(), String> {
             run(c, "clippy firmware")
         }),
     ));
+    steps.push((
+        "flight application on an STM32F407 (stm32f4xx-hal, compile and clippy only)",
+        Box::new(|| {
+            let mut c = cargo();
+            c.args([
+                "clippy",
+                "-p",
+                "onboard-demo",
+                "--profile",
+                "firmware",
+                "--target",
+                "thumbv7em-none-eabihf",
+                "--features",
+                "stm32f4",
+                "--bin",
+                "stm32f4-flight",
+                "--",
+                "-D",
+                "warnings",
+            ]);
+            run(c, "clippy stm32f4-flight")?;
+            let mut c = cargo();
+            c.args([
+                "build",
+                "-p",
+                "onboard-demo",
+                "--profile",
+                "firmware",
+                "--target",
+                "thumbv7em-none-eabihf",
+                "--features",
+                "stm32f4",
+                "--bin",
+                "stm32f4-flight",
+            ]);
+            run(c, "build stm32f4-flight")
+        }),
+    ));
     steps.push(("firmware under QEMU", Box::new(firmware)));
     steps.push(("PIL closed loop", Box::new(pil)));
     steps.push((
