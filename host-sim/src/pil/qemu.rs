@@ -67,12 +67,12 @@ impl std::fmt::Display for QemuExit {
     }
 }
 
-type Sink = Arc<Mutex<Vec<u8>>>;
+type Sink = (Arc<Mutex<Vec<u8>>>, Option<std::thread::JoinHandle<()>>);
 
 fn drain(mut r: impl std::io::Read + Send + 'static) -> Sink {
-    let sink: Sink = Arc::default();
+    let sink: Arc<Mutex<Vec<u8>>> = Arc::default();
     let s = Arc::clone(&sink);
-    std::thread::spawn(move || {
+    let h = std::thread::spawn(move || {
         let mut buf = [0u8; 4096];
         while let Ok(n) = r.read(&mut buf) {
             if n == 0 {
@@ -85,11 +85,21 @@ fn drain(mut r: impl std::io::Read + Send + 'static) -> Sink {
             }
         }
     });
-    sink
+    (sink, Some(h))
 }
 
-fn text(s: &Sink) -> String {
-    String::from_utf8_lossy(&s.lock().unwrap_or_else(PoisonError::into_inner)).into_owned()
+/// Wait (at most 2 s) for a drain thread to reach the end of its pipe, then its text.
+fn text(s: &mut Sink) -> String {
+    if let Some(h) = s.1.take() {
+        let deadline = Instant::now() + Duration::from_secs(2);
+        while !h.is_finished() && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        if h.is_finished() {
+            let _ = h.join();
+        }
+    }
+    String::from_utf8_lossy(&s.0.lock().unwrap_or_else(PoisonError::into_inner)).into_owned()
 }
 
 /// QEMU running the firmware (see the module docs); stopped on drop.
@@ -130,8 +140,14 @@ impl Qemu {
             .map_err(|e| PilError::Qemu(format!("cannot start `timeout {}`: {e}", cfg.qemu)))?;
         let pgid = child.id();
         live().push((pgid, dir.to_path_buf()));
-        let stdout = child.stdout.take().map(drain).unwrap_or_default();
-        let stderr = child.stderr.take().map(drain).unwrap_or_default();
+        let stdout = child
+            .stdout
+            .take()
+            .map_or_else(|| (Arc::default(), None), drain);
+        let stderr = child
+            .stderr
+            .take()
+            .map_or_else(|| (Arc::default(), None), drain);
         Ok(Self {
             child,
             pgid,
@@ -147,12 +163,12 @@ impl Qemu {
             self.exit = self.child.try_wait().ok().flatten();
         }
         let status = self.exit?;
-        // The pipes close with the process; let the drain threads take the last bytes.
-        std::thread::sleep(Duration::from_millis(20));
+        // The pipes close with the process: the drain threads reach their end (joined, so the
+        // last line is never lost to a slow thread).
         Some(QemuExit {
             status: status.to_string(),
-            stdout: text(&self.stdout),
-            stderr: text(&self.stderr),
+            stdout: text(&mut self.stdout),
+            stderr: text(&mut self.stderr),
         })
     }
 

@@ -173,6 +173,7 @@ fn pil_names_a_missing_elf() {
         other => panic!("expected ElfMissing, got {other:?}"),
     }
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Firmware that never opens the link (the smoke binary `onboard-demo`, which runs its own
@@ -197,4 +198,5 @@ fn pil_reports_firmware_that_exits_without_opening_the_link() {
         other => panic!("expected QemuExited, got {other:?}"),
     }
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -128,6 +128,7 @@ fn pil_error_path_kills_qemu_that_ignores_sigterm() {
     let pid = pid_of(&pidfile);
     wait_for("QEMU to be killed", 3.0, || !alive(pid));
     assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A panic while the link is up (unwinding drops the PIL source): QEMU killed, directory gone.
@@ -145,6 +146,7 @@ fn pil_panic_path_kills_qemu_and_removes_the_fifos() {
     let pid = pid_of(&pidfile);
     wait_for("QEMU to be killed", 3.0, || !alive(pid));
     assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Ctrl-C during `host-sim simulate --pil`: exit 130 at once, QEMU (own process group, ignores
@@ -186,6 +188,7 @@ fn pil_ctrl_c_stops_qemu_and_cleans_up() {
     wait_for("QEMU to be killed", 3.0, || !alive(pid));
     assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
     assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Leftover directories of a dead process whose pid this process now has do not block a run
@@ -202,6 +205,7 @@ fn pil_fifo_directory_names_skip_leftovers() {
     assert!(pil.fifo_dir().join("cmd").exists());
     drop(pil);
     assert_eq!(leftovers(&dir).len(), 64);
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A frame that decodes (valid CRC, status Ok, right sequence) but breaks the configuration.
@@ -293,6 +297,7 @@ fn pil_rejects_command_frames_outside_the_configuration() {
         );
         assert!(record.to_csv().lines().nth(1).unwrap().contains("rejected"));
         assert!(leftovers(&dir).is_empty());
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }
 
@@ -341,6 +346,7 @@ fn pil_bad_elf_reports_qemu_exit_at_once() {
         assert!(t0.elapsed() < Duration::from_secs(5), "{:?}", t0.elapsed());
         assert!(leftovers(&dir).is_empty());
     }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The reference mission in PIL with a FIFO directory whose path has a space and one longer
@@ -373,4 +379,5 @@ fn pil_fifo_directory_with_space_or_long_path() {
         assert!(res.summary.flight_time_s > 1000.0);
         assert!(leftovers(&parent).is_empty());
     }
+    let _ = std::fs::remove_dir_all(&dir);
 }
