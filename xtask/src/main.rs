@@ -15,6 +15,7 @@ use onboard_spec::machines::{
     MACHINES, PIL_MACHINE, QEMU_SYSTEM, QemuMachine, RUNNER_KILL_AFTER_S, RUNNER_TIMEOUT_S,
 };
 
+mod defmt_log;
 mod elf;
 mod golden;
 mod insn;
@@ -27,7 +28,7 @@ const CORE_TARGETS: [&str; 3] = [
     "thumbv7em-none-eabihf",
 ];
 
-const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|stack|golden|setup> [--help]\n\
+const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|stack|defmt|golden|setup> [--help]\n\
   test      fmt check, clippy -D warnings, host tests, no_std builds, QEMU firmware, PIL, size budget\n\
   firmware  build onboard-demo for each target and run it under QEMU (exit 0 = commands match)\n\
   pil       fly the HORUS-2B reference mission with the firmware's guidance in QEMU, compare with SIL\n\
@@ -36,6 +37,7 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|s
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
   stack     measured maximum stack (guidance tick, navigation conversion, re-plan) on both\n\
             machines; static RAM + stack against onboard-demo/size-budget.toml\n\
+  defmt     smoke firmware with defmt over semihosting on both machines, decoded by defmt-print\n\
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
   fuzz      fuzz the flight code (node tables, guidance with hostile times, frame decoder):\n\
@@ -48,6 +50,7 @@ fn main() -> ExitCode {
         Some("firmware") => setup().and_then(|()| firmware()),
         Some("size") => size(),
         Some("stack") => setup().and_then(|()| stack::stack()),
+        Some("defmt") => setup().and_then(|()| defmt_log::defmt_log()),
         Some("pil") => setup().and_then(|()| pil()),
         Some("bench-firmware") => {
             let json = args.iter().skip(1).any(|a| a == "--json");
@@ -358,6 +361,10 @@ fn test() -> Result<(), String> {
     steps.push((
         "firmware static RAM + measured stack budget",
         Box::new(stack::stack),
+    ));
+    steps.push((
+        "defmt log from the firmware, decoded with defmt-print",
+        Box::new(defmt_log::defmt_log),
     ));
 
     let total = steps.len();
