@@ -1,5 +1,6 @@
 //! The fuzz targets and the per-case generator.
 
+mod closed_forms;
 mod guidance;
 mod link;
 mod navconv;
@@ -19,15 +20,18 @@ pub enum Target {
     Link,
     /// The navigation interface (Cartesian -> guidance variables).
     Navconv,
+    /// The Vinh closed forms through the predictor, and the re-planning solver.
+    ClosedForms,
 }
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 4] = [
+    pub const ALL: [Target; 5] = [
         Target::Nodes,
         Target::Guidance,
         Target::Link,
         Target::Navconv,
+        Target::ClosedForms,
     ];
 
     /// The target's command-line name.
@@ -37,6 +41,7 @@ impl Target {
             Target::Guidance => "guidance",
             Target::Link => "link",
             Target::Navconv => "navconv",
+            Target::ClosedForms => "closed-forms",
         }
     }
 
@@ -58,6 +63,7 @@ impl Target {
             Target::Guidance => guidance::run(&mut rng),
             Target::Link => link::run(&mut rng),
             Target::Navconv => navconv::run(&mut rng),
+            Target::ClosedForms => closed_forms::run(&mut rng),
         }
     }
 }
