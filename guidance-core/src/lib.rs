@@ -40,11 +40,13 @@ pub mod math;
 pub mod missions;
 pub mod monitor;
 pub mod nav;
+pub mod navconv;
 pub mod nodes;
 pub mod plausibility;
 pub mod rate;
 pub mod replan;
 pub mod scalar;
+pub mod setup;
 pub mod vinh;
 
 pub use command::Command;

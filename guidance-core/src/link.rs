@@ -18,7 +18,8 @@
 //!   latitude \[rad\], longitude \[rad\] (the [`NavState`] field order);
 //! * command: tick time \[s\], held alpha \[rad\], held sigma \[rad\], ramp-start alpha \[rad\],
 //!   ramp-start sigma \[rad\], alpha rate limit \[rad/s\], sigma rate limit \[rad/s\];
-//! * end: none (all zero).
+//! * end: none (all zero);
+//! * set-up: slot 0 the item code, then the item's values ([`crate::setup::SetupItem`]).
 //!
 //! Why `f64` on the wire although the firmware runs `f32` guidance: the host's state goes over
 //! unchanged and the firmware rounds it to `f32` itself (exactly where an `f32` SIL run would),
@@ -36,6 +37,7 @@ use crate::command::Command;
 use crate::error::{GuidanceError, NodeTableError};
 use crate::nav::NavState;
 use crate::rate::{RampEnd, RateLimits, limit_command, ramp_end};
+use crate::setup::{SetupError, SetupItem};
 
 /// Length of every frame \[bytes\].
 pub const FRAME_LEN: usize = 66;
@@ -63,7 +65,7 @@ pub enum LinkError {
     BadType,
     /// Unknown status byte, or a non-zero status in a nav or end frame.
     BadStatus,
-    /// An end frame whose payload is not all zero.
+    /// An end frame whose payload is not all zero, or a set-up frame that is no item.
     BadPayload,
     /// A payload value is NaN or infinite.
     NonFinite,
@@ -77,7 +79,9 @@ impl core::fmt::Display for LinkError {
             LinkError::BadChecksum => "frame checksum mismatch",
             LinkError::BadType => "unknown frame type",
             LinkError::BadStatus => "unknown status code, or a status in a nav or end frame",
-            LinkError::BadPayload => "end frame with a non-zero payload",
+            LinkError::BadPayload => {
+                "end frame with a non-zero payload, or a malformed set-up item"
+            }
             LinkError::NonFinite => "frame carries a non-finite value",
         })
     }
@@ -96,6 +100,9 @@ pub enum FrameType {
     Command = 2,
     /// Host -> firmware: end of run (the firmware exits 0).
     End = 3,
+    /// Host -> firmware: one guidance set-up item ([`crate::setup`]); answered by a command
+    /// frame whose status says whether it was taken.
+    Setup = 4,
 }
 
 /// Outcome of one guidance update on the firmware, carried in command frames. Maps
@@ -122,9 +129,22 @@ pub enum LinkStatus {
     BadFrame,
     /// [`GuidanceError::ImplausibleTime`].
     ImplausibleTime,
+    /// A set-up item was malformed, out of order, or the set-up incomplete at commit
+    /// ([`crate::setup::SetupError`] other than a core error).
+    BadSetup,
 }
 
 impl LinkStatus {
+    /// Status of a set-up error: the core's error as [`LinkStatus::from_error`], anything
+    /// else (malformed item, bad index, incomplete set-up) [`LinkStatus::BadSetup`].
+    #[must_use]
+    pub fn from_setup_error(e: SetupError) -> Self {
+        match e {
+            SetupError::Guidance(g) => Self::from_error(g),
+            _ => LinkStatus::BadSetup,
+        }
+    }
+
     /// Status of a guidance error.
     #[must_use]
     pub fn from_error(e: GuidanceError) -> Self {
@@ -139,7 +159,7 @@ impl LinkStatus {
     }
 
     /// The guidance error a status stands for (`None` for [`LinkStatus::Ok`],
-    /// [`LinkStatus::NotTicked`] and [`LinkStatus::BadFrame`]). A node-table error comes back
+    /// [`LinkStatus::NotTicked`], [`LinkStatus::BadFrame`] and [`LinkStatus::BadSetup`]). A node-table error comes back
     /// as `NodeTable(TooFewNodes)`: the detail is not carried.
     #[must_use]
     pub fn to_error(self) -> Option<GuidanceError> {
@@ -150,7 +170,10 @@ impl LinkStatus {
             LinkStatus::NodeTable => Some(GuidanceError::NodeTable(NodeTableError::TooFewNodes)),
             LinkStatus::NonIncreasingTime => Some(GuidanceError::NonIncreasingTime),
             LinkStatus::ImplausibleTime => Some(GuidanceError::ImplausibleTime),
-            LinkStatus::Ok | LinkStatus::NotTicked | LinkStatus::BadFrame => None,
+            LinkStatus::Ok
+            | LinkStatus::NotTicked
+            | LinkStatus::BadFrame
+            | LinkStatus::BadSetup => None,
         }
     }
 
@@ -165,6 +188,7 @@ impl LinkStatus {
             LinkStatus::NonIncreasingTime => 6,
             LinkStatus::BadFrame => 7,
             LinkStatus::ImplausibleTime => 8,
+            LinkStatus::BadSetup => 9,
         }
     }
 
@@ -179,6 +203,7 @@ impl LinkStatus {
             6 => LinkStatus::NonIncreasingTime,
             7 => LinkStatus::BadFrame,
             8 => LinkStatus::ImplausibleTime,
+            9 => LinkStatus::BadSetup,
             _ => return Err(LinkError::BadStatus),
         })
     }
@@ -246,6 +271,18 @@ pub enum Frame {
     Command(CommandFrame),
     /// End of run, with its sequence number \[-\].
     End(u32),
+    /// Guidance set-up item.
+    Setup(SetupFrame),
+}
+
+/// Host -> firmware: one guidance set-up item.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SetupFrame {
+    /// Sequence number \[-\].
+    pub seq: u32,
+    /// The item.
+    pub item: SetupItem,
 }
 
 /// CRC-16/CCITT-FALSE (polynomial 0x1021, initial value 0xFFFF, no reflection, no final xor;
@@ -305,6 +342,7 @@ pub fn encode(frame: &Frame, out: &mut [u8; FRAME_LEN]) -> Result<(), LinkError>
             ],
         ),
         Frame::End(seq) => (FrameType::End, 0, *seq, [0.0; SLOTS]),
+        Frame::Setup(f) => (FrameType::Setup, 0, f.seq, f.item.to_slots()),
     };
     if vals.iter().any(|v| !v.is_finite()) {
         return Err(LinkError::NonFinite);
@@ -407,6 +445,10 @@ pub fn decode(bytes: &[u8]) -> Result<Frame, LinkError> {
             },
         })),
         3 => Ok(Frame::End(seq)),
+        4 => Ok(Frame::Setup(SetupFrame {
+            seq,
+            item: SetupItem::from_slots(&v).map_err(|_| LinkError::BadPayload)?,
+        })),
         _ => Err(LinkError::BadType),
     }
 }

@@ -11,13 +11,17 @@ const INTERRUPTED: u8 = 130;
 fn main() -> ExitCode {
     // Ctrl-C asks the running simulation to stop at its next breakpoint; the command then
     // fails without putting a run directory in place (nothing half-written). With no
-    // simulation running and no run directory being written (optimiser, hypervolume), or at
-    // a second Ctrl-C, it exits at once. A run directory being written stops at its next file
-    // and removes its temporary directory; one is swapped into place in one step.
+    // simulation running and no run directory being written (optimiser, hypervolume, a PIL
+    // set-up), or at a second Ctrl-C, it exits at once. A run directory being written stops at
+    // its next file and removes its temporary directory; one is swapped into place in one
+    // step. Before exiting it stops any QEMU of a PIL run (its own process group, which the
+    // terminal's SIGINT does not reach) and removes its FIFO directory; a PIL run that stops
+    // at a breakpoint does so on drop.
     let second = std::sync::atomic::AtomicBool::new(false);
     let handler = ctrlc::set_handler(move || {
         if second.swap(true, std::sync::atomic::Ordering::SeqCst) || !sim::runs_active() {
             // The handler runs on its own thread (ctrlc), not in signal context.
+            host_sim::pil::interrupt_cleanup();
             eprintln!("interrupted; no run directory written");
             std::process::exit(i32::from(INTERRUPTED));
         }

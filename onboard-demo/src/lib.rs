@@ -1,15 +1,20 @@
-//! onboard-demo support library: the instruction counter and the exit paths shared by the
-//! firmware binaries. (The smoke scenario and its golden outputs live in `onboard-spec`.)
+//! onboard-demo support library: the board-independent flight application ([`app`], generic over
+//! embedded-io and embedded-hal 1.0; it also builds on the host), and, for the firmware
+//! binaries, the instruction counter, stack painting and the exit paths. (The smoke scenario
+//! and its golden outputs live in `onboard-spec`.)
 //!
-//! Everything here is firmware (`target_os = "none"`): a host build of this package (as
-//! `cargo test --workspace` and `cargo clippy --workspace` do) compiles an empty library and
-//! stub binaries, and does not pull in the Cortex-M crates.
+//! Everything but [`app`] is firmware (`target_os = "none"`): a host build of this package (as
+//! `cargo test --workspace` and `cargo clippy --workspace` do) compiles the application only
+//! and stub binaries, and does not pull in the Cortex-M crates.
 #![no_std]
 #![deny(missing_docs)]
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
+pub mod app;
 #[cfg(target_os = "none")]
 pub mod insn;
+#[cfg(target_os = "none")]
+pub mod stack;
 
 /// Exit QEMU through semihosting with the given success flag, then idle.
 #[cfg(target_os = "none")]

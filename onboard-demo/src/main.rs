@@ -97,10 +97,21 @@ mod firmware {
         Ok(compared)
     }
 
+    // With feature `defmt` the result goes out as defmt frames over semihosting (decoded on
+    // the host by defmt-print, `cargo xtask defmt`); plain text would corrupt that stream.
+    #[cfg(feature = "defmt")]
+    use defmt_semihosting as _;
+
     #[entry]
     fn main() -> ! {
         match check() {
             Ok(n) => {
+                #[cfg(feature = "defmt")]
+                defmt::info!(
+                    "onboard-demo: {=u32} guidance outputs match the host golden values",
+                    n
+                );
+                #[cfg(not(feature = "defmt"))]
                 hprintln!(
                     "onboard-demo: {} guidance outputs match the host golden values",
                     n
@@ -108,6 +119,9 @@ mod firmware {
                 onboard_demo::exit(true)
             }
             Err(e) => {
+                #[cfg(feature = "defmt")]
+                defmt::error!("onboard-demo: FAIL: {=str}", e);
+                #[cfg(not(feature = "defmt"))]
                 hprintln!("onboard-demo: FAIL: {}", e);
                 onboard_demo::exit(false)
             }

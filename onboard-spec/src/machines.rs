@@ -9,6 +9,10 @@ pub const QEMU_SYSTEM: &str = "qemu-system-arm";
 /// Wall-time limit the `cargo run` runners give QEMU \[s\], as `timeout` takes it.
 pub const RUNNER_TIMEOUT_S: &str = "120";
 
+/// Grace period after `timeout`'s SIGTERM before its SIGKILL (`timeout -k`) \[s\]: QEMU blocked
+/// in a semihosting FIFO open ignores SIGTERM, so every `timeout` around QEMU has `-k`.
+pub const RUNNER_KILL_AFTER_S: &str = "5";
+
 /// One emulated machine and the Rust target the firmware is built for on it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct QemuMachine {
@@ -71,14 +75,16 @@ pub fn by_target(target: &str) -> Option<&'static QemuMachine> {
     MACHINES.iter().find(|m| m.target == target)
 }
 
-/// The words of the `.cargo/config.toml` runner of `machine`: `timeout` with
-/// [`RUNNER_TIMEOUT_S`], [`QEMU_SYSTEM`], then [`QemuMachine::qemu_args`] (cargo appends the
-/// ELF).
+/// The words of the `.cargo/config.toml` runner of `machine`: `timeout -k`
+/// [`RUNNER_KILL_AFTER_S`] [`RUNNER_TIMEOUT_S`], [`QEMU_SYSTEM`], then
+/// [`QemuMachine::qemu_args`] (cargo appends the ELF).
 #[must_use]
-pub fn runner(machine: &QemuMachine) -> [&'static str; QEMU_ARG_COUNT + 3] {
+pub fn runner(machine: &QemuMachine) -> [&'static str; QEMU_ARG_COUNT + 5] {
     let a = machine.qemu_args();
     [
         "timeout",
+        "-k",
+        RUNNER_KILL_AFTER_S,
         RUNNER_TIMEOUT_S,
         QEMU_SYSTEM,
         a[0],
@@ -104,8 +110,19 @@ mod tests {
         assert_eq!(PIL_MACHINE, CORTEX_M4F);
         let r = runner(&CORTEX_M3);
         assert_eq!(
-            r.get(..5),
-            Some(["timeout", "120", "qemu-system-arm", "-cpu", "cortex-m3"].as_slice())
+            r.get(..7),
+            Some(
+                [
+                    "timeout",
+                    "-k",
+                    "5",
+                    "120",
+                    "qemu-system-arm",
+                    "-cpu",
+                    "cortex-m3"
+                ]
+                .as_slice()
+            )
         );
         assert_eq!(r.last(), Some(&"-kernel"));
         assert!(RUNNER_TIMEOUT_S.parse::<u32>().is_ok_and(|s| s > 0));

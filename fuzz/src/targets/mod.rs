@@ -4,6 +4,7 @@ mod closed_forms;
 mod guidance;
 mod lateral;
 mod link;
+mod navconv;
 mod nodes;
 
 use rand::SeedableRng;
@@ -18,6 +19,8 @@ pub enum Target {
     Guidance,
     /// The PIL frame decoder.
     Link,
+    /// The navigation interface (Cartesian -> guidance variables).
+    Navconv,
     /// The Vinh closed forms through the predictor, and the re-planning solver.
     ClosedForms,
     /// Lateral guidance (bank reversals) with hostile configurations and states.
@@ -26,10 +29,11 @@ pub enum Target {
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 5] = [
+    pub const ALL: [Target; 6] = [
         Target::Nodes,
         Target::Guidance,
         Target::Link,
+        Target::Navconv,
         Target::ClosedForms,
         Target::Lateral,
     ];
@@ -40,6 +44,7 @@ impl Target {
             Target::Nodes => "nodes",
             Target::Guidance => "guidance",
             Target::Link => "link",
+            Target::Navconv => "navconv",
             Target::ClosedForms => "closed-forms",
             Target::Lateral => "lateral",
         }
@@ -62,6 +67,7 @@ impl Target {
             Target::Nodes => nodes::run(&mut rng),
             Target::Guidance => guidance::run(&mut rng),
             Target::Link => link::run(&mut rng),
+            Target::Navconv => navconv::run(&mut rng),
             Target::ClosedForms => closed_forms::run(&mut rng),
             Target::Lateral => lateral::run(&mut rng),
         }

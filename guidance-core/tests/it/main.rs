@@ -2,6 +2,7 @@
 
 mod guidance_props;
 mod lateral;
+mod navconv;
 mod node_capacity;
 mod vinh_error_map;
 mod vinh_peaks;

@@ -28,31 +28,85 @@ pub struct SimulateArgs {
     /// Do not show a progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Processor in the loop: fly the HORUS-2B reference mission with the guidance of this
-    /// firmware ELF (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`).
-    /// Only with the default scenario, whose table the firmware has compiled in.
-    #[arg(long, value_name = "ELF", conflicts_with_all = ["scenario", "builtin"])]
+    /// Processor in the loop: fly the scenario with the guidance of this firmware ELF
+    /// (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`): the scenario's
+    /// guidance is uploaded as set-up frames; a hard-float ELF runs on the Cortex-M4F (`f32`),
+    /// a soft-float one on the Cortex-M3 (fixed point).
+    #[arg(long, value_name = "ELF")]
     pub pil: Option<PathBuf>,
+    /// With --pil: inject seeded link faults on the nav frames, each of drop, corruption and
+    /// delay past the tick with this probability (0 to 0.3).
+    #[arg(long, value_name = "P", requires = "pil")]
+    pub pil_fault_rate: Option<f64>,
+    /// Seed of the fault injector (with --pil-fault-rate).
+    #[arg(
+        long,
+        value_name = "SEED",
+        default_value_t = 1,
+        requires = "pil_fault_rate"
+    )]
+    pub pil_fault_seed: u64,
 }
 
-/// Fly the reference mission in PIL with firmware `elf`, write the run directory and print
-/// the link statistics.
+/// Fly scenario `sc` in PIL with firmware `elf`, write the run directory and print the link
+/// statistics.
 fn pil_run(
     sc: &Scenario,
+    file: &str,
     elf: &Path,
+    faults: Option<pil::FaultConfig>,
     dir: &Path,
     out: &mut dyn Write,
 ) -> Result<RunOutput, CliError> {
     let started = std::time::Instant::now();
-    let (result, stats) = pil::fly_reference_pil(pil::PilConfig::new(elf.to_path_buf()))?;
+    let mut cfg = pil::PilConfig::new(elf.to_path_buf());
+    cfg.faults = faults;
+    let (run, record) = pil::fly_scenario_pil(sc, file, cfg);
+    let (result, stats) = match run {
+        Ok(r) => r,
+        Err(e) => {
+            // Keep the record up to the failure, marked, beside (not in) the run directory.
+            let failed = failed_record_path(dir);
+            if !record.exchanges().is_empty() {
+                if let Some(parent) = failed.parent().filter(|p| !p.as_os_str().is_empty()) {
+                    std::fs::create_dir_all(parent)?;
+                }
+                crate::report::write_atomic(&failed, record.to_csv().as_bytes())?;
+                writeln!(
+                    out,
+                    "PIL run failed; frames exchanged up to the failure (marked): {}",
+                    failed.display()
+                )?;
+            }
+            return Err(e.into());
+        }
+    };
     let wall = started.elapsed().as_secs_f64();
     writeln!(
         out,
-        "PIL: {} frames with {} in {wall:.2} s ({:.0} frames/s)",
+        "PIL: {} frames with {} in {wall:.2} s ({:.0} frames/s); firmware stack {}",
         stats.frames,
         elf.display(),
-        stats.frames as f64 / wall.max(1e-9)
+        stats.frames as f64 / wall.max(1e-9),
+        stats
+            .firmware_stack_bytes
+            .map_or_else(|| "not reported".to_string(), |b| format!("{b} bytes"))
     )?;
+    if faults.is_some() {
+        let f = stats.faults;
+        writeln!(
+            out,
+            "PIL link faults: {} dropped, {} corrupted, {} delayed past their tick; {} retries, {} ticks on the held command; firmware counted {}",
+            f.dropped,
+            f.corrupted,
+            f.delayed,
+            f.retries,
+            f.missed_ticks,
+            stats
+                .firmware_faults
+                .map_or_else(|| "?".to_string(), |n| n.to_string())
+        )?;
+    }
     let flight = Flight {
         result,
         vehicle: sc.load_vehicle()?,
@@ -64,6 +118,14 @@ fn pil_run(
         flight,
         dir,
     )?)
+}
+
+/// Where a failed PIL run's frame record goes: `<dir>.failed-pil-record.csv`.
+#[must_use]
+pub fn failed_record_path(dir: &Path) -> PathBuf {
+    let mut name = dir.file_name().unwrap_or_default().to_os_string();
+    name.push(".failed-pil-record.csv");
+    dir.with_file_name(name)
 }
 
 /// Run `simulate` with arguments `a`, writing normal output to `out`.
@@ -103,7 +165,23 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
     };
     let run = if let Some(elf) = &a.pil {
         bar.finish_and_clear();
-        pil_run(&sc, elf, &dir, out)?
+        let faults = match a.pil_fault_rate {
+            Some(p) if (0.0..=0.3).contains(&p) => Some(pil::FaultConfig {
+                seed: a.pil_fault_seed,
+                p_drop: p,
+                p_corrupt: p,
+                p_delay: p,
+            }),
+            Some(p) => {
+                return Err(CliError::Argument {
+                    field: "--pil-fault-rate",
+                    value: p.to_string(),
+                    reason: "must be a probability in [0, 0.3]",
+                });
+            }
+            None => None,
+        };
+        pil_run(&sc, &file, elf, faults, &dir, out)?
     } else {
         let res = simulate_scenario(&sc, &file, &dir, &mut progress);
         bar.finish_and_clear();

@@ -4,41 +4,74 @@
 use std::fs::{File, OpenOptions};
 use std::io::{Read, Write};
 use std::path::PathBuf;
-use std::process::{Child, Stdio};
+use std::process::Stdio;
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use guidance_core::NavState;
 use guidance_core::guidance::Command;
-use guidance_core::link::{CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode};
+use guidance_core::link::{
+    CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
+};
+use guidance_core::setup::SetupItem;
 
-use super::fifo::{mkfifo, open_fifo};
-use super::{PilConfig, PilError, PilStats};
+use super::fifo::{FifoDir, mkfifo, open_fifo};
+use super::qemu::Qemu;
+use super::{Exchange, FrameLimits, PilConfig, PilError, PilRecord, PilStats};
 use crate::sim::AttitudeSource;
 
 /// The firmware in QEMU as the closed loop's attitude source (see the module docs).
 pub struct PilGuidance {
     cfg: PilConfig,
-    child: Option<Child>,
+    // Field order is drop order: the link first, then QEMU, then the directory.
     nav: Option<File>,
     replies: Option<Receiver<Result<[u8; FRAME_LEN], String>>>,
-    last: Option<CommandFrame>,
-    next_tick_s: f64,
-    /// The firmware's guidance period \[s\] (the thesis 2 s compiled into the `pil` binary).
-    period_s: f64,
-    /// The firmware's attitude before its first tick (the mission's initial attitude) \[rad\].
-    initial: Command<f64>,
+    qemu: Option<Qemu>,
+    dir: FifoDir,
+    pub(super) last: Option<CommandFrame>,
+    pub(super) next_tick_s: f64,
+    /// The firmware's guidance period \[s\].
+    pub(super) period_s: f64,
+    /// What every command frame must respect.
+    limits: FrameLimits,
     seq: u32,
-    stats: PilStats,
+    pub(super) stats: PilStats,
+    pub(super) record: PilRecord,
+    /// The link fault injector (`None`: a clean link).
+    pub(super) faults: Option<super::faults::FaultInjector>,
 }
 
 impl PilGuidance {
-    /// Create the FIFOs, start QEMU on the firmware and open the link.
+    /// Create the FIFOs, start QEMU on the firmware and open the link, for the HORUS-2B
+    /// reference mission compiled into the firmware.
     ///
     /// # Errors
     /// [`PilError::QemuMissing`], [`PilError::ElfMissing`], [`PilError::Fifo`],
-    /// [`PilError::Qemu`] or [`PilError::Timeout`]; QEMU is stopped and the FIFOs removed.
+    /// [`PilError::Qemu`], [`PilError::QemuExited`] or [`PilError::Timeout`]; QEMU is stopped
+    /// and the FIFOs removed.
     pub fn start(cfg: PilConfig) -> Result<Self, PilError> {
+        let mission =
+            guidance_core::missions::horus2b_reference::<f64>().map_err(PilError::Mission)?;
+        let limits = FrameLimits {
+            bounds: mission.table.bounds(),
+            rates: mission.config.rates,
+            initial: mission.initial,
+            period_s: mission.config.period_s,
+        };
+        Self::start_with(cfg, limits, &[])
+    }
+
+    /// As [`PilGuidance::start`], first uploading `setup` (the items of
+    /// [`super::scenario_setup`]; none: the firmware's compiled-in reference mission) and
+    /// checking command frames against `limits` (the configuration the firmware flies).
+    ///
+    /// # Errors
+    /// As [`PilGuidance::start`]; [`PilError::SetupRejected`] if the firmware rejects an item.
+    pub fn start_with(
+        cfg: PilConfig,
+        limits: FrameLimits,
+        setup: &[SetupItem],
+    ) -> Result<Self, PilError> {
         let ok = std::process::Command::new(&cfg.qemu)
             .arg("--version")
             .stdout(Stdio::null())
@@ -51,43 +84,30 @@ impl PilGuidance {
         if !cfg.elf.is_file() {
             return Err(PilError::ElfMissing(cfg.elf.clone()));
         }
-        std::fs::create_dir(&cfg.fifo_dir).map_err(|e| PilError::Fifo {
-            path: cfg.fifo_dir.clone(),
-            reason: format!("cannot create the FIFO directory: {e}"),
-        })?;
-        let mission =
-            guidance_core::missions::horus2b_reference::<f64>().map_err(PilError::Mission)?;
+        let dir = FifoDir::create(&cfg.fifo_parent)?;
+        let faults = cfg.faults.map(super::faults::FaultInjector::new);
         let mut me = Self {
             cfg,
-            child: None,
             nav: None,
             replies: None,
+            qemu: None,
+            dir,
             last: None,
             next_tick_s: 0.0,
-            period_s: mission.config.period_s,
-            initial: mission.initial,
+            period_s: limits.period_s,
+            limits,
             seq: 0,
             stats: PilStats::default(),
+            record: PilRecord::default(),
+            faults: None,
         };
         let (nav_path, cmd_path) = me.paths();
         mkfifo(&nav_path)?;
         mkfifo(&cmd_path)?;
-        let child = std::process::Command::new("timeout")
-            .arg(me.cfg.qemu_timeout_s.to_string())
-            .arg(&me.cfg.qemu)
-            .args(onboard_spec::machines::PIL_MACHINE.qemu_args())
-            .arg(&me.cfg.elf)
-            .arg("-append")
-            .arg(&me.cfg.fifo_dir)
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .map_err(|e| PilError::Qemu(format!("cannot start: {e}")))?;
-        me.child = Some(child);
+        let qemu = me.qemu.insert(Qemu::spawn(&me.cfg, me.dir.path())?);
         let t = me.cfg.reply_timeout;
-        me.nav = Some(open_fifo(&nav_path, true, t)?);
-        let mut cmd = open_fifo(&cmd_path, false, t)?;
+        me.nav = Some(open_fifo(&nav_path, true, t, qemu)?);
+        let mut cmd = open_fifo(&cmd_path, false, t, qemu)?;
         let (tx, rx) = mpsc::channel();
         std::thread::spawn(move || {
             loop {
@@ -103,11 +123,126 @@ impl PilGuidance {
             }
         });
         me.replies = Some(rx);
+        for (index, item) in setup.iter().enumerate() {
+            me.upload(index, *item)?;
+        }
+        // Faults only on the flight's nav frames, after a clean set-up.
+        me.faults = faults;
         Ok(me)
     }
 
+    /// Write `buf` and wait for one answer frame (raw bytes).
+    pub(super) fn roundtrip(&mut self, buf: &[u8; FRAME_LEN]) -> Result<[u8; FRAME_LEN], PilError> {
+        let (nav_path, cmd_path) = self.paths();
+        let reply = match (self.nav.as_mut(), self.replies.as_ref()) {
+            (Some(f), Some(rx)) => {
+                if let Err(e) = f.write_all(buf) {
+                    let err = PilError::Fifo {
+                        path: nav_path,
+                        reason: format!("write failed: {e}"),
+                    };
+                    return Err(self.dead_or(err));
+                }
+                rx.recv_timeout(self.cfg.reply_timeout)
+            }
+            _ => return Err(PilError::Timeout(Duration::ZERO, "an answer (link closed)")),
+        };
+        match reply {
+            Ok(Ok(b)) => Ok(b),
+            Ok(Err(e)) => {
+                let err = PilError::Fifo {
+                    path: cmd_path,
+                    reason: format!("read failed: {e} (did the firmware exit?)"),
+                };
+                Err(self.dead_or(err))
+            }
+            Err(_) => {
+                let err = PilError::Timeout(self.cfg.reply_timeout, "an answer");
+                Err(self.dead_or(err))
+            }
+        }
+    }
+
+    /// Next sequence number.
+    pub(super) fn next_seq(&mut self) -> u32 {
+        let s = self.seq;
+        self.seq = self.seq.wrapping_add(1);
+        s
+    }
+
+    /// Send one set-up item and wait for its status.
+    fn upload(&mut self, index: usize, item: SetupItem) -> Result<(), PilError> {
+        let seq = self.seq;
+        self.seq = self.seq.wrapping_add(1);
+        let mut buf = [0u8; FRAME_LEN];
+        encode(&Frame::Setup(SetupFrame { seq, item }), &mut buf).map_err(PilError::Link)?;
+        let nav_path = self.paths().0;
+        let reply = match (self.nav.as_mut(), self.replies.as_ref()) {
+            (Some(f), Some(rx)) => {
+                if let Err(e) = f.write_all(&buf) {
+                    let err = PilError::Fifo {
+                        path: nav_path,
+                        reason: format!("write failed: {e}"),
+                    };
+                    return Err(self.dead_or(err));
+                }
+                rx.recv_timeout(self.cfg.reply_timeout)
+            }
+            _ => {
+                return Err(PilError::Timeout(
+                    Duration::ZERO,
+                    "a set-up answer (link closed)",
+                ));
+            }
+        };
+        let bytes = match reply {
+            Ok(Ok(b)) => b,
+            _ => {
+                let err = PilError::Timeout(self.cfg.reply_timeout, "a set-up answer");
+                return Err(self.dead_or(err));
+            }
+        };
+        match decode(&bytes).map_err(PilError::Link)? {
+            Frame::Command(c) if c.seq == seq && c.status == LinkStatus::Ok => Ok(()),
+            Frame::Command(c) if c.seq == seq => Err(PilError::SetupRejected {
+                index,
+                item,
+                status: c.status,
+            }),
+            other => Err(PilError::Firmware {
+                seq,
+                what: format!("unexpected answer to set-up: {other:?}"),
+            }),
+        }
+    }
+
+    /// The record of the frames exchanged (a handle: clone it before the run to keep it after
+    /// a failure).
+    #[must_use]
+    pub fn record(&self) -> PilRecord {
+        self.record.clone()
+    }
+
+    /// The FIFO directory of this run (removed when the run ends).
+    #[must_use]
+    pub fn fifo_dir(&self) -> &std::path::Path {
+        self.dir.path()
+    }
+
+    /// If QEMU has exited, the error reporting its status and output; else `fallback`.
+    fn dead_or(&mut self, fallback: PilError) -> PilError {
+        match self
+            .qemu
+            .as_mut()
+            .map(|q| q.wait(Duration::from_millis(200)))
+        {
+            Some(Some(e)) => PilError::QemuExited(e),
+            _ => fallback,
+        }
+    }
+
     fn paths(&self) -> (PathBuf, PathBuf) {
-        (self.cfg.fifo_dir.join("nav"), self.cfg.fifo_dir.join("cmd"))
+        (self.dir.path().join("nav"), self.dir.path().join("cmd"))
     }
 
     /// Counters so far.
@@ -116,51 +251,91 @@ impl PilGuidance {
         self.stats
     }
 
-    /// Send one nav state and wait for the answer.
+    /// Send one nav state and wait for the answer; check the answer against the configured
+    /// bounds, rates and tick timing.
     ///
     /// # Errors
-    /// [`PilError`] naming the failure (FIFO write, timeout, bad frame, firmware status).
+    /// [`PilError`] naming the failure (FIFO write, timeout, QEMU exit, bad frame, firmware
+    /// status, [`PilError::BadCommand`]); the exchange is in the record, marked.
     pub fn exchange(&mut self, nav: &NavState<f64>) -> Result<CommandFrame, PilError> {
-        let started = Instant::now();
         let seq = self.seq;
+        self.record.push(Exchange {
+            seq,
+            nav: *nav,
+            reply: None,
+            failure: None,
+            fault: None,
+        });
+        let r = self.exchange_inner(seq, nav);
+        if let Err(e) = &r {
+            self.record.mark_failed(e.to_string());
+        }
+        r
+    }
+
+    fn exchange_inner(&mut self, seq: u32, nav: &NavState<f64>) -> Result<CommandFrame, PilError> {
+        let started = Instant::now();
         self.seq = self.seq.wrapping_add(1);
         let mut buf = [0u8; FRAME_LEN];
         encode(&Frame::Nav(NavFrame { seq, nav: *nav }), &mut buf).map_err(PilError::Link)?;
-        let nav_path = self.paths().0;
-        let f = self.nav.as_mut().ok_or_else(|| PilError::Fifo {
-            path: nav_path.clone(),
-            reason: "link is closed".into(),
-        })?;
-        f.write_all(&buf).map_err(|e| PilError::Fifo {
-            path: nav_path,
-            reason: format!("write failed: {e}"),
-        })?;
-        let rx = self.replies.as_ref().ok_or(PilError::Timeout(
-            Duration::ZERO,
-            "a command frame (link closed)",
-        ))?;
+        let (nav_path, cmd_path) = self.paths();
+        let Some(f) = self.nav.as_mut() else {
+            return Err(PilError::Fifo {
+                path: nav_path,
+                reason: "link is closed".into(),
+            });
+        };
+        if let Err(e) = f.write_all(&buf) {
+            let err = PilError::Fifo {
+                path: nav_path,
+                reason: format!("write failed: {e}"),
+            };
+            return Err(self.dead_or(err));
+        }
+        let Some(rx) = self.replies.as_ref() else {
+            return Err(PilError::Timeout(
+                Duration::ZERO,
+                "a command frame (link closed)",
+            ));
+        };
         let bytes = match rx.recv_timeout(self.cfg.reply_timeout) {
             Ok(Ok(b)) => b,
             Ok(Err(e)) => {
-                return Err(PilError::Fifo {
-                    path: self.paths().1,
+                let err = PilError::Fifo {
+                    path: cmd_path,
                     reason: format!("read failed: {e} (did the firmware exit?)"),
-                });
+                };
+                return Err(self.dead_or(err));
             }
             Err(RecvTimeoutError::Timeout) => {
-                return Err(PilError::Timeout(self.cfg.reply_timeout, "a command frame"));
+                let err = PilError::Timeout(self.cfg.reply_timeout, "a command frame");
+                return Err(self.dead_or(err));
             }
             Err(RecvTimeoutError::Disconnected) => {
-                return Err(PilError::Fifo {
-                    path: self.paths().1,
+                let err = PilError::Fifo {
+                    path: cmd_path,
                     reason: "reader stopped".into(),
-                });
+                };
+                return Err(self.dead_or(err));
             }
         };
         self.stats.frames += 1;
         self.stats.link_s += started.elapsed().as_secs_f64();
-        match decode(&bytes).map_err(PilError::Link)? {
-            Frame::Command(c) if c.seq == seq && c.status == LinkStatus::Ok => Ok(c),
+        let frame = decode(&bytes).map_err(PilError::Link)?;
+        if let Frame::Command(c) = frame {
+            self.record.set_reply(c);
+        }
+        match frame {
+            Frame::Command(c) if c.seq == seq && c.status == LinkStatus::Ok => {
+                self.limits
+                    .check(&c, nav.time_s, self.last.as_ref())
+                    .map_err(|violation| PilError::BadCommand {
+                        seq,
+                        time_s: nav.time_s,
+                        violation,
+                    })?;
+                Ok(c)
+            }
             Frame::Command(c) => Err(PilError::Firmware {
                 seq,
                 what: match c.status.to_error() {
@@ -178,92 +353,74 @@ impl PilGuidance {
     /// Send the end frame and wait for QEMU to exit 0.
     ///
     /// # Errors
-    /// [`PilError::Qemu`] if the firmware fails or does not exit in time.
+    /// [`PilError::QemuExited`] if the firmware fails, [`PilError::Timeout`] if it does not
+    /// exit in time.
     pub fn finish(mut self) -> Result<PilStats, PilError> {
         let mut buf = [0u8; FRAME_LEN];
         encode(&Frame::End(self.seq), &mut buf).map_err(PilError::Link)?;
+        let nav_path = self.paths().0;
         if let Some(f) = self.nav.as_mut() {
             f.write_all(&buf).map_err(|e| PilError::Fifo {
-                path: self.cfg.fifo_dir.join("nav"),
+                path: nav_path,
                 reason: format!("write failed: {e}"),
             })?;
         }
         self.nav = None;
-        let Some(mut child) = self.child.take() else {
+        let timeout = self.cfg.reply_timeout;
+        let Some(q) = self.qemu.as_mut() else {
             return Err(PilError::Qemu("not running".into()));
         };
-        let deadline = Instant::now() + self.cfg.reply_timeout;
-        loop {
-            match child.try_wait() {
-                Ok(Some(status)) => {
-                    let mut out = String::new();
-                    if let Some(mut o) = child.stdout.take() {
-                        let _ = o.read_to_string(&mut out);
-                    }
-                    return if status.success() {
-                        Ok(self.stats)
-                    } else {
-                        Err(PilError::Qemu(format!(
-                            "firmware exited with {status}: {}",
-                            out.trim()
-                        )))
-                    };
-                }
-                Ok(None) if Instant::now() < deadline => {
-                    std::thread::sleep(Duration::from_millis(5));
-                }
-                Ok(None) => {
-                    stop(&mut child);
-                    return Err(PilError::Timeout(
-                        self.cfg.reply_timeout,
-                        "QEMU to exit after the end frame",
-                    ));
-                }
-                Err(e) => return Err(PilError::Qemu(format!("wait failed: {e}"))),
+        match q.wait(timeout) {
+            Some(e) if q.succeeded() => {
+                // "pil: end of run after N frames; faults F; stack M bytes"
+                self.stats.firmware_stack_bytes = e
+                    .stdout
+                    .split("; stack ")
+                    .nth(1)
+                    .and_then(|r| r.split(' ').next())
+                    .and_then(|n| n.parse().ok());
+                self.stats.firmware_faults = e
+                    .stdout
+                    .split("; faults ")
+                    .nth(1)
+                    .and_then(|r| r.split(';').next())
+                    .and_then(|n| n.trim().parse().ok());
+                Ok(self.stats)
             }
+            Some(e) => Err(PilError::QemuExited(e)),
+            None => Err(PilError::Timeout(
+                timeout,
+                "QEMU to exit after the end frame",
+            )),
         }
     }
-}
-
-/// Stop QEMU: SIGTERM to `timeout`, which passes it on to QEMU (a SIGKILL would orphan QEMU);
-/// SIGKILL if it is still running after 2 s.
-fn stop(child: &mut Child) {
-    if matches!(child.try_wait(), Ok(Some(_))) {
-        return;
-    }
-    let _ = std::process::Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .stderr(Stdio::null())
-        .status();
-    let deadline = Instant::now() + Duration::from_secs(2);
-    while Instant::now() < deadline {
-        if !matches!(child.try_wait(), Ok(None)) {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    let _ = child.kill();
-    let _ = child.wait();
 }
 
 impl Drop for PilGuidance {
     fn drop(&mut self) {
         self.nav = None;
-        if let Some(mut c) = self.child.take() {
-            stop(&mut c);
+        // Stop QEMU (its process group): the reader thread then sees the end of the cmd FIFO.
+        if let Some(mut q) = self.qemu.take() {
+            q.stop();
         }
-        // Release a reader thread still blocked on the cmd FIFO, then remove the FIFOs.
-        let (nav, cmd) = self.paths();
-        drop(OpenOptions::new().read(true).write(true).open(&cmd));
-        let _ = std::fs::remove_file(nav);
-        let _ = std::fs::remove_file(cmd);
-        let _ = std::fs::remove_dir(&self.cfg.fifo_dir);
+        // Release a reader thread still blocked in opening the cmd FIFO; `dir` is removed when
+        // the fields drop.
+        drop(
+            OpenOptions::new()
+                .read(true)
+                .write(true)
+                .open(self.paths().1),
+        );
+        self.replies = None;
     }
 }
 
 impl AttitudeSource for PilGuidance {
     type Error = PilError;
     fn tick(&mut self, nav: &NavState<f64>) -> Result<(), PilError> {
+        if self.faults.is_some() {
+            return self.tick_with_faults(nav);
+        }
         let c = self.exchange(nav)?;
         self.next_tick_s = c.tick_time_s + self.period_s;
         self.last = Some(c);
@@ -273,7 +430,7 @@ impl AttitudeSource for PilGuidance {
         match &self.last {
             Some(c) => c.attitude_at(time_s),
             // Before the first tick: the firmware's initial attitude.
-            None => self.initial,
+            None => self.limits.initial,
         }
     }
     fn next_tick_s(&self) -> f64 {

@@ -7,7 +7,7 @@ use crate::scenario::{Scenario, ScenarioError, build_guidance};
 use crate::sim::{self, AttitudeSource, SimResult};
 use crate::vehicle::Vehicle;
 
-use super::{PilConfig, PilError, PilGuidance, PilStats};
+use super::{PilConfig, PilError, PilRecord, PilStats};
 
 /// The HORUS-2B reference mission's models and settings (the default scenario, full
 /// environment), as flown by SIL and PIL.
@@ -58,20 +58,25 @@ pub fn fly_reference_sil() -> Result<SimResult, ScenarioError> {
 /// # Errors
 /// [`PilError`] naming what failed; QEMU is stopped and the FIFOs are removed in every case.
 pub fn fly_reference_pil(cfg: PilConfig) -> Result<(SimResult, PilStats), PilError> {
-    let (sc, env, veh) = reference_setup()?;
-    let source = PilGuidance::start(cfg)?;
-    let dynm = Dynamics::from_environment(&env, &veh);
-    let (result, source) = match sim::simulate(dynm, source, &sc.sim_config(), &mut |_| {}) {
-        Ok(r) => r,
-        // The firmware link's own error, as it was raised (not wrapped as a guidance failure).
-        Err(sim::SimError::Guidance { source, time_s }) => {
-            return Err(match source.downcast::<PilError>() {
-                Ok(e) => *e,
-                Err(source) => PilError::Sim(sim::SimError::Guidance { time_s, source }),
-            });
-        }
-        Err(e) => return Err(PilError::Sim(e)),
-    };
-    let stats = source.finish()?;
-    Ok((result, stats))
+    fly_reference_pil_recorded(cfg).0
+}
+
+/// As [`fly_reference_pil`], also returning the record of the frames exchanged (complete up to
+/// a failure, whose exchange is marked). The mission is uploaded as set-up frames, like any
+/// scenario.
+pub fn fly_reference_pil_recorded(
+    cfg: PilConfig,
+) -> (Result<(SimResult, PilStats), PilError>, PilRecord) {
+    super::fly_scenario_pil(&Scenario::default(), "(built-in)", cfg)
+}
+
+/// The firmware link's own error, as it was raised (not wrapped as a guidance failure).
+pub(super) fn unwrap_pil_error(e: sim::SimError) -> PilError {
+    match e {
+        sim::SimError::Guidance { source, time_s } => match source.downcast::<PilError>() {
+            Ok(e) => *e,
+            Err(source) => PilError::Sim(sim::SimError::Guidance { time_s, source }),
+        },
+        e => PilError::Sim(e),
+    }
 }

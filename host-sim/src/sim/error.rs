@@ -34,6 +34,14 @@ pub enum SimError {
         /// The attitude source's error.
         source: Box<dyn std::error::Error + Send + Sync>,
     },
+    /// The onboard navigation interface found no guidance variables for the state.
+    #[error("navigation at t = {time_s} s: {source}")]
+    Navigation {
+        /// Mission time \[s\].
+        time_s: f64,
+        /// The core's conversion error.
+        source: guidance_core::navconv::NavConvError,
+    },
     /// The attitude source asked for a tick that is not after the current time.
     #[error(
         "guidance at t = {} s: next tick {} s is not after the current time",

@@ -4,13 +4,14 @@
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
 use guidance_core::monitor::GLoadRateMonitor;
+use guidance_core::navconv::{self, CartesianNav, InertialFrame};
 
 use super::events::{Event, EventState};
 use super::{
     AttitudeSource, Peak, Sample, SampleKind, SimConfig, SimError, SimResult, Summary, Termination,
     TerminationReason, great_circle, state_atol, validate_config, violations,
 };
-use crate::dynamics::{Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, STATE_LEN, SphericalState};
+use crate::dynamics::{Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, STATE_LEN, cartesian_of};
 use crate::integrate::{Direction, OdeProblem, Rkf45, Stats};
 
 /// Progress of a run, reported at every guidance tick and output sample.
@@ -103,16 +104,26 @@ impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
     }
 }
 
-fn nav_of(t: f64, s: &SphericalState) -> NavState<f64> {
-    NavState {
-        time_s: t,
-        radius_m: s.radius_m,
-        speed_m_s: s.speed_m_s,
-        flight_path_angle_rad: s.flight_path_angle_rad,
-        heading_rad: s.heading_rad,
-        latitude_rad: s.latitude_rad,
-        longitude_rad: s.longitude_rad,
-    }
+/// The navigation state guidance sees, as flight computes it: the inertial Cartesian state
+/// converted onboard by `guidance_core::navconv` (not the simulator's own spherical state).
+fn nav_of(
+    t: f64,
+    y: &[f64; STATE_LEN],
+    rotation_rate_rad_s: f64,
+) -> Result<NavState<f64>, SimError> {
+    let c = cartesian_of(y);
+    navconv::from_inertial(
+        &CartesianNav {
+            time_s: t,
+            position_m: c.position_m,
+            velocity_m_s: c.velocity_m_s,
+        },
+        &InertialFrame {
+            rotation_rate_rad_s,
+            angle_at_zero_rad: 0.0,
+        },
+    )
+    .map_err(|source| SimError::Navigation { time_s: t, source })
 }
 
 /// Fly a trajectory closed-loop. `progress` is called at every guidance tick
@@ -153,14 +164,12 @@ pub fn simulate<A: AttitudeSource>(
     let mut y = dynm.initial_state(&cfg.entry, 0.0);
     let mut ticks = 0u64;
     let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN], ticks: &mut u64| {
-        let s = lp.dynm.spherical_of(y, t);
+        let nav = nav_of(t, y, lp.dynm.planet.rotation_rate_rad_s)?;
         *ticks += 1;
-        lp.source
-            .tick(&nav_of(t, &s))
-            .map_err(|e| SimError::Guidance {
-                time_s: t,
-                source: Box::new(e),
-            })
+        lp.source.tick(&nav).map_err(|e| SimError::Guidance {
+            time_s: t,
+            source: Box::new(e),
+        })
     };
     tick(&mut lp, t, &y, &mut ticks)?;
     lp.observe(t, &y);

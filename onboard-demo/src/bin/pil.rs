@@ -4,15 +4,21 @@
 //! `SYS_READ`, `SYS_WRITE`): `<dir>/nav` (host -> firmware, [`NavFrame`]s) and `<dir>/cmd`
 //! (firmware -> host, [`CommandFrame`]s), frames as defined in `guidance_core::link`.
 //! `<dir>` is the semihosting command line (QEMU `-append DIR`, read with `SYS_GET_CMDLINE`;
-//! its last word), or else the build-time `PIL_FIFO_DIR`, or else `/tmp/reentry-pil`.
+//! its last word; host-sim passes `.` and runs QEMU in the FIFO directory, so the path is always
+//! short), or else the build-time `PIL_FIFO_DIR`, or else `.` (when the command line is too
+//! long for the buffer, e.g. a very long ELF path).
 //!
-//! Guidance: `Guidance<f32>` of the HORUS-2B reference mission compiled in
-//! (`guidance_core::missions::horus2b_reference`: time-indexed table of thesis eq. 2.3, thesis
-//! bounds, linear interpolation, 2 s period, rate limits, initial attitude 40 deg / 0 deg; E-hat
-//! of the thesis' spherical Earth), the same mission host-sim flies in SIL.
+//! Guidance: `f32` on the Cortex-M4F (`thumbv7em-none-eabihf`), fixed point (`I32F32`) on the
+//! Cortex-M3 (`thumbv7m-none-eabi`). The host first uploads its scenario's guidance as set-up
+//! frames (`guidance_core::setup`: node table in either independent variable, interpolation,
+//! bounds, period, rates, initial attitude, E-hat map); every item is answered with a typed
+//! status, and the commit builds `Guidance` with the core's own checks. Without a set-up the
+//! firmware flies the compiled-in HORUS-2B reference mission
+//! (`guidance_core::missions::horus2b_reference`).
 //!
-//! Loop: read a nav frame, `update`, answer with a command frame (same sequence number) until
-//! an end frame arrives, then exit 0. A link failure, panic or HardFault exits 1.
+//! Loop: read a frame; set-up items are collected; a nav frame is an `update`, answered with a
+//! command frame (same sequence number); an end frame exits 0. A link failure, panic or
+//! HardFault exits 1.
 //!
 //! Firmware only: built for the host (as `cargo test --workspace` and `cargo clippy
 //! --workspace` do) this binary is a stub that says so and exits 2.
@@ -34,17 +40,15 @@ fn main() {
 mod firmware {
     use cortex_m_rt::{ExceptionFrame, entry, exception};
     use cortex_m_semihosting::{hprintln, nr};
-    use guidance_core::guidance::{Command, Guidance};
-    use guidance_core::link::{
-        CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode,
-    };
+    use guidance_core::guidance::Guidance;
     use guidance_core::missions::horus2b_reference;
-    use guidance_core::{NavState, Scalar};
+    use onboard_demo::app::{AppError, serve};
 
     /// Default FIFO directory when the command line names none.
     const DEFAULT_DIR: &str = match option_env!("PIL_FIFO_DIR") {
         Some(d) => d,
-        None => "/tmp/reentry-pil",
+        // The host runs QEMU in the FIFO directory.
+        None => ".",
     };
 
     /// Longest FIFO path \[bytes\] (including the terminating NUL).
@@ -107,78 +111,94 @@ mod firmware {
         }
     }
 
-    fn read_frame(fd: usize, buf: &mut [u8; FRAME_LEN]) -> Result<(), &'static str> {
-        let mut got = 0;
-        while got < FRAME_LEN {
-            let rest = buf.get_mut(got..).ok_or("read overflow")?;
-            // SYS_READ returns the number of bytes NOT read.
-            let left = sys(nr::READ, &[fd, rest.as_mut_ptr() as usize, rest.len()]);
+    /// The link: semihosting reads from the nav FIFO, writes to the cmd FIFO.
+    struct SemihostingLink {
+        nav_fd: usize,
+        cmd_fd: usize,
+    }
+
+    /// A semihosting call failed.
+    #[derive(Clone, Copy, Debug)]
+    struct SemihostingError;
+
+    impl embedded_io::Error for SemihostingError {
+        fn kind(&self) -> embedded_io::ErrorKind {
+            embedded_io::ErrorKind::Other
+        }
+    }
+
+    impl embedded_io::ErrorType for SemihostingLink {
+        type Error = SemihostingError;
+    }
+
+    impl embedded_io::Read for SemihostingLink {
+        fn read(&mut self, buf: &mut [u8]) -> Result<usize, SemihostingError> {
+            if buf.is_empty() {
+                return Ok(0);
+            }
+            // SYS_READ returns the number of bytes NOT read (all of them: end of file).
+            let left = sys(
+                nr::READ,
+                &[self.nav_fd, buf.as_mut_ptr() as usize, buf.len()],
+            );
             if left < 0 {
-                return Err("read failed");
+                return Err(SemihostingError);
             }
-            let read = rest.len().saturating_sub(left as usize);
-            if read == 0 {
-                return Err("end of file on nav FIFO");
-            }
-            got += read;
+            Ok(buf.len().saturating_sub(left as usize))
         }
-        Ok(())
     }
 
-    fn write_frame(fd: usize, buf: &[u8; FRAME_LEN]) -> Result<(), &'static str> {
-        let left = sys(nr::WRITE, &[fd, buf.as_ptr() as usize, buf.len()]);
-        if left == 0 {
+    impl embedded_io::Write for SemihostingLink {
+        fn write(&mut self, buf: &[u8]) -> Result<usize, SemihostingError> {
+            let left = sys(nr::WRITE, &[self.cmd_fd, buf.as_ptr() as usize, buf.len()]);
+            if left < 0 {
+                return Err(SemihostingError);
+            }
+            Ok(buf.len().saturating_sub(left as usize))
+        }
+        fn flush(&mut self) -> Result<(), SemihostingError> {
             Ok(())
-        } else {
-            Err("write to cmd FIFO failed")
         }
     }
 
-    fn to_f32(n: &NavState<f64>) -> NavState<f32> {
-        NavState {
-            time_s: n.time_s as f32,
-            radius_m: n.radius_m as f32,
-            speed_m_s: n.speed_m_s as f32,
-            flight_path_angle_rad: n.flight_path_angle_rad as f32,
-            heading_rad: n.heading_rad as f32,
-            latitude_rad: n.latitude_rad as f32,
-            longitude_rad: n.longitude_rad as f32,
+    /// The status discrete: QEMU's machines have none wired here, so the level is only kept
+    /// (a real board passes a GPIO pin).
+    struct StatusLevel(bool);
+
+    impl embedded_hal::digital::ErrorType for StatusLevel {
+        type Error = core::convert::Infallible;
+    }
+
+    impl embedded_hal::digital::OutputPin for StatusLevel {
+        fn set_low(&mut self) -> Result<(), Self::Error> {
+            self.0 = false;
+            Ok(())
+        }
+        fn set_high(&mut self) -> Result<(), Self::Error> {
+            self.0 = true;
+            Ok(())
         }
     }
 
-    fn wide(c: Command<f32>) -> Command<f64> {
-        Command {
-            alpha_rad: f64::from(c.alpha_rad),
-            sigma_rad: f64::from(c.sigma_rad),
-        }
-    }
+    /// The guidance scalar: `f32` on the Cortex-M4F (hard float), fixed point on the Cortex-M3.
+    #[cfg(target_abi = "eabihf")]
+    type S = f32;
+    /// The guidance scalar: `f32` on the Cortex-M4F (hard float), fixed point on the Cortex-M3.
+    #[cfg(not(target_abi = "eabihf"))]
+    type S = guidance_core::Fixed;
 
-    fn answer(g: &Guidance<f32>, seq: u32, status: LinkStatus) -> CommandFrame {
-        let tick = g.last_tick_s().unwrap_or(f32::ZERO);
-        let rates = g.config().rates;
-        CommandFrame {
-            seq,
-            status,
-            tick_time_s: f64::from(tick),
-            command: wide(g.command()),
-            ramp_start: wide(g.attitude_at(tick)),
-            rates: guidance_core::guidance::RateLimits {
-                alpha_rad_s: f64::from(rates.alpha_rad_s),
-                sigma_rad_s: f64::from(rates.sigma_rad_s),
-            },
-        }
-    }
+    /// Node capacity of uploaded tables.
+    const CAPACITY: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
 
-    fn run() -> Result<u32, &'static str> {
-        let mission = horus2b_reference::<f32>().map_err(|_| "reference mission rejected")?;
+    /// The compiled-in HORUS-2B reference mission (flown when the host sends no set-up).
+    fn reference() -> Option<Guidance<S, CAPACITY>> {
+        let mission = horus2b_reference::<S>().ok()?;
         // Time-indexed table: the energy normaliser is required but unused.
-        let energy = mission
-            .earth_energy_normalizer()
-            .map_err(|_| "energy normaliser rejected")?;
-        let mut g = mission
-            .guidance(energy)
-            .map_err(|_| "guidance rejected its configuration")?;
+        let energy = mission.earth_energy_normalizer().ok()?;
+        mission.guidance(energy).ok()
+    }
 
+    fn run() -> Result<(u32, u32), &'static str> {
         let mut dir = [0u8; PATH_MAX];
         let dir_len = match cmdline_dir(&mut dir) {
             Some(n) => n,
@@ -196,36 +216,32 @@ mod firmware {
         let nav_fd = open(&path, n, MODE_RB)?;
         let n = join(dir, b"cmd", &mut path).ok_or("FIFO path too long")?;
         let cmd_fd = open(&path, n, MODE_WB)?;
-
-        let mut inb = [0u8; FRAME_LEN];
-        let mut outb = [0u8; FRAME_LEN];
-        let mut frames = 0u32;
-        loop {
-            read_frame(nav_fd, &mut inb)?;
-            let reply = match decode(&inb) {
-                Ok(Frame::End(_)) => return Ok(frames),
-                Ok(Frame::Nav(NavFrame { seq, nav })) => {
-                    let status = match g.update(&to_f32(&nav)) {
-                        Ok(o) if o.ticked => LinkStatus::Ok,
-                        Ok(_) => LinkStatus::NotTicked,
-                        Err(e) => LinkStatus::from_error(e),
-                    };
-                    answer(&g, seq, status)
-                }
-                Ok(Frame::Command(c)) => answer(&g, c.seq, LinkStatus::BadFrame),
-                Err(_) => answer(&g, 0, LinkStatus::BadFrame),
-            };
-            encode(&Frame::Command(reply), &mut outb).map_err(|_| "non-finite command")?;
-            write_frame(cmd_fd, &outb)?;
-            frames = frames.wrapping_add(1);
+        let mut link = SemihostingLink { nav_fd, cmd_fd };
+        let mut status = StatusLevel(false);
+        match serve::<S, CAPACITY, _, _>(&mut link, &mut status, reference) {
+            Ok(o) => Ok((o.frames, o.faults)),
+            Err(AppError::EndOfLink) => Err("end of file on nav FIFO"),
+            Err(AppError::Read(_)) => Err("read failed"),
+            Err(AppError::Write(_)) => Err("write to cmd FIFO failed"),
+            Err(AppError::Encode) => Err("non-finite command"),
+            Err(AppError::NoGuidance) => Err("reference mission rejected"),
         }
     }
 
     #[entry]
     fn main() -> ! {
-        match run() {
-            Ok(n) => {
-                hprintln!("pil: end of run after {} frames", n);
+        // The whole run under stack painting: its deepest stack (guidance state, set-up
+        // builder, frame buffers and every update) is printed at the end.
+        let (stack, r) = onboard_demo::stack::max_stack_bytes(run);
+        match r {
+            Ok((n, faults)) => {
+                hprintln!(
+                    "pil: end of run after {} frames; faults {}; stack {} bytes{}",
+                    n,
+                    faults,
+                    stack.bytes,
+                    if stack.overflowed { " or more" } else { "" }
+                );
                 onboard_demo::exit(true)
             }
             Err(e) => {
