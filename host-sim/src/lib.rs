@@ -14,6 +14,7 @@
 pub mod analytic;
 pub mod cli;
 pub mod compare;
+pub mod design;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;
