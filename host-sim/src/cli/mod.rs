@@ -7,6 +7,8 @@ mod atmosphere_cmd;
 mod compare_cmd;
 mod hypervolume_cmd;
 mod optimize_cmd;
+mod optimize_reentry;
+mod optimize_reentry_out;
 mod simulate_cmd;
 mod vehicles_cmd;
 
@@ -21,6 +23,7 @@ pub use atmosphere_cmd::{AtmosphereArgs, AtmosphereModel};
 pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
 pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
+pub use optimize_reentry::{ReentryError, ReentryRunConfig};
 pub use simulate_cmd::SimulateArgs;
 
 /// `host-sim`: 3-DOF re-entry simulator flying guidance-core's guidance closed-loop.
