@@ -9,6 +9,8 @@ mod hypervolume_cmd;
 mod optimize_cmd;
 mod optimize_reentry;
 mod optimize_reentry_out;
+#[cfg(test)]
+mod optimize_reentry_tests;
 mod simulate_cmd;
 mod vehicles_cmd;
 

@@ -83,6 +83,9 @@ impl DesignConfig {
             "horus-2b" => {
                 let mut sc = Scenario::default();
                 sc.name = "horus-2b-design".into();
+                // The reference mission's 2500 s limit cuts long-range profiles (a flight
+                // reaching it is a failed evaluation): allow 5000 s.
+                sc.termination.max_time_s = 5000.0;
                 sc.guidance.independent = guidance_core::nodes::Independent::NormalizedEnergy;
                 sc.guidance.interpolation = crate::scenario::InterpolationKind::Linear;
                 sc.guidance.initial = guidance_core::guidance::Command {
