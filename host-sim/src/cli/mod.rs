@@ -11,6 +11,7 @@ mod optimize_reentry;
 mod optimize_reentry_out;
 #[cfg(test)]
 mod optimize_reentry_tests;
+mod sample_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;
 
@@ -26,6 +27,7 @@ pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
 pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 pub use optimize_reentry::{ReentryError, ReentryRunConfig};
+pub use sample_cmd::SampleArgs;
 pub use simulate_cmd::SimulateArgs;
 
 /// `host-sim`: 3-DOF re-entry simulator flying guidance-core's guidance closed-loop.
@@ -55,6 +57,9 @@ pub enum Command {
     Optimize(OptimizeArgs),
     /// Exact hypervolume of a front CSV (minimised objectives as columns) for a reference point.
     Hypervolume(HypervolumeArgs),
+    /// Latin-hypercube sample of a re-entry design problem, evaluated in parallel
+    /// (samples.csv: decision, objectives, constraints, violation).
+    Sample(SampleArgs),
 }
 
 /// CLI failures; the message names file, field and value where there is one.
@@ -94,6 +99,9 @@ pub enum CliError {
     /// `hypervolume` failed.
     #[error("{0}")]
     Hypervolume(#[from] HypervolumeCmdError),
+    /// `sample` failed.
+    #[error("{0}")]
+    Sample(#[from] ReentryError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -120,5 +128,6 @@ where
         Command::Vehicles => vehicles_cmd::run(out),
         Command::Optimize(a) => Ok(optimize_cmd::run(&a, out)?),
         Command::Hypervolume(a) => hypervolume_cmd::run(&a, out),
+        Command::Sample(a) => Ok(sample_cmd::run(&a, out)?),
     }
 }

@@ -122,6 +122,9 @@ pub enum ReentryError {
     /// The optimiser refused its settings or failed.
     #[error("optimiser: {0}")]
     Optim(#[from] OptimError),
+    /// An evaluation failed outright.
+    #[error("evaluation: {0}")]
+    Eval(#[from] crate::optim::EvalError),
     /// Output could not be written.
     #[error(transparent)]
     Report(#[from] ReportError),

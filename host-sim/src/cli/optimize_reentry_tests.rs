@@ -131,3 +131,35 @@ fn config_template_and_errors_name_the_field() {
     assert!(e.to_string().contains("choose a writable --out"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `sample` writes one row per Latin-hypercube point, the same file for 1 and 2 threads.
+#[test]
+fn sample_is_the_same_for_any_thread_count() {
+    let dir = tmp("sample");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |t: &str| {
+        let f = dir.join(format!("s{t}.csv"));
+        let args = [
+            "host-sim",
+            "sample",
+            "--problem",
+            "srm",
+            "--count",
+            "3",
+            "--threads",
+            t,
+        ];
+        let mut v: Vec<&str> = args.to_vec();
+        let fs = f.to_str().unwrap().to_string();
+        v.extend(["--out", &fs]);
+        cli_run(v, &mut Vec::new()).unwrap();
+        std::fs::read_to_string(&f).unwrap()
+    };
+    let one = run("1");
+    assert_eq!(one.lines().count(), 4);
+    assert!(one.starts_with("x1,x2,"));
+    assert_eq!(one, run("2"));
+    let e = cli_run(["host-sim", "sample", "--count", "0"], &mut Vec::new()).unwrap_err();
+    assert!(e.to_string().contains("--count"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

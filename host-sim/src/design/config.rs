@@ -81,8 +81,10 @@ impl DesignConfig {
         let d = std::f64::consts::PI / 180.0;
         match self.base.as_str() {
             "horus-2b" => {
-                let mut sc = Scenario::default();
-                sc.name = "horus-2b-design".into();
+                let mut sc = Scenario {
+                    name: "horus-2b-design".into(),
+                    ..Scenario::default()
+                };
                 // The reference mission's 2500 s limit cuts long-range profiles (a flight
                 // reaching it is a failed evaluation): allow 5000 s.
                 sc.termination.max_time_s = 5000.0;

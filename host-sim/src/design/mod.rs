@@ -11,12 +11,14 @@
 pub mod config;
 pub mod encoding;
 pub mod problem;
+pub mod sample;
 #[cfg(test)]
 mod tests;
 
 pub use config::{DesignConfig, PRESETS};
 pub use encoding::{Encoding, FixedNode};
 pub use problem::{Limits, Objectives, ReentryProblem};
+pub use sample::latin_hypercube;
 
 use crate::optim::BoundsError;
 use crate::scenario::ScenarioError;
