@@ -30,7 +30,9 @@ pub struct DesignConfig {
 }
 
 impl DesignConfig {
-    /// A preset: `horus-2b` (8 nodes, alpha and bank free, entry of thesis table 2.1),
+    /// A preset: `horus-2b` (8 nodes, alpha and bank free, entry of thesis table 2.1; first
+    /// node the reference initial attitude 40 deg / 0 deg, last node 0 deg / 0 deg at E-hat
+    /// = 0, the thesis' sea-level standstill terminal node of sec. 9.3.3),
     /// `srm` (8 nodes, bank only, 100 km entry of thesis sec. 9.2), `srm-altitude` (the same
     /// with the entry altitude a variable in 50 to 110 km).
     ///
@@ -53,7 +55,7 @@ impl DesignConfig {
             sigma_deg,
         };
         let encoding = match name {
-            "horus-2b" => thesis(node(1.0, 40.0, 0.0), node(0.0, 15.0, 0.0), true),
+            "horus-2b" => thesis(node(1.0, 40.0, 0.0), node(0.0, 0.0, 0.0), true),
             "srm" => thesis(node(1.0, 0.0, 0.0), node(0.0, 0.0, 0.0), false),
             "srm-altitude" => Encoding {
                 entry_altitude_km: Some([50.0, 110.0]),
