@@ -75,7 +75,7 @@ fn resume_gives_the_uninterrupted_run() {
     let n = row.len();
     let (f1, f2) = (row[n - 6], row[n - 5]);
     assert!(
-        (f1 + s.range_angle_rad / std::f64::consts::PI).abs() < 1e-9,
+        (f1 + s.flown_range_angle_rad / std::f64::consts::PI).abs() < 1e-9,
         "{f1} {s:?}"
     );
     assert!((f2 - s.heat_load_j_m2 / 1e9).abs() < 1e-9, "{f2} {s:?}");

@@ -2,7 +2,9 @@
 //! [`Encoding`]); its evaluation flies the closed loop (guidance-core's `Guidance` at its 2 s
 //! clock in the numerical simulator) and returns
 //!
-//! * objectives (minimised): `f_r = -theta / pi` (range angle, eq. 9.1) and
+//! * objectives (minimised): `f_r = -theta / pi` (eq. 9.1; `theta` the flown range angle, the
+//!   integrated angle travelled over the planet, which like the thesis' can exceed pi, whereas
+//!   the great-circle angle between entry and end points saturates at pi) and
 //!   `f_Q = Q / Q_scale` (heat load, `Q_scale` = [`Objectives::heat_load_scale_j_m2`]);
 //!   optionally the number of skips as a third objective;
 //! * constraints (`g <= 0` feasible): `q_max / q_lim - 1`, `n_max / n_lim - 1`,
@@ -180,7 +182,7 @@ impl ReentryProblem {
             return Evaluation::failure(self.objectives(), self.constraints());
         }
         let mut f = vec![
-            -s.range_angle_rad / std::f64::consts::PI,
+            -s.flown_range_angle_rad / std::f64::consts::PI,
             s.heat_load_j_m2 / self.objectives.heat_load_scale_j_m2,
         ];
         if self.objectives.skips {

@@ -35,7 +35,7 @@ fn known_node_table_gives_the_simulators_own_result() {
     let pi = std::f64::consts::PI;
     assert_eq!(
         ev.objectives,
-        vec![-s.range_angle_rad / pi, s.heat_load_j_m2 / 1e9]
+        vec![-s.flown_range_angle_rad / pi, s.heat_load_j_m2 / 1e9]
     );
     assert_eq!(
         ev.constraints,
@@ -45,7 +45,7 @@ fn known_node_table_gives_the_simulators_own_result() {
             s.peak_g_load_rate_per_s.value / 0.5 - 1.0,
         ]
     );
-    assert!(s.range_angle_rad > 0.1, "{s:?}");
+    assert!(s.flown_range_angle_rad > 0.1, "{s:?}");
     let text = scenario_to_toml(&sc);
     let back = parse_scenario(&text, "front.toml", std::path::Path::new(".")).unwrap();
     assert_eq!(p.evaluate_scenario(&back), ev, "{text}");
