@@ -11,6 +11,7 @@ mod optimize_reentry;
 mod optimize_reentry_out;
 #[cfg(test)]
 mod optimize_reentry_tests;
+mod optimize_structured;
 mod sample_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;

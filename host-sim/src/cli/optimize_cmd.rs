@@ -15,10 +15,10 @@ use crate::optim::hypervolume::{HypervolumeError, hypervolume};
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
 use crate::optim::{
-    Algorithm, Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Problem,
-    Rayon, Serial, WeightGeneration, evolve,
+    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
+    OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
 };
-use crate::report::{ReportError, write_atomic};
+use crate::report::{ReportError, RunDir};
 
 /// The algorithms `optimize` offers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -27,13 +27,19 @@ pub enum AlgorithmName {
     Moead,
     /// NSGA-II (Deb's constrained domination).
     Nsga2,
+    /// MHACO (pagmo maco semantics, ker = min(63, population), feasibility-first archive).
+    Mhaco,
+    /// SCEA (structured chromosomes; the only one for the variable-length problems).
+    Scea,
 }
 
 impl AlgorithmName {
-    fn as_str(self) -> &'static str {
+    pub(super) fn as_str(self) -> &'static str {
         match self {
             Self::Moead => "moead",
             Self::Nsga2 => "nsga2",
+            Self::Mhaco => "mhaco",
+            Self::Scea => "scea",
         }
     }
 }
@@ -52,8 +58,9 @@ pub enum WeightsArg {
 /// Arguments of `optimize`.
 #[derive(Debug, clap::Args)]
 pub struct OptimizeArgs {
-    /// Test problem (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr) or re-entry
-    /// design preset (horus-2b, srm, srm-altitude: thesis sec. 4.2 and 9.1 settings).
+    /// Test problem (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5:
+    /// variable-length, SCEA only) or re-entry design preset (horus-2b, srm, srm-altitude:
+    /// thesis sec. 4.2 and 9.1 settings).
     #[arg(long, default_value = "zdt1")]
     pub problem: String,
     /// Algorithm.
@@ -71,10 +78,10 @@ pub struct OptimizeArgs {
     /// Objectives of a DTLZ problem.
     #[arg(long, default_value_t = 3)]
     pub objectives: usize,
-    /// MOEA/D weight generation.
+    /// MOEA/D and SCEA weight generation.
     #[arg(long, value_enum, default_value = "grid")]
     pub weights: WeightsArg,
-    /// MOEA/D neighbourhood size (at most population - 1).
+    /// MOEA/D and SCEA neighbourhood size (at most population - 1).
     #[arg(long, default_value_t = 20)]
     pub neighbours: usize,
     /// MOEA/D per-variable mutation probability (default 1/variables; the thesis used
@@ -134,7 +141,11 @@ pub const DEFAULT_GENERATIONS: u64 = 250;
 #[derive(Debug, thiserror::Error)]
 pub enum OptimizeError {
     /// Unknown problem name.
-    #[error("command line: --problem {name}: unknown; use one of {list}", list = NAMES.join(", "))]
+    #[error(
+        "command line: --problem {name}: unknown; use one of {list}, {vl}",
+        list = NAMES.join(", "),
+        vl = crate::optim::problems::VL_NAMES.join(", ")
+    )]
     UnknownProblem {
         /// The name given.
         name: String,
@@ -160,6 +171,16 @@ pub enum OptimizeError {
         got: usize,
         /// The values.
         values: Vec<f64>,
+    },
+    /// A fixed-length algorithm on a variable-length problem.
+    #[error(
+        "command line: --algorithm {algorithm} cannot run the variable-length problem {problem}; use --algorithm scea"
+    )]
+    NeedsFixedLength {
+        /// Algorithm asked for.
+        algorithm: &'static str,
+        /// Problem asked for.
+        problem: String,
     },
     /// `--threads 0`.
     #[error("command line: --threads 0: use at least 1")]
@@ -191,31 +212,31 @@ pub enum OptimizeError {
 
 /// The summary JSON.
 #[derive(Debug, Serialize)]
-struct Summary<'a> {
-    problem: &'a str,
-    algorithm: &'static str,
-    population: usize,
-    generations: u64,
-    seed: u64,
-    objectives: usize,
-    variables: usize,
-    constraints: usize,
-    evaluations: u64,
-    reference_point: &'a [f64],
-    hypervolume: f64,
-    true_front_hypervolume: Option<f64>,
-    hypervolume_ratio: Option<f64>,
-    feasible_fraction: f64,
-    front_size: usize,
+pub(super) struct Summary<'a> {
+    pub(super) problem: &'a str,
+    pub(super) algorithm: &'static str,
+    pub(super) population: usize,
+    pub(super) generations: u64,
+    pub(super) seed: u64,
+    pub(super) objectives: usize,
+    pub(super) variables: usize,
+    pub(super) constraints: usize,
+    pub(super) evaluations: u64,
+    pub(super) reference_point: &'a [f64],
+    pub(super) hypervolume: f64,
+    pub(super) true_front_hypervolume: Option<f64>,
+    pub(super) hypervolume_ratio: Option<f64>,
+    pub(super) feasible_fraction: f64,
+    pub(super) front_size: usize,
     /// Wall time of the evolution alone (no problem set-up, no output) [s].
-    wall_time_s: f64,
-    threads: usize,
+    pub(super) wall_time_s: f64,
+    pub(super) threads: usize,
 }
 
-struct Outcome {
-    population: Vec<Individual<Vec<f64>>>,
-    evaluations: u64,
-    wall_time_s: f64,
+pub(super) struct Outcome {
+    pub(super) population: Vec<Individual<Vec<f64>>>,
+    pub(super) evaluations: u64,
+    pub(super) wall_time_s: f64,
 }
 
 fn drive<A: Algorithm<TestProblem>>(
@@ -243,6 +264,37 @@ fn drive<A: Algorithm<TestProblem>>(
     })
 }
 
+/// MOEA/D settings from the arguments (also SCEA's).
+pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
+    let weights = match a.weights {
+        WeightsArg::Grid => WeightGeneration::Grid,
+        WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
+        WeightsArg::Random => WeightGeneration::Random,
+    };
+    MoeadConfig {
+        population: a.population,
+        weights,
+        neighbours: a.neighbours,
+        mutation_probability: a.mutation_probability,
+        batch_size: a.batch_size,
+        ..MoeadConfig::default()
+    }
+}
+
+/// The evaluation pool for `--threads` (`None`: serial).
+pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, OptimizeError> {
+    match threads {
+        0 => Err(OptimizeError::Threads),
+        1 => Ok(None),
+        t => Ok(Some(Arc::new(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .map_err(|source| OptimizeError::Pool { threads: t, source })?,
+        ))),
+    }
+}
+
 /// Run `optimize` with arguments `a`, printing the summary to `out`.
 ///
 /// # Errors
@@ -250,6 +302,9 @@ fn drive<A: Algorithm<TestProblem>>(
 pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     if super::optimize_reentry::wants_reentry(a) {
         return Ok(super::optimize_reentry::run(a, out)?);
+    }
+    if let Some(vl) = crate::optim::problems::Vlmop::by_name(&a.problem) {
+        return super::optimize_structured::run_variable_length(a, &vl, out);
     }
     let problem = TestProblem::by_name(&a.problem, a.objectives)
         .map_err(|source| OptimizeError::Problem {
@@ -272,31 +327,10 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         }
         None => problem.reference_point(),
     };
-    let pool = match a.threads {
-        0 => return Err(OptimizeError::Threads),
-        1 => None,
-        t => Some(Arc::new(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .map_err(|source| OptimizeError::Pool { threads: t, source })?,
-        )),
-    };
+    let pool = pool(a.threads)?;
     let outcome = match a.algorithm {
         AlgorithmName::Moead => {
-            let weights = match a.weights {
-                WeightsArg::Grid => WeightGeneration::Grid,
-                WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
-                WeightsArg::Random => WeightGeneration::Random,
-            };
-            let config = MoeadConfig {
-                population: a.population,
-                weights,
-                neighbours: a.neighbours,
-                mutation_probability: a.mutation_probability,
-                batch_size: a.batch_size,
-                ..MoeadConfig::default()
-            };
+            let config = moead_config(a);
             drive(Moead::new(config, a.seed), &problem, a.generations, pool)?
         }
         AlgorithmName::Nsga2 => {
@@ -306,6 +340,15 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
             };
             drive(Nsga2::new(config, a.seed), &problem, a.generations, pool)?
         }
+        AlgorithmName::Mhaco => {
+            let config = MhacoConfig {
+                population: a.population,
+                ker: a.population.min(MhacoConfig::default().ker),
+                ..MhacoConfig::default()
+            };
+            drive(Mhaco::new(config, a.seed), &problem, a.generations, pool)?
+        }
+        AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, pool)?,
     };
     let pop = &outcome.population;
     let front_idx = feasible_front_indices(pop);
@@ -357,16 +400,13 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     Ok(())
 }
 
-fn write_outputs(
+pub(super) fn write_outputs(
     dir: &Path,
     pop: &[Individual<Vec<f64>>],
     front: &[&[f64]],
     summary: &Summary<'_>,
 ) -> Result<(), OptimizeError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    let mut rd = RunDir::begin(dir)?;
     let nf = summary.objectives;
     let mut csv = String::new();
     let header: Vec<String> = (1..=summary.variables)
@@ -387,7 +427,7 @@ fn write_outputs(
             .collect();
         let _ = writeln!(csv, "{}", row.join(","));
     }
-    write_atomic(&dir.join("population.csv"), csv.as_bytes())?;
+    rd.write("population.csv", csv.as_bytes())?;
     let mut csv = String::new();
     let header: Vec<String> = (1..=nf).map(|i| format!("f{i}")).collect();
     let _ = writeln!(csv, "{}", header.join(","));
@@ -395,9 +435,10 @@ fn write_outputs(
         let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
         let _ = writeln!(csv, "{}", row.join(","));
     }
-    write_atomic(&dir.join("front.csv"), csv.as_bytes())?;
+    rd.write("front.csv", csv.as_bytes())?;
     let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
-    write_atomic(&dir.join("summary.json"), json.as_bytes())?;
+    rd.write("summary.json", json.as_bytes())?;
+    rd.commit()?;
     Ok(())
 }
 
