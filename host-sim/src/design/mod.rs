@@ -14,11 +14,13 @@ pub mod problem;
 pub mod sample;
 #[cfg(test)]
 mod tests;
+pub mod variable;
 
 pub use config::{DesignConfig, PRESETS};
 pub use encoding::{Encoding, FixedNode};
 pub use problem::{Limits, Objectives, ReentryProblem};
 pub use sample::latin_hypercube;
+pub use variable::VariableReentry;
 
 use crate::optim::BoundsError;
 use crate::scenario::ScenarioError;

@@ -132,3 +132,35 @@ fn srm_altitude_encoding_and_setting_errors() {
     let e = DesignConfig::preset("x38").unwrap_err();
     assert!(e.to_string().contains("unknown preset"), "{e}");
 }
+
+/// The SCEA problem: a 3-free-node chromosome (5 table nodes) flies the same table as the
+/// fixed-length problem's, and a chromosome outside the 4-8 node layout is an error.
+#[test]
+fn variable_length_problem_flies_its_table() {
+    use crate::optim::chromosome::{Chromosome, StructuredProblem};
+    let v = VariableReentry::new(horus(), [4, 8]).unwrap();
+    assert_eq!(v.layout().nodes().min, 2);
+    assert_eq!(v.layout().nodes().max, 6);
+    let legs = vec![vec![
+        vec![0.3, 30.0, 60.0],
+        vec![0.8, 40.0, 20.0],
+        vec![0.55, 35.0, 45.0],
+    ]];
+    let c = Chromosome {
+        fixed: vec![],
+        legs,
+    };
+    let (table, h) = v.table_of(&c).unwrap();
+    assert_eq!(h, None);
+    assert_eq!(table.len(), 5);
+    assert_eq!(table[1][0], 0.8);
+    let direct = v
+        .inner()
+        .evaluate_scenario(&v.inner().scenario_of_table(table, None));
+    assert_eq!(v.evaluate(&c).unwrap(), direct);
+    let short = Chromosome {
+        fixed: vec![],
+        legs: vec![vec![vec![0.5, 30.0, 40.0]]],
+    };
+    assert!(v.evaluate(&short).is_err());
+}
