@@ -15,18 +15,20 @@ use serde::{Deserialize, Serialize};
 
 use super::optimize_cmd::OptimizeArgs;
 use super::optimize_reentry_out::{Record, record_of, write_final, write_generation};
-use crate::design::{DesignConfig, DesignError, ReentryProblem};
+use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
+use crate::optim::chromosome::Chromosome;
 use crate::optim::{
-    Algorithm, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Rayon, Serial,
-    evolve,
+    Algorithm, Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Problem,
+    Rayon, Scea, SceaConfig, Serial, evolve,
 };
 use crate::report::{ReportError, write_atomic};
+use crate::scenario::Scenario;
 
 /// A re-entry optimisation run: algorithm settings and the problem (file units).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ReentryRunConfig {
-    /// `moead` or `nsga2`.
+    /// `moead`, `nsga2` or `scea` (variable length: 4 to `problem.encoding.nodes` nodes).
     pub algorithm: String,
     /// Population size.
     pub population: usize,
@@ -184,11 +186,11 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             reason,
         })
     };
-    if !matches!(c.algorithm.as_str(), "moead" | "nsga2") {
+    if !matches!(c.algorithm.as_str(), "moead" | "nsga2" | "scea") {
         return bad(
             "algorithm",
             c.algorithm.clone(),
-            "use moead or nsga2".into(),
+            "use moead, nsga2 or scea".into(),
         );
     }
     if c.threads == 0 {
@@ -278,6 +280,30 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
                 })?,
         )),
     };
+    let moead = MoeadConfig {
+        population: c.population,
+        neighbours: c.neighbours,
+        limit: c.limit,
+        mutation_probability: c.mutation_probability,
+        batch_size: c.batch_size,
+        ..MoeadConfig::default()
+    };
+    if c.algorithm == "scea" {
+        let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
+        let vproblem = VariableReentry::new(problem, nodes)?;
+        let ctx = Ctx {
+            c: &c,
+            dir: &dir,
+            problem: &vproblem,
+            pool,
+            resume,
+        };
+        let cfg = SceaConfig {
+            moead,
+            ..SceaConfig::default()
+        };
+        return drive(&ctx, Scea::new(cfg, c.seed), out);
+    }
     let ctx = Ctx {
         c: &c,
         dir: &dir,
@@ -293,30 +319,63 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
             };
             drive(&ctx, Nsga2::new(cfg, c.seed), out)
         }
-        _ => {
-            let cfg = MoeadConfig {
-                population: c.population,
-                neighbours: c.neighbours,
-                limit: c.limit,
-                mutation_probability: c.mutation_probability,
-                batch_size: c.batch_size,
-                ..MoeadConfig::default()
-            };
-            drive(&ctx, Moead::new(cfg, c.seed), out)
-        }
+        _ => drive(&ctx, Moead::new(moead, c.seed), out),
     }
 }
 
-struct Ctx<'a> {
+/// What the run directory needs of a design problem's decisions: their genes as a flat row
+/// and the scenario they fly.
+trait RunProblem: Problem {
+    /// The decision's genes, flat (a variable-length decision gives a shorter row).
+    fn genes(d: &Self::Decision) -> Vec<f64>;
+    /// The scenario the decision flies.
+    fn scenario(&self, d: &Self::Decision) -> Option<Scenario>;
+}
+
+impl RunProblem for ReentryProblem {
+    fn genes(d: &Vec<f64>) -> Vec<f64> {
+        d.clone()
+    }
+    fn scenario(&self, d: &Vec<f64>) -> Option<Scenario> {
+        self.scenario_of(d).ok()
+    }
+}
+
+impl RunProblem for VariableReentry {
+    fn genes(d: &Chromosome) -> Vec<f64> {
+        d.fixed
+            .iter()
+            .chain(d.legs.iter().flatten().flatten())
+            .copied()
+            .collect()
+    }
+    fn scenario(&self, d: &Chromosome) -> Option<Scenario> {
+        let (table, h) = self.table_of(d).ok()?;
+        Some(self.inner().scenario_of_table(table, h))
+    }
+}
+
+fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f64>>> {
+    pop.iter()
+        .map(|i| Individual {
+            decision: P::genes(&i.decision),
+            objectives: i.objectives.clone(),
+            constraints: i.constraints.clone(),
+            violation: i.violation,
+        })
+        .collect()
+}
+
+struct Ctx<'a, P> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
-    problem: &'a ReentryProblem,
+    problem: &'a P,
     pool: Option<Arc<rayon::ThreadPool>>,
     resume: bool,
 }
 
-fn step<A: Algorithm<ReentryProblem>>(
-    ctx: &Ctx<'_>,
+fn step<P: RunProblem, A: Algorithm<P>>(
+    ctx: &Ctx<'_, P>,
     alg: &mut A,
     generations: u64,
 ) -> Result<(), OptimError> {
@@ -332,9 +391,10 @@ fn step<A: Algorithm<ReentryProblem>>(
     }
 }
 
-fn drive<A>(ctx: &Ctx<'_>, fresh: A, out: &mut dyn Write) -> Result<(), ReentryError>
+fn drive<P, A>(ctx: &Ctx<'_, P>, fresh: A, out: &mut dyn Write) -> Result<(), ReentryError>
 where
-    A: Algorithm<ReentryProblem> + Serialize + DeserializeOwned,
+    P: RunProblem,
+    A: Algorithm<P> + Serialize + DeserializeOwned,
 {
     let ck_path = ctx.dir.join("checkpoint.json");
     let (mut alg, mut records) = if ctx.resume {
@@ -352,12 +412,8 @@ where
     bar.set_position(records.len() as u64);
     let start = Instant::now();
     let save = |alg: &A, records: &mut Vec<Record>| -> Result<(), ReentryError> {
-        let rec = record_of(
-            alg.generation(),
-            alg.evaluations(),
-            alg.population(),
-            &ctx.c.reference,
-        );
+        let pop = flat::<P>(alg.population());
+        let rec = record_of(alg.generation(), alg.evaluations(), &pop, &ctx.c.reference);
         bar.set_position(rec.generation + 1);
         bar.set_message(format!(
             "gen {} feasible {:.0} % best f {:?} hv {:.4}",
@@ -366,7 +422,7 @@ where
             rec.best,
             rec.hypervolume
         ));
-        write_generation(ctx.dir, alg.population(), rec.generation)?;
+        write_generation(ctx.dir, &pop, rec.generation)?;
         records.push(rec);
         let ck = Checkpoint {
             algorithm: alg,
@@ -387,12 +443,23 @@ where
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
     let last = records.last().cloned();
-    write_final(ctx.dir, ctx.problem, alg.population(), &records, ctx.c)?;
+    let scenarios: Vec<Option<Scenario>> = alg
+        .population()
+        .iter()
+        .map(|i| ctx.problem.scenario(&i.decision))
+        .collect();
+    write_final(
+        ctx.dir,
+        &scenarios,
+        &flat::<P>(alg.population()),
+        &records,
+        ctx.c,
+    )?;
     if let Some(r) = last {
         writeln!(
             out,
             "{} on {}: generation {}, {} evaluations in {:.2} s this session, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members; wrote {}",
-            alg.name(),
+            ctx.c.algorithm,
             ctx.c.problem.base,
             r.generation,
             r.evaluations,

@@ -10,13 +10,12 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::optimize_reentry::ReentryRunConfig;
-use crate::design::ReentryProblem;
 use crate::optim::Individual;
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::report::{ReportError, write_atomic};
 use crate::report::{Series, line_plot_svg};
-use crate::scenario::{scenario_to_toml, simulate_scenario};
+use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
 
 /// One generation's record.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -81,9 +80,11 @@ pub fn record_of(
 
 fn csv_of(pop: &[Individual<Vec<f64>>]) -> String {
     let mut s = String::new();
-    let (n, m, c) = pop.first().map_or((0, 0, 0), |i| {
-        (i.decision.len(), i.objectives.len(), i.constraints.len())
-    });
+    // Variable-length decisions (SCEA) are padded with empty fields to the longest.
+    let n = pop.iter().map(|i| i.decision.len()).max().unwrap_or(0);
+    let (m, c) = pop
+        .first()
+        .map_or((0, 0), |i| (i.objectives.len(), i.constraints.len()));
     let head: Vec<String> = (1..=n)
         .map(|i| format!("x{i}"))
         .chain((1..=m).map(|i| format!("f{i}")))
@@ -92,13 +93,19 @@ fn csv_of(pop: &[Individual<Vec<f64>>]) -> String {
         .collect();
     let _ = writeln!(s, "{}", head.join(","));
     for ind in pop {
+        let pad = n - ind.decision.len();
         let row: Vec<String> = ind
             .decision
             .iter()
-            .chain(&ind.objectives)
-            .chain(&ind.constraints)
-            .chain(std::iter::once(&ind.violation))
             .map(|v| format!("{v:e}"))
+            .chain(std::iter::repeat_n(String::new(), pad))
+            .chain(
+                ind.objectives
+                    .iter()
+                    .chain(&ind.constraints)
+                    .chain(std::iter::once(&ind.violation))
+                    .map(|v| format!("{v:e}")),
+            )
             .collect();
         let _ = writeln!(s, "{}", row.join(","));
     }
@@ -146,7 +153,7 @@ fn series(label: String, points: Vec<(f64, f64)>) -> Series {
 /// [`ReportError`].
 pub fn write_final(
     dir: &Path,
-    problem: &ReentryProblem,
+    scenarios: &[Option<Scenario>],
     pop: &[Individual<Vec<f64>>],
     records: &[Record],
     c: &ReentryRunConfig,
@@ -178,6 +185,10 @@ pub fn write_final(
     let mut idx = feasible_front_indices(pop);
     idx.sort_by(|&a, &b| pop[a].objectives[0].total_cmp(&pop[b].objectives[0]));
     let front: Vec<Individual<Vec<f64>>> = idx.iter().map(|&i| pop[i].clone()).collect();
+    let front_scenarios: Vec<Option<Scenario>> = idx
+        .iter()
+        .map(|&i| scenarios.get(i).cloned().flatten())
+        .collect();
     write_atomic(&dir.join("front.csv"), csv_of(&front).as_bytes())?;
     let fdir = dir.join("front");
     std::fs::create_dir_all(&fdir).map_err(|source| ReportError::Io {
@@ -185,8 +196,8 @@ pub fn write_final(
         source,
     })?;
     let mut chosen = Vec::new();
-    for (k, ind) in front.iter().enumerate() {
-        let Ok(mut sc) = problem.scenario_of(&ind.decision) else {
+    for (k, sc) in front_scenarios.into_iter().enumerate() {
+        let Some(mut sc) = sc else {
             continue;
         };
         sc.name = format!("{}-member-{k:02}", c.problem.base);
