@@ -15,6 +15,7 @@ pub mod analytic;
 pub mod campaign;
 pub mod cli;
 pub mod compare;
+pub mod design;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;

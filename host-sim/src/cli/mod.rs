@@ -8,7 +8,12 @@ mod compare_cmd;
 mod dispersions_cmd;
 mod hypervolume_cmd;
 mod optimize_cmd;
+mod optimize_reentry;
+mod optimize_reentry_out;
+#[cfg(test)]
+mod optimize_reentry_tests;
 mod optimize_structured;
+mod sample_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;
 
@@ -24,6 +29,8 @@ pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
 pub use dispersions_cmd::DispersionsArgs;
 pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
+pub use optimize_reentry::{ReentryError, ReentryRunConfig};
+pub use sample_cmd::SampleArgs;
 pub use simulate_cmd::SimulateArgs;
 
 /// `host-sim`: 3-DOF re-entry simulator flying guidance-core's guidance closed-loop.
@@ -55,6 +62,9 @@ pub enum Command {
     Hypervolume(HypervolumeArgs),
     /// Monte Carlo dispersion campaign of a scenario in three guidance modes.
     Dispersions(DispersionsArgs),
+    /// Latin-hypercube sample of a re-entry design problem, evaluated in parallel
+    /// (samples.csv: decision, objectives, constraints, violation).
+    Sample(SampleArgs),
 }
 
 /// CLI failures; the message names file, field and value where there is one.
@@ -94,6 +104,9 @@ pub enum CliError {
     /// `hypervolume` failed.
     #[error("{0}")]
     Hypervolume(#[from] HypervolumeCmdError),
+    /// `sample` failed.
+    #[error("{0}")]
+    Sample(#[from] ReentryError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -124,5 +137,6 @@ where
         Command::Optimize(a) => Ok(optimize_cmd::run(&a, out)?),
         Command::Hypervolume(a) => hypervolume_cmd::run(&a, out),
         Command::Dispersions(a) => dispersions_cmd::run(&a, out),
+        Command::Sample(a) => Ok(sample_cmd::run(&a, out)?),
     }
 }

@@ -58,8 +58,9 @@ pub enum WeightsArg {
 /// Arguments of `optimize`.
 #[derive(Debug, clap::Args)]
 pub struct OptimizeArgs {
-    /// Test problem: zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5
-    /// (variable-length, SCEA only).
+    /// Test problem (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5:
+    /// variable-length, SCEA only) or re-entry design preset (horus-2b, srm, srm-altitude:
+    /// thesis sec. 4.2 and 9.1 settings).
     #[arg(long, default_value = "zdt1")]
     pub problem: String,
     /// Algorithm.
@@ -69,7 +70,7 @@ pub struct OptimizeArgs {
     #[arg(long, default_value_t = 100)]
     pub population: usize,
     /// Generations after the initial population.
-    #[arg(long, default_value_t = 250)]
+    #[arg(long, default_value_t = DEFAULT_GENERATIONS)]
     pub generations: u64,
     /// Seed of the run's random-number generator.
     #[arg(long, default_value_t = 1)]
@@ -103,10 +104,38 @@ pub struct OptimizeArgs {
         allow_negative_numbers = true
     )]
     pub reference: Option<Vec<f64>>,
-    /// Write population.csv, front.csv and summary.json here.
+    /// Write population.csv, front.csv and summary.json here (re-entry problems: the run
+    /// directory, default runs/optimize-<problem>).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Re-entry run settings from a TOML file (see --print-config).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Print the re-entry run settings of the other flags as a TOML template and exit.
+    #[arg(long)]
+    pub print_config: bool,
+    /// Continue the re-entry run in DIR from its last checkpoint (--generations sets a new
+    /// total; by default the run's own).
+    #[arg(long, value_name = "DIR", conflicts_with = "config")]
+    pub resume: Option<PathBuf>,
 }
+
+impl OptimizeArgs {
+    /// The algorithm's name as in files.
+    #[must_use]
+    pub fn algorithm_name(&self) -> &'static str {
+        self.algorithm.as_str()
+    }
+
+    /// Whether `--generations` differs from its default (a resumed run keeps its own).
+    #[must_use]
+    pub fn generations_given(&self) -> bool {
+        self.generations != DEFAULT_GENERATIONS
+    }
+}
+
+/// Default of `--generations`.
+pub const DEFAULT_GENERATIONS: u64 = 250;
 
 /// Failures of `optimize`; each says what to change.
 #[derive(Debug, thiserror::Error)]
@@ -176,6 +205,9 @@ pub enum OptimizeError {
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
+    /// A re-entry design run failed.
+    #[error(transparent)]
+    Reentry(#[from] super::optimize_reentry::ReentryError),
 }
 
 /// The summary JSON.
@@ -268,6 +300,9 @@ pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, Opt
 /// # Errors
 /// [`OptimizeError`].
 pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
+    if super::optimize_reentry::wants_reentry(a) {
+        return Ok(super::optimize_reentry::run(a, out)?);
+    }
     if let Some(vl) = crate::optim::problems::Vlmop::by_name(&a.problem) {
         return super::optimize_structured::run_variable_length(a, &vl, out);
     }
@@ -426,6 +461,9 @@ mod tests {
             threads: 1,
             reference: None,
             out,
+            config: None,
+            print_config: false,
+            resume: None,
         }
     }
 

@@ -224,6 +224,9 @@ mod tests {
             threads: 1,
             reference: None,
             out: None,
+            config: None,
+            print_config: false,
+            resume: None,
         }
     }
 

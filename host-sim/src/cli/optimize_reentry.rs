@@ -1,0 +1,475 @@
+//! `host-sim optimize` on the re-entry design problems ([`crate::design`]): settings from
+//! flags or a TOML file (`--config`, `--print-config` prints a template), a progress bar, a
+//! run directory (config.toml, checkpoint.json written atomically after every generation,
+//! per-generation records and populations, the final front with one scenario file per member,
+//! plots) and `--resume DIR`, which continues a run from its last checkpoint to the same
+//! final front as an uninterrupted run.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use super::optimize_cmd::OptimizeArgs;
+use super::optimize_reentry_out::{Record, record_of, write_final, write_generation};
+use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
+use crate::optim::chromosome::Chromosome;
+use crate::optim::{
+    Algorithm, Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Problem,
+    Rayon, Scea, SceaConfig, Serial, evolve,
+};
+use crate::report::{ReportError, write_atomic};
+use crate::scenario::Scenario;
+
+/// A re-entry optimisation run: algorithm settings and the problem (file units).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReentryRunConfig {
+    /// `moead`, `nsga2` or `scea` (variable length: 4 to `problem.encoding.nodes` nodes).
+    pub algorithm: String,
+    /// Population size.
+    pub population: usize,
+    /// Generations after the initial population.
+    pub generations: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Evaluation threads (the result does not depend on it).
+    pub threads: usize,
+    /// MOEA/D offspring per batch (1: pagmo's steady state; larger: parallel evaluation).
+    pub batch_size: usize,
+    /// MOEA/D neighbourhood size (thesis: 20).
+    pub neighbours: usize,
+    /// MOEA/D replacement limit (thesis: 1).
+    pub limit: usize,
+    /// MOEA/D per-variable mutation probability (thesis: 1 / population; default
+    /// 1 / variables).
+    pub mutation_probability: Option<f64>,
+    /// Hypervolume reference point `[f_r, f_Q]` (objective units).
+    pub reference: Vec<f64>,
+    /// The design problem.
+    pub problem: DesignConfig,
+}
+
+impl ReentryRunConfig {
+    /// The thesis' settings (sec. 9.1) on a preset problem.
+    ///
+    /// # Errors
+    /// [`DesignError::UnknownPreset`].
+    pub fn thesis(preset: &str) -> Result<Self, DesignError> {
+        let problem = DesignConfig::preset(preset)?;
+        let m = 2 + usize::from(problem.objectives.skips);
+        let mut reference = vec![0.0, 2.0];
+        reference.resize(m, 10.0);
+        Ok(Self {
+            algorithm: "moead".into(),
+            population: 64,
+            generations: 128,
+            seed: 123,
+            threads: 1,
+            batch_size: 1,
+            neighbours: 20,
+            limit: 1,
+            mutation_probability: Some(1.0 / 64.0),
+            reference,
+            problem,
+        })
+    }
+}
+
+/// Failures of a re-entry run; each names the field or file and what to change.
+#[derive(Debug, thiserror::Error)]
+pub enum ReentryError {
+    /// The problem could not be built.
+    #[error(transparent)]
+    Design(#[from] DesignError),
+    /// A bad setting.
+    #[error("{source_name}: field `{field}` = {value}: {reason}")]
+    Setting {
+        /// Command line or file.
+        source_name: String,
+        /// Field.
+        field: &'static str,
+        /// Value.
+        value: String,
+        /// What to change.
+        reason: String,
+    },
+    /// A file could not be read.
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// A TOML or JSON file is malformed.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// Parser message (with the field).
+        message: String,
+    },
+    /// The run directory cannot be written.
+    #[error("run directory {path}: cannot write: {source}; choose a writable --out")]
+    RunDir {
+        /// The directory.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// The optimiser refused its settings or failed.
+    #[error("optimiser: {0}")]
+    Optim(#[from] OptimError),
+    /// An evaluation failed outright.
+    #[error("evaluation: {0}")]
+    Eval(#[from] crate::optim::EvalError),
+    /// Output could not be written.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// The console could not be written.
+    #[error("cannot write output: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Whether `optimize` arguments ask for a re-entry run.
+pub(super) fn wants_reentry(a: &OptimizeArgs) -> bool {
+    a.print_config
+        || a.config.is_some()
+        || a.resume.is_some()
+        || crate::design::PRESETS.contains(&a.problem.as_str())
+}
+
+fn read_text(path: &Path) -> Result<String, ReentryError> {
+    std::fs::read_to_string(path).map_err(|source| ReentryError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn parse_toml(path: &Path) -> Result<ReentryRunConfig, ReentryError> {
+    toml::from_str(&read_text(path)?).map_err(|e| ReentryError::Parse {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
+/// The run configuration of flags (a preset `--problem`) or `--config`.
+fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
+    if let Some(path) = &a.config {
+        return parse_toml(path);
+    }
+    let mut c = ReentryRunConfig::thesis(&a.problem)?;
+    c.algorithm = a.algorithm_name().into();
+    c.population = a.population;
+    c.generations = a.generations;
+    c.seed = a.seed;
+    c.threads = a.threads;
+    c.batch_size = a.batch_size;
+    c.neighbours = a.neighbours;
+    c.mutation_probability = a.mutation_probability;
+    if let Some(r) = &a.reference {
+        c.reference.clone_from(r);
+    }
+    Ok(c)
+}
+
+fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
+    let bad = |field, value: String, reason: String| {
+        Err(ReentryError::Setting {
+            source_name: src.to_string(),
+            field,
+            value,
+            reason,
+        })
+    };
+    if !matches!(c.algorithm.as_str(), "moead" | "nsga2" | "scea") {
+        return bad(
+            "algorithm",
+            c.algorithm.clone(),
+            "use moead, nsga2 or scea".into(),
+        );
+    }
+    if c.threads == 0 {
+        return bad("threads", "0".into(), "use at least 1".into());
+    }
+    let m = 2 + usize::from(c.problem.objectives.skips);
+    if c.reference.len() != m || !c.reference.iter().all(|v| v.is_finite()) {
+        return bad(
+            "reference",
+            format!("{:?}", c.reference),
+            format!("give {m} finite values (one per objective)"),
+        );
+    }
+    Ok(())
+}
+
+#[derive(Serialize, Deserialize)]
+struct Checkpoint<A> {
+    algorithm: A,
+    records: Vec<Record>,
+}
+
+/// Run `optimize` on a re-entry problem.
+///
+/// # Errors
+/// [`ReentryError`].
+pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
+    if a.print_config {
+        let c = config_of(a)?;
+        let text = toml::to_string(&c).map_err(|e| ReentryError::Parse {
+            path: PathBuf::from("(template)"),
+            message: e.to_string(),
+        })?;
+        write!(out, "{text}")?;
+        return Ok(());
+    }
+    let (mut c, dir, resume) = match &a.resume {
+        Some(dir) => (parse_toml(&dir.join("config.toml"))?, dir.clone(), true),
+        None => {
+            let c = config_of(a)?;
+            let dir = a
+                .out
+                .clone()
+                .unwrap_or_else(|| PathBuf::from(format!("runs/optimize-{}", c.problem.base)));
+            (c, dir, false)
+        }
+    };
+    let src = match (&a.resume, &a.config) {
+        (Some(d), _) => d.join("config.toml").display().to_string(),
+        (None, Some(p)) => p.display().to_string(),
+        (None, None) => "command line".to_string(),
+    };
+    if resume && a.generations_given() {
+        // Resuming may extend the run (an interrupted run resumes to its own target).
+        c.generations = a.generations;
+    }
+    check(&c, &src)?;
+    let base_dir = a
+        .config
+        .as_deref()
+        .and_then(Path::parent)
+        .unwrap_or(Path::new("."))
+        .to_path_buf();
+    let problem = c.problem.problem(&base_dir)?;
+    std::fs::create_dir_all(dir.join("population")).map_err(|source| ReentryError::RunDir {
+        path: dir.clone(),
+        source,
+    })?;
+    if !resume {
+        let text = toml::to_string(&c).map_err(|e| ReentryError::Parse {
+            path: dir.join("config.toml"),
+            message: e.to_string(),
+        })?;
+        write_atomic(&dir.join("config.toml"), text.as_bytes())?;
+    }
+    let pool = match c.threads {
+        1 => None,
+        t => Some(Arc::new(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .map_err(|e| ReentryError::Setting {
+                    source_name: src.clone(),
+                    field: "threads",
+                    value: t.to_string(),
+                    reason: e.to_string(),
+                })?,
+        )),
+    };
+    let moead = MoeadConfig {
+        population: c.population,
+        neighbours: c.neighbours,
+        limit: c.limit,
+        mutation_probability: c.mutation_probability,
+        batch_size: c.batch_size,
+        ..MoeadConfig::default()
+    };
+    if c.algorithm == "scea" {
+        let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
+        let vproblem = VariableReentry::new(problem, nodes)?;
+        let ctx = Ctx {
+            c: &c,
+            dir: &dir,
+            problem: &vproblem,
+            pool,
+            resume,
+        };
+        let cfg = SceaConfig {
+            moead,
+            ..SceaConfig::default()
+        };
+        return drive(&ctx, Scea::new(cfg, c.seed), out);
+    }
+    let ctx = Ctx {
+        c: &c,
+        dir: &dir,
+        problem: &problem,
+        pool,
+        resume,
+    };
+    match c.algorithm.as_str() {
+        "nsga2" => {
+            let cfg = Nsga2Config {
+                population: c.population,
+                ..Nsga2Config::default()
+            };
+            drive(&ctx, Nsga2::new(cfg, c.seed), out)
+        }
+        _ => drive(&ctx, Moead::new(moead, c.seed), out),
+    }
+}
+
+/// What the run directory needs of a design problem's decisions: their genes as a flat row
+/// and the scenario they fly.
+trait RunProblem: Problem {
+    /// The decision's genes, flat (a variable-length decision gives a shorter row).
+    fn genes(d: &Self::Decision) -> Vec<f64>;
+    /// The scenario the decision flies.
+    fn scenario(&self, d: &Self::Decision) -> Option<Scenario>;
+}
+
+impl RunProblem for ReentryProblem {
+    fn genes(d: &Vec<f64>) -> Vec<f64> {
+        d.clone()
+    }
+    fn scenario(&self, d: &Vec<f64>) -> Option<Scenario> {
+        self.scenario_of(d).ok()
+    }
+}
+
+impl RunProblem for VariableReentry {
+    fn genes(d: &Chromosome) -> Vec<f64> {
+        d.fixed
+            .iter()
+            .chain(d.legs.iter().flatten().flatten())
+            .copied()
+            .collect()
+    }
+    fn scenario(&self, d: &Chromosome) -> Option<Scenario> {
+        let (table, h) = self.table_of(d).ok()?;
+        Some(self.inner().scenario_of_table(table, h))
+    }
+}
+
+fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f64>>> {
+    pop.iter()
+        .map(|i| Individual {
+            decision: P::genes(&i.decision),
+            objectives: i.objectives.clone(),
+            constraints: i.constraints.clone(),
+            violation: i.violation,
+        })
+        .collect()
+}
+
+struct Ctx<'a, P> {
+    c: &'a ReentryRunConfig,
+    dir: &'a Path,
+    problem: &'a P,
+    pool: Option<Arc<rayon::ThreadPool>>,
+    resume: bool,
+}
+
+fn step<P: RunProblem, A: Algorithm<P>>(
+    ctx: &Ctx<'_, P>,
+    alg: &mut A,
+    generations: u64,
+) -> Result<(), OptimError> {
+    match &ctx.pool {
+        Some(pool) => evolve(
+            alg,
+            ctx.problem,
+            &Rayon::with_pool(Arc::clone(pool)),
+            generations,
+            &mut NoObserver,
+        ),
+        None => evolve(alg, ctx.problem, &Serial, generations, &mut NoObserver),
+    }
+}
+
+fn drive<P, A>(ctx: &Ctx<'_, P>, fresh: A, out: &mut dyn Write) -> Result<(), ReentryError>
+where
+    P: RunProblem,
+    A: Algorithm<P> + Serialize + DeserializeOwned,
+{
+    let ck_path = ctx.dir.join("checkpoint.json");
+    let (mut alg, mut records) = if ctx.resume {
+        let text = read_text(&ck_path)?;
+        let ck: Checkpoint<A> = serde_json::from_str(&text).map_err(|e| ReentryError::Parse {
+            path: ck_path.clone(),
+            message: e.to_string(),
+        })?;
+        (ck.algorithm, ck.records)
+    } else {
+        (fresh, Vec::new())
+    };
+    let total = ctx.c.generations;
+    let bar = indicatif::ProgressBar::new(total + 1);
+    bar.set_position(records.len() as u64);
+    let start = Instant::now();
+    let save = |alg: &A, records: &mut Vec<Record>| -> Result<(), ReentryError> {
+        let pop = flat::<P>(alg.population());
+        let rec = record_of(alg.generation(), alg.evaluations(), &pop, &ctx.c.reference);
+        bar.set_position(rec.generation + 1);
+        bar.set_message(format!(
+            "gen {} feasible {:.0} % best f {:?} hv {:.4}",
+            rec.generation,
+            100.0 * rec.feasible_fraction,
+            rec.best,
+            rec.hypervolume
+        ));
+        write_generation(ctx.dir, &pop, rec.generation)?;
+        records.push(rec);
+        let ck = Checkpoint {
+            algorithm: alg,
+            records: records.clone(),
+        };
+        let json = serde_json::to_string(&ck).map_err(ReportError::Json)?;
+        write_atomic(&ck_path, json.as_bytes())?;
+        Ok(())
+    };
+    if !alg.is_initialised() {
+        step(ctx, &mut alg, 0)?;
+        save(&alg, &mut records)?;
+    }
+    while alg.generation() < total {
+        step(ctx, &mut alg, 1)?;
+        save(&alg, &mut records)?;
+    }
+    bar.finish_and_clear();
+    let wall = start.elapsed().as_secs_f64();
+    let last = records.last().cloned();
+    let scenarios: Vec<Option<Scenario>> = alg
+        .population()
+        .iter()
+        .map(|i| ctx.problem.scenario(&i.decision))
+        .collect();
+    write_final(
+        ctx.dir,
+        &scenarios,
+        &flat::<P>(alg.population()),
+        &records,
+        ctx.c,
+    )?;
+    if let Some(r) = last {
+        writeln!(
+            out,
+            "{} on {}: generation {}, {} evaluations in {:.2} s this session, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members; wrote {}",
+            ctx.c.algorithm,
+            ctx.c.problem.base,
+            r.generation,
+            r.evaluations,
+            wall,
+            100.0 * r.feasible_fraction,
+            r.hypervolume,
+            ctx.c.reference,
+            r.front.len(),
+            ctx.dir.display()
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,298 @@
+//! Files of a re-entry optimisation run: per-generation records (generations.csv and .json),
+//! populations (population/gen_NNNN.csv), the final front (front.csv and one scenario file per
+//! member in front/, flyable by `host-sim simulate --scenario`), the trajectories of three
+//! chosen members (front/member_NN/) and plots (fronts.svg, hypervolume.svg, feasible.svg,
+//! objectives.svg, trajectories.svg).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::optimize_reentry::ReentryRunConfig;
+use crate::optim::Individual;
+use crate::optim::hypervolume::hypervolume;
+use crate::optim::population::{feasible_fraction, feasible_front_indices};
+use crate::report::{ReportError, write_atomic};
+use crate::report::{Series, line_plot_svg};
+use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
+
+/// One generation's record.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Record {
+    /// Generation (0: the initial population).
+    pub generation: u64,
+    /// Evaluations so far.
+    pub evaluations: u64,
+    /// Fraction of feasible individuals.
+    pub feasible_fraction: f64,
+    /// Hypervolume of the feasible front (0 without feasible members).
+    pub hypervolume: f64,
+    /// Smallest violation in the population.
+    pub min_violation: f64,
+    /// Best (smallest) feasible value per objective (NaN: none feasible).
+    pub best: Vec<f64>,
+    /// Mean feasible value per objective (NaN: none feasible).
+    pub mean: Vec<f64>,
+    /// The feasible front's objective vectors.
+    pub front: Vec<Vec<f64>>,
+}
+
+/// The record of a population.
+pub fn record_of(
+    generation: u64,
+    evaluations: u64,
+    pop: &[Individual<Vec<f64>>],
+    reference: &[f64],
+) -> Record {
+    let m = reference.len();
+    let feas: Vec<&Individual<Vec<f64>>> = pop.iter().filter(|i| i.violation == 0.0).collect();
+    let mut best = vec![f64::NAN; m];
+    let mut mean = vec![f64::NAN; m];
+    if !feas.is_empty() {
+        for k in 0..m {
+            best[k] = feas
+                .iter()
+                .map(|i| i.objectives[k])
+                .fold(f64::INFINITY, f64::min);
+            mean[k] = feas.iter().map(|i| i.objectives[k]).sum::<f64>() / feas.len() as f64;
+        }
+    }
+    let mut front: Vec<Vec<f64>> = feasible_front_indices(pop)
+        .into_iter()
+        .map(|i| pop[i].objectives.clone())
+        .collect();
+    front.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    Record {
+        generation,
+        evaluations,
+        feasible_fraction: feasible_fraction(pop),
+        hypervolume: hypervolume(&front, reference).unwrap_or(f64::NAN),
+        min_violation: pop
+            .iter()
+            .map(|i| i.violation)
+            .fold(f64::INFINITY, f64::min),
+        best,
+        mean,
+        front,
+    }
+}
+
+fn csv_of(pop: &[Individual<Vec<f64>>]) -> String {
+    let mut s = String::new();
+    // Variable-length decisions (SCEA) are padded with empty fields to the longest.
+    let n = pop.iter().map(|i| i.decision.len()).max().unwrap_or(0);
+    let (m, c) = pop
+        .first()
+        .map_or((0, 0), |i| (i.objectives.len(), i.constraints.len()));
+    let head: Vec<String> = (1..=n)
+        .map(|i| format!("x{i}"))
+        .chain((1..=m).map(|i| format!("f{i}")))
+        .chain((1..=c).map(|i| format!("g{i}")))
+        .chain(["violation".into()])
+        .collect();
+    let _ = writeln!(s, "{}", head.join(","));
+    for ind in pop {
+        let pad = n - ind.decision.len();
+        let row: Vec<String> = ind
+            .decision
+            .iter()
+            .map(|v| format!("{v:e}"))
+            .chain(std::iter::repeat_n(String::new(), pad))
+            .chain(
+                ind.objectives
+                    .iter()
+                    .chain(&ind.constraints)
+                    .chain(std::iter::once(&ind.violation))
+                    .map(|v| format!("{v:e}")),
+            )
+            .collect();
+        let _ = writeln!(s, "{}", row.join(","));
+    }
+    s
+}
+
+/// Write one generation's population (population/gen_NNNN.csv).
+///
+/// # Errors
+/// [`ReportError`].
+pub fn write_generation(
+    dir: &Path,
+    pop: &[Individual<Vec<f64>>],
+    generation: u64,
+) -> Result<(), ReportError> {
+    write_atomic(
+        &dir.join("population")
+            .join(format!("gen_{generation:04}.csv")),
+        csv_of(pop).as_bytes(),
+    )
+}
+
+fn plot(
+    dir: &Path,
+    name: &str,
+    title: &str,
+    x: &str,
+    y: &str,
+    s: &[Series],
+) -> Result<(), ReportError> {
+    write_atomic(&dir.join(name), line_plot_svg(title, x, y, s)?.as_bytes())
+}
+
+fn series(label: String, points: Vec<(f64, f64)>) -> Series {
+    Series {
+        label,
+        points,
+        dashed: false,
+    }
+}
+
+/// Write the final files: records, front, member scenarios, chosen trajectories, plots.
+///
+/// # Errors
+/// [`ReportError`].
+pub fn write_final(
+    dir: &Path,
+    scenarios: &[Option<Scenario>],
+    pop: &[Individual<Vec<f64>>],
+    records: &[Record],
+    c: &ReentryRunConfig,
+) -> Result<(), ReportError> {
+    let mut csv = String::from(
+        "generation,evaluations,feasible_fraction,hypervolume,min_violation,best_f1,best_f2,mean_f1,mean_f2,front_size\n",
+    );
+    for r in records {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+            r.generation,
+            r.evaluations,
+            r.feasible_fraction,
+            r.hypervolume,
+            r.min_violation,
+            r.best[0],
+            r.best[1],
+            r.mean[0],
+            r.mean[1],
+            r.front.len()
+        );
+    }
+    write_atomic(&dir.join("generations.csv"), csv.as_bytes())?;
+    let json = serde_json::to_string_pretty(records).map_err(ReportError::Json)?;
+    write_atomic(&dir.join("generations.json"), json.as_bytes())?;
+    write_atomic(&dir.join("population.csv"), csv_of(pop).as_bytes())?;
+    // The front, sorted by range objective, with one scenario file per member.
+    let mut idx = feasible_front_indices(pop);
+    idx.sort_by(|&a, &b| pop[a].objectives[0].total_cmp(&pop[b].objectives[0]));
+    let front: Vec<Individual<Vec<f64>>> = idx.iter().map(|&i| pop[i].clone()).collect();
+    let front_scenarios: Vec<Option<Scenario>> = idx
+        .iter()
+        .map(|&i| scenarios.get(i).cloned().flatten())
+        .collect();
+    write_atomic(&dir.join("front.csv"), csv_of(&front).as_bytes())?;
+    let fdir = dir.join("front");
+    std::fs::create_dir_all(&fdir).map_err(|source| ReportError::Io {
+        path: fdir.clone(),
+        source,
+    })?;
+    let mut chosen = Vec::new();
+    for (k, sc) in front_scenarios.into_iter().enumerate() {
+        let Some(mut sc) = sc else {
+            continue;
+        };
+        sc.name = format!("{}-member-{k:02}", c.problem.base);
+        write_atomic(
+            &fdir.join(format!("member_{k:02}.toml")),
+            scenario_to_toml(&sc).as_bytes(),
+        )?;
+        if k == 0 || k + 1 == front.len() || k == front.len() / 2 {
+            chosen.push((k, sc));
+        }
+    }
+    chosen.dedup_by_key(|(k, _)| *k);
+    let mut traj = Vec::new();
+    for (k, sc) in &chosen {
+        let run_dir = fdir.join(format!("member_{k:02}"));
+        if let Ok(run) = simulate_scenario(sc, "front member", &run_dir, &mut |_| {}) {
+            let pts = run
+                .result
+                .samples
+                .iter()
+                .map(|s| (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3))
+                .collect();
+            traj.push(series(format!("member {k:02}"), pts));
+        }
+    }
+    if !traj.is_empty() {
+        plot(
+            dir,
+            "trajectories.svg",
+            "Chosen front members",
+            "velocity [km/s]",
+            "altitude [km]",
+            &traj,
+        )?;
+    }
+    // Fronts at selected generations.
+    let n = records.len();
+    let mut picks: Vec<usize> = [0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)].to_vec();
+    picks.dedup();
+    let fronts: Vec<Series> = picks
+        .iter()
+        .filter_map(|&i| records.get(i))
+        .filter(|r| !r.front.is_empty())
+        .map(|r| {
+            series(
+                format!("generation {}", r.generation),
+                r.front.iter().map(|f| (f[0], f[1])).collect(),
+            )
+        })
+        .collect();
+    if !fronts.is_empty() {
+        plot(
+            dir,
+            "fronts.svg",
+            "Feasible fronts",
+            "f_r = -theta/pi [-]",
+            "f_Q = heat load [scaled]",
+            &fronts,
+        )?;
+    }
+    let per_gen = |f: &dyn Fn(&Record) -> f64| -> Vec<(f64, f64)> {
+        records
+            .iter()
+            .map(|r| (r.generation as f64, f(r)))
+            .filter(|p| p.1.is_finite())
+            .collect()
+    };
+    plot(
+        dir,
+        "hypervolume.svg",
+        "Hypervolume",
+        "generation",
+        "hypervolume [-]",
+        &[series("hypervolume".into(), per_gen(&|r| r.hypervolume))],
+    )?;
+    plot(
+        dir,
+        "feasible.svg",
+        "Feasible fraction",
+        "generation",
+        "feasible fraction [-]",
+        &[series("feasible".into(), per_gen(&|r| r.feasible_fraction))],
+    )?;
+    plot(
+        dir,
+        "objectives.svg",
+        "Best and mean feasible objectives",
+        "generation",
+        "objective [-]",
+        &[
+            series("best f_r".into(), per_gen(&|r| r.best[0])),
+            series("mean f_r".into(), per_gen(&|r| r.mean[0])),
+            series("best f_Q".into(), per_gen(&|r| r.best[1])),
+            series("mean f_Q".into(), per_gen(&|r| r.mean[1])),
+        ],
+    )?;
+    Ok(())
+}

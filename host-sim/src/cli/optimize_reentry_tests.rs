@@ -1,0 +1,207 @@
+//! Re-entry `optimize` runs: small SRM runs (4 individuals, 2 generations) with a fixed seed.
+
+use std::path::{Path, PathBuf};
+
+use crate::cli::run as cli_run;
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("host-sim-reentry-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn optimize(extra: &[&str]) -> Result<String, crate::cli::CliError> {
+    let mut args = vec!["host-sim", "optimize"];
+    args.extend_from_slice(extra);
+    let mut out = Vec::new();
+    cli_run(args, &mut out)?;
+    Ok(String::from_utf8(out).unwrap_or_default())
+}
+
+fn read(dir: &Path, f: &str) -> String {
+    std::fs::read_to_string(dir.join(f)).unwrap()
+}
+
+/// Interrupting after one generation (a run of 1 generation) and resuming to 2 gives the
+/// bit-identical records, population and front of an uninterrupted 2-generation run; the
+/// front's scenario files fly to the front's objectives.
+#[test]
+fn resume_gives_the_uninterrupted_run() {
+    let (a, b) = (tmp("a"), tmp("b"));
+    let common = [
+        "--problem",
+        "srm",
+        "--population",
+        "4",
+        "--neighbours",
+        "3",
+        "--seed",
+        "7",
+    ];
+    let run = |dir: &Path, g: &str| {
+        let mut v = common.to_vec();
+        let d = dir.to_str().unwrap();
+        v.extend(["--generations", g, "--out", d]);
+        optimize(&v).unwrap()
+    };
+    run(&a, "2");
+    run(&b, "1");
+    assert_eq!(read(&b, "generations.csv").lines().count(), 3);
+    optimize(&["--resume", b.to_str().unwrap(), "--generations", "2"]).unwrap();
+    for f in [
+        "generations.json",
+        "population.csv",
+        "front.csv",
+        "population/gen_0002.csv",
+    ] {
+        assert_eq!(read(&a, f), read(&b, f), "{f}");
+    }
+    let front = read(&a, "front.csv");
+    assert!(front.lines().count() >= 2, "{front}");
+    // The first member's scenario file flies as is to its objectives (to the round-off of
+    // the degree values written in the file).
+    let sc = crate::scenario::read_scenario(&a.join("front/member_00.toml")).unwrap();
+    let s = crate::scenario::fly(&sc, "member", &mut |_| {})
+        .unwrap()
+        .result
+        .summary;
+    let row: Vec<f64> = front
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let n = row.len();
+    let (f1, f2) = (row[n - 6], row[n - 5]);
+    assert!(
+        (f1 + s.flown_range_angle_rad / std::f64::consts::PI).abs() < 1e-9,
+        "{f1} {s:?}"
+    );
+    assert!((f2 - s.heat_load_j_m2 / 1e9).abs() < 1e-9, "{f2} {s:?}");
+    for f in [
+        "fronts.svg",
+        "hypervolume.svg",
+        "feasible.svg",
+        "objectives.svg",
+        "config.toml",
+    ] {
+        assert!(a.join(f).is_file(), "{f}");
+    }
+    std::fs::remove_dir_all(&a).unwrap();
+    std::fs::remove_dir_all(&b).unwrap();
+}
+
+/// SCEA on the variable-length SRM problem (4-8 nodes): resumed equals uninterrupted, and
+/// the ragged decision rows are padded so the objective columns line up.
+#[test]
+fn scea_resume_gives_the_uninterrupted_run() {
+    let (a, b) = (tmp("scea-a"), tmp("scea-b"));
+    let common = [
+        "--problem",
+        "srm",
+        "--algorithm",
+        "scea",
+        "--population",
+        "4",
+        "--neighbours",
+        "3",
+        "--seed",
+        "11",
+    ];
+    let run = |dir: &Path, g: &str| {
+        let mut v = common.to_vec();
+        let d = dir.to_str().unwrap();
+        v.extend(["--generations", g, "--out", d]);
+        optimize(&v).unwrap()
+    };
+    assert!(run(&a, "2").starts_with("scea on srm"));
+    run(&b, "1");
+    optimize(&["--resume", b.to_str().unwrap(), "--generations", "2"]).unwrap();
+    for f in ["generations.json", "population.csv", "front.csv"] {
+        assert_eq!(read(&a, f), read(&b, f), "{f}");
+    }
+    let pop = read(&a, "population.csv");
+    let cols = pop.lines().next().unwrap().split(',').count();
+    // Up to 6 free nodes x (E, sigma), padded to the longest present.
+    let genes = cols - (2 + 3 + 1);
+    assert!(
+        genes.is_multiple_of(2) && (4..=12).contains(&genes),
+        "{pop}"
+    );
+    assert!(pop.lines().all(|l| l.split(',').count() == cols), "{pop}");
+    std::fs::remove_dir_all(&a).unwrap();
+    std::fs::remove_dir_all(&b).unwrap();
+}
+
+/// `--print-config` prints a template that `--config` reads back; bad settings name their
+/// field and what to change.
+#[test]
+fn config_template_and_errors_name_the_field() {
+    let text = optimize(&["--problem", "horus-2b", "--print-config"]).unwrap();
+    let c: crate::cli::ReentryRunConfig = toml::from_str(&text).unwrap();
+    assert_eq!(c.problem.encoding.nodes, 8);
+    assert_eq!(c.problem.limits.heat_flux_kw_m2, 500.0);
+    let dir = tmp("cfg");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("run.toml");
+    std::fs::write(
+        &file,
+        text.replace("algorithm = \"moead\"", "algorithm = \"pso\""),
+    )
+    .unwrap();
+    let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("field `algorithm` = pso: use moead, nsga2 or scea"),
+        "{e}"
+    );
+    std::fs::write(&file, text.replace("nodes = 8", "nodes = 1")).unwrap();
+    let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("`encoding.nodes` = 1: use at least 3"),
+        "{e}"
+    );
+    std::fs::write(&file, text.replace("[problem]", "[problem]\nspeed = 1")).unwrap();
+    let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
+    assert!(e.to_string().contains("speed"), "{e}");
+    let e = optimize(&["--problem", "srm", "--ref", "1,2,3"]).unwrap_err();
+    assert!(e.to_string().contains("field `reference`"), "{e}");
+    // An unwritable run directory (a file stands where it should be).
+    let e = optimize(&["--problem", "srm", "--out", file.to_str().unwrap()]).unwrap_err();
+    assert!(e.to_string().contains("choose a writable --out"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `sample` writes one row per Latin-hypercube point, the same file for 1 and 2 threads.
+#[test]
+fn sample_is_the_same_for_any_thread_count() {
+    let dir = tmp("sample");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |t: &str| {
+        let f = dir.join(format!("s{t}.csv"));
+        let args = [
+            "host-sim",
+            "sample",
+            "--problem",
+            "srm",
+            "--count",
+            "3",
+            "--threads",
+            t,
+        ];
+        let mut v: Vec<&str> = args.to_vec();
+        let fs = f.to_str().unwrap().to_string();
+        v.extend(["--out", &fs]);
+        cli_run(v, &mut Vec::new()).unwrap();
+        std::fs::read_to_string(&f).unwrap()
+    };
+    let one = run("1");
+    assert_eq!(one.lines().count(), 4);
+    assert!(one.starts_with("x1,x2,"));
+    assert_eq!(one, run("2"));
+    let e = cli_run(["host-sim", "sample", "--count", "0"], &mut Vec::new()).unwrap_err();
+    assert!(e.to_string().contains("--count"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,94 @@
+//! `host-sim sample`: a Latin-hypercube design of a re-entry design problem's decision space,
+//! evaluated in parallel (closed-loop flights), written as samples.csv (decision, objectives,
+//! constraints, violation; one row per point in design order, whatever the thread count).
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::PathBuf;
+
+use rayon::prelude::*;
+
+use super::optimize_reentry::ReentryError;
+use crate::design::{DesignConfig, latin_hypercube};
+use crate::optim::{Problem, RealProblem};
+use crate::report::write_atomic;
+
+/// Arguments of `sample`.
+#[derive(Debug, clap::Args)]
+pub struct SampleArgs {
+    /// Design preset: horus-2b, srm, srm-altitude.
+    #[arg(long, default_value = "horus-2b")]
+    pub problem: String,
+    /// Number of points (thesis: 4000).
+    #[arg(long, default_value_t = 4000)]
+    pub count: usize,
+    /// Seed of the design.
+    #[arg(long, default_value_t = 123)]
+    pub seed: u64,
+    /// Evaluation threads.
+    #[arg(long, default_value_t = 2)]
+    pub threads: usize,
+    /// Output CSV.
+    #[arg(long, default_value = "samples.csv")]
+    pub out: PathBuf,
+}
+
+/// Run `sample`.
+///
+/// # Errors
+/// [`ReentryError`] naming the field.
+pub fn run(a: &SampleArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
+    let bad = |field, value: String, reason: &str| ReentryError::Setting {
+        source_name: "command line".into(),
+        field,
+        value,
+        reason: reason.into(),
+    };
+    if a.count == 0 {
+        return Err(bad("--count", "0".into(), "use at least 1"));
+    }
+    if a.threads == 0 {
+        return Err(bad("--threads", "0".into(), "use at least 1"));
+    }
+    let p = DesignConfig::preset(&a.problem)?.problem(std::path::Path::new("."))?;
+    let pts = latin_hypercube(p.bounds(), a.count, a.seed);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads)
+        .build()
+        .map_err(|e| bad("--threads", a.threads.to_string(), &e.to_string()))?;
+    let evals: Vec<_> = pool.install(|| pts.par_iter().map(|x| p.evaluate(x)).collect());
+    let (m, c) = (p.objectives(), p.constraints());
+    let mut csv = String::new();
+    let head: Vec<String> = (1..=p.bounds().dim())
+        .map(|i| format!("x{i}"))
+        .chain((1..=m).map(|i| format!("f{i}")))
+        .chain((1..=c).map(|i| format!("g{i}")))
+        .chain(["violation".into()])
+        .collect();
+    let _ = writeln!(csv, "{}", head.join(","));
+    let mut feasible = 0usize;
+    for (x, e) in pts.iter().zip(evals) {
+        let e = e?;
+        let v: f64 = e.constraints.iter().map(|g| g.max(0.0)).sum();
+        feasible += usize::from(v == 0.0);
+        let row: Vec<String> = x
+            .iter()
+            .chain(&e.objectives)
+            .chain(&e.constraints)
+            .chain(std::iter::once(&v))
+            .map(|v| format!("{v:e}"))
+            .collect();
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    write_atomic(&a.out, csv.as_bytes())?;
+    writeln!(
+        out,
+        "{} Latin-hypercube points of {} (seed {}): {} feasible; wrote {}",
+        a.count,
+        a.problem,
+        a.seed,
+        feasible,
+        a.out.display()
+    )?;
+    Ok(())
+}

@@ -1,0 +1,63 @@
+//! Re-entry mission design (issue 11): the thesis' guidance problems (sec. 4.2) for the
+//! generic optimisers of [`crate::optim`], whose `Problem` trait they implement. An evaluation
+//! flies the closed loop (guidance-core's `Guidance` at its 2 s clock in the numerical
+//! simulator).
+//!
+//! * [`encoding`]: decision vector <-> node table (fixed end nodes, free energy nodes, the
+//!   entry altitude as an optional variable);
+//! * [`problem`]: [`ReentryProblem`] (objectives, constraints with `g <= 0` feasible);
+//! * [`config`]: the problem as a file section and the thesis presets.
+
+pub mod config;
+pub mod encoding;
+pub mod problem;
+pub mod sample;
+#[cfg(test)]
+mod tests;
+pub mod variable;
+
+pub use config::{DesignConfig, PRESETS};
+pub use encoding::{Encoding, FixedNode};
+pub use problem::{Limits, Objectives, ReentryProblem};
+pub use sample::latin_hypercube;
+pub use variable::VariableReentry;
+
+use crate::optim::BoundsError;
+use crate::scenario::ScenarioError;
+
+/// Design-problem failures; each names the field and what to change.
+#[derive(Debug, thiserror::Error)]
+pub enum DesignError {
+    /// A setting out of range.
+    #[error("problem: field `{field}` = {value}: {reason}")]
+    Setting {
+        /// Dotted field path.
+        field: &'static str,
+        /// The value given.
+        value: String,
+        /// What to change.
+        reason: &'static str,
+    },
+    /// Not a preset name or scenario file.
+    #[error(
+        "problem: field `base` = {name:?}: unknown preset; use one of horus-2b, srm, srm-altitude, or a scenario file"
+    )]
+    UnknownPreset {
+        /// The name given.
+        name: String,
+    },
+    /// A decision of the wrong length.
+    #[error("decision has {got} variables, the encoding expects {expected}")]
+    Dimension {
+        /// Expected variables.
+        expected: usize,
+        /// Given.
+        got: usize,
+    },
+    /// Invalid decision bounds.
+    #[error("problem: encoding bounds: {0}")]
+    Bounds(#[from] BoundsError),
+    /// The base scenario could not be read or built.
+    #[error("problem: base scenario: {0}")]
+    Scenario(#[from] ScenarioError),
+}

@@ -1,0 +1,238 @@
+//! The re-entry guidance problem (thesis sec. 4.2): a decision is a node table (see
+//! [`Encoding`]); its evaluation flies the closed loop (guidance-core's `Guidance` at its 2 s
+//! clock in the numerical simulator) and returns
+//!
+//! * objectives (minimised): `f_r = -theta / pi` (eq. 9.1; `theta` the flown range angle, the
+//!   integrated angle travelled over the planet, which like the thesis' can exceed pi, whereas
+//!   the great-circle angle between entry and end points saturates at pi) and
+//!   `f_Q = Q / Q_scale` (heat load, `Q_scale` = [`Objectives::heat_load_scale_j_m2`]);
+//!   optionally the number of skips as a third objective;
+//! * constraints (`g <= 0` feasible): `q_max / q_lim - 1`, `n_max / n_lim - 1`,
+//!   `ndot_max / ndot_lim - 1` (eq. 4.9-4.11 as continuous functions with the same zero
+//!   crossing), optionally `skips - max_skips`.
+//!
+//! A flight that the simulator rejects or that does not end on its termination condition
+//! (it reaches the time limit, e.g. skipping out of the atmosphere) is a failed evaluation
+//! ([`Evaluation::failure`]): the run goes on and the individual loses every comparison.
+
+use serde::{Deserialize, Serialize};
+
+use super::{DesignError, Encoding};
+use crate::optim::{Bounds, EvalError, Evaluation, Problem, RealProblem};
+use crate::scenario::{Scenario, ScenarioError, fly};
+use crate::sim::{Summary, TerminationReason};
+
+/// The thesis' trajectory constraints (sec. 4.2.3), SI.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Limits {
+    /// Maximum stagnation heat flux \[kW/m^2\] (thesis: 500).
+    pub heat_flux_kw_m2: f64,
+    /// Maximum g-load \[-\] (thesis: 3).
+    pub g_load: f64,
+    /// Maximum g-load rate \[1/s\] (thesis: 0.5).
+    pub g_load_rate_per_s: f64,
+    /// Maximum number of skips (atmosphere exits followed by re-entry); `None`: not a
+    /// constraint.
+    pub max_skips: Option<u32>,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            heat_flux_kw_m2: 500.0,
+            g_load: 3.0,
+            g_load_rate_per_s: 0.5,
+            max_skips: None,
+        }
+    }
+}
+
+/// Objective settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Objectives {
+    /// Heat load divided by this in the objective \[J/m^2\] (default 1e9: GJ/m^2).
+    pub heat_load_scale_j_m2: f64,
+    /// The number of skips as a third objective.
+    pub skips: bool,
+}
+
+impl Default for Objectives {
+    fn default() -> Self {
+        Self {
+            heat_load_scale_j_m2: 1e9,
+            skips: false,
+        }
+    }
+}
+
+/// A re-entry guidance design problem: base scenario (vehicle, environment, entry state,
+/// guidance settings, termination), encoding, constraints and objectives.
+#[derive(Clone, Debug)]
+pub struct ReentryProblem {
+    base: Scenario,
+    encoding: Encoding,
+    limits: Limits,
+    objectives: Objectives,
+    bounds: Bounds,
+    file: String,
+}
+
+impl ReentryProblem {
+    /// A problem on `base` (its guidance nodes are replaced by each decision's; its
+    /// independent variable must be the normalised energy). `file` names the base in errors.
+    ///
+    /// # Errors
+    /// [`DesignError`] for bad settings, naming the field.
+    pub fn new(
+        base: Scenario,
+        encoding: Encoding,
+        limits: Limits,
+        objectives: Objectives,
+        file: &str,
+    ) -> Result<Self, DesignError> {
+        encoding.validate()?;
+        if base.guidance.independent != guidance_core::nodes::Independent::NormalizedEnergy {
+            return Err(DesignError::Setting {
+                field: "base.guidance.independent",
+                value: format!("{:?}", base.guidance.independent),
+                reason: "the design nodes are energy nodes: use normalized_energy",
+            });
+        }
+        let checks = [
+            ("limits.heat_flux_kw_m2", limits.heat_flux_kw_m2),
+            ("limits.g_load", limits.g_load),
+            ("limits.g_load_rate_per_s", limits.g_load_rate_per_s),
+            (
+                "objectives.heat_load_scale_j_m2",
+                objectives.heat_load_scale_j_m2,
+            ),
+        ];
+        for (field, v) in checks {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(DesignError::Setting {
+                    field,
+                    value: v.to_string(),
+                    reason: "use a finite positive value",
+                });
+            }
+        }
+        // The base must load and build its guidance (vehicle files, bounds).
+        base.load_vehicle()
+            .map_err(|e| DesignError::Scenario(ScenarioError::from(e)))?;
+        let bounds = encoding.bounds()?;
+        Ok(Self {
+            base,
+            encoding,
+            limits,
+            objectives,
+            bounds,
+            file: file.to_string(),
+        })
+    }
+
+    /// The encoding.
+    #[must_use]
+    pub fn encoding(&self) -> &Encoding {
+        &self.encoding
+    }
+
+    /// The base scenario.
+    #[must_use]
+    pub fn base(&self) -> &Scenario {
+        &self.base
+    }
+
+    /// The limits.
+    #[must_use]
+    pub fn limits(&self) -> &Limits {
+        &self.limits
+    }
+
+    /// The scenario that a node table and entry altitude \[m\] fly: the base with its nodes
+    /// (and entry radius) replaced.
+    #[must_use]
+    pub fn scenario_of_table(&self, table: Vec<[f64; 3]>, altitude_m: Option<f64>) -> Scenario {
+        let mut sc = self.base.clone();
+        sc.guidance.nodes = table;
+        if let Some(h) = altitude_m {
+            sc.entry.radius_m = sc.environment.planet.radius_m + h;
+        }
+        sc
+    }
+
+    /// The scenario a fixed-length decision flies.
+    ///
+    /// # Errors
+    /// [`DesignError::Dimension`].
+    pub fn scenario_of(&self, x: &[f64]) -> Result<Scenario, DesignError> {
+        let (table, h) = self.encoding.decode(x)?;
+        Ok(self.scenario_of_table(table, h))
+    }
+
+    /// Objectives and constraints of a flight's summary.
+    #[must_use]
+    pub fn evaluation_of(&self, s: &Summary) -> Evaluation {
+        let finished = !matches!(
+            s.termination,
+            TerminationReason::MaxTime | TerminationReason::Ground
+        );
+        if !finished {
+            return Evaluation::failure(self.objectives(), self.constraints());
+        }
+        let mut f = vec![
+            -s.flown_range_angle_rad / std::f64::consts::PI,
+            s.heat_load_j_m2 / self.objectives.heat_load_scale_j_m2,
+        ];
+        if self.objectives.skips {
+            f.push(f64::from(s.skips));
+        }
+        let l = &self.limits;
+        let mut g = vec![
+            s.peak_heat_flux_w_m2.value / (l.heat_flux_kw_m2 * 1e3) - 1.0,
+            s.peak_g_load.value / l.g_load - 1.0,
+            s.peak_g_load_rate_per_s.value / l.g_load_rate_per_s - 1.0,
+        ];
+        if let Some(m) = l.max_skips {
+            g.push(f64::from(s.skips) - f64::from(m));
+        }
+        Evaluation::with_constraints(f, g)
+    }
+
+    /// Fly a scenario of this problem and evaluate it (a failed flight is a failed
+    /// evaluation, not an error).
+    #[must_use]
+    pub fn evaluate_scenario(&self, sc: &Scenario) -> Evaluation {
+        match fly(sc, &self.file, &mut |_| {}) {
+            Ok(flight) => self.evaluation_of(&flight.result.summary),
+            Err(_) => Evaluation::failure(self.objectives(), self.constraints()),
+        }
+    }
+}
+
+impl Problem for ReentryProblem {
+    type Decision = Vec<f64>;
+
+    fn objectives(&self) -> usize {
+        2 + usize::from(self.objectives.skips)
+    }
+
+    fn constraints(&self) -> usize {
+        3 + usize::from(self.limits.max_skips.is_some())
+    }
+
+    fn evaluate(&self, x: &Vec<f64>) -> Result<Evaluation, EvalError> {
+        self.bounds.check_dim(x)?;
+        let sc = self
+            .scenario_of(x)
+            .map_err(|e| EvalError::Failed(Box::new(e)))?;
+        Ok(self.evaluate_scenario(&sc))
+    }
+}
+
+impl RealProblem for ReentryProblem {
+    fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+}
