@@ -110,7 +110,10 @@ def evaluate_batch(problem, xs: Sequence[Sequence[float]]) -> List[Evaluation]:
         return [(list(f), list(g)) for f, g in problem.evaluate_batch(xs)]
     nobj = problem.get_nobj() if hasattr(problem, "get_nobj") else 1
     nic = problem.get_nic() if hasattr(problem, "get_nic") else 0
-    if hasattr(problem, "batch_fitness") and xs:
+    has_batch = hasattr(problem, "batch_fitness") and (
+        not hasattr(problem, "has_batch_fitness") or problem.has_batch_fitness()
+    )
+    if has_batch and xs:
         flat = np.asarray(problem.batch_fitness(np.concatenate(xs)), dtype=float)
         rows = flat.reshape(len(xs), -1)
     else:

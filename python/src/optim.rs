@@ -115,6 +115,20 @@ macro_rules! with_algo {
 }
 
 impl Optimizer {
+    /// Take the problem's shape at the first call; refuse a different one later.
+    fn adopt(&mut self, shape: OpenProblem) -> PyResult<()> {
+        match &self.problem {
+            Some(p) if *p != shape => Err(PyValueError::new_err(
+                "ask: the problem's bounds, objectives or constraints changed during the run",
+            )),
+            Some(_) => Ok(()),
+            None => {
+                self.problem = Some(shape);
+                Ok(())
+            }
+        }
+    }
+
     fn problem(&self) -> PyResult<&OpenProblem> {
         self.problem
             .as_ref()
@@ -160,16 +174,7 @@ impl Optimizer {
     /// `problem`: any object with `get_bounds()` (and optionally `get_nobj()`, `get_nic()`);
     /// it must keep the same shape for the whole run.
     fn ask(&mut self, py: Python<'_>, problem: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<f64>>> {
-        let shape = open_problem(problem)?;
-        match &self.problem {
-            Some(p) if *p != shape => {
-                return Err(PyValueError::new_err(
-                    "ask: the problem's bounds, objectives or constraints changed during the run",
-                ));
-            }
-            Some(_) => {}
-            None => self.problem = Some(shape),
-        }
+        self.adopt(open_problem(problem)?)?;
         let Self { algo, problem } = self;
         let Some(p) = problem.as_ref() else {
             return Ok(Vec::new());
@@ -265,6 +270,12 @@ impl Optimizer {
         generations: u64,
     ) -> PyResult<()> {
         let p = &problem.inner;
+        let shape = OpenProblem {
+            bounds: p.bounds().clone(),
+            objectives: p.objectives(),
+            constraints: p.constraints(),
+        };
+        self.adopt(shape)?;
         py.detach(|| {
             with_algo!(self, a => evolve(a, p, &Serial, generations, &mut NoObserver))
         })
