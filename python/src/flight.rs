@@ -254,15 +254,24 @@ fn atmosphere<'py>(
     }
     let states: Vec<_> = py.detach(|| altitudes_m.iter().map(|&h| m.state(h)).collect());
     let out = PyDict::new(py);
-    out.set_item("temperature_k", states.iter().map(|s| s.temperature_k).collect::<Vec<_>>())?;
-    out.set_item("pressure_pa", states.iter().map(|s| s.pressure_pa).collect::<Vec<_>>())?;
+    out.set_item(
+        "temperature_k",
+        states.iter().map(|s| s.temperature_k).collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "pressure_pa",
+        states.iter().map(|s| s.pressure_pa).collect::<Vec<_>>(),
+    )?;
     out.set_item(
         "density_kg_m3",
         states.iter().map(|s| s.density_kg_m3).collect::<Vec<_>>(),
     )?;
     out.set_item(
         "speed_of_sound_m_s",
-        states.iter().map(|s| s.speed_of_sound_m_s).collect::<Vec<_>>(),
+        states
+            .iter()
+            .map(|s| s.speed_of_sound_m_s)
+            .collect::<Vec<_>>(),
     )?;
     out.set_item("altitude_m", altitudes_m)?;
     Ok(out)

@@ -85,6 +85,9 @@ fn open_problem(problem: &Bound<'_, PyAny>) -> PyResult<OpenProblem> {
     })
 }
 
+/// The algorithm an [`Optimizer`] runs (one per Python object: the size difference between
+/// the variants does not matter).
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, Serialize, Deserialize)]
 enum Algo {
     Moead(Moead),
@@ -146,8 +149,10 @@ impl Optimizer {
     /// fields take pagmo's defaults) and the run's seed.
     #[staticmethod]
     fn moead(config_json: &str, seed: u64) -> PyResult<Self> {
-        let mut v: serde_json::Value = serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
-        let mut full = serde_json::to_value(MoeadConfig::default()).map_err(|e| config_error(&e))?;
+        let mut v: serde_json::Value =
+            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
+        let mut full =
+            serde_json::to_value(MoeadConfig::default()).map_err(|e| config_error(&e))?;
         merge(&mut full, &mut v);
         let config: MoeadConfig = serde_json::from_value(full).map_err(|e| config_error(&e))?;
         Ok(Self {
@@ -160,8 +165,10 @@ impl Optimizer {
     /// fields take pagmo's defaults) and the run's seed.
     #[staticmethod]
     fn nsga2(config_json: &str, seed: u64) -> PyResult<Self> {
-        let mut v: serde_json::Value = serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
-        let mut full = serde_json::to_value(Nsga2Config::default()).map_err(|e| config_error(&e))?;
+        let mut v: serde_json::Value =
+            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
+        let mut full =
+            serde_json::to_value(Nsga2Config::default()).map_err(|e| config_error(&e))?;
         merge(&mut full, &mut v);
         let config: Nsga2Config = serde_json::from_value(full).map_err(|e| config_error(&e))?;
         Ok(Self {
@@ -276,10 +283,8 @@ impl Optimizer {
             constraints: p.constraints(),
         };
         self.adopt(shape)?;
-        py.detach(|| {
-            with_algo!(self, a => evolve(a, p, &Serial, generations, &mut NoObserver))
-        })
-        .map_err(errors::optim)
+        py.detach(|| with_algo!(self, a => evolve(a, p, &Serial, generations, &mut NoObserver)))
+            .map_err(errors::optim)
     }
 
     /// The whole state as JSON (algorithm, RNG, open batch, problem shape): resuming from it
@@ -378,13 +383,13 @@ impl PyTestProblem {
 
     /// `(objectives, constraints)` of one decision.
     fn evaluate(&self, py: Python<'_>, x: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
-        let e = py
-            .detach(|| self.inner.evaluate(&x))
-            .map_err(|e| errors::optim(host_sim::optim::OptimError::Evaluation {
+        let e = py.detach(|| self.inner.evaluate(&x)).map_err(|e| {
+            errors::optim(host_sim::optim::OptimError::Evaluation {
                 index: 0,
                 generation: 0,
                 source: e,
-            }))?;
+            })
+        })?;
         Ok((e.objectives, e.constraints))
     }
 
