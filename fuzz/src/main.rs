@@ -9,7 +9,8 @@
 //!
 //! Targets: `nodes` (node tables and interpolation), `guidance` (updates with hostile times and
 //! states, in f64, f32 and fixed point), `link` (the frame decoder on random bytes and on valid
-//! frames with 1 to 3 flipped bits, all below the CRC's guaranteed distance of 4).
+//! frames with 1 to 3 flipped bits, all below the CRC's guaranteed distance of 4),
+//! `closed-forms` (the Vinh predictor chain and the re-planning solver, f64 and f32).
 
 mod hostile;
 mod targets;
@@ -19,7 +20,7 @@ use std::time::{Duration, Instant};
 
 use targets::Target;
 
-const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link] [--case I]";
+const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link|closed-forms] [--case I]";
 
 struct Options {
     seed: u64,
@@ -61,7 +62,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
                 o.target = match v.as_str() {
                     "all" => None,
                     name => Some(Target::from_name(name).ok_or_else(|| {
-                        format!("--target: unknown target {name:?} (all, nodes, guidance, link)")
+                        format!("--target: unknown target {name:?} (all, nodes, guidance, link, closed-forms)")
                     })?),
                 };
             }

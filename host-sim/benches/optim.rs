@@ -11,7 +11,8 @@ use host_sim::optim::hypervolume::hypervolume;
 use host_sim::optim::population::feasible_front;
 use host_sim::optim::problems::Zdt;
 use host_sim::optim::{
-    Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, Serial, evolve,
+    Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, Serial,
+    evolve,
 };
 
 const GENERATIONS: u64 = 250;
@@ -59,9 +60,43 @@ fn bench(c: &mut Criterion) {
     }
 }
 
+/// MHACO on the same setting: pagmo's defaults (ker 63, q 1, threshold 1, n_gen_mark 7) and
+/// the recommended n_gen_mark 15 (docs/OPTIMISERS.md).
+fn bench_mhaco(c: &mut Criterion) {
+    let problem = Zdt::standard(1).expect("zdt1");
+    for (name, n_gen_mark) in [("mhaco-pagmo-defaults", 7), ("mhaco-n_gen_mark-15", 15)] {
+        let config = MhacoConfig {
+            n_gen_mark,
+            ..MhacoConfig::default()
+        };
+        let run = |seed: u64| {
+            let mut a = Mhaco::new(config.clone(), seed);
+            evolve(&mut a, &problem, &Serial, GENERATIONS, &mut NoObserver).expect("mhaco runs");
+            a.population().to_vec()
+        };
+        let mut hv: Vec<f64> = (1..=SEEDS)
+            .map(|s| hypervolume(&feasible_front(&run(s)), &[1.1, 1.1]).expect("hypervolume"))
+            .collect();
+        hv.sort_by(f64::total_cmp);
+        println!(
+            "{name} zdt1: hypervolume over seeds 1..={SEEDS}: median {:.4}, min {:.4}, max {:.4}",
+            0.5 * (hv[4] + hv[5]),
+            hv[0],
+            hv[9]
+        );
+        let mut seed = 0;
+        c.bench_function(&format!("optim/zdt1-30var-pop100-250gen/{name}"), |b| {
+            b.iter(|| {
+                seed = seed % SEEDS + 1;
+                black_box(run(seed).len())
+            });
+        });
+    }
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(30);
-    targets = bench
+    targets = bench, bench_mhaco
 }
 criterion_main!(benches);

@@ -33,7 +33,7 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|g
   size      check onboard-demo's flash/RAM footprint against onboard-demo/size-budget.toml\n\
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
-  fuzz      fuzz the flight code (node tables, guidance with hostile times, frame decoder):\n\
+  fuzz      fuzz the flight code (node tables, guidance, frame decoder, closed forms):\n\
             [--seconds N per target | --cases N] [--seed S] [--target T]; default: the CI budget";
 
 fn main() -> ExitCode {

@@ -1,5 +1,6 @@
 //! The fuzz targets and the per-case generator.
 
+mod closed_forms;
 mod guidance;
 mod link;
 mod nodes;
@@ -16,11 +17,18 @@ pub enum Target {
     Guidance,
     /// The PIL frame decoder.
     Link,
+    /// The Vinh closed forms through the predictor, and the re-planning solver.
+    ClosedForms,
 }
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 3] = [Target::Nodes, Target::Guidance, Target::Link];
+    pub const ALL: [Target; 4] = [
+        Target::Nodes,
+        Target::Guidance,
+        Target::Link,
+        Target::ClosedForms,
+    ];
 
     /// The target's command-line name.
     pub fn name(self) -> &'static str {
@@ -28,6 +36,7 @@ impl Target {
             Target::Nodes => "nodes",
             Target::Guidance => "guidance",
             Target::Link => "link",
+            Target::ClosedForms => "closed-forms",
         }
     }
 
@@ -48,6 +57,7 @@ impl Target {
             Target::Nodes => nodes::run(&mut rng),
             Target::Guidance => guidance::run(&mut rng),
             Target::Link => link::run(&mut rng),
+            Target::ClosedForms => closed_forms::run(&mut rng),
         }
     }
 }

@@ -7,6 +7,7 @@ mod atmosphere_cmd;
 mod compare_cmd;
 mod hypervolume_cmd;
 mod optimize_cmd;
+mod optimize_structured;
 mod simulate_cmd;
 mod vehicles_cmd;
 

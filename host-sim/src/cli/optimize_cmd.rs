@@ -15,8 +15,8 @@ use crate::optim::hypervolume::{HypervolumeError, hypervolume};
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
 use crate::optim::{
-    Algorithm, Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Problem,
-    Rayon, Serial, WeightGeneration, evolve,
+    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
+    OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
 };
 use crate::report::{ReportError, write_atomic};
 
@@ -27,13 +27,19 @@ pub enum AlgorithmName {
     Moead,
     /// NSGA-II (Deb's constrained domination).
     Nsga2,
+    /// MHACO (pagmo maco semantics, ker = min(63, population), feasibility-first archive).
+    Mhaco,
+    /// SCEA (structured chromosomes; the only one for the variable-length problems).
+    Scea,
 }
 
 impl AlgorithmName {
-    fn as_str(self) -> &'static str {
+    pub(super) fn as_str(self) -> &'static str {
         match self {
             Self::Moead => "moead",
             Self::Nsga2 => "nsga2",
+            Self::Mhaco => "mhaco",
+            Self::Scea => "scea",
         }
     }
 }
@@ -52,7 +58,8 @@ pub enum WeightsArg {
 /// Arguments of `optimize`.
 #[derive(Debug, clap::Args)]
 pub struct OptimizeArgs {
-    /// Test problem: zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr.
+    /// Test problem: zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5
+    /// (variable-length, SCEA only).
     #[arg(long, default_value = "zdt1")]
     pub problem: String,
     /// Algorithm.
@@ -70,10 +77,10 @@ pub struct OptimizeArgs {
     /// Objectives of a DTLZ problem.
     #[arg(long, default_value_t = 3)]
     pub objectives: usize,
-    /// MOEA/D weight generation.
+    /// MOEA/D and SCEA weight generation.
     #[arg(long, value_enum, default_value = "grid")]
     pub weights: WeightsArg,
-    /// MOEA/D neighbourhood size (at most population - 1).
+    /// MOEA/D and SCEA neighbourhood size (at most population - 1).
     #[arg(long, default_value_t = 20)]
     pub neighbours: usize,
     /// MOEA/D per-variable mutation probability (default 1/variables; the thesis used
@@ -105,7 +112,11 @@ pub struct OptimizeArgs {
 #[derive(Debug, thiserror::Error)]
 pub enum OptimizeError {
     /// Unknown problem name.
-    #[error("command line: --problem {name}: unknown; use one of {list}", list = NAMES.join(", "))]
+    #[error(
+        "command line: --problem {name}: unknown; use one of {list}, {vl}",
+        list = NAMES.join(", "),
+        vl = crate::optim::problems::VL_NAMES.join(", ")
+    )]
     UnknownProblem {
         /// The name given.
         name: String,
@@ -131,6 +142,16 @@ pub enum OptimizeError {
         got: usize,
         /// The values.
         values: Vec<f64>,
+    },
+    /// A fixed-length algorithm on a variable-length problem.
+    #[error(
+        "command line: --algorithm {algorithm} cannot run the variable-length problem {problem}; use --algorithm scea"
+    )]
+    NeedsFixedLength {
+        /// Algorithm asked for.
+        algorithm: &'static str,
+        /// Problem asked for.
+        problem: String,
     },
     /// `--threads 0`.
     #[error("command line: --threads 0: use at least 1")]
@@ -159,31 +180,31 @@ pub enum OptimizeError {
 
 /// The summary JSON.
 #[derive(Debug, Serialize)]
-struct Summary<'a> {
-    problem: &'a str,
-    algorithm: &'static str,
-    population: usize,
-    generations: u64,
-    seed: u64,
-    objectives: usize,
-    variables: usize,
-    constraints: usize,
-    evaluations: u64,
-    reference_point: &'a [f64],
-    hypervolume: f64,
-    true_front_hypervolume: Option<f64>,
-    hypervolume_ratio: Option<f64>,
-    feasible_fraction: f64,
-    front_size: usize,
+pub(super) struct Summary<'a> {
+    pub(super) problem: &'a str,
+    pub(super) algorithm: &'static str,
+    pub(super) population: usize,
+    pub(super) generations: u64,
+    pub(super) seed: u64,
+    pub(super) objectives: usize,
+    pub(super) variables: usize,
+    pub(super) constraints: usize,
+    pub(super) evaluations: u64,
+    pub(super) reference_point: &'a [f64],
+    pub(super) hypervolume: f64,
+    pub(super) true_front_hypervolume: Option<f64>,
+    pub(super) hypervolume_ratio: Option<f64>,
+    pub(super) feasible_fraction: f64,
+    pub(super) front_size: usize,
     /// Wall time of the evolution alone (no problem set-up, no output) [s].
-    wall_time_s: f64,
-    threads: usize,
+    pub(super) wall_time_s: f64,
+    pub(super) threads: usize,
 }
 
-struct Outcome {
-    population: Vec<Individual<Vec<f64>>>,
-    evaluations: u64,
-    wall_time_s: f64,
+pub(super) struct Outcome {
+    pub(super) population: Vec<Individual<Vec<f64>>>,
+    pub(super) evaluations: u64,
+    pub(super) wall_time_s: f64,
 }
 
 fn drive<A: Algorithm<TestProblem>>(
@@ -211,11 +232,45 @@ fn drive<A: Algorithm<TestProblem>>(
     })
 }
 
+/// MOEA/D settings from the arguments (also SCEA's).
+pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
+    let weights = match a.weights {
+        WeightsArg::Grid => WeightGeneration::Grid,
+        WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
+        WeightsArg::Random => WeightGeneration::Random,
+    };
+    MoeadConfig {
+        population: a.population,
+        weights,
+        neighbours: a.neighbours,
+        mutation_probability: a.mutation_probability,
+        batch_size: a.batch_size,
+        ..MoeadConfig::default()
+    }
+}
+
+/// The evaluation pool for `--threads` (`None`: serial).
+pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, OptimizeError> {
+    match threads {
+        0 => Err(OptimizeError::Threads),
+        1 => Ok(None),
+        t => Ok(Some(Arc::new(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .map_err(|source| OptimizeError::Pool { threads: t, source })?,
+        ))),
+    }
+}
+
 /// Run `optimize` with arguments `a`, printing the summary to `out`.
 ///
 /// # Errors
 /// [`OptimizeError`].
 pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
+    if let Some(vl) = crate::optim::problems::Vlmop::by_name(&a.problem) {
+        return super::optimize_structured::run_variable_length(a, &vl, out);
+    }
     let problem = TestProblem::by_name(&a.problem, a.objectives)
         .map_err(|source| OptimizeError::Problem {
             name: a.problem.clone(),
@@ -237,31 +292,10 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         }
         None => problem.reference_point(),
     };
-    let pool = match a.threads {
-        0 => return Err(OptimizeError::Threads),
-        1 => None,
-        t => Some(Arc::new(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .map_err(|source| OptimizeError::Pool { threads: t, source })?,
-        )),
-    };
+    let pool = pool(a.threads)?;
     let outcome = match a.algorithm {
         AlgorithmName::Moead => {
-            let weights = match a.weights {
-                WeightsArg::Grid => WeightGeneration::Grid,
-                WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
-                WeightsArg::Random => WeightGeneration::Random,
-            };
-            let config = MoeadConfig {
-                population: a.population,
-                weights,
-                neighbours: a.neighbours,
-                mutation_probability: a.mutation_probability,
-                batch_size: a.batch_size,
-                ..MoeadConfig::default()
-            };
+            let config = moead_config(a);
             drive(Moead::new(config, a.seed), &problem, a.generations, pool)?
         }
         AlgorithmName::Nsga2 => {
@@ -271,6 +305,15 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
             };
             drive(Nsga2::new(config, a.seed), &problem, a.generations, pool)?
         }
+        AlgorithmName::Mhaco => {
+            let config = MhacoConfig {
+                population: a.population,
+                ker: a.population.min(MhacoConfig::default().ker),
+                ..MhacoConfig::default()
+            };
+            drive(Mhaco::new(config, a.seed), &problem, a.generations, pool)?
+        }
+        AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, pool)?,
     };
     let pop = &outcome.population;
     let front_idx = feasible_front_indices(pop);
@@ -322,7 +365,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     Ok(())
 }
 
-fn write_outputs(
+pub(super) fn write_outputs(
     dir: &Path,
     pop: &[Individual<Vec<f64>>],
     front: &[&[f64]],

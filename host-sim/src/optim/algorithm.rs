@@ -56,6 +56,12 @@ pub trait Algorithm<P: Problem> {
         let _ = index;
         false
     }
+
+    /// The algorithm has stopped by its own criterion (MHACO's `evalstop`); `evolve` returns
+    /// early and `ask` hands out no more decisions. Default: never.
+    fn is_finished(&self) -> bool {
+        false
+    }
 }
 
 /// An open batch: the decisions handed out and the evaluations told so far.

@@ -97,7 +97,7 @@ where
     };
     loop {
         let before = (algorithm.is_initialised(), algorithm.generation());
-        if before.0 && before.1 >= target {
+        if (before.0 && before.1 >= target) || algorithm.is_finished() {
             return Ok(());
         }
         // `ask` is idempotent while the batch is open: ask once for its size, once to borrow it.

@@ -18,6 +18,7 @@
 
 pub mod algorithm;
 pub mod algorithms;
+pub mod chromosome;
 pub mod error;
 pub mod evaluate;
 pub mod hypervolume;
@@ -31,7 +32,10 @@ pub mod rng;
 pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
-pub use algorithms::{Moead, MoeadConfig, Nsga2, Nsga2Config};
+pub use algorithms::{
+    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes, Nsga2, Nsga2Config, Scea,
+    SceaConfig,
+};
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
 pub use evaluate::{Evaluator, Rayon, Serial, evolve};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};

@@ -1,10 +1,14 @@
 //! The algorithms, each an ask/tell [`crate::optim::Algorithm`] with serialisable state.
 
+pub mod mhaco;
 pub mod moead;
 pub mod nsga2;
+pub mod scea;
 
+pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig};
 pub use moead::{DeVariation, Moead, MoeadConfig, MoeadVariation, MoeadWith};
 pub use nsga2::{Nsga2, Nsga2Config};
+pub use scea::{NewGenes, Scea, SceaConfig, SceaVariation};
 
 use super::error::ConfigError;
 

@@ -3,10 +3,12 @@
 
 pub mod constr;
 pub mod dtlz;
+pub mod vlmop;
 pub mod zdt;
 
 pub use constr::Constr;
 pub use dtlz::Dtlz;
+pub use vlmop::{VL_NAMES, Vlmop};
 pub use zdt::Zdt;
 
 use super::error::EvalError;

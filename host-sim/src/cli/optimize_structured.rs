@@ -1,0 +1,262 @@
+//! `host-sim optimize` with SCEA: on the fixed-length test problems (as chromosomes of fixed
+//! genes only) and on the variable-length problems of Li & Deb (`vlmop1` ... `vlmop5`). The
+//! variable-length population CSV holds one chromosome per row: objectives, constraints,
+//! violation, then `x` (fixed genes), `nodes` (node count of each leg) and `genes` (all node
+//! genes), each a `;`-separated list.
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+use super::optimize_cmd::{
+    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, pool,
+};
+use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
+use crate::optim::hypervolume::hypervolume;
+use crate::optim::population::{feasible_fraction, feasible_front_indices};
+use crate::optim::problems::{TestProblem, Vlmop};
+use crate::optim::{
+    Algorithm, Individual, NoObserver, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
+};
+use crate::report::write_atomic;
+
+fn scea_config(a: &OptimizeArgs) -> SceaConfig {
+    SceaConfig {
+        moead: moead_config(a),
+        ..SceaConfig::default()
+    }
+}
+
+/// Evolve SCEA on `problem`; the population and the evolution's wall time.
+fn evolve_scea<P: StructuredProblem>(
+    a: &OptimizeArgs,
+    problem: &P,
+    pool: Option<Arc<rayon::ThreadPool>>,
+) -> Result<(Vec<Individual<Chromosome>>, u64, f64), OptimError> {
+    let mut alg = Scea::new(scea_config(a), a.seed);
+    let start = Instant::now();
+    match pool {
+        Some(pool) => evolve(
+            &mut alg,
+            problem,
+            &Rayon::with_pool(pool),
+            a.generations,
+            &mut NoObserver,
+        )?,
+        None => evolve(&mut alg, problem, &Serial, a.generations, &mut NoObserver)?,
+    }
+    let wall = start.elapsed().as_secs_f64();
+    Ok((
+        <Scea as Algorithm<P>>::population(&alg).to_vec(),
+        alg.evaluations(),
+        wall,
+    ))
+}
+
+/// SCEA on a fixed-length test problem; the decisions are the chromosomes' fixed genes.
+pub(super) fn drive_scea(
+    a: &OptimizeArgs,
+    problem: &TestProblem,
+    pool: Option<Arc<rayon::ThreadPool>>,
+) -> Result<Outcome, OptimError> {
+    let wrapped = FixedLength::new(problem.clone());
+    let (population, evaluations, wall_time_s) = evolve_scea(a, &wrapped, pool)?;
+    Ok(Outcome {
+        population: population
+            .into_iter()
+            .map(|i| Individual {
+                decision: i.decision.fixed,
+                objectives: i.objectives,
+                constraints: i.constraints,
+                violation: i.violation,
+            })
+            .collect(),
+        evaluations,
+        wall_time_s,
+    })
+}
+
+fn joined(values: impl Iterator<Item = f64>) -> String {
+    values
+        .map(|v| format!("{v:e}"))
+        .collect::<Vec<_>>()
+        .join(";")
+}
+
+/// `optimize` on a variable-length problem (SCEA only).
+pub(super) fn run_variable_length(
+    a: &OptimizeArgs,
+    problem: &Vlmop,
+    out: &mut dyn Write,
+) -> Result<(), OptimizeError> {
+    if a.algorithm != AlgorithmName::Scea {
+        return Err(OptimizeError::NeedsFixedLength {
+            algorithm: a.algorithm.as_str(),
+            problem: a.problem.clone(),
+        });
+    }
+    let m = problem.objectives();
+    let reference = match &a.reference {
+        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => r.clone(),
+        Some(r) => {
+            return Err(OptimizeError::Reference {
+                expected: m,
+                got: r.len(),
+                values: r.clone(),
+            });
+        }
+        None => problem.reference_point(),
+    };
+    let pool = pool(a.threads)?;
+    let (pop, evaluations, wall_time_s) = evolve_scea(a, problem, pool)?;
+    let front: Vec<&[f64]> = feasible_front_indices(&pop)
+        .into_iter()
+        .map(|i| pop[i].objectives.as_slice())
+        .collect();
+    let hv = hypervolume(&front, &reference)?;
+    let true_hv = problem
+        .front_hypervolume(&reference)
+        .or_else(|| hypervolume(&problem.pareto_front(2000), &reference).ok());
+    let layout = problem.layout();
+    let summary = Summary {
+        problem: &a.problem,
+        algorithm: a.algorithm.as_str(),
+        population: a.population,
+        generations: a.generations,
+        seed: a.seed,
+        objectives: m,
+        variables: layout.fixed_dim()
+            + layout.legs().max * layout.nodes().max * layout.node().dim(),
+        constraints: problem.constraints(),
+        evaluations,
+        reference_point: &reference,
+        hypervolume: hv,
+        true_front_hypervolume: true_hv,
+        hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
+        feasible_fraction: feasible_fraction(&pop),
+        front_size: front.len(),
+        wall_time_s,
+        threads: a.threads,
+    };
+    let ratio = summary
+        .hypervolume_ratio
+        .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
+    writeln!(
+        out,
+        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
+        summary.algorithm,
+        summary.problem,
+        summary.evaluations,
+        summary.wall_time_s,
+        hv,
+        ratio,
+        reference,
+        front.len(),
+        100.0 * summary.feasible_fraction
+    )?;
+    if let Some(dir) = &a.out {
+        write_variable_length(dir, &pop, &front, &summary)?;
+        writeln!(out, "wrote {}", dir.display())?;
+    }
+    Ok(())
+}
+
+fn write_variable_length(
+    dir: &Path,
+    pop: &[Individual<Chromosome>],
+    front: &[&[f64]],
+    summary: &Summary<'_>,
+) -> Result<(), OptimizeError> {
+    // Front and summary as for the fixed-length problems (no decisions in the population
+    // file there), then the chromosome file over it.
+    let flat: Vec<Individual<Vec<f64>>> = Vec::new();
+    super::optimize_cmd::write_outputs(dir, &flat, front, summary)?;
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=summary.objectives)
+        .map(|i| format!("f{i}"))
+        .chain((1..=summary.constraints).map(|i| format!("g{i}")))
+        .chain(["violation", "x", "nodes", "genes"].map(String::from))
+        .collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for ind in pop {
+        let mut row: Vec<String> = ind
+            .objectives
+            .iter()
+            .chain(&ind.constraints)
+            .chain(std::iter::once(&ind.violation))
+            .map(|v| format!("{v:e}"))
+            .collect();
+        let c = &ind.decision;
+        row.push(joined(c.fixed.iter().copied()));
+        row.push(
+            c.node_counts()
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(";"),
+        );
+        row.push(joined(c.legs.iter().flatten().flatten().copied()));
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    write_atomic(&dir.join("population.csv"), csv.as_bytes())?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::optimize_cmd::{WeightsArg, run};
+    use super::*;
+
+    fn args(problem: &str, algorithm: AlgorithmName) -> OptimizeArgs {
+        OptimizeArgs {
+            problem: problem.into(),
+            algorithm,
+            population: 20,
+            generations: 10,
+            seed: 3,
+            objectives: 3,
+            weights: WeightsArg::Grid,
+            neighbours: 5,
+            mutation_probability: None,
+            batch_size: 1,
+            threads: 1,
+            reference: None,
+            out: None,
+        }
+    }
+
+    #[test]
+    fn optimize_runs_mhaco_and_scea_and_the_variable_length_problems() {
+        let mut out = Vec::new();
+        run(&args("zdt1", AlgorithmName::Mhaco), &mut out).unwrap();
+        run(&args("constr", AlgorithmName::Scea), &mut out).unwrap();
+        let dir = std::env::temp_dir().join(format!("host-sim-optimize-vl-{}", std::process::id()));
+        let mut a = args("vlmop2", AlgorithmName::Scea);
+        a.out = Some(dir.clone());
+        a.threads = 2;
+        run(&a, &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains("mhaco on zdt1: 220 evaluations"), "{text}");
+        assert!(text.contains("scea on constr: 220 evaluations"), "{text}");
+        assert!(text.contains("scea on vlmop2: 220 evaluations"), "{text}");
+        assert!(text.contains("of the true front"), "{text}");
+        let pop = std::fs::read_to_string(dir.join("population.csv")).unwrap();
+        assert!(
+            pop.starts_with("f1,f2,g1,violation,x,nodes,genes\n"),
+            "{pop}"
+        );
+        assert_eq!(pop.lines().count(), 21);
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        let truth = json["true_front_hypervolume"].as_f64().unwrap();
+        assert!((truth - 0.535).abs() < 1e-12, "{truth}");
+        std::fs::remove_dir_all(&dir).unwrap();
+        let e = run(&args("vlmop1", AlgorithmName::Moead), &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("use --algorithm scea"), "{e}");
+        let e = run(&args("vlmop9", AlgorithmName::Scea), &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("vlmop1, vlmop2"), "{e}");
+    }
+}

@@ -1,0 +1,310 @@
+//! SCEA tests: bad settings, determinism (tell order, threads), checkpoint/resume, free and
+//! dictated chromosome lengths, convergence with fixed seeds on the variable-length problems
+//! and on ZDT1/DTLZ2 as fixed-length chromosomes (thresholds from measured runs,
+//! docs/OPTIMISERS.md; heavy runs `#[ignore]`d).
+
+use std::sync::Arc;
+
+use super::*;
+use crate::optim::algorithm::Algorithm;
+use crate::optim::chromosome::{CountRange, FixedLength, Layout};
+use crate::optim::error::OptimError;
+use crate::optim::error::{ConfigError, EvalError};
+use crate::optim::evaluate::{Rayon, Serial, evolve};
+use crate::optim::hypervolume::hypervolume;
+use crate::optim::observe::NoObserver;
+use crate::optim::population::feasible_front;
+use crate::optim::problem::Evaluation;
+use crate::optim::problem::{Bounds, Problem};
+use crate::optim::problems::{Dtlz, TestProblem, Vlmop, Zdt};
+use crate::optim::weights::WeightGeneration;
+
+fn scea(population: usize, new_genes: NewGenes, seed: u64) -> Scea {
+    Scea::new(
+        SceaConfig {
+            moead: MoeadConfig {
+                population,
+                neighbours: 20.min(population / 4).max(2),
+                ..MoeadConfig::default()
+            },
+            new_genes,
+            ..SceaConfig::default()
+        },
+        seed,
+    )
+}
+
+fn run<P: StructuredProblem>(mut alg: Scea, p: &P, gens: u64) -> Scea {
+    evolve(&mut alg, p, &Serial, gens, &mut NoObserver).unwrap();
+    alg
+}
+
+/// Free counts: 1-3 legs of 1-4 one-gene nodes; `n` nodes in all (1..=12) and the mean
+/// squared distance of the genes from 0.5 give `f1 = (n - 1) / 11`,
+/// `f2 = (1 - f1)(1 + 10 d)`: twelve front points, one per total node count, at `d = 0`.
+struct Nodes(Layout);
+
+impl Nodes {
+    fn new() -> Self {
+        Self(
+            Layout::new(
+                None,
+                CountRange { min: 1, max: 3 },
+                CountRange { min: 1, max: 4 },
+                Bounds::uniform(1, 0.0, 1.0).unwrap(),
+            )
+            .unwrap(),
+        )
+    }
+}
+
+impl Problem for Nodes {
+    type Decision = Chromosome;
+    fn objectives(&self) -> usize {
+        2
+    }
+    fn evaluate(&self, c: &Chromosome) -> Result<Evaluation, EvalError> {
+        self.0.check(c, None)?;
+        let genes: Vec<f64> = c.legs.iter().flatten().map(|node| node[0]).collect();
+        let n = genes.len();
+        let d = genes.iter().map(|y| (y - 0.5).powi(2)).sum::<f64>() / n as f64;
+        let f1 = (n - 1) as f64 / 11.0;
+        Ok(Evaluation::new(vec![f1, (1.0 - f1) * (1.0 + 10.0 * d)]))
+    }
+}
+
+impl StructuredProblem for Nodes {
+    fn layout(&self) -> &Layout {
+        &self.0
+    }
+}
+
+/// Feasible-front hypervolume over the true front's.
+fn vl_ratio(alg: &Scea, p: &Vlmop) -> f64 {
+    let r = p.reference_point();
+    let truth = p
+        .front_hypervolume(&r)
+        .unwrap_or_else(|| hypervolume(&p.pareto_front(600), &r).unwrap());
+    hypervolume(&feasible_front(alg.population()), &r).unwrap() / truth
+}
+
+#[test]
+fn scea_bad_settings_are_typed_errors() {
+    let p = Vlmop::standard(4).unwrap();
+    let mut a = scea(100, NewGenes::Random, 0);
+    assert!(matches!(
+        a.ask(&p),
+        Err(OptimError::Config(ConfigError::GridSize { above: 105, .. }))
+    ));
+    let mut a = Scea::new(
+        SceaConfig {
+            count_mutation: 2.0,
+            ..SceaConfig::default()
+        },
+        0,
+    );
+    assert!(matches!(
+        a.ask(&Vlmop::standard(1).unwrap()),
+        Err(OptimError::Config(ConfigError::Parameter {
+            name: "count_mutation",
+            ..
+        }))
+    ));
+}
+
+#[test]
+fn scea_same_seed_same_run_whatever_tell_order_and_thread_count() {
+    let p = Nodes::new();
+    let pool = |n| {
+        Arc::new(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap(),
+        )
+    };
+    let make = || {
+        Scea::new(
+            SceaConfig {
+                moead: MoeadConfig {
+                    population: 20,
+                    neighbours: 5,
+                    batch_size: 7,
+                    ..MoeadConfig::default()
+                },
+                ..SceaConfig::default()
+            },
+            42,
+        )
+    };
+    let mut a = make();
+    evolve(&mut a, &p, &Rayon::with_pool(pool(1)), 6, &mut NoObserver).unwrap();
+    let mut b = make();
+    evolve(&mut b, &p, &Rayon::with_pool(pool(4)), 6, &mut NoObserver).unwrap();
+    let mut c = make();
+    let mut order_rng = OptimRng::new(9);
+    while !(c.is_initialised() && c.generation() >= 6) {
+        let batch = c.ask(&p).unwrap().to_vec();
+        let mut order: Vec<usize> = (0..batch.len()).collect();
+        order_rng.shuffle(&mut order);
+        for i in order {
+            c.tell(&p, i, p.evaluate(&batch[i]).unwrap()).unwrap();
+        }
+    }
+    assert_eq!(a, b);
+    assert_eq!(a, c);
+    let other = run(scea(20, NewGenes::Population, 43), &p, 6);
+    assert_ne!(a.population(), other.population());
+}
+
+#[test]
+fn scea_checkpoint_and_resume_give_the_bit_identical_run() {
+    let vl = Vlmop::standard(1).unwrap();
+    let nodes = Nodes::new();
+    for genes in [NewGenes::Random, NewGenes::Population] {
+        let straight = run(scea(20, genes, 5), &vl, 10);
+        let first = run(scea(20, genes, 5), &vl, 4);
+        let json = serde_json::to_string(&first).unwrap();
+        let resumed = run(serde_json::from_str(&json).unwrap(), &vl, 6);
+        assert_eq!(straight, resumed);
+        let straight = run(scea(20, genes, 6), &nodes, 10);
+        let first = run(scea(20, genes, 6), &nodes, 4);
+        let json = serde_json::to_string(&first).unwrap();
+        let resumed = run(serde_json::from_str(&json).unwrap(), &nodes, 6);
+        assert_eq!(straight, resumed);
+    }
+}
+
+#[test]
+fn scea_chromosomes_keep_their_layout_and_dictated_lengths() {
+    let vl = Vlmop::standard(2).unwrap();
+    let a = run(scea(30, NewGenes::Population, 1), &vl, 10);
+    for ind in a.population() {
+        let c = &ind.decision;
+        assert_eq!(c.node_counts(), vec![vl.length(&c.fixed)]);
+    }
+    let nodes = Nodes::new();
+    let a = run(scea(30, NewGenes::Random, 1), &nodes, 10);
+    let mut totals: Vec<usize> = a
+        .population()
+        .iter()
+        .map(|i| {
+            nodes.layout().check(&i.decision, None).unwrap();
+            i.decision.len()
+        })
+        .collect();
+    totals.sort_unstable();
+    totals.dedup();
+    assert!(totals.len() >= 6, "lengths {totals:?}");
+}
+
+#[test]
+fn scea_finds_every_length_of_the_free_count_problem() {
+    // Twelve front points, one per total node count; both gene sources.
+    let p = Nodes::new();
+    let mut counts = Vec::new();
+    for genes in [NewGenes::Random, NewGenes::Population] {
+        let a = run(scea(50, genes, 3), &p, 100);
+        let mut found: Vec<usize> = a
+            .population()
+            .iter()
+            .filter(|i| i.objectives[1] <= (1.0 - i.objectives[0]) * 1.01)
+            .map(|i| i.decision.len())
+            .collect();
+        found.sort_unstable();
+        found.dedup();
+        println!("scea {genes:?} nodes: lengths on the front {found:?}");
+        counts.push(found.len());
+    }
+    assert!(counts[0] >= SCEA_NODES_LENGTHS[0], "random: {counts:?}");
+    assert!(counts[1] >= SCEA_NODES_LENGTHS[1], "population: {counts:?}");
+}
+
+// Thresholds: measured values of these seeds (docs/OPTIMISERS.md) less about 2 %.
+// Free-count problem: lengths 10-11 (three legs) are not reached in 100 generations.
+const SCEA_NODES_LENGTHS: [usize; 2] = [9, 8];
+/// [random genes, population genes][vlmop1..=5].
+const SCEA_VL: [[f64; 5]; 2] = [
+    [0.95, 0.97, 0.84, 0.89, 0.78],
+    [0.96, 0.96, 0.81, 0.90, 0.85],
+];
+const SCEA_ZDT1: f64 = 0.95;
+const SCEA_DTLZ2: f64 = 0.76;
+
+/// Li & Deb's problems with the thesis' constraint: population 100 (91 for three objectives),
+/// 30 generations (20 for three objectives), seed 1, both gene sources.
+#[test]
+fn scea_converges_on_the_variable_length_problems() {
+    let mut failures = Vec::new();
+    for (k, genes) in [NewGenes::Random, NewGenes::Population]
+        .into_iter()
+        .enumerate()
+    {
+        for id in 1..=5u8 {
+            let p = Vlmop::standard(id).unwrap();
+            let (pop, gens) = if id <= 3 { (100, 30) } else { (91, 20) };
+            let a = run(scea(pop, genes, 1), &p, gens);
+            let r = vl_ratio(&a, &p);
+            println!("scea {genes:?} vlmop{id} ratio {r:.4}");
+            if r <= SCEA_VL[k][usize::from(id) - 1] {
+                failures.push(format!("vlmop{id} {genes:?}: {r}"));
+            }
+            assert!(a.population().iter().filter(|i| i.is_feasible()).count() > pop / 3);
+        }
+    }
+    assert!(failures.is_empty(), "{failures:?}");
+}
+
+/// Every variable-length problem, both gene sources, seeds 1..=3 (release: `cargo test
+/// --release -p host-sim --lib scea_table -- --ignored --nocapture`).
+#[test]
+#[ignore = "heavy: run in release"]
+fn scea_table() {
+    for id in 1..=5 {
+        let p = Vlmop::standard(id).unwrap();
+        let pop = if id <= 3 { 100 } else { 91 };
+        for gens in [10, 20, 50] {
+            let mut line = format!("vlmop{id} {gens:3} gens");
+            for genes in [NewGenes::Random, NewGenes::Population] {
+                for seed in 1..=3 {
+                    let r = vl_ratio(&run(scea(pop, genes, seed), &p, gens), &p);
+                    line += &format!(" {genes:?} {r:.4}");
+                }
+            }
+            println!("{line}");
+        }
+    }
+}
+
+#[test]
+#[ignore = "heavy in debug builds: run in release"]
+fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
+    let zdt1 = FixedLength::new(TestProblem::Zdt(Zdt::standard(1).unwrap()));
+    let a = run(scea(100, NewGenes::Population, 1), &zdt1, 250);
+    let r = [1.1, 1.1];
+    let ratio = hypervolume(&feasible_front(a.population()), &r).unwrap()
+        / zdt1.inner().front_hypervolume(&r, 2000).unwrap();
+    println!("scea zdt1 {ratio:.4}");
+    assert!(ratio > SCEA_ZDT1, "zdt1 {ratio}");
+    let dtlz2 = FixedLength::new(TestProblem::Dtlz(Dtlz::standard(2, 3).unwrap()));
+    let a = run(
+        Scea::new(
+            SceaConfig {
+                moead: MoeadConfig {
+                    population: 91,
+                    weights: WeightGeneration::Grid,
+                    ..MoeadConfig::default()
+                },
+                ..SceaConfig::default()
+            },
+            1,
+        ),
+        &dtlz2,
+        100,
+    );
+    let r = dtlz2.inner().reference_point();
+    let ratio = hypervolume(&feasible_front(a.population()), &r).unwrap()
+        / dtlz2.inner().front_hypervolume(&r, 2000).unwrap();
+    println!("scea dtlz2 {ratio:.4}");
+    assert!(ratio > SCEA_DTLZ2, "dtlz2 {ratio}");
+}
