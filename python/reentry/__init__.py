@@ -6,7 +6,7 @@ with the GIL released. SI units and radians throughout (unit in each name).
 * :func:`fly` flies a scenario (built-in name, TOML file, TOML text or dict) and returns a
   :class:`Flight` (trajectory as numpy arrays or a pandas DataFrame, summary as a dict);
 * :func:`atmosphere`, :func:`vehicles`;
-* :class:`Moead`, :class:`Nsga2` (ask/tell), :class:`TestProblem`, :func:`evolve`,
+* :class:`Moead`, :class:`Nsga2`, :class:`Mhaco` (ask/tell), :class:`TestProblem`, :func:`evolve`,
   :func:`hypervolume`, :class:`PygmoProblem` (any of our problems as a pygmo UDP);
 * :mod:`reentry.distributed`: optimisation and flight campaigns on Dask.
 
@@ -27,6 +27,7 @@ from ._native import (
 from .env import atmosphere, vehicles
 from .flight import Flight, fly, fly_summary, scenario_dict, scenario_toml
 from .optim import (
+    Mhaco,
     Moead,
     Nsga2,
     Population,
@@ -39,6 +40,7 @@ from .optim import (
 __all__ = [
     "TRAJECTORY_COLUMNS",
     "Flight",
+    "Mhaco",
     "Moead",
     "Nsga2",
     "OptimError",

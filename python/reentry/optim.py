@@ -122,7 +122,7 @@ def evaluate_batch(problem, xs: Sequence[Sequence[float]]) -> List[Evaluation]:
 
 
 class _Algorithm:
-    """Common ask/tell interface of :class:`Moead` and :class:`Nsga2`."""
+    """Common ask/tell interface of :class:`Moead`, :class:`Nsga2` and :class:`Mhaco`."""
 
     def __init__(self, native: "_native.Optimizer"):
         self._native = native
@@ -255,6 +255,37 @@ class Nsga2(_Algorithm):
     ):
         config = dict(population=population, cr=cr, eta_c=eta_c, m=m, eta_m=eta_m)
         super().__init__(_native.Optimizer.nsga2(json.dumps(config), int(seed)))
+
+
+class Mhaco(_Algorithm):
+    """MHACO, pagmo's ``maco`` semantics (host-sim ``Mhaco``; docs/OPTIMISERS.md).
+
+    ``constraints``: ``"feasibility-first"`` (default) or, for the thesis' constraints as
+    objectives, ``{"as-objectives": {"scales": None, "cap": 2.0, "penalty": 0.5}}``."""
+
+    def __init__(
+        self,
+        seed: int = 1,
+        population: int = 100,
+        ker: int = 63,
+        q: float = 1.0,
+        threshold: int = 1,
+        n_gen_mark: int = 7,
+        evalstop: int = 100_000,
+        focus: float = 0.0,
+        constraints="feasibility-first",
+    ):
+        config = dict(
+            population=population,
+            ker=ker,
+            q=q,
+            threshold=threshold,
+            n_gen_mark=n_gen_mark,
+            evalstop=evalstop,
+            focus=focus,
+            constraints=constraints,
+        )
+        super().__init__(_native.Optimizer.mhaco(json.dumps(config), int(seed)))
 
 
 def evolve(

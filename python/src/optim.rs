@@ -1,6 +1,6 @@
 //! The optimisers through ask/tell, the test problems and the hypervolume.
 //!
-//! [`Optimizer`] holds a host-sim `Moead` or `Nsga2` and the shape of the problem it runs on
+//! [`Optimizer`] holds a host-sim `Moead`, `Nsga2` or `Mhaco` and the shape of the problem it runs on
 //! ([`OpenProblem`]: bounds, objectives, constraints), read from any Python object with
 //! pygmo's user-defined-problem methods (`get_bounds`, `get_nobj`, `get_nic`). Evaluations
 //! happen outside (in Python, in Rust through [`PyTestProblem`], or on Dask workers) and come
@@ -9,8 +9,8 @@
 use host_sim::optim::hypervolume::hypervolume as hv;
 use host_sim::optim::problems::{NAMES, TestProblem};
 use host_sim::optim::{
-    Algorithm, Bounds, EvalError, Evaluation, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
-    Problem, RealProblem, Serial, evolve,
+    Algorithm, Bounds, EvalError, Evaluation, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
+    Nsga2, Nsga2Config, Problem, RealProblem, Serial, evolve,
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -92,6 +92,7 @@ fn open_problem(problem: &Bound<'_, PyAny>) -> PyResult<OpenProblem> {
 enum Algo {
     Moead(Moead),
     Nsga2(Nsga2),
+    Mhaco(Mhaco),
 }
 
 /// What [`Optimizer::to_json`] writes: the algorithm's whole state and the problem shape.
@@ -101,18 +102,20 @@ struct Checkpoint {
     problem: Option<OpenProblem>,
 }
 
-/// An ask/tell optimiser (host-sim MOEA/D or NSGA-II).
+/// An ask/tell optimiser (host-sim MOEA/D, NSGA-II or MHACO).
 #[pyclass(module = "reentry._native")]
 pub struct Optimizer {
     algo: Algo,
     problem: Option<OpenProblem>,
 }
 
+/// Run `$body` with `$a` bound to the algorithm inside `$algo` (an `Algo` place).
 macro_rules! with_algo {
-    ($self:expr, $a:ident => $body:expr) => {
-        match &mut $self.algo {
+    ($algo:expr, $a:ident => $body:expr) => {
+        match $algo {
             Algo::Moead($a) => $body,
             Algo::Nsga2($a) => $body,
+            Algo::Mhaco($a) => $body,
         }
     };
 }
@@ -143,8 +146,27 @@ fn config_error(e: &serde_json::Error) -> PyErr {
     PyValueError::new_err(format!("optimiser settings: {e}"))
 }
 
+/// An algorithm's settings: its defaults, overwritten by the fields of `json` (an object).
+fn config<C: Default + Serialize + serde::de::DeserializeOwned>(json: &str) -> PyResult<C> {
+    let mut over: serde_json::Value = serde_json::from_str(json).map_err(|e| config_error(&e))?;
+    let mut full = serde_json::to_value(C::default()).map_err(|e| config_error(&e))?;
+    merge(&mut full, &mut over);
+    serde_json::from_value(full).map_err(|e| config_error(&e))
+}
+
 #[pymethods]
 impl Optimizer {
+    /// MHACO with the settings of `config_json` (host-sim `MhacoConfig` fields; missing fields
+    /// take pagmo's `maco` defaults) and the run's seed.
+    #[staticmethod]
+    fn mhaco(config_json: &str, seed: u64) -> PyResult<Self> {
+        let config: MhacoConfig = config(config_json)?;
+        Ok(Self {
+            algo: Algo::Mhaco(Mhaco::new(config, seed)),
+            problem: None,
+        })
+    }
+
     /// MOEA/D with the settings of `config_json` (host-sim `MoeadConfig` fields; missing
     /// fields take pagmo's defaults) and the run's seed.
     #[staticmethod]
@@ -186,11 +208,8 @@ impl Optimizer {
         let Some(p) = problem.as_ref() else {
             return Ok(Vec::new());
         };
-        py.detach(|| match algo {
-            Algo::Moead(a) => a.ask(p).map(<[Vec<f64>]>::to_vec),
-            Algo::Nsga2(a) => a.ask(p).map(<[Vec<f64>]>::to_vec),
-        })
-        .map_err(errors::optim)
+        py.detach(|| with_algo!(algo, a => a.ask(p).map(<[Vec<f64>]>::to_vec)))
+            .map_err(errors::optim)
     }
 
     /// Tell the evaluation of decision `index` of the current batch (objectives minimised,
@@ -205,25 +224,19 @@ impl Optimizer {
     ) -> PyResult<()> {
         let p = self.problem()?.clone();
         let e = Evaluation::with_constraints(objectives, constraints);
-        py.detach(|| with_algo!(self, a => a.tell(&p, index, e)))
+        py.detach(|| with_algo!(&mut self.algo, a => a.tell(&p, index, e)))
             .map_err(errors::optim)
     }
 
     /// Whether decision `index` of the open batch has been told.
     fn is_told(&self, index: usize) -> bool {
-        match &self.algo {
-            Algo::Moead(a) => Algorithm::<OpenProblem>::is_told(a, index),
-            Algo::Nsga2(a) => Algorithm::<OpenProblem>::is_told(a, index),
-        }
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::is_told(a, index))
     }
 
     /// The population: `(decisions, objectives, constraints, violations)`.
     #[allow(clippy::type_complexity)]
     fn population(&self) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>) {
-        let pop = match &self.algo {
-            Algo::Moead(a) => a.population(),
-            Algo::Nsga2(a) => a.population(),
-        };
+        let pop = with_algo!(&self.algo, a => Algorithm::<OpenProblem>::population(a));
         (
             pop.iter().map(|i| i.decision.clone()).collect(),
             pop.iter().map(|i| i.objectives.clone()).collect(),
@@ -235,37 +248,25 @@ impl Optimizer {
     /// Completed generations (0 until the initial population is complete).
     #[getter]
     fn generation(&self) -> u64 {
-        match &self.algo {
-            Algo::Moead(a) => a.generation(),
-            Algo::Nsga2(a) => a.generation(),
-        }
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::generation(a))
     }
 
     /// Evaluations told so far.
     #[getter]
     fn evaluations(&self) -> u64 {
-        match &self.algo {
-            Algo::Moead(a) => a.evaluations(),
-            Algo::Nsga2(a) => a.evaluations(),
-        }
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::evaluations(a))
     }
 
     /// Whether the initial population is complete.
     #[getter]
     fn is_initialised(&self) -> bool {
-        match &self.algo {
-            Algo::Moead(a) => a.is_initialised(),
-            Algo::Nsga2(a) => a.is_initialised(),
-        }
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::is_initialised(a))
     }
 
-    /// "moead" or "nsga2".
+    /// "moead", "nsga2" or "mhaco".
     #[getter]
     fn name(&self) -> &'static str {
-        match &self.algo {
-            Algo::Moead(_) => "moead",
-            Algo::Nsga2(_) => "nsga2",
-        }
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::name(a))
     }
 
     /// Run `generations` generations on a test problem inside Rust (host-sim `evolve`, serial
@@ -283,8 +284,10 @@ impl Optimizer {
             constraints: p.constraints(),
         };
         self.adopt(shape)?;
-        py.detach(|| with_algo!(self, a => evolve(a, p, &Serial, generations, &mut NoObserver)))
-            .map_err(errors::optim)
+        py.detach(
+            || with_algo!(&mut self.algo, a => evolve(a, p, &Serial, generations, &mut NoObserver)),
+        )
+        .map_err(errors::optim)
     }
 
     /// The whole state as JSON (algorithm, RNG, open batch, problem shape): resuming from it

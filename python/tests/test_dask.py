@@ -25,8 +25,9 @@ def bits(a):
         lambda: reentry.Moead(seed=4, population=30, batch_size=30),
         lambda: reentry.Moead(seed=4, population=30, batch_size=7),
         lambda: reentry.Nsga2(seed=4, population=24),
+        lambda: reentry.Mhaco(seed=4, population=20, ker=10),
     ],
-    ids=["moead-generation-batches", "moead-batch7", "nsga2"],
+    ids=["moead-generation-batches", "moead-batch7", "nsga2", "mhaco"],
 )
 def test_optimisation_on_dask_equals_local_run(client, make):
     p = reentry.TestProblem("constr")

@@ -26,8 +26,13 @@ def same_state(a, b):
         lambda: reentry.Moead(seed=3, population=30, batch_size=1),
         lambda: reentry.Moead(seed=3, population=30, batch_size=7),
         lambda: reentry.Nsga2(seed=3, population=24),
+        lambda: reentry.Mhaco(seed=3, population=20, ker=10),
+        lambda: reentry.Mhaco(
+            seed=3, population=20, ker=10,
+            constraints={"as-objectives": {"scales": None, "cap": 2.0, "penalty": 0.5}},
+        ),
     ],
-    ids=["moead-steady", "moead-batch7", "nsga2"],
+    ids=["moead-steady", "moead-batch7", "nsga2", "mhaco", "mhaco-constraints-as-objectives"],
 )
 @pytest.mark.parametrize("name", ["zdt1", "constr"])
 def test_python_loop_equals_rust_evolve(make, name):
