@@ -298,6 +298,11 @@ def _cmd_campaign(a) -> int:
     return 0
 
 
+def _noop(i: int) -> int:
+    """Bench task: nothing (the cost of a task round trip)."""
+    return i
+
+
 def _fly_chunk_timed(start: int, cases: Sequence[Any]):
     """Bench task: :func:`_fly_chunk` plus the seconds spent flying inside the task."""
     t0 = time.perf_counter()
@@ -335,6 +340,7 @@ def _cmd_bench(a) -> int:
             client.wait_for_workers(w)
             startup = time.perf_counter() - t0
             client.gather(client.map(_fly_chunk, range(2 * w), [all_cases[:1]] * (2 * w), pure=False))
+            noop, _ = _best(lambda: client.gather(client.map(_noop, range(500), pure=False)), a.rounds)
             for n in sizes:
                 cases = pick(n)
                 c = a.chunk_size or default_chunk_size(n, w)
@@ -358,7 +364,10 @@ def _cmd_bench(a) -> int:
                     f"| {n} | Dask LocalCluster, {w} process(es) | {c} | {wall:.3f} | "
                     f"{n / wall:.1f} | {1 - busy / (wall * w):.2f} |"
                 )
-            print(f"(LocalCluster of {w} process(es): {startup:.2f} s to start)")
+            print(
+                f"(LocalCluster of {w} process(es): {startup:.2f} s to start; 500 empty tasks "
+                f"{noop:.3f} s, {noop / 500 * 1e3:.2f} ms per task)"
+            )
     return 0
 
 
