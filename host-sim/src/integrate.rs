@@ -168,7 +168,7 @@ impl Tolerances {
 
 /// An integrator setting out of range.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-#[error("invalid integrator setting `{field}` = {value}: {reason}")]
+#[error("invalid integrator setting `{field}` = {}: {reason}", crate::num_fmt::Compact(*value))]
 pub struct ToleranceError {
     /// Setting name.
     pub field: &'static str,

@@ -17,6 +17,7 @@ pub mod compare;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;
+pub mod num_fmt;
 pub mod optim;
 pub mod pil;
 pub mod replan_loop;

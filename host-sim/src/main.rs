@@ -3,13 +3,42 @@
 use std::process::ExitCode;
 
 use host_sim::cli::{CliError, run};
+use host_sim::sim;
+
+/// Exit status after Ctrl-C (128 + SIGINT), as a shell reports a process killed by it.
+const INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
+    // Ctrl-C asks the running simulation to stop at its next breakpoint; the command then
+    // fails without putting a run directory in place (nothing half-written). With no
+    // simulation running (optimiser, hypervolume, writing), or at a second Ctrl-C, it exits
+    // at once: a run directory is swapped into place in one step, and a temporary directory
+    // left behind is removed by the next run.
+    let second = std::sync::atomic::AtomicBool::new(false);
+    let handler = ctrlc::set_handler(move || {
+        if second.swap(true, std::sync::atomic::Ordering::SeqCst) || !sim::runs_active() {
+            // The handler runs on its own thread (ctrlc), not in signal context.
+            eprintln!("interrupted; no run directory written");
+            std::process::exit(i32::from(INTERRUPTED));
+        }
+        sim::request_stop();
+    });
+    if let Err(e) = handler {
+        eprintln!("warning: cannot install the Ctrl-C handler: {e}");
+    }
     let mut stdout = std::io::stdout().lock();
     match run(std::env::args_os(), &mut stdout) {
+        Ok(()) if sim::stop_requested() => {
+            eprintln!("interrupted after the run was written");
+            ExitCode::from(INTERRUPTED)
+        }
         Ok(()) => ExitCode::SUCCESS,
         // Help, version and usage errors: clap prints them and picks the exit code.
         Err(CliError::Usage(e)) => e.exit(),
+        Err(e) if sim::stop_requested() => {
+            eprintln!("interrupted: {e}; no run directory written");
+            ExitCode::from(INTERRUPTED)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

@@ -140,6 +140,29 @@ pub fn shown(doc: &Table, field: &str) -> String {
     v.map_or_else(|| "(missing)".to_string(), fmt_value)
 }
 
+/// Longest name (scenario, vehicle) in characters.
+pub const MAX_NAME_CHARS: usize = 100;
+
+/// Names (scenario, vehicle) label files, plots and directories: non-empty, at most
+/// [`MAX_NAME_CHARS`] characters, no control characters (NUL, newline, tab, ...), no
+/// leading or trailing blanks.
+///
+/// # Errors
+/// What the name breaks, for the caller's field error.
+pub fn check_name(name: &str) -> Result<(), &'static str> {
+    if name.trim().is_empty() {
+        Err("must be a non-empty name")
+    } else if name.chars().count() > MAX_NAME_CHARS {
+        Err("must be at most 100 characters")
+    } else if name.chars().any(char::is_control) {
+        Err("must not contain control characters (NUL, newline, tab, ...)")
+    } else if name.trim() != name {
+        Err("must not start or end with blanks")
+    } else {
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

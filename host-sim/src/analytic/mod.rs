@@ -97,7 +97,7 @@ pub enum AnalyticError {
         reason: String,
     },
     /// A setting is out of range.
-    #[error("invalid setting `{field}` = {value}: {reason}")]
+    #[error("invalid setting `{field}` = {}: {reason}", crate::num_fmt::Compact(*value))]
     Setting {
         /// Setting name (with unit).
         field: &'static str,

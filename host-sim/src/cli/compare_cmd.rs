@@ -6,9 +6,10 @@ use std::path::PathBuf;
 use crate::analytic::{self, AnalyticVehicle, GlideEnd, Placement};
 use crate::compare::{
     AnalyticOutcome, CompareConfig, CompareError, GridKind, NumericalSettings, run_grid_with,
-    write_case, write_grid,
+    write_case_into, write_grid_into,
 };
 use crate::env::Preset;
+use crate::report::RunDir;
 
 fn setting(field: &'static str, value: impl ToString, reason: &'static str) -> CompareError {
     CompareError::setting(field, value, reason)
@@ -122,7 +123,7 @@ fn finite_arg(field: &'static str, v: f64) -> Result<f64, CompareError> {
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(setting(field, v, "must be finite"))
+        Err(setting(field, crate::num_fmt::Compact(v), "must be finite"))
     }
 }
 
@@ -140,10 +141,30 @@ pub(super) fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, Comp
             "needs exactly two altitudes",
         ));
     };
-    let atmosphere = analytic::fit_us76(
-        finite_arg("--fit-altitudes-km", h1)? * 1e3,
-        finite_arg("--fit-altitudes-km", h2)? * 1e3,
-    )?;
+    // Two different altitudes inside US76 (0..1000 km): the fit's scale height is their
+    // difference over the log of the density ratio.
+    let shown = || {
+        format!(
+            "[{}, {}]",
+            crate::num_fmt::Compact(h1),
+            crate::num_fmt::Compact(h2)
+        )
+    };
+    if ![h1, h2].iter().all(|h| (0.0..=1000.0).contains(h)) {
+        return Err(setting(
+            "--fit-altitudes-km",
+            shown(),
+            "altitudes must be in [0, 1000] km (US76)",
+        ));
+    }
+    if (h1 - h2).abs() < 0.1 {
+        return Err(setting(
+            "--fit-altitudes-km",
+            shown(),
+            "needs two different altitudes (at least 0.1 km apart)",
+        ));
+    }
+    let atmosphere = analytic::fit_us76(h1 * 1e3, h2 * 1e3)?;
     let cl_max = vehicle
         .trim_cl
         .unwrap_or_else(|| vehicle.polar.cl_at_max_lift_to_drag());
@@ -174,11 +195,13 @@ pub(super) fn config_from_args(a: &CompareCliArgs) -> Result<CompareConfig, Comp
             },
         },
     };
-    if !(a.output_interval_s.is_finite() && a.output_interval_s > 0.0) {
+    // A grid flies many runs, each recording its samples: 10 ms is finer than any metric
+    // needs and keeps a run at a few hundred thousand samples.
+    if !(0.01..=1e4).contains(&a.output_interval_s) {
         return Err(setting(
             "--output-interval-s",
-            a.output_interval_s,
-            "must be finite and > 0",
+            crate::num_fmt::Compact(a.output_interval_s),
+            "must be in [0.01, 1e4] s",
         ));
     }
     if a.environments.is_empty() {
@@ -225,18 +248,21 @@ pub(super) fn run(
             cfg.vehicle.name.replace([' ', '/', '\\'], "_")
         ))
     });
-    let mut files = Vec::new();
+    // The whole output (grid, heat maps, trajectories) is one run directory, put in place
+    // only when complete.
+    let mut rd = RunDir::begin(&dir)?;
     let scenario = format!("compare {} {phase}", cfg.vehicle.name);
     let grid = run_grid_with(&cfg, &mut |done, total, _, runs| {
         if a.trajectories {
-            let sub = dir.join(format!("point_{}", done - 1));
-            files.extend(write_case(&sub, runs, &cfg.vehicle, &scenario)?);
+            let sub = PathBuf::from(format!("point_{}", done - 1));
+            write_case_into(&mut rd, &sub, runs, &cfg.vehicle, &scenario)?;
         }
         eprint!("\rcompare: {done}/{total} points");
         Ok(())
     })?;
     eprintln!();
-    files.extend(write_grid(&dir, &grid, &cfg.fidelities)?);
+    write_grid_into(&mut rd, &grid, &cfg.fidelities)?;
+    let files = rd.commit()?;
     writeln!(
         out,
         "{} {phase}: {} points, {} out of the closed form's domain; exponential atmosphere \

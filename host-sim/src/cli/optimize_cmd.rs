@@ -18,7 +18,7 @@ use crate::optim::{
     Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
     OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
 };
-use crate::report::{ReportError, write_atomic};
+use crate::report::{ReportError, RunDir};
 
 /// The algorithms `optimize` offers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -371,10 +371,7 @@ pub(super) fn write_outputs(
     front: &[&[f64]],
     summary: &Summary<'_>,
 ) -> Result<(), OptimizeError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    let mut rd = RunDir::begin(dir)?;
     let nf = summary.objectives;
     let mut csv = String::new();
     let header: Vec<String> = (1..=summary.variables)
@@ -395,7 +392,7 @@ pub(super) fn write_outputs(
             .collect();
         let _ = writeln!(csv, "{}", row.join(","));
     }
-    write_atomic(&dir.join("population.csv"), csv.as_bytes())?;
+    rd.write("population.csv", csv.as_bytes())?;
     let mut csv = String::new();
     let header: Vec<String> = (1..=nf).map(|i| format!("f{i}")).collect();
     let _ = writeln!(csv, "{}", header.join(","));
@@ -403,9 +400,10 @@ pub(super) fn write_outputs(
         let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
         let _ = writeln!(csv, "{}", row.join(","));
     }
-    write_atomic(&dir.join("front.csv"), csv.as_bytes())?;
+    rd.write("front.csv", csv.as_bytes())?;
     let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
-    write_atomic(&dir.join("summary.json"), json.as_bytes())?;
+    rd.write("summary.json", json.as_bytes())?;
+    rd.commit()?;
     Ok(())
 }
 

@@ -52,7 +52,7 @@ pub use metrics::{
     GLIDE_METRICS_ALTITUDE_END, GLIDE_METRICS_SPEED_END, Metric, SKIP_METRICS, metric_error,
 };
 pub use numerical::numerical_run;
-pub use output::{write_case, write_grid};
+pub use output::{write_case, write_case_into, write_grid, write_grid_into};
 
 /// Numerical-run settings.
 #[derive(Clone, Copy, Debug, PartialEq)]

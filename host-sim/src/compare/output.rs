@@ -4,11 +4,11 @@ use std::path::{Path, PathBuf};
 
 use super::{CaseRuns, CompareGrid, Preset, grid_csv, heat_map_svg};
 use crate::analytic::{self, AnalyticVehicle};
-use crate::report::{self, ReportError};
+use crate::report::{self, ReportError, RunDir};
 use crate::sim::SimResult;
 
-/// Write `grid.csv` and one heat map per metric and environment flown
-/// (`<metric>_err_<environment>.svg`) into `dir` (created if needed), atomically.
+/// Write the run directory `dir` with `grid.csv` and one heat map per metric and environment
+/// flown (`<metric>_err_<environment>.svg`), whole or not at all ([`RunDir`]).
 ///
 /// # Errors
 /// [`ReportError`] naming the path.
@@ -17,26 +17,33 @@ pub fn write_grid(
     grid: &CompareGrid,
     fidelities: &[Preset],
 ) -> Result<Vec<PathBuf>, ReportError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let mut written = Vec::new();
-    let csv = dir.join("grid.csv");
-    report::write_atomic(&csv, grid_csv(grid).as_bytes())?;
-    written.push(csv);
+    let mut rd = RunDir::begin(dir)?;
+    write_grid_into(&mut rd, grid, fidelities)?;
+    rd.commit()
+}
+
+/// Write `grid.csv` and the heat maps into the run directory being written.
+///
+/// # Errors
+/// [`ReportError`] naming the path.
+pub fn write_grid_into(
+    rd: &mut RunDir,
+    grid: &CompareGrid,
+    fidelities: &[Preset],
+) -> Result<Vec<PathBuf>, ReportError> {
+    let mut written = vec![rd.write("grid.csv", grid_csv(grid).as_bytes())?];
     for (m, metric) in grid.metrics.iter().enumerate() {
         for &f in fidelities {
-            let p = dir.join(format!("{}_err_{}.svg", metric.name, f.name()));
-            report::write_atomic(&p, heat_map_svg(grid, m, f)?.as_bytes())?;
-            written.push(p);
+            let name = format!("{}_err_{}.svg", metric.name, f.name());
+            written.push(rd.write(name, heat_map_svg(grid, m, f)?.as_bytes())?);
         }
     }
     Ok(written)
 }
 
-/// Write the trajectories of one case as run directories `analytic/`, `simplified/`, `full/`
-/// (whichever exist) under `dir`, each with the numerical simulator's report files.
+/// Write the trajectories of one case as the run directory `dir` with sub-directories
+/// `analytic/`, `simplified/`, `full/` (whichever exist), each with the numerical simulator's
+/// report files; whole or not at all ([`RunDir`]).
 ///
 /// # Errors
 /// [`ReportError`] naming the path.
@@ -46,26 +53,43 @@ pub fn write_case(
     vehicle: &AnalyticVehicle,
     scenario: &str,
 ) -> Result<Vec<PathBuf>, ReportError> {
+    let mut rd = RunDir::begin(dir)?;
+    write_case_into(&mut rd, Path::new(""), runs, vehicle, scenario)?;
+    rd.commit()
+}
+
+/// Write the trajectories of one case under `sub` (relative) of the run directory being
+/// written: `sub/analytic/`, `sub/simplified/`, `sub/full/` (whichever exist).
+///
+/// # Errors
+/// [`ReportError`] naming the path.
+pub fn write_case_into(
+    rd: &mut RunDir,
+    sub: &Path,
+    runs: &CaseRuns,
+    vehicle: &AnalyticVehicle,
+    scenario: &str,
+) -> Result<(), ReportError> {
     let planet_r = analytic::planet().radius_m;
-    // One run directory: the summary and the simulator's report files.
-    let write = |sub: &str, result: &SimResult, environment: &str| {
+    // One run: the summary and the simulator's report files.
+    let mut write = |name: &str, result: &SimResult, environment: &str| {
         let summary =
             report::summary_report(result, scenario, &vehicle.name, environment, planet_r);
-        report::write_run(
-            &dir.join(sub),
+        report::write_run_files(
+            rd,
+            &sub.join(name),
             result,
             &summary,
             vehicle.limits.heat_flux_w_m2,
             vehicle.limits.g_load,
         )
     };
-    let mut written = Vec::new();
     if let Ok(a) = &runs.analytic {
-        written.extend(write(
+        write(
             "analytic",
             &a.result,
             &analytic::environment_label(&a.atmosphere),
-        )?);
+        )?;
     }
     for (f, res, _) in &runs.numerical {
         if let Some(res) = res {
@@ -76,8 +100,8 @@ pub fn write_case(
                 }
                 Preset::Full => "numerical: rotating sphere, US76, J2",
             };
-            written.extend(write(f.name(), res, env)?);
+            write(f.name(), res, env)?;
         }
     }
-    Ok(written)
+    Ok(())
 }

@@ -27,7 +27,10 @@ pub struct ChapmanHeatFlux {
 
 /// A Chapman constant that is not finite and positive.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-#[error("heat-flux model: parameter `{parameter}` = {value}: must be finite and positive")]
+#[error(
+    "heat-flux model: parameter `{parameter}` = {}: must be finite and positive",
+    crate::num_fmt::Compact(*value)
+)]
 pub struct HeatFluxError {
     /// Parameter name.
     pub parameter: &'static str,

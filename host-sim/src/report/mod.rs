@@ -1,9 +1,11 @@
 //! Run outputs: trajectory CSV ([`trajectory_csv`]), summary JSON ([`summary_report`]) and
-//! the four standard plots ([`standard_plots`], drawn with `plotters`' SVG backend), all
-//! written atomically (temporary file in the target directory, then rename).
+//! the four standard plots ([`standard_plots`], drawn with `plotters`' SVG backend). A run
+//! directory is written whole or not at all ([`RunDir`]: built in a temporary sibling, then
+//! put in place in one step); single files with [`write_atomic`].
 
 mod csv;
 mod plot;
+pub mod run_dir;
 mod summary;
 
 use std::io::Write as _;
@@ -13,6 +15,7 @@ use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
 pub use plot::{Series, line_plot_svg, standard_plots};
+pub use run_dir::{RunDir, clean_stale};
 pub use summary::{FinalState, PeakOut, SummaryReport, ViolationsOut, summary_report};
 
 /// Output failures (always naming the path).
@@ -57,7 +60,8 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), ReportError> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    run_dir::clean_stale(dir);
+    let tmp = run_dir::temp_file_name(dir, &name);
     let res = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(contents)?;
@@ -70,11 +74,11 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), ReportError> {
     res.map_err(io)
 }
 
-/// Write `trajectory.csv`, `summary.json` and the SVG plots into `dir` (created if needed).
-/// Returns the paths written.
+/// Write the run directory `dir` (`trajectory.csv`, `summary.json` and the SVG plots) whole
+/// or not at all, replacing a previous run there. Returns the paths written.
 ///
 /// # Errors
-/// [`ReportError`] naming the path that failed.
+/// [`ReportError`] naming the path that failed; the previous run is then left as it was.
 pub fn write_run(
     dir: &Path,
     res: &SimResult,
@@ -82,25 +86,42 @@ pub fn write_run(
     heat_limit_w_m2: f64,
     g_limit: f64,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let mut written = vec![];
-    let csv = dir.join("trajectory.csv");
-    write_atomic(&csv, trajectory_csv(&res.samples).as_bytes())?;
-    written.push(csv);
-    let json = dir.join("summary.json");
+    let mut rd = RunDir::begin(dir)?;
+    write_run_files(
+        &mut rd,
+        Path::new(""),
+        res,
+        summary,
+        heat_limit_w_m2,
+        g_limit,
+    )?;
+    rd.commit()
+}
+
+/// Write a run's files (`trajectory.csv`, `summary.json`, the SVG plots) into `sub` (relative,
+/// empty for the top) of the run directory being written.
+///
+/// # Errors
+/// [`ReportError`] naming the path that failed.
+pub fn write_run_files(
+    rd: &mut RunDir,
+    sub: &Path,
+    res: &SimResult,
+    summary: &SummaryReport,
+    heat_limit_w_m2: f64,
+    g_limit: f64,
+) -> Result<(), ReportError> {
+    rd.write(
+        sub.join("trajectory.csv"),
+        trajectory_csv(&res.samples).as_bytes(),
+    )?;
     let mut text = serde_json::to_string_pretty(summary)?;
     text.push('\n');
-    write_atomic(&json, text.as_bytes())?;
-    written.push(json);
+    rd.write(sub.join("summary.json"), text.as_bytes())?;
     for (name, svg) in standard_plots(res, heat_limit_w_m2, g_limit)? {
-        let p = dir.join(name);
-        write_atomic(&p, svg.as_bytes())?;
-        written.push(p);
+        rd.write(sub.join(name), svg.as_bytes())?;
     }
-    Ok(written)
+    Ok(())
 }
 
 #[cfg(test)]

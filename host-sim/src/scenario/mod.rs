@@ -12,7 +12,7 @@
 //! mission, thesis eq. 2.3 and table 2.1). `host-sim simulate --print-scenario` prints it:
 //!
 //! ```toml
-//! name = "horus-2b-reference"
+//! name = "horus-2b-reference"   # 1-100 characters, no control characters or / \
 //! vehicle = "horus-2b"            # built-in name, or vehicle_file = "my.toml"
 //!
 //! [environment]
@@ -51,32 +51,42 @@
 //! [guidance]
 //! independent = "time"            # or "energy" (normalised energy, 1 at entry)
 //! interpolation = "linear"        # or "natural-cubic", "hermite" (with tension)
-//! period_s = 2.0
-//! alpha_rate_deg_s = 5.0
-//! sigma_rate_deg_s = 15.0
+//! period_s = 2.0                # [0.01, 100] s
+//! alpha_rate_deg_s = 5.0          # [0.001, 1000] deg/s
+//! sigma_rate_deg_s = 15.0         # [0.001, 1000] deg/s
 //! initial_alpha_deg = 40.0
 //! initial_sigma_deg = 0.0
 //! nodes = [[0, 40, 0], [264, 40, 0], [290, 40, 79.6], ...]   # [x, alpha_deg, sigma_deg]
 //!
 //! [termination]
-//! altitude_km = 25.0              # and/or mach = 2.5, normalized_energy = 0.01
-//! max_time_s = 2500.0
+//! altitude_km = 25.0              # [0, 10000) km; and/or mach = 2.5, normalized_energy = 0.01
+//! max_time_s = 2500.0             # (0, 1e6] s
 //!
 //! [integrator]
 //! rtol = 1e-9
-//! h_init_s = 0.1
-//! h_min_s = 1e-9
-//! h_max_s = 20.0
-//! max_steps = 2000000
-//! event_time_tol_s = 1e-6        # event-location time tolerance
+//! h_init_s = 0.1                  # steps: (0, 1e4] s
+//! h_min_s = 1e-9                  # <= h_max_s
+//! h_max_s = 20.0                  # >= termination.max_time_s / max_steps
+//! max_steps = 2000000             # integer in [1, 1e8]
+//! event_time_tol_s = 1e-6         # event-location time tolerance: (0, 0.01] s and < period_s
 //!
 //! [monitors]
 //! interface_altitude_km = 100.0   # exit/re-entry (skip) detection
 //! g_rate_window_s = 0.1           # minimum window of the g-load-rate difference
 //!
 //! [output]
-//! interval_s = 0.0                # 0: one sample per guidance tick
+//! interval_s = 0.0                # 0: one sample per guidance tick; else [0.001, 1e6] s
+//!                                 # and >= termination.max_time_s / 1e7 (10 million samples)
 //! ```
+//!
+//! Ranges are checked before the run (the cross-field ones once every section is read), so a
+//! setting that would only fail after millions of integrator steps or samples ("maximum
+//! number of steps exceeded", growing memory) fails at once, naming the field, its value and
+//! the range. Values in messages are printed compactly ([`crate::num_fmt`]: `1e308`,
+//! `5e-324`). Why these ranges: a guidance cycle under 10 ms is faster than any re-entry
+//! guidance and only multiplies the integrator's breakpoints; the step budget must cover the
+//! time limit at the largest step; an event is located well within one guidance period; a
+//! run records at most 10 million samples.
 
 mod builtin;
 mod error;

@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use crate::num_fmt::compact;
 use crate::toml_input::TomlInputError;
 
 use super::file::{
@@ -14,6 +15,9 @@ use super::file::{
 use super::resolve_environment::{environment, heat_flux};
 use super::resolve_guidance::guidance;
 use super::{Scenario, ScenarioError, VehicleSpec};
+use crate::sim::config::{
+    MAX_EVENT_TIME_TOL_S, MAX_OUTPUT_SAMPLES, MAX_STEPS_LIMIT, MIN_OUTPUT_INTERVAL_S,
+};
 use crate::vehicle;
 
 /// Names the file in errors and range-checks numbers.
@@ -42,10 +46,8 @@ impl Fields<'_> {
     ) -> Result<Option<f64>, ScenarioError> {
         match v {
             None => Ok(None),
-            Some(Num(x)) if !x.is_finite() => {
-                Err(self.err(field, &x.to_string(), "must be finite"))
-            }
-            Some(Num(x)) if !ok(x) => Err(self.err(field, &x.to_string(), reason)),
+            Some(Num(x)) if !x.is_finite() => Err(self.err(field, &compact(x), "must be finite")),
+            Some(Num(x)) if !ok(x) => Err(self.err(field, &compact(x), reason)),
             Some(Num(x)) => Ok(Some(x)),
         }
     }
@@ -98,11 +100,14 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     // Files may bank to either side (3-D); the built-in mission keeps the thesis bounds.
     sc.guidance.bounds = super::guidance_bounds();
     if let Some(n) = sf.name {
-        if n.is_empty() || n.contains(['/', '\\']) || n == "." || n == ".." {
+        if let Err(reason) = crate::toml_input::check_name(&n) {
+            return Err(f.err("name", &format!("{n:?}"), reason));
+        }
+        if n.contains(['/', '\\']) || n == "." || n == ".." {
             return Err(f.err(
                 "name",
                 &format!("{n:?}"),
-                "must be a non-empty name without path separators",
+                "must be a name without path separators (it names the run directory)",
             ));
         }
         sc.name = n;
@@ -149,7 +154,7 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     {
         return Err(f.err(
             "termination.altitude_km",
-            &(h / 1e3).to_string(),
+            &compact(h / 1e3),
             "must be below the entry altitude",
         ));
     }
@@ -162,6 +167,7 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     if let Some(t) = sf.output {
         output(&f, t, &mut sc)?;
     }
+    cross_checks(&f, &sc)?;
     Ok(sc)
 }
 
@@ -226,8 +232,8 @@ fn termination(f: &Fields<'_>, t: TerminationFile, sc: &mut Scenario) -> Result<
     if let Some(v) = f.checked(
         "termination.altitude_km",
         t.altitude_km,
-        |v| v >= 0.0,
-        "must be >= 0",
+        |v| (0.0..10_000.0).contains(&v),
+        "must be in [0, 10000) km",
     )? {
         tm.altitude_m = Some(v * 1e3);
     }
@@ -264,37 +270,81 @@ fn integrator(f: &Fields<'_>, t: IntegratorFile, sc: &mut Scenario) -> Result<()
     )? {
         tl.rtol = v;
     }
-    let pos = |v: f64| v > 0.0;
-    if let Some(v) = f.checked("integrator.h_init_s", t.h_init_s, pos, "must be > 0")? {
+    let step = |v: f64| v > 0.0 && v <= 1e4;
+    let step_reason = "must be in (0, 1e4] s";
+    if let Some(v) = f.checked("integrator.h_init_s", t.h_init_s, step, step_reason)? {
         tl.h_init = v;
     }
-    if let Some(v) = f.checked("integrator.h_min_s", t.h_min_s, pos, "must be > 0")? {
+    if let Some(v) = f.checked("integrator.h_min_s", t.h_min_s, step, step_reason)? {
         tl.h_min = v;
     }
-    if let Some(v) = f.checked("integrator.h_max_s", t.h_max_s, pos, "must be > 0")? {
+    if let Some(v) = f.checked("integrator.h_max_s", t.h_max_s, step, step_reason)? {
         tl.h_max = v;
     }
     if let Some(v) = f.checked(
         "integrator.max_steps",
         t.max_steps,
-        |v| v >= 1.0 && v.fract() == 0.0,
-        "must be a positive integer",
+        |v| (1.0..=MAX_STEPS_LIMIT as f64).contains(&v) && v.fract() == 0.0,
+        "must be an integer in [1, 1e8]",
     )? {
         tl.max_steps = v as u64;
     }
     if let Some(v) = f.checked(
         "integrator.event_time_tol_s",
         t.event_time_tol_s,
-        pos,
-        "must be > 0",
+        |v| v > 0.0 && v <= MAX_EVENT_TIME_TOL_S,
+        "must be in (0, 0.01] s",
     )? {
         tl.event_time_tol_s = v;
     }
+    Ok(())
+}
+
+/// Checks across sections, once every section is read: each names the field and the range
+/// it must be in, so a setting that would burn the run (millions of steps or samples) or
+/// mislead the event location fails before the run.
+fn cross_checks(f: &Fields<'_>, sc: &Scenario) -> Result<(), ScenarioError> {
+    let tl = &sc.tolerances;
+    let max_t = sc.termination.max_time_s;
     if tl.h_min > tl.h_max {
         return Err(f.err(
             "integrator.h_min_s",
-            &tl.h_min.to_string(),
-            &format!("must be <= h_max_s = {}", tl.h_max),
+            &compact(tl.h_min),
+            &format!("must be <= integrator.h_max_s = {} s", compact(tl.h_max)),
+        ));
+    }
+    let h_floor = max_t / tl.max_steps as f64;
+    if tl.h_max < h_floor {
+        return Err(f.err(
+            "integrator.h_max_s",
+            &compact(tl.h_max),
+            &format!(
+                "must be >= termination.max_time_s / integrator.max_steps = {} s \
+                 (else the step budget runs out before the time limit)",
+                compact(h_floor)
+            ),
+        ));
+    }
+    let period = sc.guidance.period_s;
+    if tl.event_time_tol_s >= period {
+        return Err(f.err(
+            "integrator.event_time_tol_s",
+            &compact(tl.event_time_tol_s),
+            &format!(
+                "must be < guidance.period_s = {} s (an event is located within one guidance period)",
+                compact(period)
+            ),
+        ));
+    }
+    let dt = sc.output_interval_s;
+    if dt > 0.0 && max_t / dt > MAX_OUTPUT_SAMPLES {
+        return Err(f.err(
+            "output.interval_s",
+            &compact(dt),
+            &format!(
+                "must be >= termination.max_time_s / 1e7 = {} s (at most 10 million samples)",
+                compact(max_t / MAX_OUTPUT_SAMPLES)
+            ),
         ));
     }
     Ok(())
@@ -326,8 +376,8 @@ fn output(f: &Fields<'_>, t: OutputFile, sc: &mut Scenario) -> Result<(), Scenar
     if let Some(v) = f.checked(
         "output.interval_s",
         t.interval_s,
-        |v| v >= 0.0,
-        "must be >= 0",
+        |v| v == 0.0 || (MIN_OUTPUT_INTERVAL_S..=1e6).contains(&v),
+        "must be 0 (one sample per guidance tick) or in [0.001, 1e6] s",
     )? {
         sc.output_interval_s = v;
     }

@@ -12,6 +12,7 @@ use super::{AtmosphereKind, AtmosphereSpec, AtmosphereTable, EnvSpec, Scenario, 
 use crate::env::atmosphere::exponential::R_AIR_J_KG_K;
 use crate::env::atmosphere::us76::GAMMA_AIR;
 use crate::env::{ExponentialAtmosphere, Planet, TabulatedAtmosphere};
+use crate::num_fmt::compact;
 
 /// The `[environment]` section: a preset, then single models and their parameters. A
 /// change of planet radius keeps the entry altitude.
@@ -147,7 +148,7 @@ fn exponential(
     ExponentialAtmosphere::new(rho0, h, base.reference_altitude_m()).map_err(|e| {
         f.err(
             &format!("environment.exponential.{}", e.parameter),
-            &e.value.to_string(),
+            &compact(e.value),
             e.reason,
         )
     })

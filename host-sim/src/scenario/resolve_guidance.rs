@@ -5,6 +5,17 @@ use guidance_core::nodes::{HOST_NODE_CAPACITY, Independent};
 use super::file::{GuidanceFile, IndependentFile, InterpolationFile, Num};
 use super::resolve::Fields;
 use super::{InterpolationKind, Scenario, ScenarioError, node_to_rad};
+use crate::num_fmt::compact;
+
+/// Shortest guidance period \[s\]: 10 ms (100 Hz, faster than any re-entry guidance cycle;
+/// shorter ones only multiply the integrator's breakpoints).
+pub const MIN_PERIOD_S: f64 = 0.01;
+/// Longest guidance period \[s\].
+pub const MAX_PERIOD_S: f64 = 100.0;
+/// Attitude-rate limits \[deg/s\]: 0.001 (a ramp over 40 deg takes 11 h) to 1000.
+pub const MIN_RATE_DEG_S: f64 = 1e-3;
+/// See [`MIN_RATE_DEG_S`].
+pub const MAX_RATE_DEG_S: f64 = 1e3;
 
 /// The `[guidance]` section: node variable, interpolation, rates, initial attitude, nodes.
 pub(super) fn guidance(
@@ -37,25 +48,26 @@ pub(super) fn guidance(
     if let Some(v) = f.checked(
         "guidance.period_s",
         t.period_s,
-        |v| v > 0.0 && v <= 100.0,
-        "must be in (0, 100] s",
+        |v| (MIN_PERIOD_S..=MAX_PERIOD_S).contains(&v),
+        "must be in [0.01, 100] s (a guidance cycle of at least 10 ms)",
     )? {
         g.period_s = v;
     }
-    let pos = |v: f64| v > 0.0;
+    let rate = |v: f64| (MIN_RATE_DEG_S..=MAX_RATE_DEG_S).contains(&v);
+    let rate_reason = "must be in [0.001, 1000] deg/s";
     if let Some(v) = f.checked(
         "guidance.alpha_rate_deg_s",
         t.alpha_rate_deg_s,
-        pos,
-        "must be > 0",
+        rate,
+        rate_reason,
     )? {
         g.alpha_rate_rad_s = v.to_radians();
     }
     if let Some(v) = f.checked(
         "guidance.sigma_rate_deg_s",
         t.sigma_rate_deg_s,
-        pos,
-        "must be > 0",
+        rate,
+        rate_reason,
     )? {
         g.sigma_rate_rad_s = v.to_radians();
     }
@@ -89,7 +101,7 @@ pub(super) fn guidance(
 
 /// A node row as written, for messages: `[264, 40, 79.6]`.
 fn fmt_row(row: &[Num]) -> String {
-    let cells: Vec<String> = row.iter().map(|c| c.0.to_string()).collect();
+    let cells: Vec<String> = row.iter().map(|c| compact(c.0)).collect();
     format!("[{}]", cells.join(", "))
 }
 

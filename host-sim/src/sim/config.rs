@@ -69,6 +69,16 @@ impl SimConfig {
     }
 }
 
+/// Smallest non-zero output interval \[s\] (1 ms; 0 means one sample per guidance tick).
+pub const MIN_OUTPUT_INTERVAL_S: f64 = 1e-3;
+/// Most output samples a run may record (termination.max_time_s / output interval).
+pub const MAX_OUTPUT_SAMPLES: f64 = 1e7;
+/// Largest event-location time tolerance \[s\] (10 ms; it must also be below the guidance
+/// period).
+pub const MAX_EVENT_TIME_TOL_S: f64 = 1e-2;
+/// Largest integrator step budget.
+pub const MAX_STEPS_LIMIT: u64 = 100_000_000;
+
 fn cfg_err(field: &'static str, value: f64, reason: &'static str) -> SimError {
     SimError::Config {
         field,
@@ -140,11 +150,19 @@ pub fn validate_config(cfg: &SimConfig, planet_radius_m: f64) -> Result<(), SimE
             return Err(cfg_err(f, v, "must be finite"));
         }
     }
-    if !(cfg.output_interval_s.is_finite() && cfg.output_interval_s >= 0.0) {
+    let dt = cfg.output_interval_s;
+    if !(dt == 0.0 || (dt.is_finite() && dt >= MIN_OUTPUT_INTERVAL_S)) {
         return Err(cfg_err(
             "output.interval_s",
-            cfg.output_interval_s,
-            "must be finite and >= 0",
+            dt,
+            "must be 0 (one sample per guidance tick) or >= 0.001 s",
+        ));
+    }
+    if dt > 0.0 && t.max_time_s / dt > MAX_OUTPUT_SAMPLES {
+        return Err(cfg_err(
+            "output.interval_s",
+            dt,
+            "must be >= termination.max_time_s / 1e7 (at most 10 million samples)",
         ));
     }
     if !(cfg.g_rate_window_s.is_finite() && cfg.g_rate_window_s > 0.0) {
@@ -162,6 +180,29 @@ pub fn validate_config(cfg: &SimConfig, planet_radius_m: f64) -> Result<(), SimE
         ));
     }
     cfg.tolerances.validate()?;
+    let tl = &cfg.tolerances;
+    if tl.event_time_tol_s > MAX_EVENT_TIME_TOL_S {
+        return Err(cfg_err(
+            "integrator.event_time_tol_s",
+            tl.event_time_tol_s,
+            "must be <= 0.01 s",
+        ));
+    }
+    if tl.max_steps > MAX_STEPS_LIMIT {
+        return Err(cfg_err(
+            "integrator.max_steps",
+            tl.max_steps as f64,
+            "must be <= 1e8",
+        ));
+    }
+    if tl.h_max < t.max_time_s / tl.max_steps as f64 {
+        return Err(cfg_err(
+            "integrator.h_max_s",
+            tl.h_max,
+            "must be >= termination.max_time_s / integrator.max_steps \
+             (else the step budget runs out before the time limit)",
+        ));
+    }
     Ok(())
 }
 

@@ -8,7 +8,7 @@ use crate::integrate::{IntegrateError, ToleranceError};
 #[derive(Debug, thiserror::Error)]
 pub enum SimError {
     /// An invalid setting.
-    #[error("invalid setting `{field}` = {value}: {reason}")]
+    #[error("invalid setting `{field}` = {}: {reason}", crate::num_fmt::Compact(*value))]
     Config {
         /// Setting name.
         field: &'static str,
@@ -27,7 +27,7 @@ pub enum SimError {
     #[error("integration failed: {0}")]
     Integration(#[from] IntegrateError),
     /// The attitude source (guidance) failed at a tick; its error is the source.
-    #[error("guidance failed at t = {time_s} s: {source}")]
+    #[error("guidance failed at t = {} s: {source}", crate::num_fmt::Compact(*time_s))]
     Guidance {
         /// Mission time \[s\].
         time_s: f64,
@@ -35,12 +35,22 @@ pub enum SimError {
         source: Box<dyn std::error::Error + Send + Sync>,
     },
     /// The attitude source asked for a tick that is not after the current time.
-    #[error("guidance at t = {time_s} s: next tick {next_tick_s} s is not after the current time")]
+    #[error(
+        "guidance at t = {} s: next tick {} s is not after the current time",
+        crate::num_fmt::Compact(*time_s),
+        crate::num_fmt::Compact(*next_tick_s)
+    )]
     TickNotAfter {
         /// Mission time \[s\].
         time_s: f64,
         /// The next tick the source reported \[s\].
         next_tick_s: f64,
+    },
+    /// The run was stopped on request (Ctrl-C: [`super::request_stop`]).
+    #[error("interrupted at t = {} s", crate::num_fmt::Compact(*time_s))]
+    Interrupted {
+        /// Mission time \[s\].
+        time_s: f64,
     },
     /// The integrator reported an event the loop does not define.
     #[error("integrator reported unknown event index {0}")]

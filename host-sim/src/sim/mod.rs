@@ -24,6 +24,7 @@ pub mod events;
 pub mod results;
 mod run;
 pub mod source;
+pub mod stop;
 
 pub use config::{SimConfig, Termination, state_atol, validate_config};
 pub use error::SimError;
@@ -36,3 +37,4 @@ pub use source::{
     AttitudeSource, CoreGuidance, FixedAttitude, FlightGuidance, GuidanceSource, TickError,
     ramp_kink,
 };
+pub use stop::{request_stop, runs_active, stop_requested};

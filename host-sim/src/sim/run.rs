@@ -127,6 +127,7 @@ pub fn simulate<A: AttitudeSource>(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(SimResult, A), SimError> {
     validate_config(cfg, dynm.planet.radius_m)?;
+    let _active = super::stop::ActiveRun::start();
     let energy = EnergyNormalizer::<f64>::new(
         dynm.planet.mu_m3_s2,
         dynm.planet.radius_m,
@@ -176,6 +177,11 @@ pub fn simulate<A: AttitudeSource>(
         }
     };
     let reason = loop {
+        // A stop request (Ctrl-C) ends the run at the next breakpoint, where progress is
+        // reported.
+        if super::stop_requested() {
+            return Err(SimError::Interrupted { time_s: t });
+        }
         let t_tick = lp.source.next_tick_s();
         let t_tick = if t_tick.is_finite() && t_tick > t {
             t_tick

@@ -1,25 +1,30 @@
 //! User-defined vehicles from TOML files.
 //!
 //! ```toml
-//! name = "my-glider"            # optional; defaults to the file stem
-//! mass_kg = 1200.0
-//! reference_area_m2 = 4.5
-//! nose_radius_m = 0.3
+//! name = "my-glider"            # optional (file stem); 1-100 characters, no control characters
+//! mass_kg = 1200.0              # [1, 1e7] kg
+//! reference_area_m2 = 4.5       # [0.001, 1e4] m^2
+//! nose_radius_m = 0.3           # [0.001, 100] m
 //!
 //! [limits]
-//! heat_flux_kw_m2 = 800.0
-//! g_load = 4.0
-//! g_load_rate_per_s = 1.0
-//! alpha_rate_deg_s = 5.0
-//! sigma_rate_deg_s = 10.0
+//! heat_flux_kw_m2 = 800.0       # [0.001, 1e6] kW/m^2
+//! g_load = 4.0                  # [0.001, 1000]
+//! g_load_rate_per_s = 1.0       # [1e-6, 1e4] 1/s
+//! alpha_rate_deg_s = 5.0        # [0.001, 1000] deg/s
+//! sigma_rate_deg_s = 10.0       # [0.001, 1000] deg/s
 //!
 //! [aero]
 //! kind = "table"                # Mach x alpha table, bilinear, clamped at the edges
 //! mach = [2.0, 10.0]            # strictly increasing
 //! alpha_deg = [0.0, 20.0, 40.0] # strictly increasing
 //! cl = [[0.0, 0.4, 0.8], [0.0, 0.3, 0.6]]     # one row per Mach number
-//! cd = [[0.1, 0.2, 0.5], [0.08, 0.15, 0.4]]
+//! cd = [[0.1, 0.2, 0.5], [0.08, 0.15, 0.4]]   # every entry > 0
 //! ```
+//!
+//! Drag must be positive wherever it is used (a vehicle with negative drag gains energy):
+//! every tabulated `cd`; a polynomial `cd` sampled over its declared alpha range
+//! (`alpha_min_deg..alpha_max_deg`, or the guidance range 0..45 deg without clamps); the drag
+//! polar's `cd0 > 0`, `k >= 0`; the trim `cd > 0`.
 //!
 //! Other `[aero]` kinds (Mach-independent):
 //! * `kind = "polynomial"`: `cl = [c0, c1, ...]`, `cd = [d0, d1, ...]`, C = sum c_i alpha_deg^i;
@@ -41,6 +46,7 @@ use super::models::{
 };
 use super::table::CoefficientTable;
 use super::{AeroCoefficients, Aerodynamics, Vehicle, VehicleFileError, VehicleLimits};
+use crate::num_fmt::compact;
 use crate::toml_input::{Num, TomlInputError, shown};
 
 /// The whole file (required fields are `Option` so a missing one is reported as such).
@@ -174,8 +180,58 @@ impl Ctx<'_> {
         if x > 0.0 {
             Ok(x)
         } else {
-            Err(self.err(field, x.to_string(), "must be positive"))
+            Err(self.err(field, compact(x), "must be positive"))
         }
+    }
+
+    /// A number of `field` in `[lo, hi]` (`unit` for the message).
+    fn ranged(
+        &self,
+        field: &str,
+        v: Option<Num>,
+        (lo, hi): (f64, f64),
+        unit: &str,
+    ) -> Result<f64, VehicleFileError> {
+        let x = self.number(field, v)?;
+        if (lo..=hi).contains(&x) {
+            Ok(x)
+        } else {
+            Err(self.err(
+                field,
+                compact(x),
+                format!("must be in [{}, {}]{unit}", compact(lo), compact(hi)),
+            ))
+        }
+    }
+
+    /// Drag must be positive everywhere it is used: every entry of a table, or a polynomial
+    /// sampled over its declared alpha range (the clamps, or the guidance range 0..45 deg
+    /// without them).
+    fn positive_drag_poly(
+        &self,
+        cd: &[f64],
+        (lo, hi): (Option<f64>, Option<f64>),
+    ) -> Result<(), VehicleFileError> {
+        let (lo, hi) = (lo.unwrap_or(0.0), hi.unwrap_or(45.0));
+        let n = 1000;
+        for i in 0..=n {
+            let a = lo + (hi - lo) * f64::from(i) / f64::from(n);
+            let v = cd.iter().rev().fold(0.0, |acc, c| acc * a + c);
+            if !(v.is_finite() && v > 0.0) {
+                return Err(self.bad(
+                    "aero.cd",
+                    format!(
+                        "drag coefficient must be positive over alpha in [{}, {}] deg: \
+                         C_D({} deg) = {}",
+                        compact(lo),
+                        compact(hi),
+                        compact(a),
+                        compact(v)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn non_negative(&self, field: &str, v: Option<Num>) -> Result<f64, VehicleFileError> {
@@ -183,7 +239,7 @@ impl Ctx<'_> {
         if x >= 0.0 {
             Ok(x)
         } else {
-            Err(self.err(field, x.to_string(), "must not be negative"))
+            Err(self.err(field, compact(x), "must not be negative"))
         }
     }
 
@@ -307,6 +363,15 @@ fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFil
             let alpha_deg = ctx.increasing("aero.alpha_deg", a.alpha_deg.as_deref())?;
             let cl = ctx.rows("aero.cl", a.cl.as_ref(), mach.len(), alpha_deg.len())?;
             let cd = ctx.rows("aero.cd", a.cd.as_ref(), mach.len(), alpha_deg.len())?;
+            for (i, row) in cd.iter().enumerate() {
+                if let Some(j) = row.iter().position(|v| *v <= 0.0) {
+                    return Err(ctx.err(
+                        &format!("aero.cd[{i}][{j}]"),
+                        compact(row[j]),
+                        "drag coefficients must be positive",
+                    ));
+                }
+            }
             let alpha_rad: Vec<f64> = alpha_deg.iter().map(|a| a.to_radians()).collect();
             let table_err = |e: super::table::TableError| ctx.err("aero", "(table)", e.to_string());
             Ok(Box::new(TableAerodynamics {
@@ -323,9 +388,11 @@ fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFil
                 &["kind", "cl", "cd", "alpha_min_deg", "alpha_max_deg"],
             )?;
             let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(a)?;
+            let cd = ctx.coef_list("aero.cd", a.cd.as_ref())?;
+            ctx.positive_drag_poly(&cd, (alpha_min_deg, alpha_max_deg))?;
             Ok(Box::new(PolynomialAerodynamics {
                 cl: ctx.coef_list("aero.cl", a.cl.as_ref())?,
-                cd: ctx.coef_list("aero.cd", a.cd.as_ref())?,
+                cd,
                 alpha_min_deg,
                 alpha_max_deg,
             }))
@@ -388,22 +455,49 @@ pub fn from_toml_str(text: &str, file: &str) -> Result<Vehicle, VehicleFileError
         None => std::path::Path::new(file)
             .file_stem()
             .map_or_else(|| file.to_string(), |s| s.to_string_lossy().into_owned()),
-        Some(s) if !s.trim().is_empty() => s,
-        Some(_) => return Err(ctx.bad("name", "must be a non-empty string")),
+        Some(s) => match crate::toml_input::check_name(&s) {
+            Ok(()) => s,
+            Err(reason) => return Err(ctx.err("name", format!("{s:?}"), reason)),
+        },
     };
-    let mass_kg = ctx.positive("mass_kg", vf.mass_kg)?;
-    let reference_area_m2 = ctx.positive("reference_area_m2", vf.reference_area_m2)?;
-    let nose_radius_m = ctx.positive("nose_radius_m", vf.nose_radius_m)?;
+    let mass_kg = ctx.ranged("mass_kg", vf.mass_kg, (1.0, 1e7), " kg")?;
+    let reference_area_m2 = ctx.ranged(
+        "reference_area_m2",
+        vf.reference_area_m2,
+        (1e-3, 1e4),
+        " m^2",
+    )?;
+    let nose_radius_m = ctx.ranged("nose_radius_m", vf.nose_radius_m, (1e-3, 100.0), " m")?;
     let lim = ctx.required("limits", vf.limits)?;
     let limits = VehicleLimits {
-        heat_flux_w_m2: ctx.positive("limits.heat_flux_kw_m2", lim.heat_flux_kw_m2)? * 1.0e3,
-        g_load: ctx.positive("limits.g_load", lim.g_load)?,
-        g_load_rate_per_s: ctx.positive("limits.g_load_rate_per_s", lim.g_load_rate_per_s)?,
+        heat_flux_w_m2: ctx.ranged(
+            "limits.heat_flux_kw_m2",
+            lim.heat_flux_kw_m2,
+            (1e-3, 1e6),
+            " kW/m^2",
+        )? * 1.0e3,
+        g_load: ctx.ranged("limits.g_load", lim.g_load, (1e-3, 1e3), "")?,
+        g_load_rate_per_s: ctx.ranged(
+            "limits.g_load_rate_per_s",
+            lim.g_load_rate_per_s,
+            (1e-6, 1e4),
+            " 1/s",
+        )?,
         alpha_rate_rad_s: ctx
-            .positive("limits.alpha_rate_deg_s", lim.alpha_rate_deg_s)?
+            .ranged(
+                "limits.alpha_rate_deg_s",
+                lim.alpha_rate_deg_s,
+                (1e-3, 1e3),
+                " deg/s",
+            )?
             .to_radians(),
         sigma_rate_rad_s: ctx
-            .positive("limits.sigma_rate_deg_s", lim.sigma_rate_deg_s)?
+            .ranged(
+                "limits.sigma_rate_deg_s",
+                lim.sigma_rate_deg_s,
+                (1e-3, 1e3),
+                " deg/s",
+            )?
             .to_radians(),
     };
     let aero = aero(&ctx, &ctx.required("aero", vf.aero)?)?;

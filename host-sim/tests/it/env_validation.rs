@@ -417,7 +417,7 @@ fn toml_vehicle_negative_mass_names_file_field_and_value() {
     let e = vehicle::from_toml_str(&bad, "vehicle.toml").unwrap_err();
     assert_eq!(
         e.to_string(),
-        "vehicle.toml: field `mass_kg` = -3: must be positive"
+        "vehicle.toml: field `mass_kg` = -3: must be in [1, 10000000] kg"
     );
     assert!(matches!(e, VehicleFileError::Field { .. }));
 }

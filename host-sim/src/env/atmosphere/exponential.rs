@@ -23,7 +23,10 @@ pub const DEFAULT_SCALE_HEIGHT_M: f64 = 7_200.0;
 /// A parameter of [`ExponentialAtmosphere::new`] that is not finite and positive (or, for
 /// the reference altitude, not finite).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("exponential atmosphere: parameter `{parameter}` = {value}: {reason}")]
+#[error(
+    "exponential atmosphere: parameter `{parameter}` = {}: {reason}",
+    crate::num_fmt::Compact(*value)
+)]
 pub struct ExponentialAtmosphereError {
     /// Parameter name (`rho0_kg_m3`, `scale_height_m`, `reference_altitude_m`).
     pub parameter: &'static str,

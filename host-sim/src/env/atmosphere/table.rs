@@ -88,7 +88,7 @@ impl TabulatedAtmosphere {
             if !(v.is_finite() && v > 0.0) {
                 return Err(err(
                     0,
-                    &format!("{name} = {v}"),
+                    &format!("{name} = {}", crate::num_fmt::Compact(v)),
                     "must be finite and positive",
                 ));
             }
