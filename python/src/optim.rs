@@ -386,13 +386,9 @@ impl PyTestProblem {
 
     /// `(objectives, constraints)` of one decision.
     fn evaluate(&self, py: Python<'_>, x: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
-        let e = py.detach(|| self.inner.evaluate(&x)).map_err(|e| {
-            errors::optim(host_sim::optim::OptimError::Evaluation {
-                index: 0,
-                generation: 0,
-                source: e,
-            })
-        })?;
+        let e = py
+            .detach(|| self.inner.evaluate(&x))
+            .map_err(|e| errors::OptimError::new_err(e.to_string()))?;
         Ok((e.objectives, e.constraints))
     }
 
@@ -409,15 +405,11 @@ impl PyTestProblem {
                     self.inner
                         .evaluate(x)
                         .map(|e| (e.objectives, e.constraints))
-                        .map_err(|source| host_sim::optim::OptimError::Evaluation {
-                            index,
-                            generation: 0,
-                            source,
-                        })
+                        .map_err(|e| format!("decision {index}: {e}"))
                 })
                 .collect::<Result<Vec<_>, _>>()
         })
-        .map_err(errors::optim)
+        .map_err(errors::OptimError::new_err)
     }
 
     /// The reference point of its hypervolume.

@@ -132,3 +132,11 @@ def test_assembly_refuses_gaps_and_duplicates():
         _assemble(3, [(0, ["a", "b"]), (1, ["b", "c"])], "case")
     with pytest.raises(RuntimeError, match="case 2 is missing"):
         _assemble(3, [(0, ["a", "b"])], "case")
+
+
+def test_wrong_dimension_is_an_optim_error_naming_the_decision():
+    p = reentry.TestProblem("zdt1")
+    with pytest.raises(reentry.OptimError, match="decision has 3 variables, the problem expects 30"):
+        p.evaluate([0.1, 0.2, 0.3])
+    with pytest.raises(reentry.OptimError, match="decision 1: decision has 2 variables"):
+        p.evaluate_batch([[0.5] * 30, [0.1, 0.2]])
