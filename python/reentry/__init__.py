@@ -1,0 +1,65 @@
+"""reentry: the reentry-guidance simulator, optimisers and test problems from Python.
+
+A thin layer over the Rust crate host-sim (PyO3, abi3): every number is computed in Rust,
+with the GIL released. SI units and radians throughout (unit in each name).
+
+* :func:`fly` flies a scenario (built-in name, TOML file, TOML text or dict) and returns a
+  :class:`Flight` (trajectory as numpy arrays or a pandas DataFrame, summary as a dict);
+* :func:`atmosphere`, :func:`vehicles`;
+* :class:`Moead`, :class:`Nsga2`, :class:`Mhaco` (ask/tell), :class:`TestProblem`, :func:`evolve`,
+  :func:`hypervolume`, :class:`PygmoProblem` (any of our problems as a pygmo UDP);
+* :mod:`reentry.distributed`: optimisation and flight campaigns on Dask.
+
+Errors are :class:`ReentryError` subclasses carrying host-sim's message.
+"""
+
+from ._native import (
+    TRAJECTORY_COLUMNS,
+    OptimError,
+    ProblemError,
+    ReentryError,
+    ScenarioError,
+    VehicleError,
+    builtin_scenarios,
+    hypervolume,
+    test_problems,
+)
+from .env import atmosphere, vehicles
+from .flight import Flight, fly, fly_summary, scenario_dict, scenario_toml
+from .optim import (
+    Mhaco,
+    Moead,
+    Nsga2,
+    Population,
+    PygmoProblem,
+    TestProblem,
+    evaluate_batch,
+    evolve,
+)
+
+__all__ = [
+    "TRAJECTORY_COLUMNS",
+    "Flight",
+    "Mhaco",
+    "Moead",
+    "Nsga2",
+    "OptimError",
+    "Population",
+    "ProblemError",
+    "PygmoProblem",
+    "ReentryError",
+    "ScenarioError",
+    "TestProblem",
+    "VehicleError",
+    "atmosphere",
+    "builtin_scenarios",
+    "evaluate_batch",
+    "evolve",
+    "fly",
+    "fly_summary",
+    "hypervolume",
+    "scenario_dict",
+    "scenario_toml",
+    "test_problems",
+    "vehicles",
+]

@@ -1,0 +1,429 @@
+"""Optimisation and flight campaigns on Dask (``dask.distributed``): no home-made
+distribution layer.
+
+* Optimisation: the algorithm's ask/tell loop stays in the client; each batch of decisions is
+  cut into chunks, one Dask task per chunk (so task overhead stays small against the
+  evaluations), and the evaluations are told back by index. The run is bit-identical to the
+  single-machine run with the same seed (the algorithms only depend on the evaluations, which
+  are pure functions of the decisions).
+* Campaigns: a list of cases (scenarios) is cut into chunks of consecutive indices, one task
+  per chunk; every result carries its case index and the table is assembled by index, so a
+  task re-run after a worker died (Dask reschedules tasks lost with a worker, ``retries``
+  covers exceptions) can neither lose nor duplicate a case.
+
+Command line: ``python -m reentry.distributed {optimize,campaign,bench} --help`` (or
+``reentry-dask``), with ``--scheduler tcp://HOST:8786`` or a ``LocalCluster`` of
+``--workers N`` processes. See docs/PYTHON.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import math
+import os
+import sys
+import tempfile
+import time
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
+
+import numpy as np
+
+from .flight import _source, fly_summary, scenario_dict
+from .optim import Moead, Nsga2, TestProblem, evaluate_batch, evolve
+from . import _native
+
+
+# --------------------------------------------------------------------------- tasks
+
+
+def _evaluate_chunk(problem, start: int, xs: np.ndarray):
+    """Task: evaluations of decisions ``xs`` (rows), keyed by their first index."""
+    return start, evaluate_batch(problem, xs.tolist())
+
+
+def _fly_chunk(start: int, cases: Sequence[Any]):
+    """Task: summaries of consecutive cases, keyed by their first index."""
+    return start, [_fly_case(c) for c in cases]
+
+
+def _fly_case(case) -> Dict[str, Any]:
+    return fly_summary(case)
+
+
+def _chunks(n: int, chunk_size: int) -> List[range]:
+    return [range(s, min(n, s + chunk_size)) for s in range(0, n, chunk_size)]
+
+
+def _assemble(n: int, keyed: Sequence[tuple], what: str) -> List[Any]:
+    """Place keyed chunk results by index; refuse gaps and duplicates."""
+    out: List[Any] = [None] * n
+    seen = np.zeros(n, dtype=bool)
+    for start, results in keyed:
+        for k, r in enumerate(results):
+            i = start + k
+            if seen[i]:
+                raise RuntimeError(f"{what} {i} returned twice")
+            seen[i] = True
+            out[i] = r
+    if not seen.all():
+        raise RuntimeError(f"{what} {int(np.flatnonzero(~seen)[0])} is missing")
+    return out
+
+
+def default_chunk_size(n: int, workers: int, chunks_per_worker: int = 2) -> int:
+    """Chunks of about ``n / (chunks_per_worker * workers)`` items: a few tasks per worker
+    (load balance, and a lost task costs little) and few tasks in all (low overhead)."""
+    return max(1, math.ceil(n / max(1, chunks_per_worker * workers)))
+
+
+def _worker_count(client) -> int:
+    return max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values()))
+
+
+# --------------------------------------------------------------------------- optimisation
+
+
+def dask_batch_evaluator(
+    client, problem, chunk_size: Optional[int] = None, retries: int = 3
+) -> Callable[[List[List[float]]], List[tuple]]:
+    """A ``map_batch`` for :func:`reentry.evolve` that evaluates each batch on the Dask
+    cluster of ``client``. The problem is shipped once (``scatter``, broadcast); it must
+    pickle (ours do)."""
+    [problem_future] = client.scatter([problem], broadcast=True, hash=False)
+
+    def map_batch(xs: List[List[float]]) -> List[tuple]:
+        n = len(xs)
+        if n == 0:
+            return []
+        c = chunk_size or default_chunk_size(n, _worker_count(client))
+        arr = np.asarray(xs, dtype=float)
+        parts = _chunks(n, c)
+        futures = client.map(
+            _evaluate_chunk,
+            [problem_future] * len(parts),
+            [p.start for p in parts],
+            [arr[p.start : p.stop] for p in parts],
+            pure=False,
+            retries=retries,
+        )
+        return _assemble(n, client.gather(futures), "evaluation")
+
+    return map_batch
+
+
+def evolve_on_dask(algorithm, problem, generations: int, client, chunk_size=None, observer=None):
+    """:func:`reentry.evolve` with every batch evaluated on Dask (same result, bit for bit)."""
+    return evolve(
+        algorithm,
+        problem,
+        generations,
+        map_batch=dask_batch_evaluator(client, problem, chunk_size),
+        observer=observer,
+    )
+
+
+# --------------------------------------------------------------------------- campaigns
+
+
+def _flatten(d: Dict[str, Any], prefix: str = "") -> Dict[str, Any]:
+    out: Dict[str, Any] = {}
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, dict):
+            out.update(_flatten(v, key + "."))
+        elif isinstance(v, list):
+            out[key] = json.dumps(v)
+        else:
+            out[key] = v
+    return out
+
+
+def summaries_table(summaries: Sequence[Dict[str, Any]]):
+    """One row per case (index ``case``), the summary's fields flattened
+    (``peak_heat_flux_kw_m2.value``; lists as JSON text)."""
+    import pandas as pd
+
+    df = pd.DataFrame([_flatten(s) for s in summaries])
+    df.index.name = "case"
+    return df
+
+
+def fly_campaign(cases: Sequence[Any], client=None, chunk_size: Optional[int] = None, retries: int = 3):
+    """Fly every case (a scenario: dict, TOML text or path) and return the summaries table
+    (:func:`summaries_table`). ``client=None`` flies them here, in order; with a Dask client
+    the cases are flown on its workers in chunks of consecutive indices and gathered by index:
+    the same table, bit for bit. Scenario errors raise :class:`reentry.ScenarioError` naming
+    the case's file/field/value."""
+    cases = list(cases)
+    for c in cases:  # fail early, in the client, on malformed input
+        _source(c, None)
+    if client is None:
+        return summaries_table([_fly_case(c) for c in cases])
+    n = len(cases)
+    c = chunk_size or default_chunk_size(n, _worker_count(client))
+    parts = _chunks(n, c)
+    futures = client.map(
+        _fly_chunk,
+        [p.start for p in parts],
+        [cases[p.start : p.stop] for p in parts],
+        pure=False,
+        retries=retries,
+    )
+    return summaries_table(_assemble(n, client.gather(futures), "case"))
+
+
+def gamma_sweep_cases(
+    n: int, gamma_from_deg: float, gamma_to_deg: float, builtin: str = "horus-2b-reference", path=None
+) -> List[dict]:
+    """``n`` copies of a scenario with the entry flight-path angle swept linearly [deg] (a
+    deterministic stand-in for dispersion cases until the campaign module provides them)."""
+    base = scenario_dict(builtin, path)
+    cases = []
+    for g in np.linspace(gamma_from_deg, gamma_to_deg, n):
+        sc = json.loads(json.dumps(base))
+        sc.setdefault("entry", {})["flight_path_angle_deg"] = float(g)
+        sc["name"] = f"{base.get('name', 'case')}-gamma{float(g):.6f}"
+        cases.append(sc)
+    return cases
+
+
+# --------------------------------------------------------------------------- command line
+
+
+@contextlib.contextmanager
+def client_for(scheduler: Optional[str], workers: int, threads_per_worker: int = 1) -> Iterator[Any]:
+    """A Dask client: connected to ``scheduler`` (``tcp://host:port``) or to a new
+    ``LocalCluster`` of ``workers`` worker processes."""
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        with Client(scheduler) as client:
+            yield client
+        return
+    with LocalCluster(
+        n_workers=workers,
+        threads_per_worker=threads_per_worker,
+        processes=True,
+        dashboard_address=None,
+    ) as cluster, Client(cluster) as client:
+        yield client
+
+
+def _write_atomic(path: str, text: str) -> None:
+    d = os.path.dirname(os.path.abspath(path))
+    os.makedirs(d, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-")
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _write_table(df, path: str) -> None:
+    if path.endswith(".parquet"):
+        d = os.path.dirname(os.path.abspath(path))
+        fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=".parquet")
+        os.close(fd)
+        df.to_parquet(tmp)
+        os.replace(tmp, path)
+    else:
+        _write_atomic(path, df.to_csv(float_format="%.17g"))
+
+
+def _algorithm(a) -> Any:
+    if a.algorithm == "moead":
+        return Moead(seed=a.seed, population=a.population, batch_size=a.batch_size or a.population)
+    return Nsga2(seed=a.seed, population=a.population)
+
+
+def _cmd_optimize(a) -> int:
+    problem = TestProblem(a.problem, a.objectives)
+    algo = _algorithm(a)
+    t0 = time.perf_counter()
+    if a.local:
+        evolve(algo, problem, a.generations)
+    else:
+        with client_for(a.scheduler, a.workers) as client:
+            evolve_on_dask(algo, problem, a.generations, client, a.chunk_size)
+    wall = time.perf_counter() - t0
+    pop = algo.population
+    ref = problem.reference_point()
+    feasible = pop.violation == 0.0
+    hv = _native.hypervolume(pop.f[feasible].tolist(), ref) if feasible.any() else 0.0
+    summary = {
+        "problem": problem.name,
+        "algorithm": algo.name,
+        "seed": a.seed,
+        "generations": algo.generation,
+        "evaluations": algo.evaluations,
+        "hypervolume": hv,
+        "reference_point": ref,
+        "wall_time_s": wall,
+        "where": "local" if a.local else (a.scheduler or f"LocalCluster({a.workers} processes)"),
+    }
+    print(json.dumps(summary))
+    if a.out:
+        rows = ["x,f,g,violation"]
+        for x, f, g, v in zip(pop.x, pop.f, pop.g, pop.violation):
+            rows.append(",".join([" ".join(map(repr, map(float, r))) for r in (x, f, g)] + [repr(float(v))]))
+        _write_atomic(os.path.join(a.out, "population.csv"), "\n".join(rows) + "\n")
+        _write_atomic(os.path.join(a.out, "summary.json"), json.dumps(summary, indent=2) + "\n")
+    return 0
+
+
+def _cases(a) -> List[dict]:
+    return gamma_sweep_cases(a.cases, a.gamma_from_deg, a.gamma_to_deg, a.builtin, a.scenario)
+
+
+def _cmd_campaign(a) -> int:
+    cases = _cases(a)
+    t0 = time.perf_counter()
+    if a.local:
+        df = fly_campaign(cases)
+    else:
+        with client_for(a.scheduler, a.workers) as client:
+            df = fly_campaign(cases, client, a.chunk_size)
+    wall = time.perf_counter() - t0
+    print(f"{len(df)} cases in {wall:.2f} s ({len(df) / wall:.1f} flights/s)", file=sys.stderr)
+    if a.out:
+        _write_table(df, a.out)
+    else:
+        print(df.to_csv(float_format="%.17g"), end="")
+    return 0
+
+
+def _noop(i: int) -> int:
+    """Bench task: nothing (the cost of a task round trip)."""
+    return i
+
+
+def _fly_chunk_timed(start: int, cases: Sequence[Any]):
+    """Bench task: :func:`_fly_chunk` plus the seconds spent flying inside the task."""
+    t0 = time.perf_counter()
+    out = _fly_chunk(start, cases)
+    return out[0], out[1], time.perf_counter() - t0
+
+
+def _best(f, rounds: int):
+    best = None
+    for _ in range(rounds):
+        t0 = time.perf_counter()
+        r = f()
+        dt = time.perf_counter() - t0
+        if best is None or dt < best[0]:
+            best = (dt, r)
+    return best
+
+
+def _cmd_bench(a) -> int:
+    """Flights per second in process (serial) and on LocalClusters of 1..N worker processes,
+    for several campaign sizes (best of --rounds), with the task-overhead fraction
+    1 - (seconds flown inside tasks) / (wall x workers)."""
+    sizes = sorted(set(a.sizes))
+    all_cases = gamma_sweep_cases(max(sizes), a.gamma_from_deg, a.gamma_to_deg, a.builtin, a.scenario)
+    pick = lambda n: all_cases[:: max(1, len(all_cases) // n)][:n]  # noqa: E731
+    fly_campaign(all_cases[:2])  # warm up
+    serial = {n: _best(lambda: fly_campaign(pick(n)), a.rounds) for n in sizes}
+    print("| campaign size | where | chunk | wall [s] | flights/s | task-overhead fraction |")
+    print("|---|---|---|---|---|---|")
+    for n in sizes:
+        print(f"| {n} | serial, in process | - | {serial[n][0]:.3f} | {n / serial[n][0]:.1f} | - |")
+    for w in a.workers_list:
+        t0 = time.perf_counter()
+        with client_for(None, w) as client:
+            client.wait_for_workers(w)
+            startup = time.perf_counter() - t0
+            client.gather(client.map(_fly_chunk, range(2 * w), [all_cases[:1]] * (2 * w), pure=False))
+            noop, _ = _best(lambda: client.gather(client.map(_noop, range(500), pure=False)), a.rounds)
+            for n in sizes:
+                cases = pick(n)
+                c = a.chunk_size or default_chunk_size(n, w)
+                parts = _chunks(n, c)
+
+                def run():
+                    futs = client.map(
+                        _fly_chunk_timed,
+                        [p.start for p in parts],
+                        [cases[p.start : p.stop] for p in parts],
+                        pure=False,
+                    )
+                    return client.gather(futs)
+
+                wall, res = _best(run, a.rounds)
+                table = summaries_table(_assemble(n, [(r[0], r[1]) for r in res], "case"))
+                if not table.equals(serial[n][1]):
+                    raise RuntimeError("Dask campaign differs from the local one")
+                busy = sum(r[2] for r in res)
+                print(
+                    f"| {n} | Dask LocalCluster, {w} process(es) | {c} | {wall:.3f} | "
+                    f"{n / wall:.1f} | {1 - busy / (wall * w):.2f} |"
+                )
+            print(
+                f"(LocalCluster of {w} process(es): {startup:.2f} s to start; 500 empty tasks "
+                f"{noop:.3f} s, {noop / 500 * 1e3:.2f} ms per task)"
+            )
+    return 0
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Command line entry point (``python -m reentry.distributed`` / ``reentry-dask``)."""
+    p = argparse.ArgumentParser(prog="reentry-dask", description=__doc__.split("\n\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+
+    def where(sp):
+        g = sp.add_mutually_exclusive_group()
+        g.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://10.0.0.1:8786")
+        g.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default 2)")
+        g.add_argument("--local", action="store_true", help="no Dask: evaluate in this process")
+        sp.add_argument("--chunk-size", type=int, default=None, help="items per Dask task (default: about 2 tasks per worker)")
+
+    o = sub.add_parser("optimize", help="a test problem with MOEA/D or NSGA-II, batches evaluated on Dask")
+    o.add_argument("--problem", default="zdt1")
+    o.add_argument("--objectives", type=int, default=3)
+    o.add_argument("--algorithm", choices=["moead", "nsga2"], default="moead")
+    o.add_argument("--population", type=int, default=100)
+    o.add_argument("--generations", type=int, default=100)
+    o.add_argument("--seed", type=int, default=1)
+    o.add_argument("--batch-size", type=int, default=None, help="MOEA/D offspring per ask (default: the population)")
+    o.add_argument("--out", help="write population.csv and summary.json here")
+    where(o)
+    o.set_defaults(run=_cmd_optimize)
+
+    for name, helptext, run in (
+        ("campaign", "fly a flight-path-angle sweep of a scenario on Dask, write the summaries table", _cmd_campaign),
+        ("bench", "flights/s serial and on LocalClusters of --workers-list processes", _cmd_bench),
+    ):
+        c = sub.add_parser(name, help=helptext)
+        c.add_argument("--builtin", default="horus-2b-reference")
+        c.add_argument("--scenario", help="scenario TOML file (instead of --builtin)")
+        if name == "campaign":
+            c.add_argument("--cases", type=int, default=100)
+        c.add_argument("--gamma-from-deg", type=float, default=-1.6)
+        c.add_argument("--gamma-to-deg", type=float, default=-1.2)
+        if name == "campaign":
+            c.add_argument("--out", help="table file (.csv, or .parquet with pyarrow)")
+            where(c)
+        else:
+            ints = lambda s: [int(x) for x in s.split(",")]  # noqa: E731
+            c.add_argument("--workers-list", type=ints, default=[1, 2])
+            c.add_argument("--sizes", type=ints, default=[10, 30, 100, 300], help="campaign sizes")
+            c.add_argument("--rounds", type=int, default=3, help="keep the best of this many runs")
+            c.add_argument("--chunk-size", type=int, default=None)
+        c.set_defaults(run=run)
+
+    a = p.parse_args(argv)
+    try:
+        return a.run(a)
+    except _native.ReentryError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,451 @@
+//! The optimisers through ask/tell, the test problems and the hypervolume.
+//!
+//! [`Optimizer`] holds a host-sim `Moead`, `Nsga2` or `Mhaco` and the shape of the problem it runs on
+//! ([`OpenProblem`]: bounds, objectives, constraints), read from any Python object with
+//! pygmo's user-defined-problem methods (`get_bounds`, `get_nobj`, `get_nic`). Evaluations
+//! happen outside (in Python, in Rust through [`PyTestProblem`], or on Dask workers) and come
+//! back by index through `tell`, so the run is the algorithm's, bit for bit, whoever evaluates.
+
+use host_sim::optim::hypervolume::hypervolume as hv;
+use host_sim::optim::problems::{NAMES, TestProblem};
+use host_sim::optim::{
+    Algorithm, Bounds, EvalError, Evaluation, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
+    Nsga2, Nsga2Config, Problem, RealProblem, Serial, evolve,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyType;
+use serde::{Deserialize, Serialize};
+
+use crate::errors;
+
+/// The shape of a problem evaluated elsewhere: the algorithms need its bounds and sizes only.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct OpenProblem {
+    bounds: Bounds,
+    objectives: usize,
+    constraints: usize,
+}
+
+/// Returned if an algorithm ever evaluated an [`OpenProblem`] itself (the ask/tell algorithms
+/// never do).
+#[derive(Debug)]
+struct EvaluatedOutside;
+
+impl std::fmt::Display for EvaluatedOutside {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("this problem is evaluated by the caller (ask/tell)")
+    }
+}
+
+impl std::error::Error for EvaluatedOutside {}
+
+impl Problem for OpenProblem {
+    type Decision = Vec<f64>;
+
+    fn objectives(&self) -> usize {
+        self.objectives
+    }
+
+    fn constraints(&self) -> usize {
+        self.constraints
+    }
+
+    fn evaluate(&self, _x: &Vec<f64>) -> Result<Evaluation, EvalError> {
+        Err(EvalError::Failed(Box::new(EvaluatedOutside)))
+    }
+}
+
+impl RealProblem for OpenProblem {
+    fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+}
+
+/// Read the problem's shape through pygmo's UDP protocol.
+fn open_problem(problem: &Bound<'_, PyAny>) -> PyResult<OpenProblem> {
+    let (lower, upper): (Vec<f64>, Vec<f64>) = problem.call_method0("get_bounds")?.extract()?;
+    let count = |name: &str, default: usize| -> PyResult<usize> {
+        if problem.hasattr(name)? {
+            problem.call_method0(name)?.extract()
+        } else {
+            Ok(default)
+        }
+    };
+    let nec = count("get_nec", 0)?;
+    if nec != 0 {
+        return Err(PyValueError::new_err(format!(
+            "get_nec() = {nec}: equality constraints are not supported; write them as two inequalities"
+        )));
+    }
+    Ok(OpenProblem {
+        bounds: Bounds::new(lower, upper).map_err(errors::optim)?,
+        objectives: count("get_nobj", 1)?,
+        constraints: count("get_nic", 0)?,
+    })
+}
+
+/// The algorithm an [`Optimizer`] runs (one per Python object: the size difference between
+/// the variants does not matter).
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
+enum Algo {
+    Moead(Moead),
+    Nsga2(Nsga2),
+    Mhaco(Mhaco),
+}
+
+/// What [`Optimizer::to_json`] writes: the algorithm's whole state and the problem shape.
+#[derive(Serialize, Deserialize)]
+struct Checkpoint {
+    algorithm: Algo,
+    problem: Option<OpenProblem>,
+}
+
+/// An ask/tell optimiser (host-sim MOEA/D, NSGA-II or MHACO).
+#[pyclass(module = "reentry._native")]
+pub struct Optimizer {
+    algo: Algo,
+    problem: Option<OpenProblem>,
+}
+
+/// Run `$body` with `$a` bound to the algorithm inside `$algo` (an `Algo` place).
+macro_rules! with_algo {
+    ($algo:expr, $a:ident => $body:expr) => {
+        match $algo {
+            Algo::Moead($a) => $body,
+            Algo::Nsga2($a) => $body,
+            Algo::Mhaco($a) => $body,
+        }
+    };
+}
+
+impl Optimizer {
+    /// Take the problem's shape at the first call; refuse a different one later.
+    fn adopt(&mut self, shape: OpenProblem) -> PyResult<()> {
+        match &self.problem {
+            Some(p) if *p != shape => Err(PyValueError::new_err(
+                "ask: the problem's bounds, objectives or constraints changed during the run",
+            )),
+            Some(_) => Ok(()),
+            None => {
+                self.problem = Some(shape);
+                Ok(())
+            }
+        }
+    }
+
+    fn problem(&self) -> PyResult<&OpenProblem> {
+        self.problem
+            .as_ref()
+            .ok_or_else(|| errors::optim(host_sim::optim::TellError::NoBatch))
+    }
+}
+
+fn config_error(e: &serde_json::Error) -> PyErr {
+    PyValueError::new_err(format!("optimiser settings: {e}"))
+}
+
+/// An algorithm's settings: its defaults, overwritten by the fields of `json` (an object).
+fn config<C: Default + Serialize + serde::de::DeserializeOwned>(json: &str) -> PyResult<C> {
+    let mut over: serde_json::Value = serde_json::from_str(json).map_err(|e| config_error(&e))?;
+    let mut full = serde_json::to_value(C::default()).map_err(|e| config_error(&e))?;
+    merge(&mut full, &mut over);
+    serde_json::from_value(full).map_err(|e| config_error(&e))
+}
+
+#[pymethods]
+impl Optimizer {
+    /// MHACO with the settings of `config_json` (host-sim `MhacoConfig` fields; missing fields
+    /// take pagmo's `maco` defaults) and the run's seed.
+    #[staticmethod]
+    fn mhaco(config_json: &str, seed: u64) -> PyResult<Self> {
+        let config: MhacoConfig = config(config_json)?;
+        Ok(Self {
+            algo: Algo::Mhaco(Mhaco::new(config, seed)),
+            problem: None,
+        })
+    }
+
+    /// MOEA/D with the settings of `config_json` (host-sim `MoeadConfig` fields; missing
+    /// fields take pagmo's defaults) and the run's seed.
+    #[staticmethod]
+    fn moead(config_json: &str, seed: u64) -> PyResult<Self> {
+        let mut v: serde_json::Value =
+            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
+        let mut full =
+            serde_json::to_value(MoeadConfig::default()).map_err(|e| config_error(&e))?;
+        merge(&mut full, &mut v);
+        let config: MoeadConfig = serde_json::from_value(full).map_err(|e| config_error(&e))?;
+        Ok(Self {
+            algo: Algo::Moead(Moead::new(config, seed)),
+            problem: None,
+        })
+    }
+
+    /// NSGA-II with the settings of `config_json` (host-sim `Nsga2Config` fields; missing
+    /// fields take pagmo's defaults) and the run's seed.
+    #[staticmethod]
+    fn nsga2(config_json: &str, seed: u64) -> PyResult<Self> {
+        let mut v: serde_json::Value =
+            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
+        let mut full =
+            serde_json::to_value(Nsga2Config::default()).map_err(|e| config_error(&e))?;
+        merge(&mut full, &mut v);
+        let config: Nsga2Config = serde_json::from_value(full).map_err(|e| config_error(&e))?;
+        Ok(Self {
+            algo: Algo::Nsga2(Nsga2::new(config, seed)),
+            problem: None,
+        })
+    }
+
+    /// The next batch of decisions to evaluate (the same batch again until all are told).
+    /// `problem`: any object with `get_bounds()` (and optionally `get_nobj()`, `get_nic()`);
+    /// it must keep the same shape for the whole run.
+    fn ask(&mut self, py: Python<'_>, problem: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<f64>>> {
+        self.adopt(open_problem(problem)?)?;
+        let Self { algo, problem } = self;
+        let Some(p) = problem.as_ref() else {
+            return Ok(Vec::new());
+        };
+        py.detach(|| with_algo!(algo, a => a.ask(p).map(<[Vec<f64>]>::to_vec)))
+            .map_err(errors::optim)
+    }
+
+    /// Tell the evaluation of decision `index` of the current batch (objectives minimised,
+    /// constraints `<= 0` satisfied; NaN values mark a failed evaluation).
+    #[pyo3(signature = (index, objectives, constraints=Vec::new()))]
+    fn tell(
+        &mut self,
+        py: Python<'_>,
+        index: usize,
+        objectives: Vec<f64>,
+        constraints: Vec<f64>,
+    ) -> PyResult<()> {
+        let p = self.problem()?.clone();
+        let e = Evaluation::with_constraints(objectives, constraints);
+        py.detach(|| with_algo!(&mut self.algo, a => a.tell(&p, index, e)))
+            .map_err(errors::optim)
+    }
+
+    /// Whether decision `index` of the open batch has been told.
+    fn is_told(&self, index: usize) -> bool {
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::is_told(a, index))
+    }
+
+    /// The population: `(decisions, objectives, constraints, violations)`.
+    #[allow(clippy::type_complexity)]
+    fn population(&self) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>) {
+        let pop = with_algo!(&self.algo, a => Algorithm::<OpenProblem>::population(a));
+        (
+            pop.iter().map(|i| i.decision.clone()).collect(),
+            pop.iter().map(|i| i.objectives.clone()).collect(),
+            pop.iter().map(|i| i.constraints.clone()).collect(),
+            pop.iter().map(|i| i.violation).collect(),
+        )
+    }
+
+    /// Completed generations (0 until the initial population is complete).
+    #[getter]
+    fn generation(&self) -> u64 {
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::generation(a))
+    }
+
+    /// Evaluations told so far.
+    #[getter]
+    fn evaluations(&self) -> u64 {
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::evaluations(a))
+    }
+
+    /// Whether the initial population is complete.
+    #[getter]
+    fn is_initialised(&self) -> bool {
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::is_initialised(a))
+    }
+
+    /// "moead", "nsga2" or "mhaco".
+    #[getter]
+    fn name(&self) -> &'static str {
+        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::name(a))
+    }
+
+    /// Run `generations` generations on a test problem inside Rust (host-sim `evolve`, serial
+    /// evaluator; the initial population first if needed), GIL released.
+    fn evolve_test_problem(
+        &mut self,
+        py: Python<'_>,
+        problem: &PyTestProblem,
+        generations: u64,
+    ) -> PyResult<()> {
+        let p = &problem.inner;
+        let shape = OpenProblem {
+            bounds: p.bounds().clone(),
+            objectives: p.objectives(),
+            constraints: p.constraints(),
+        };
+        self.adopt(shape)?;
+        py.detach(
+            || with_algo!(&mut self.algo, a => evolve(a, p, &Serial, generations, &mut NoObserver)),
+        )
+        .map_err(errors::optim)
+    }
+
+    /// The whole state as JSON (algorithm, RNG, open batch, problem shape): resuming from it
+    /// gives the bit-identical run.
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&Checkpoint {
+            algorithm: self.algo.clone(),
+            problem: self.problem.clone(),
+        })
+        .map_err(|e| errors::ReentryError::new_err(format!("checkpoint: {e}")))
+    }
+
+    /// Rebuild from [`Optimizer::to_json`]'s text.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        let c: Checkpoint = serde_json::from_str(text)
+            .map_err(|e| PyValueError::new_err(format!("checkpoint: {e}")))?;
+        Ok(Self {
+            algo: c.algorithm,
+            problem: c.problem,
+        })
+    }
+}
+
+/// Overwrite the fields of `base` (an object) with those of `over`.
+fn merge(base: &mut serde_json::Value, over: &mut serde_json::Value) {
+    if let (Some(b), Some(o)) = (base.as_object_mut(), over.as_object_mut()) {
+        for (k, v) in std::mem::take(o) {
+            b.insert(k, v);
+        }
+    }
+}
+
+/// A host-sim test problem (ZDT1-4, 6, DTLZ1-7, CONSTR) evaluated in Rust.
+#[pyclass(name = "TestProblem", module = "reentry._native", frozen, subclass)]
+pub struct PyTestProblem {
+    inner: TestProblem,
+    name: String,
+    objectives_arg: usize,
+}
+
+#[pymethods]
+impl PyTestProblem {
+    /// The problem called `name` (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr) with
+    /// its standard size; DTLZ problems take `objectives`.
+    #[new]
+    #[pyo3(signature = (name, objectives=3))]
+    fn new(name: &str, objectives: usize) -> PyResult<Self> {
+        let inner = TestProblem::by_name(name, objectives)
+            .map_err(|e| errors::ProblemError::new_err(e.to_string()))?
+            .ok_or_else(|| {
+                errors::ProblemError::new_err(format!(
+                    "problem {name}: unknown; use one of {}",
+                    NAMES.join(", ")
+                ))
+            })?;
+        Ok(Self {
+            inner,
+            name: name.to_ascii_lowercase(),
+            objectives_arg: objectives,
+        })
+    }
+
+    /// Pickle support: rebuilt from its name and objectives.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> (Bound<'py, PyType>, (String, usize)) {
+        let me = slf.get();
+        (slf.get_type(), (me.name.clone(), me.objectives_arg))
+    }
+
+    /// The problem's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// `(lower, upper)` bounds of the decision variables.
+    fn get_bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let b = self.inner.bounds();
+        (b.lower().to_vec(), b.upper().to_vec())
+    }
+
+    /// Number of objectives (minimised).
+    fn get_nobj(&self) -> usize {
+        self.inner.objectives()
+    }
+
+    /// Number of inequality constraints (`<= 0` satisfied).
+    fn get_nic(&self) -> usize {
+        self.inner.constraints()
+    }
+
+    /// Number of equality constraints (always 0).
+    fn get_nec(&self) -> usize {
+        0
+    }
+
+    /// `(objectives, constraints)` of one decision.
+    fn evaluate(&self, py: Python<'_>, x: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
+        let e = py
+            .detach(|| self.inner.evaluate(&x))
+            .map_err(|e| errors::OptimError::new_err(e.to_string()))?;
+        Ok((e.objectives, e.constraints))
+    }
+
+    /// `(objectives, constraints)` of each decision, in order, GIL released.
+    fn evaluate_batch(
+        &self,
+        py: Python<'_>,
+        xs: Vec<Vec<f64>>,
+    ) -> PyResult<Vec<(Vec<f64>, Vec<f64>)>> {
+        py.detach(|| {
+            xs.iter()
+                .enumerate()
+                .map(|(index, x)| {
+                    self.inner
+                        .evaluate(x)
+                        .map(|e| (e.objectives, e.constraints))
+                        .map_err(|e| format!("decision {index}: {e}"))
+                })
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .map_err(errors::OptimError::new_err)
+    }
+
+    /// The reference point of its hypervolume.
+    fn reference_point(&self) -> Vec<f64> {
+        self.inner.reference_point()
+    }
+
+    /// About `n` points of the true front.
+    fn pareto_front(&self, n: usize) -> Vec<Vec<f64>> {
+        self.inner.pareto_front(n)
+    }
+
+    /// Hypervolume of the true front (exact where known, else of `samples` front points).
+    #[pyo3(signature = (reference, samples=10_000))]
+    fn front_hypervolume(&self, reference: Vec<f64>, samples: usize) -> Option<f64> {
+        self.inner.front_hypervolume(&reference, samples)
+    }
+}
+
+/// Exact hypervolume of `points` (minimised objectives) against `reference`.
+#[pyfunction]
+fn hypervolume(py: Python<'_>, points: Vec<Vec<f64>>, reference: Vec<f64>) -> PyResult<f64> {
+    py.detach(|| hv(&points, &reference))
+        .map_err(|e| errors::OptimError::new_err(e.to_string()))
+}
+
+/// Names of the test problems.
+#[pyfunction]
+fn test_problems() -> Vec<&'static str> {
+    NAMES.to_vec()
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Optimizer>()?;
+    m.add_class::<PyTestProblem>()?;
+    m.add_function(wrap_pyfunction!(hypervolume, m)?)?;
+    m.add_function(wrap_pyfunction!(test_problems, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,110 @@
+"""Flights, atmosphere and vehicles against the host-sim CLI's own output."""
+
+import csv
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import reentry
+
+REPO = Path(__file__).resolve().parents[2]
+BETTS = REPO / "examples" / "betts-shuttle.toml"
+
+
+def test_default_mission_summary_equals_host_sim_simulate_summary_json(host_sim, tmp_path):
+    host_sim("simulate", "--quiet", "--out", tmp_path / "run")
+    expected = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert reentry.fly().summary == expected
+    assert reentry.fly_summary() == expected
+
+
+def test_default_mission_trajectory_equals_trajectory_csv(host_sim, tmp_path):
+    host_sim("simulate", "--quiet", "--out", tmp_path / "run")
+    rows = list(csv.DictReader(io.StringIO((tmp_path / "run" / "trajectory.csv").read_text())))
+    df = reentry.fly().to_dataframe()
+    assert len(df) == len(rows)
+    # The CSV prints 6 decimals (km, deg): compare within half a unit of the last digit.
+    col = lambda name: np.array([float(r[name]) for r in rows])  # noqa: E731
+    np.testing.assert_allclose(df["time_s"], col("time_s"), rtol=0, atol=5.1e-7)
+    np.testing.assert_allclose(df["altitude_m"] / 1e3, col("altitude_km"), rtol=0, atol=5.1e-7)
+    np.testing.assert_allclose(np.degrees(df["sigma_rad"]), col("sigma_deg"), rtol=0, atol=5.1e-7)
+    np.testing.assert_allclose(df["speed_m_s"], col("speed_m_s"), rtol=0, atol=5.1e-7)
+    assert list(df["event"]) == [r["event"] for r in rows]
+
+
+def test_scenario_file_toml_text_and_dict_fly_like_host_sim(host_sim, tmp_path):
+    host_sim("simulate", "--quiet", "--scenario", BETTS, "--out", tmp_path / "betts")
+    expected = json.loads((tmp_path / "betts" / "summary.json").read_text())
+    assert reentry.fly(BETTS).summary == expected
+    assert reentry.fly(str(BETTS)).summary == expected
+    text = BETTS.read_text()
+    # TOML text and a dict of it: the vehicle file is relative to the scenario's folder.
+    vehicle = str(REPO / "examples" / "betts-shuttle-vehicle.toml")
+    text = text.replace('"betts-shuttle-vehicle.toml"', json.dumps(vehicle))
+    assert reentry.fly(text).summary == expected
+    import tomllib
+
+    assert reentry.fly(tomllib.loads(text)).summary == expected
+
+
+def test_builtin_and_its_scenario_dict(host_sim, tmp_path):
+    host_sim("simulate", "--quiet", "--builtin", "srm-glide", "--out", tmp_path / "srm")
+    expected = json.loads((tmp_path / "srm" / "summary.json").read_text())
+    assert reentry.fly(builtin="srm-glide").summary == expected
+    assert set(reentry.builtin_scenarios()) == {"horus-2b-reference", "srm-glide"}
+    assert reentry.scenario_toml() == host_sim("simulate", "--print-scenario").stdout
+
+
+def test_dataframe_columns_and_units():
+    fl = reentry.fly()
+    df = fl.trajectory
+    assert list(df.columns) == list(reentry.TRAJECTORY_COLUMNS) + ["event"]
+    assert df["altitude_m"].iloc[0] == pytest.approx(122e3)
+    assert df["event"].iloc[0] == "start" and df["event"].iloc[-1] == "end"
+    assert all(v.dtype == np.float64 for v in fl.arrays.values())
+    assert np.all(np.diff(df["time_s"]) > 0)
+
+
+def test_errors_carry_host_sim_messages(host_sim, tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[entry]\naltitude_km = -5.0\n")
+    cli = host_sim("simulate", "--scenario", bad, "--out", tmp_path / "x", check=False)
+    assert cli.returncode != 0
+    with pytest.raises(reentry.ScenarioError) as e:
+        reentry.fly(bad)
+    assert cli.stderr.strip() == f"error: {e.value}"
+    assert "altitude_km" in str(e.value) and "-5" in str(e.value)
+    with pytest.raises(reentry.ScenarioError, match="nonsense"):
+        reentry.fly({"entry": {"nonsense": 1.0}})
+    with pytest.raises(reentry.ScenarioError, match="no-such"):
+        reentry.fly(builtin="no-such")
+    assert issubclass(reentry.ScenarioError, reentry.ReentryError)
+
+
+def test_atmosphere_equals_host_sim_atmosphere(host_sim):
+    alts_km = [0, 11, 50, 86, 100]
+    out = host_sim("atmosphere", *alts_km).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    atm = reentry.atmosphere(np.array(alts_km) * 1e3)
+    for k, r in enumerate(rows):
+        assert atm["temperature_k"][k] == pytest.approx(float(r["temperature_k"]), abs=5e-5)
+        assert atm["density_kg_m3"][k] == pytest.approx(float(r["density_kg_m3"]), rel=1e-6)
+        assert atm["pressure_pa"][k] == pytest.approx(float(r["pressure_pa"]), rel=1e-6)
+    exp = reentry.atmosphere(7200.0, model="exponential")
+    assert exp["density_kg_m3"][0] == pytest.approx(1.225 / np.e, rel=1e-12)
+    with pytest.raises(ValueError, match="unknown"):
+        reentry.atmosphere(0.0, model="mars")
+    with pytest.raises(ValueError, match="finite"):
+        reentry.atmosphere(float("nan"))
+
+
+def test_vehicles_equal_host_sim_vehicles(host_sim):
+    rows = list(csv.DictReader(io.StringIO(host_sim("vehicles").stdout)))
+    vs = reentry.vehicles()
+    assert [v["name"] for v in vs] == [r["name"] for r in rows]
+    for v, r in zip(vs, rows):
+        assert v["mass_kg"] == float(r["mass_kg"])
+        assert v["max_heat_flux_w_m2"] == pytest.approx(float(r["max_heat_flux_kw_m2"]) * 1e3)
