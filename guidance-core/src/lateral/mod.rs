@@ -39,7 +39,7 @@
 //!
 //! # Cost
 //! One central angle and one bearing (about 15 trig functions) and a few comparisons per
-//! call; no loops, no allocation, no panics. Generic over [`Real`] (`f32`, `f64`).
+//! call; no loops, no allocation, no panics. Generic over [`Real`](crate::scalar::Real) (`f32`, `f64`).
 //!
 //! [`Guidance::set_bank_sign`]: crate::guidance::Guidance::set_bank_sign
 //! [`Guidance`]: crate::guidance::Guidance

@@ -105,7 +105,7 @@ pub struct OptimizeArgs {
     )]
     pub reference: Option<Vec<f64>>,
     /// Write population.csv, front.csv and summary.json here (re-entry problems: the run
-    /// directory, default runs/optimize-<problem>).
+    /// directory, default `runs/optimize-<problem>`).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Re-entry run settings from a TOML file (see --print-config).

@@ -217,7 +217,7 @@ pub fn line_plot_svg(
     Ok(svg)
 }
 
-/// The same line chart as a PNG image (8-bit RGB, [`SIZE`] pixels).
+/// The same line chart as a PNG image (8-bit RGB, 720 x 460 pixels).
 ///
 /// # Errors
 /// [`ReportError::Plot`] if `plotters` fails to draw or the PNG cannot be encoded.
