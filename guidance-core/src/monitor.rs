@@ -221,6 +221,36 @@ impl<S: Scalar> Violations<S> {
     }
 }
 
+/// A running maximum and the time it occurred (starts at 0 at time 0): the one peak type of
+/// the project; the host simulator reports its peaks with it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TimedPeak<S> {
+    /// The peak value (units of the tracked quantity).
+    pub value: S,
+    /// When it occurred \[s\].
+    pub time_s: S,
+}
+
+impl<S: Scalar> Default for TimedPeak<S> {
+    fn default() -> Self {
+        Self {
+            value: S::ZERO,
+            time_s: S::ZERO,
+        }
+    }
+}
+
+impl<S: Scalar> TimedPeak<S> {
+    /// Take `value` at `time_s` \[s\] if it exceeds the peak so far (a NaN never does).
+    pub fn update(&mut self, value: S, time_s: S) {
+        if value > self.value {
+            self.value = value;
+            self.time_s = time_s;
+        }
+    }
+}
+
 /// Running peaks of heat flux, g-load and |g-load rate| (all start at 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -384,6 +414,27 @@ impl<S: Real> ConstraintMonitor<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn timed_peak_keeps_the_first_maximum_and_its_time() {
+        let mut p = TimedPeak::<f64>::default();
+        for (v, t) in [
+            (1.0, 0.5),
+            (3.0, 1.0),
+            (3.0, 2.0),
+            (f64::NAN, 3.0),
+            (2.0, 4.0),
+        ] {
+            p.update(v, t);
+        }
+        assert_eq!(
+            p,
+            TimedPeak {
+                value: 3.0,
+                time_s: 1.0
+            }
+        );
+    }
 
     #[test]
     fn violation_measure_eq_4_9() {

@@ -60,23 +60,8 @@ pub enum SampleKind {
     End,
 }
 
-/// A value with the time it occurred.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct Peak {
-    /// The peak value.
-    pub value: f64,
-    /// When \[s\].
-    pub time_s: f64,
-}
-
-impl Peak {
-    pub(super) fn update(&mut self, v: f64, t: f64) {
-        if v > self.value {
-            self.value = v;
-            self.time_s = t;
-        }
-    }
-}
+/// A value with the time it occurred: the core's one peak type.
+pub type Peak = guidance_core::monitor::TimedPeak<f64>;
 
 /// Run summary.
 #[derive(Clone, Debug, PartialEq)]
