@@ -20,7 +20,10 @@ fn main() -> ExitCode {
     let second = std::sync::atomic::AtomicBool::new(false);
     let handler = ctrlc::set_handler(move || {
         if second.swap(true, std::sync::atomic::Ordering::SeqCst) || !sim::runs_active() {
-            // The handler runs on its own thread (ctrlc), not in signal context.
+            // The handler runs on its own thread (ctrlc), not in signal context. Flag the stop
+            // first: the cleanup below makes the main thread's PIL link fail, and if it returns
+            // before this thread exits, it must report the interruption (130) too, not an error.
+            sim::request_stop();
             host_sim::pil::interrupt_cleanup();
             eprintln!("interrupted; no run directory written");
             std::process::exit(i32::from(INTERRUPTED));
