@@ -377,22 +377,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         wall_time_s: outcome.wall_time_s,
         threads: a.threads,
     };
-    let ratio = summary
-        .hypervolume_ratio
-        .map_or_else(String::new, |r| format!(" ({:.4} of the true front)", r));
-    writeln!(
-        out,
-        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
-        summary.algorithm,
-        summary.problem,
-        summary.evaluations,
-        summary.wall_time_s,
-        hv,
-        ratio,
-        reference,
-        front.len(),
-        100.0 * summary.feasible_fraction
-    )?;
+    print_summary(out, &summary, hv, &reference, front.len())?;
     if let Some(dir) = &a.out {
         write_outputs(dir, pop, &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
@@ -440,6 +425,32 @@ pub(super) fn write_outputs(
     rd.write("summary.json", json.as_bytes())?;
     rd.commit()?;
     Ok(())
+}
+
+/// The one-line result of an optimisation run (both `optimize` paths print it).
+pub(super) fn print_summary(
+    out: &mut dyn Write,
+    summary: &Summary,
+    hv: f64,
+    reference: &[f64],
+    front_points: usize,
+) -> std::io::Result<()> {
+    let ratio = summary
+        .hypervolume_ratio
+        .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
+    writeln!(
+        out,
+        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
+        summary.algorithm,
+        summary.problem,
+        summary.evaluations,
+        summary.wall_time_s,
+        hv,
+        ratio,
+        reference,
+        front_points,
+        100.0 * summary.feasible_fraction
+    )
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use super::optimize_cmd::{
-    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, pool,
+    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, pool, print_summary,
 };
 use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
 use crate::optim::hypervolume::hypervolume;
@@ -140,22 +140,7 @@ pub(super) fn run_variable_length(
         wall_time_s,
         threads: a.threads,
     };
-    let ratio = summary
-        .hypervolume_ratio
-        .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
-    writeln!(
-        out,
-        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
-        summary.algorithm,
-        summary.problem,
-        summary.evaluations,
-        summary.wall_time_s,
-        hv,
-        ratio,
-        reference,
-        front.len(),
-        100.0 * summary.feasible_fraction
-    )?;
+    print_summary(out, &summary, hv, &reference, front.len())?;
     if let Some(dir) = &a.out {
         write_variable_length(dir, &pop, &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
