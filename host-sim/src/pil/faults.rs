@@ -50,6 +50,25 @@ pub struct FaultCounts {
 }
 
 /// The seeded injector (splitmix64: portable, so a seed reproduces everywhere).
+/// An injected fault the firmware must reject (answer with a fault status).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RejectedFault {
+    /// A frame with corrupted bits (the firmware must answer `BadFrame`).
+    Corrupted,
+    /// A delayed frame delivered after a newer one (the firmware must answer
+    /// `NonIncreasingTime` or `ImplausibleTime`).
+    Stale,
+}
+
+impl std::fmt::Display for RejectedFault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            RejectedFault::Corrupted => "corrupted",
+            RejectedFault::Stale => "stale",
+        })
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct FaultInjector {
     cfg: FaultConfig,
@@ -167,10 +186,11 @@ impl PilGuidance {
                         Frame::Command(c) if c.status == LinkStatus::BadFrame => {
                             self.record.set_reply(c);
                         }
-                        other => {
-                            return Err(PilError::Firmware {
+                        answer => {
+                            return Err(PilError::FaultNotRejected {
                                 seq,
-                                what: format!("accepted a corrupted frame: {other:?}"),
+                                fault: RejectedFault::Corrupted,
+                                answer,
                             });
                         }
                     }
@@ -222,9 +242,10 @@ impl PilGuidance {
                 self.record.set_reply(c);
                 Ok(())
             }
-            other => Err(PilError::Firmware {
+            answer => Err(PilError::FaultNotRejected {
                 seq,
-                what: format!("did not reject a stale frame: {other:?}"),
+                fault: RejectedFault::Stale,
+                answer,
             }),
         }
     }

@@ -5,27 +5,28 @@ use std::path::Path;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use super::PilError;
 use super::qemu::Qemu;
+use super::{FifoOp, PilError};
 
 pub(super) fn mkfifo(path: &Path) -> Result<(), PilError> {
+    let fail = |source| PilError::Fifo {
+        path: path.into(),
+        op: FifoOp::Create,
+        source,
+    };
     let out = std::process::Command::new("mkfifo")
         .arg(path)
         .output()
-        .map_err(|e| PilError::Fifo {
-            path: path.into(),
-            reason: format!("cannot run mkfifo: {e}"),
-        })?;
+        .map_err(fail)?;
     if out.status.success() {
         Ok(())
     } else {
-        Err(PilError::Fifo {
-            path: path.into(),
-            reason: format!(
-                "mkfifo failed: {}",
-                String::from_utf8_lossy(&out.stderr).trim()
-            ),
-        })
+        // mkfifo(1) reports the failure on stderr only; it becomes the I/O error's text.
+        Err(fail(std::io::Error::other(format!(
+            "mkfifo exited with {}: {}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        ))))
     }
 }
 
@@ -51,7 +52,8 @@ pub(super) fn open_fifo(
             Ok(Err(e)) => {
                 return Err(PilError::Fifo {
                     path: path.into(),
-                    reason: format!("cannot open: {e}"),
+                    op: FifoOp::Open,
+                    source: e,
                 });
             }
             Err(_) => {
@@ -93,18 +95,27 @@ impl FifoDir {
             let path = parent.join(format!("{FIFO_DIR_PREFIX}{pid}-{n}"));
             match std::fs::create_dir(&path) {
                 Ok(()) => return Ok(Self { path }),
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(path),
-                Err(e) => {
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some((path, e)),
+                Err(source) => {
                     return Err(PilError::Fifo {
                         path,
-                        reason: format!("cannot create the FIFO directory: {e}"),
+                        op: FifoOp::CreateDir,
+                        source,
                     });
                 }
             }
         }
+        // Every name tried exists: the last "already exists" error.
+        let (path, source) = last.unwrap_or_else(|| {
+            (
+                parent.to_path_buf(),
+                std::io::Error::from(std::io::ErrorKind::AlreadyExists),
+            )
+        });
         Err(PilError::Fifo {
-            path: last.unwrap_or_else(|| parent.to_path_buf()),
-            reason: "no free FIFO directory name after 10 000 tries".into(),
+            path,
+            op: FifoOp::CreateDir,
+            source,
         })
     }
 

@@ -17,7 +17,12 @@ use guidance_core::setup::SetupItem;
 
 use super::fifo::{FifoDir, mkfifo, open_fifo};
 use super::qemu::Qemu;
-use super::{Exchange, FrameLimits, PilConfig, PilError, PilRecord, PilStats};
+use super::{Exchange, FifoOp, FrameLimits, PilConfig, PilError, PilRecord, PilStats};
+
+/// A FIFO failure.
+fn fifo(path: PathBuf, op: FifoOp, source: std::io::Error) -> PilError {
+    PilError::Fifo { path, op, source }
+}
 use crate::sim::AttitudeSource;
 
 /// The firmware in QEMU as the closed loop's attitude source (see the module docs).
@@ -25,7 +30,7 @@ pub struct PilGuidance {
     cfg: PilConfig,
     // Field order is drop order: the link first, then QEMU, then the directory.
     nav: Option<File>,
-    replies: Option<Receiver<Result<[u8; FRAME_LEN], String>>>,
+    replies: Option<Receiver<std::io::Result<[u8; FRAME_LEN]>>>,
     qemu: Option<Qemu>,
     dir: FifoDir,
     pub(super) last: Option<CommandFrame>,
@@ -72,14 +77,16 @@ impl PilGuidance {
         limits: FrameLimits,
         setup: &[SetupItem],
     ) -> Result<Self, PilError> {
-        let ok = std::process::Command::new(&cfg.qemu)
+        let probe = std::process::Command::new(&cfg.qemu)
             .arg("--version")
             .stdout(Stdio::null())
             .stderr(Stdio::null())
-            .status()
-            .is_ok_and(|s| s.success());
-        if !ok {
-            return Err(PilError::QemuMissing(cfg.qemu.clone()));
+            .status();
+        if !probe.as_ref().is_ok_and(|s| s.success()) {
+            return Err(PilError::QemuMissing {
+                program: cfg.qemu.clone().into(),
+                source: probe.err(),
+            });
         }
         if !cfg.elf.is_file() {
             return Err(PilError::ElfMissing(cfg.elf.clone()));
@@ -112,10 +119,7 @@ impl PilGuidance {
         std::thread::spawn(move || {
             loop {
                 let mut b = [0u8; FRAME_LEN];
-                let r = cmd
-                    .read_exact(&mut b)
-                    .map(|()| b)
-                    .map_err(|e| e.to_string());
+                let r = cmd.read_exact(&mut b).map(|()| b);
                 let stop = r.is_err();
                 if tx.send(r).is_err() || stop {
                     break;
@@ -131,36 +135,49 @@ impl PilGuidance {
         Ok(me)
     }
 
-    /// Write `buf` and wait for one answer frame (raw bytes).
+    /// Write `buf` and wait for one answer frame (raw bytes). `waiting_for` names the answer
+    /// in a timeout.
     pub(super) fn roundtrip(&mut self, buf: &[u8; FRAME_LEN]) -> Result<[u8; FRAME_LEN], PilError> {
+        self.roundtrip_for(buf, "an answer")
+    }
+
+    fn roundtrip_for(
+        &mut self,
+        buf: &[u8; FRAME_LEN],
+        waiting_for: &'static str,
+    ) -> Result<[u8; FRAME_LEN], PilError> {
         let (nav_path, cmd_path) = self.paths();
-        let reply = match (self.nav.as_mut(), self.replies.as_ref()) {
-            (Some(f), Some(rx)) => {
-                if let Err(e) = f.write_all(buf) {
-                    let err = PilError::Fifo {
-                        path: nav_path,
-                        reason: format!("write failed: {e}"),
-                    };
-                    return Err(self.dead_or(err));
-                }
-                rx.recv_timeout(self.cfg.reply_timeout)
-            }
-            _ => return Err(PilError::Timeout(Duration::ZERO, "an answer (link closed)")),
+        let Some(f) = self.nav.as_mut() else {
+            return Err(fifo(
+                nav_path,
+                FifoOp::Write,
+                std::io::ErrorKind::NotConnected.into(),
+            ));
         };
-        match reply {
-            Ok(Ok(b)) => Ok(b),
-            Ok(Err(e)) => {
-                let err = PilError::Fifo {
-                    path: cmd_path,
-                    reason: format!("read failed: {e} (did the firmware exit?)"),
-                };
-                Err(self.dead_or(err))
-            }
-            Err(_) => {
-                let err = PilError::Timeout(self.cfg.reply_timeout, "an answer");
-                Err(self.dead_or(err))
-            }
+        if let Err(e) = f.write_all(buf) {
+            return Err(self.dead_or(fifo(nav_path, FifoOp::Write, e)));
         }
+        let Some(rx) = self.replies.as_ref() else {
+            return Err(fifo(
+                cmd_path,
+                FifoOp::Read,
+                std::io::ErrorKind::NotConnected.into(),
+            ));
+        };
+        let err = match rx.recv_timeout(self.cfg.reply_timeout) {
+            Ok(Ok(b)) => return Ok(b),
+            Ok(Err(e)) => fifo(cmd_path, FifoOp::Read, e),
+            Err(RecvTimeoutError::Timeout) => {
+                PilError::Timeout(self.cfg.reply_timeout, waiting_for)
+            }
+            // The reader thread stopped after reporting its error.
+            Err(RecvTimeoutError::Disconnected) => fifo(
+                cmd_path,
+                FifoOp::Read,
+                std::io::ErrorKind::BrokenPipe.into(),
+            ),
+        };
+        Err(self.dead_or(err))
     }
 
     /// Next sequence number.
@@ -176,32 +193,7 @@ impl PilGuidance {
         self.seq = self.seq.wrapping_add(1);
         let mut buf = [0u8; FRAME_LEN];
         encode(&Frame::Setup(SetupFrame { seq, item }), &mut buf).map_err(PilError::Link)?;
-        let nav_path = self.paths().0;
-        let reply = match (self.nav.as_mut(), self.replies.as_ref()) {
-            (Some(f), Some(rx)) => {
-                if let Err(e) = f.write_all(&buf) {
-                    let err = PilError::Fifo {
-                        path: nav_path,
-                        reason: format!("write failed: {e}"),
-                    };
-                    return Err(self.dead_or(err));
-                }
-                rx.recv_timeout(self.cfg.reply_timeout)
-            }
-            _ => {
-                return Err(PilError::Timeout(
-                    Duration::ZERO,
-                    "a set-up answer (link closed)",
-                ));
-            }
-        };
-        let bytes = match reply {
-            Ok(Ok(b)) => b,
-            _ => {
-                let err = PilError::Timeout(self.cfg.reply_timeout, "a set-up answer");
-                return Err(self.dead_or(err));
-            }
-        };
+        let bytes = self.roundtrip_for(&buf, "a set-up answer")?;
         match decode(&bytes).map_err(PilError::Link)? {
             Frame::Command(c) if c.seq == seq && c.status == LinkStatus::Ok => Ok(()),
             Frame::Command(c) if c.seq == seq => Err(PilError::SetupRejected {
@@ -209,10 +201,12 @@ impl PilGuidance {
                 item,
                 status: c.status,
             }),
-            other => Err(PilError::Firmware {
+            Frame::Command(c) => Err(PilError::OutOfSequence {
                 seq,
-                what: format!("unexpected answer to set-up: {other:?}"),
+                got: c.seq,
+                status: c.status,
             }),
+            frame => Err(PilError::UnexpectedFrame { seq, frame }),
         }
     }
 
@@ -278,47 +272,7 @@ impl PilGuidance {
         self.seq = self.seq.wrapping_add(1);
         let mut buf = [0u8; FRAME_LEN];
         encode(&Frame::Nav(NavFrame { seq, nav: *nav }), &mut buf).map_err(PilError::Link)?;
-        let (nav_path, cmd_path) = self.paths();
-        let Some(f) = self.nav.as_mut() else {
-            return Err(PilError::Fifo {
-                path: nav_path,
-                reason: "link is closed".into(),
-            });
-        };
-        if let Err(e) = f.write_all(&buf) {
-            let err = PilError::Fifo {
-                path: nav_path,
-                reason: format!("write failed: {e}"),
-            };
-            return Err(self.dead_or(err));
-        }
-        let Some(rx) = self.replies.as_ref() else {
-            return Err(PilError::Timeout(
-                Duration::ZERO,
-                "a command frame (link closed)",
-            ));
-        };
-        let bytes = match rx.recv_timeout(self.cfg.reply_timeout) {
-            Ok(Ok(b)) => b,
-            Ok(Err(e)) => {
-                let err = PilError::Fifo {
-                    path: cmd_path,
-                    reason: format!("read failed: {e} (did the firmware exit?)"),
-                };
-                return Err(self.dead_or(err));
-            }
-            Err(RecvTimeoutError::Timeout) => {
-                let err = PilError::Timeout(self.cfg.reply_timeout, "a command frame");
-                return Err(self.dead_or(err));
-            }
-            Err(RecvTimeoutError::Disconnected) => {
-                let err = PilError::Fifo {
-                    path: cmd_path,
-                    reason: "reader stopped".into(),
-                };
-                return Err(self.dead_or(err));
-            }
-        };
+        let bytes = self.roundtrip_for(&buf, "a command frame")?;
         self.stats.frames += 1;
         self.stats.link_s += started.elapsed().as_secs_f64();
         let frame = decode(&bytes).map_err(PilError::Link)?;
@@ -336,17 +290,16 @@ impl PilGuidance {
                     })?;
                 Ok(c)
             }
-            Frame::Command(c) => Err(PilError::Firmware {
+            Frame::Command(c) if c.seq == seq => Err(PilError::FirmwareStatus {
                 seq,
-                what: match c.status.to_error() {
-                    Some(e) if c.seq == seq => format!("guidance error: {e}"),
-                    _ => format!("status {:?}, sequence {}", c.status, c.seq),
-                },
+                status: c.status,
             }),
-            other => Err(PilError::Firmware {
+            Frame::Command(c) => Err(PilError::OutOfSequence {
                 seq,
-                what: format!("unexpected frame {other:?}"),
+                got: c.seq,
+                status: c.status,
             }),
+            frame => Err(PilError::UnexpectedFrame { seq, frame }),
         }
     }
 
@@ -360,15 +313,13 @@ impl PilGuidance {
         encode(&Frame::End(self.seq), &mut buf).map_err(PilError::Link)?;
         let nav_path = self.paths().0;
         if let Some(f) = self.nav.as_mut() {
-            f.write_all(&buf).map_err(|e| PilError::Fifo {
-                path: nav_path,
-                reason: format!("write failed: {e}"),
-            })?;
+            f.write_all(&buf)
+                .map_err(|e| fifo(nav_path, FifoOp::Write, e))?;
         }
         self.nav = None;
         let timeout = self.cfg.reply_timeout;
         let Some(q) = self.qemu.as_mut() else {
-            return Err(PilError::Qemu("not running".into()));
+            return Err(PilError::QemuNotRunning);
         };
         match q.wait(timeout) {
             Some(e) if q.succeeded() => {

@@ -31,13 +31,13 @@ mod scenario;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use guidance_core::link::LinkError;
+use guidance_core::link::{Frame, LinkError, LinkStatus};
 
 use crate::scenario::ScenarioError;
 use crate::sim;
 
 pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
-pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES};
+pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES, RejectedFault};
 pub use fifo::FIFO_DIR_PREFIX;
 pub use guidance::PilGuidance;
 pub use qemu::{QemuExit, interrupt_cleanup};
@@ -113,28 +113,78 @@ impl PilConfig {
     }
 }
 
+/// What was being done with a FIFO (or the FIFO directory) when it failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FifoOp {
+    /// Creating the per-run FIFO directory.
+    CreateDir,
+    /// Creating the FIFO (`mkfifo`).
+    Create,
+    /// Opening it.
+    Open,
+    /// Writing a frame to it.
+    Write,
+    /// Reading a frame from it (did the firmware exit?).
+    Read,
+}
+
+impl std::fmt::Display for FifoOp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FifoOp::CreateDir => "cannot create the FIFO directory",
+            FifoOp::Create => "mkfifo failed",
+            FifoOp::Open => "cannot open",
+            FifoOp::Write => "write failed",
+            FifoOp::Read => "read failed (did the firmware exit?)",
+        })
+    }
+}
+
 /// PIL failures; each names what failed.
 #[derive(Debug, thiserror::Error)]
 pub enum PilError {
-    /// QEMU is not installed.
-    #[error("`{0} --version` failed: QEMU is missing (install qemu-system-arm)")]
-    QemuMissing(String),
+    /// QEMU is not installed (`program --version` could not run, or failed).
+    #[error(
+        "`{} --version` failed{}: QEMU is missing (install qemu-system-arm)",
+        program.display(),
+        source.as_ref().map_or_else(String::new, |e| format!(" ({e})"))
+    )]
+    QemuMissing {
+        /// The QEMU program tried.
+        program: PathBuf,
+        /// Why it could not be run (`None`: it ran and exited with a failure).
+        #[source]
+        source: Option<std::io::Error>,
+    },
     /// The firmware ELF is missing.
     #[error(
-        "firmware ELF {0} not found (build it: cargo build -p onboard-demo --profile firmware --target thumbv7em-none-eabihf)"
+        "firmware ELF {} not found (build it: cargo build -p onboard-demo --profile firmware --target thumbv7em-none-eabihf)",
+        .0.display()
     )]
     ElfMissing(PathBuf),
     /// Creating, opening or using a FIFO failed.
-    #[error("FIFO {path}: {reason}")]
+    #[error("FIFO {}: {op}: {source}", path.display())]
     Fifo {
-        /// The FIFO.
+        /// The FIFO (or the FIFO directory).
         path: PathBuf,
-        /// What went wrong.
-        reason: String,
+        /// What was being done.
+        op: FifoOp,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
     },
-    /// QEMU could not be started or failed.
-    #[error("QEMU: {0}")]
-    Qemu(String),
+    /// QEMU (under `timeout`) could not be started.
+    #[error("cannot start `timeout {}`: {source}", program.display())]
+    QemuSpawn {
+        /// The QEMU program.
+        program: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// QEMU was not running when the run was finished (the link was never started).
+    #[error("QEMU is not running")]
+    QemuNotRunning,
     /// QEMU exited before the run ended (bad ELF, firmware failure, ...).
     #[error("{0}")]
     QemuExited(QemuExit),
@@ -154,7 +204,7 @@ pub enum PilError {
     Timeout(Duration, &'static str),
     /// A received frame was malformed.
     #[error("bad frame from the firmware: {0}")]
-    Link(LinkError),
+    Link(#[source] LinkError),
     /// The firmware rejected a set-up item (its status names the core's check).
     #[error("firmware rejected set-up item {index} ({item:?}) with status {status:?}")]
     SetupRejected {
@@ -163,25 +213,61 @@ pub enum PilError {
         /// The item.
         item: guidance_core::setup::SetupItem,
         /// The firmware's status.
-        status: guidance_core::link::LinkStatus,
+        status: LinkStatus,
     },
-    /// The firmware answered with an error status or an unexpected frame.
-    #[error("firmware answered frame {seq} with {what}")]
-    Firmware {
+    /// The firmware answered a nav frame with an error status (its guidance rejected the sample,
+    /// or it could not decode the frame).
+    #[error("firmware answered frame {seq} with status {status:?}{}", guidance_error_text(*status))]
+    FirmwareStatus {
         /// Sequence number of the nav frame.
         seq: u32,
-        /// The status or frame received.
-        what: String,
+        /// The firmware's status.
+        status: LinkStatus,
+    },
+    /// The firmware answered with another sequence number than the frame sent.
+    #[error("firmware answered frame {seq} with sequence number {got} (status {status:?})")]
+    OutOfSequence {
+        /// Sequence number of the frame sent.
+        seq: u32,
+        /// Sequence number of the answer.
+        got: u32,
+        /// The answer's status.
+        status: LinkStatus,
+    },
+    /// The firmware answered with a frame that is not a command frame.
+    #[error("firmware answered frame {seq} with an unexpected {frame:?}")]
+    UnexpectedFrame {
+        /// Sequence number of the frame sent.
+        seq: u32,
+        /// The frame received.
+        frame: Frame,
+    },
+    /// The firmware accepted an injected fault it must reject.
+    #[error("firmware did not reject the {fault} frame {seq}: it answered {answer:?}")]
+    FaultNotRejected {
+        /// Sequence number of the faulty frame.
+        seq: u32,
+        /// The fault.
+        fault: RejectedFault,
+        /// The firmware's answer.
+        answer: Frame,
     },
     /// The reference mission the firmware flies could not be set up on the host.
     #[error("reference mission guidance: {0}")]
-    Mission(guidance_core::GuidanceError),
+    Mission(#[source] guidance_core::GuidanceError),
     /// The simulation around the firmware failed.
     #[error("simulation: {0}")]
     Sim(#[from] sim::SimError),
     /// The reference mission could not be set up (e.g. its vehicle did not load).
     #[error("reference mission: {0}")]
     Scenario(#[from] ScenarioError),
+}
+
+/// `": guidance error: ..."` for a status that stands for a guidance error, else nothing.
+fn guidance_error_text(status: LinkStatus) -> String {
+    status
+        .to_error()
+        .map_or_else(String::new, |e| format!(" (guidance error: {e})"))
 }
 
 /// Counters of one PIL run.

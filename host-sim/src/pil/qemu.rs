@@ -137,7 +137,10 @@ impl Qemu {
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()
-            .map_err(|e| PilError::Qemu(format!("cannot start `timeout {}`: {e}", cfg.qemu)))?;
+            .map_err(|source| PilError::QemuSpawn {
+                program: cfg.qemu.clone().into(),
+                source,
+            })?;
         let pgid = child.id();
         live().push((pgid, dir.to_path_buf()));
         let stdout = child

@@ -93,7 +93,7 @@ fn pil_reference_mission_matches_sil() {
     let t0 = Instant::now();
     let (pil, stats) = match fly_reference_pil(PilConfig::new(elf())) {
         Ok(r) => r,
-        Err(e @ (PilError::QemuMissing(_) | PilError::ElfMissing(_)))
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
         {
             println!("SKIPPED pil_reference_mission_matches_sil: {e}");
@@ -169,7 +169,7 @@ fn pil_names_a_missing_elf() {
     cfg.fifo_parent = dir.clone();
     match fly_reference_pil(cfg) {
         Err(PilError::ElfMissing(p)) => assert!(p.ends_with("pil-firmware.elf")),
-        Err(PilError::QemuMissing(q)) => println!("SKIPPED pil_names_a_missing_elf: {q} missing"),
+        Err(e @ PilError::QemuMissing { .. }) => println!("SKIPPED pil_names_a_missing_elf: {e}"),
         other => panic!("expected ElfMissing, got {other:?}"),
     }
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
@@ -192,7 +192,7 @@ fn pil_reports_firmware_that_exits_without_opening_the_link() {
             assert!(!e.stdout.is_empty(), "{e}");
             assert!(t0.elapsed().as_secs_f64() < 5.0);
         }
-        Err(e @ (PilError::QemuMissing(_) | PilError::ElfMissing(_))) => {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) => {
             println!("SKIPPED pil_reports_firmware_that_exits_without_opening_the_link: {e}");
         }
         other => panic!("expected QemuExited, got {other:?}"),

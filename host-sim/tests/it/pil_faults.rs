@@ -39,7 +39,7 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
     let (r, record) = run();
     let (res, stats) = match r {
         Ok(r) => r,
-        Err(e @ (PilError::QemuMissing(_) | PilError::ElfMissing(_)))
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
         {
             println!("SKIPPED pil_link_faults_are_survived_counted_and_recorded: {e}");

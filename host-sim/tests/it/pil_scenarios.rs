@@ -129,7 +129,7 @@ fn check(sc: &Scenario, target: &str, fixed: bool) {
     let elf = elf(target);
     let (pil, stats) = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf)).0 {
         Ok(r) => r,
-        Err(e @ (PilError::QemuMissing(_) | PilError::ElfMissing(_)))
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
         {
             println!("SKIPPED {name}: {e}");
