@@ -4,9 +4,10 @@
 //! semihosting FIFOs; `stm32f4-flight` (feature `stm32f4`, compile only) on an STM32F407's
 //! USART2 with stm32f4xx-hal.
 //!
-//! Protocol (`guidance_core::link`): set-up frames build the guidance (`guidance_core::setup`,
-//! the core's own checks at commit, a typed status answering each item); each nav frame is one
-//! `Guidance::update`, answered with a command frame; an end frame ends the run. A frame that
+//! Protocol (`guidance_core::link`): set-up frames build the guidance (`guidance_core::setup`:
+//! the stored profile, or with onboard re-planning when its items were uploaded; the core's
+//! own checks at commit, a typed status answering each item); each nav frame is one guidance
+//! update, answered with a command frame; an end frame ends the run. A frame that
 //! does not decode, or a sample guidance rejects, is a counted fault: the held command keeps
 //! flying and the answer carries the status. The status discrete is high while the last
 //! update was accepted, low after a fault or before guidance exists.
@@ -20,8 +21,8 @@ use guidance_core::guidance::{Command, Guidance, RateLimits};
 use guidance_core::link::{
     CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
 };
-use guidance_core::setup::{SetupBuilder, SetupItem};
-use guidance_core::{NavState, Scalar};
+use guidance_core::setup::{SetupBuilder, SetupGuidance, SetupItem};
+use guidance_core::{NavState, Real, Scalar};
 
 /// How a run ended normally.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,23 +104,26 @@ fn answer<S: Scalar, const N: usize>(
     }
 }
 
-/// Serve the link until an end frame: guidance in scalar `S` with node capacity `N`.
-/// `fallback` builds the guidance flown when a nav frame arrives before any set-up.
+/// Serve the link until an end frame: guidance in scalar `S` with node capacity `N`, an
+/// uploaded re-planner in scalar `R` (`f32` on both Cortex-M targets: hardware float on the
+/// M4F, soft float beside the fixed-point guidance tick on the M3). `fallback` builds the
+/// guidance flown when a nav frame arrives before any set-up.
 ///
 /// # Errors
 /// [`AppError`] if the link fails or ends; guidance problems are statuses, not errors.
-pub fn serve<S, const N: usize, L, P>(
+pub fn serve<S, const N: usize, R, L, D>(
     link: &mut L,
-    status: &mut P,
+    status: &mut D,
     fallback: impl Fn() -> Option<Guidance<S, N>>,
 ) -> Result<Outcome, AppError<L::Error>>
 where
     S: Scalar,
+    R: Real,
     L: Read + Write,
-    P: OutputPin,
+    D: OutputPin,
 {
     let mut setup = SetupBuilder::<S, N>::new();
-    let mut guidance: Option<Guidance<S, N>> = None;
+    let mut guidance: Option<SetupGuidance<S, N, R>> = None;
     let mut inb = [0u8; FRAME_LEN];
     let mut outb = [0u8; FRAME_LEN];
     let mut out = Outcome {
@@ -138,7 +142,7 @@ where
             Ok(Frame::End(_)) => return Ok(out),
             Ok(Frame::Setup(SetupFrame { seq, item })) => {
                 let st = match item {
-                    SetupItem::Commit => match setup.build() {
+                    SetupItem::Commit => match setup.build_flight::<R>() {
                         Ok(g) => {
                             guidance = Some(g);
                             LinkStatus::Ok
@@ -150,11 +154,13 @@ where
                         Err(e) => LinkStatus::from_setup_error(e),
                     },
                 };
-                answer(guidance.as_ref(), seq, st)
+                answer(guidance.as_ref().map(SetupGuidance::guidance), seq, st)
             }
             Ok(Frame::Nav(NavFrame { seq, nav })) => {
                 if guidance.is_none() {
-                    guidance = Some(fallback().ok_or(AppError::NoGuidance)?);
+                    guidance = Some(SetupGuidance::Stored(
+                        fallback().ok_or(AppError::NoGuidance)?,
+                    ));
                 }
                 match guidance.as_mut() {
                     Some(g) => {
@@ -167,15 +173,23 @@ where
                             }
                         };
                         healthy = matches!(st, LinkStatus::Ok | LinkStatus::NotTicked);
-                        answer(Some(g), seq, st)
+                        answer(Some(g.guidance()), seq, st)
                     }
                     None => answer::<S, N>(None, seq, LinkStatus::InvalidConfig),
                 }
             }
-            Ok(Frame::Command(c)) => answer(guidance.as_ref(), c.seq, LinkStatus::BadFrame),
+            Ok(Frame::Command(c)) => answer(
+                guidance.as_ref().map(SetupGuidance::guidance),
+                c.seq,
+                LinkStatus::BadFrame,
+            ),
             Err(_) => {
                 out.faults = out.faults.wrapping_add(1);
-                answer(guidance.as_ref(), 0, LinkStatus::BadFrame)
+                answer(
+                    guidance.as_ref().map(SetupGuidance::guidance),
+                    0,
+                    LinkStatus::BadFrame,
+                )
             }
         };
         let _ = if healthy {

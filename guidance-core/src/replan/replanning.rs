@@ -83,7 +83,7 @@ use crate::guidance::{BankSign, Command, Guidance, GuidanceConfig, GuidanceOutpu
 use crate::interp::Interpolation;
 use crate::nav::NavState;
 use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeTable};
-use crate::scalar::Real;
+use crate::scalar::{Real, Scalar};
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
 use super::{ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver};
@@ -262,14 +262,14 @@ impl ReplanCounts {
     }
 }
 
-/// Result of one [`ReplanningGuidance::update`].
+/// Result of one [`ReplanningGuidance::update`] (guidance scalar `S`, predictor scalar `P`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ReplanningOutput<S> {
+pub struct ReplanningOutput<S, P = S> {
     /// The guidance output of this sample (held command, tick flag, E-hat).
     pub guidance: GuidanceOutput<S>,
     /// The re-plan completed at this sample, if any.
-    pub replan: Option<ReplanReport<S>>,
+    pub replan: Option<ReplanReport<P>>,
     /// Predictor calls made during this sample (0 without re-planning work; at most
     /// [`ReplanningConfig::steps_per_tick`] when that is not 0).
     pub predictor_calls: u8,
@@ -290,21 +290,45 @@ pub type HostReplanningGuidance<S> = ReplanningGuidance<S, HOST_NODE_CAPACITY>;
 
 /// [`Guidance`] (energy-indexed table of capacity `N`, see [`crate::nodes`]) with periodic
 /// onboard re-planning (module docs).
+///
+/// Two scalar types: `S` for the guidance path (any [`Scalar`], fixed point included: the
+/// guidance tick of a Cortex-M3 without FPU) and `P` for the predictor-corrector, the odometer
+/// and the re-planning settings (a [`Real`]: `f32` or `f64`; by default `S`). With `P != S` the
+/// navigation state is converted to `P` (through `f64`) for the re-planner and the solved bank
+/// magnitude back to `S` for the table; with `P == S` the conversions are exact.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
+pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> {
     guidance: Guidance<S, N>,
     energy: EnergyNormalizer<S>,
-    config: ReplanningConfig<S>,
+    config: ReplanningConfig<P>,
     ticks: u32,
-    last: Option<ReplanReport<S>>,
+    last: Option<ReplanReport<P>>,
     counts: ReplanCounts,
     /// Flown range angle since the first accepted sample \[rad\].
-    flown_rad: S,
+    flown_rad: P,
     /// Position of the last accepted sample (latitude, longitude) \[rad\].
-    last_position: Option<(S, S)>,
+    last_position: Option<(P, P)>,
     /// The solve in progress.
-    pending: Option<Pending<S>>,
+    pending: Option<Pending<P>>,
+}
+
+/// `x` in the predictor scalar (through `f64`; exact when both are the same type).
+fn to_p<S: Scalar, P: Real>(x: S) -> P {
+    P::from_f64(x.to_f64())
+}
+
+/// `nav` in the predictor scalar.
+fn nav_to_p<S: Scalar, P: Real>(nav: &NavState<S>) -> NavState<P> {
+    NavState {
+        time_s: to_p(nav.time_s),
+        radius_m: to_p(nav.radius_m),
+        speed_m_s: to_p(nav.speed_m_s),
+        flight_path_angle_rad: to_p(nav.flight_path_angle_rad),
+        heading_rad: to_p(nav.heading_rad),
+        latitude_rad: to_p(nav.latitude_rad),
+        longitude_rad: to_p(nav.longitude_rad),
+    }
 }
 
 /// Signed range to go \[m\] from `nav`'s position to `target` on a sphere of radius
@@ -338,28 +362,55 @@ pub fn range_to_go_m<S: Real>(
     r.is_finite().then_some(r)
 }
 
-impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
+impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// Set up: the arguments up to `initial` are those of [`Guidance::new`] (the table must be
     /// energy-indexed); `config` the re-planning settings.
     ///
     /// # Errors
     /// As [`Guidance::new`]; [`GuidanceError::InvalidConfig`] for a time-indexed table,
-    /// `every_n_ticks == 0`, or a non-finite target.
+    /// `every_n_ticks == 0`, a non-finite target, a predictor model the closed forms reject
+    /// (planet, atmosphere, vehicle; non-finite rotation rate), or solver settings out of their
+    /// domain (vertical-fraction interval not in `(0, 1]`, tolerance or limits not positive,
+    /// more than [`super::MAX_ITERATIONS`] iterations or [`crate::vinh::predict::MAX_SKIPS`]
+    /// skips, negative lambda, final speed not positive).
     pub fn new(
         guidance_config: GuidanceConfig<S>,
         table: NodeTable<S, N>,
         kind: Interpolation<S>,
         energy: EnergyNormalizer<S>,
         initial: Command<S>,
-        config: ReplanningConfig<S>,
+        config: ReplanningConfig<P>,
     ) -> Result<Self, GuidanceError> {
         let target_ok = match config.target {
             RangeTarget::Point(p) => p.latitude_rad.is_finite() && p.longitude_rad.is_finite(),
             RangeTarget::FlownRangeAngle { total_rad } => total_rad.is_finite(),
         };
+        let m = &config.model;
+        let model_ok = m.planet.validate().is_ok()
+            && m.atmosphere.validate().is_ok()
+            && m.vehicle.validate().is_ok()
+            && m.rotation_rate_rad_s.is_finite();
+        let c = &config.solver;
+        let solver_ok = [
+            config.limits.heat_flux_w_m2,
+            config.limits.g_load,
+            c.lambda,
+            c.min_vertical_fraction,
+            c.max_vertical_fraction,
+            c.tolerance_m,
+            c.predictor.final_speed_m_s,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
+            && super::solver::settings_valid(&config.limits, c)
+            && c.lambda >= P::ZERO
+            && c.predictor.final_speed_m_s > P::ZERO
+            && c.predictor.max_skips <= crate::vinh::predict::MAX_SKIPS;
         if table.independent() != Independent::NormalizedEnergy
             || config.every_n_ticks == 0
             || !target_ok
+            || !model_ok
+            || !solver_ok
         {
             return Err(GuidanceError::InvalidConfig);
         }
@@ -371,7 +422,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             ticks: 0,
             last: None,
             counts: ReplanCounts::default(),
-            flown_rad: S::ZERO,
+            flown_rad: P::ZERO,
             last_position: None,
             pending: None,
         })
@@ -383,14 +434,15 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
     /// # Errors
     /// As [`Guidance::update`]; on error nothing changes (a table installed by a re-plan at
     /// this sample is withdrawn).
-    pub fn update(&mut self, nav: &NavState<S>) -> Result<ReplanningOutput<S>, GuidanceError> {
+    pub fn update(&mut self, nav: &NavState<S>) -> Result<ReplanningOutput<S, P>, GuidanceError> {
         nav.validate()?;
+        let navp: NavState<P> = nav_to_p(nav);
         // Odometer (committed only if the update succeeds).
         let step = match self.last_position {
             Some((lat, lon)) => {
-                central_angle(lat, lon, nav.latitude_rad, nav.longitude_rad).unwrap_or(S::ZERO)
+                central_angle(lat, lon, navp.latitude_rad, navp.longitude_rad).unwrap_or(P::ZERO)
             }
-            None => S::ZERO,
+            None => P::ZERO,
         };
         let flown = self.flown_rad + step;
         let will_tick = match self.guidance.last_tick_s() {
@@ -406,7 +458,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
             let mut p = match self.pending {
                 Some(p) => p,
-                None => self.start_solve(nav, flown),
+                None => self.start_solve(&navp, flown),
             };
             let before = p.solver.predictor_calls();
             let done = match self.config.steps_per_tick {
@@ -443,7 +495,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             self.ticks = self.ticks.saturating_add(1);
         }
         self.flown_rad = flown;
-        self.last_position = Some((nav.latitude_rad, nav.longitude_rad));
+        self.last_position = Some((navp.latitude_rad, navp.longitude_rad));
         Ok(ReplanningOutput {
             guidance: out,
             replan: report,
@@ -452,7 +504,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
     }
 
     /// Set up a solve from `nav` (range to go, effective planet): a solver that has not run.
-    fn start_solve(&self, nav: &NavState<S>, flown_rad: S) -> Pending<S> {
+    fn start_solve(&self, nav: &NavState<P>, flown_rad: P) -> Pending<P> {
         let cfg = &self.config;
         let m = &cfg.model;
         let rtg = match cfg.target {
@@ -468,7 +520,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             &m.atmosphere,
             &m.vehicle,
             nav,
-            rtg.unwrap_or(S::ZERO),
+            rtg.unwrap_or(P::ZERO),
             &cfg.limits,
             &cfg.solver,
         );
@@ -481,7 +533,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             },
             start_tick: self.ticks,
             time_s: nav.time_s,
-            range_to_go_m: rtg.unwrap_or(S::ZERO),
+            range_to_go_m: rtg.unwrap_or(P::ZERO),
         }
     }
 
@@ -490,10 +542,10 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
     /// error).
     fn apply(
         &mut self,
-        p: &Pending<S>,
-        res: &ReplanResult<S>,
+        p: &Pending<P>,
+        res: &ReplanResult<P>,
         e_hat: S,
-    ) -> (ReplanReport<S>, Option<NodeTable<S, N>>) {
+    ) -> (ReplanReport<P>, Option<NodeTable<S, N>>) {
         let cfg = &self.config;
         let rtg = p.range_to_go_m;
         let apply = match res.case {
@@ -505,14 +557,14 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             tick: self.ticks,
             start_tick: p.start_tick,
             time_s: p.time_s,
-            normalized_energy: e_hat,
+            normalized_energy: to_p(e_hat),
             range_to_go_m: rtg,
             case: res.case,
             predictor_calls: res.predictor_calls,
             bank_rad: if res.bank_rad.is_finite() {
                 res.bank_rad
             } else {
-                S::ZERO
+                P::ZERO
             },
             predicted_range_m: res.prediction.map(|p| p.range_m),
             predicted_peak_heat_flux_w_m2: res.prediction.map(|p| p.peak_heat_flux_w_m2),
@@ -523,6 +575,8 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
         if !apply || !res.bank_rad.is_finite() {
             return (report, None);
         }
+        // The solved magnitude in the guidance scalar.
+        let bank = S::from_f64(res.bank_rad.to_f64());
         let mut table = self.guidance.table().clone();
         let bounds = table.bounds();
         let mut count = 0_u16;
@@ -533,9 +587,9 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
             };
             if node.x < e_hat {
                 let signed = if node.sigma_rad < S::ZERO {
-                    -res.bank_rad
+                    -bank
                 } else {
-                    res.bank_rad
+                    bank
                 };
                 if table.set_sigma(i, bounds.clamp_sigma(signed)).is_ok() {
                     count = count.saturating_add(1);
@@ -570,13 +624,13 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
 
     /// The re-planning settings.
     #[must_use]
-    pub fn config(&self) -> &ReplanningConfig<S> {
+    pub fn config(&self) -> &ReplanningConfig<P> {
         &self.config
     }
 
     /// The last re-plan report (`None` before the first).
     #[must_use]
-    pub fn last_replan(&self) -> Option<ReplanReport<S>> {
+    pub fn last_replan(&self) -> Option<ReplanReport<P>> {
         self.last
     }
 
@@ -588,7 +642,7 @@ impl<S: Real, const N: usize> ReplanningGuidance<S, N> {
 
     /// Range angle flown since the first accepted sample \[rad\] (onboard odometer).
     #[must_use]
-    pub fn flown_range_angle_rad(&self) -> S {
+    pub fn flown_range_angle_rad(&self) -> P {
         self.flown_rad
     }
 

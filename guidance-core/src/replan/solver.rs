@@ -72,6 +72,19 @@ pub struct ReplanSolver<S> {
     phase: Phase<S>,
 }
 
+/// Whether the solver settings are in their domain (finite values checked separately):
+/// `0 < f_min <= f_max <= 1`, a positive tolerance and positive limits, at most
+/// [`MAX_ITERATIONS`] iterations.
+pub(crate) fn settings_valid<S: Real>(limits: &ReplanLimits<S>, config: &ReplanConfig<S>) -> bool {
+    config.min_vertical_fraction > S::ZERO
+        && config.min_vertical_fraction <= config.max_vertical_fraction
+        && config.max_vertical_fraction <= S::ONE
+        && config.tolerance_m > S::ZERO
+        && limits.heat_flux_w_m2 > S::ZERO
+        && limits.g_load > S::ZERO
+        && config.max_iterations <= MAX_ITERATIONS
+}
+
 fn fall_back<S: Real>(reason: ReplanFallBack, calls: u8) -> ReplanResult<S> {
     ReplanResult {
         case: ReplanCase::FallBack(reason),
@@ -126,14 +139,7 @@ impl<S: Real> ReplanSolver<S> {
                 ReplanFallBack::OutOfDomain(VinhError::NonFiniteInput),
                 0,
             ));
-        } else if !(config.min_vertical_fraction > S::ZERO
-            && config.min_vertical_fraction <= config.max_vertical_fraction
-            && config.max_vertical_fraction <= S::ONE
-            && config.tolerance_m > S::ZERO
-            && limits.heat_flux_w_m2 > S::ZERO
-            && limits.g_load > S::ZERO
-            && config.max_iterations <= MAX_ITERATIONS)
-        {
+        } else if !settings_valid(limits, config) {
             s.phase = Phase::Done(fall_back(
                 ReplanFallBack::OutOfDomain(VinhError::InvalidConfig),
                 0,

@@ -1,10 +1,12 @@
 //! Guidance set-up over the PIL link: the host uploads a whole guidance configuration (node
 //! table in either independent variable, interpolation, angle bounds, rates, period, initial
-//! attitude, E-hat map) as [`SetupItem`]s carried by set-up frames
-//! ([`crate::link::Frame::Setup`]); the firmware collects them in a [`SetupBuilder`] and, on
-//! [`SetupItem::Commit`], builds its [`Guidance`] with the core's own checks
-//! ([`NodeTable::new`], [`Guidance::new`], [`EnergyNormalizer::new`]). Every item is answered
-//! with a typed status (see `onboard-demo`'s `pil` binary).
+//! attitude, E-hat map and, when re-planning is used, its target and configuration:
+//! [`replanning`]) as [`SetupItem`]s carried by set-up frames ([`crate::link::Frame::Setup`]);
+//! the firmware collects them in a [`SetupBuilder`] and, on [`SetupItem::Commit`], builds its
+//! guidance ([`SetupGuidance`]: the stored profile, or [`ReplanningGuidance`]) with the core's
+//! own checks ([`NodeTable::new`], [`Guidance::new`], [`EnergyNormalizer::new`],
+//! [`ReplanningGuidance::new`]). Every item is answered with a typed status (see
+//! `onboard-demo`'s flight application).
 //!
 //! Payload of a set-up frame: seven `f64` slots, slot 0 the item code (an exact small integer),
 //! the rest as listed on each [`SetupItem`] variant (unused slots 0).
@@ -12,10 +14,16 @@
 use crate::command::Command;
 use crate::energy::EnergyNormalizer;
 use crate::error::{GuidanceError, NodeTableError};
-use crate::guidance::{Guidance, GuidanceConfig, RateLimits};
+use crate::guidance::{Guidance, GuidanceConfig, GuidanceOutput, RateLimits};
 use crate::interp::Interpolation;
+use crate::nav::NavState;
 use crate::nodes::{AngleBounds, Independent, Node, NodeTable};
-use crate::scalar::Scalar;
+use crate::replan::ReplanningGuidance;
+use crate::scalar::{Real, Scalar};
+
+pub mod replanning;
+
+pub use replanning::{ReplanItem, replan_items};
 
 /// One set-up item (all values SI, radians).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,6 +67,8 @@ pub enum SetupItem {
     },
     /// Code 7: build guidance from the items received.
     Commit,
+    /// Codes 8 to 12: a re-planning item ([`ReplanItem`]).
+    Replan(ReplanItem),
 }
 
 /// Why a set-up payload is not an item.
@@ -88,7 +98,7 @@ impl From<NodeTableError> for SetupError {
     }
 }
 
-fn small_int(v: f64, max: u32) -> Result<u32, SetupError> {
+pub(crate) fn small_int(v: f64, max: u32) -> Result<u32, SetupError> {
     if v >= 0.0 && v <= f64::from(max) && (v - libm::floor(v)) == 0.0 {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         Ok(v as u32)
@@ -161,6 +171,7 @@ impl SetupItem {
                 0.0,
             ],
             SetupItem::Commit => [7.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            SetupItem::Replan(r) => r.to_slots(),
         }
     }
 
@@ -184,7 +195,7 @@ impl SetupItem {
 
     fn parse(s: &[f64; 7]) -> Result<Self, SetupError> {
         let [code, a, b, c, d, _, _] = *s;
-        Ok(match small_int(code, 7)? {
+        Ok(match small_int(code, 12)? {
             1 => SetupItem::Table {
                 count: small_int(a, 1 << 16)?,
                 independent: match small_int(b, 1)? {
@@ -229,6 +240,7 @@ impl SetupItem {
                 entry_speed_m_s: d,
             },
             7 => SetupItem::Commit,
+            c @ 8..=12 => SetupItem::Replan(ReplanItem::parse(c, s)?),
             _ => return Err(SetupError::BadItem),
         })
     }
@@ -246,6 +258,7 @@ pub struct SetupBuilder<S, const N: usize> {
     config: Option<GuidanceConfig<S>>,
     initial: Option<Command<S>>,
     energy: Option<EnergyNormalizer<S>>,
+    replan: replanning::ReplanParts,
 }
 
 impl<S: Scalar, const N: usize> Default for SetupBuilder<S, N> {
@@ -273,6 +286,7 @@ impl<S: Scalar, const N: usize> SetupBuilder<S, N> {
             config: None,
             initial: None,
             energy: None,
+            replan: replanning::ReplanParts::default(),
         }
     }
 
@@ -357,17 +371,73 @@ impl<S: Scalar, const N: usize> SetupBuilder<S, N> {
                     entry_speed_m_s,
                 )?);
             }
+            SetupItem::Replan(r) => self.replan.apply(r),
             SetupItem::Commit => return Err(SetupError::BadItem),
         }
         Ok(())
     }
 
-    /// Build guidance from the items received, with the core's checks.
+    /// Build the stored-profile guidance from the items received, with the core's checks.
     ///
     /// # Errors
-    /// [`SetupError::Incomplete`] if an item or a node is missing; [`SetupError::Guidance`]
-    /// with the core's error otherwise.
+    /// [`SetupError::Incomplete`] if an item or a node is missing; [`SetupError::BadItem`] if
+    /// re-planning items were received (use [`SetupBuilder::build_flight`]);
+    /// [`SetupError::Guidance`] with the core's error otherwise.
     pub fn build(&self) -> Result<Guidance<S, N>, SetupError> {
+        if self.replan != replanning::ReplanParts::default() {
+            return Err(SetupError::BadItem);
+        }
+        let (config, table, initial, energy) = self.parts()?;
+        Ok(Guidance::new(
+            config,
+            table,
+            self.interpolation,
+            energy,
+            initial,
+        )?)
+    }
+
+    /// Build the guidance the items describe: [`SetupGuidance::Replanning`] (re-planner in the
+    /// predictor scalar `P`) if the re-planning items were received, else
+    /// [`SetupGuidance::Stored`]; with the core's checks.
+    ///
+    /// # Errors
+    /// [`SetupError::Incomplete`] if an item or a node (or some of the re-planning items) is
+    /// missing; [`SetupError::Guidance`] with the core's error otherwise.
+    pub fn build_flight<P: Real>(&self) -> Result<SetupGuidance<S, N, P>, SetupError> {
+        let (config, table, initial, energy) = self.parts()?;
+        Ok(match self.replan.config::<P>()? {
+            None => SetupGuidance::Stored(Guidance::new(
+                config,
+                table,
+                self.interpolation,
+                energy,
+                initial,
+            )?),
+            Some(r) => SetupGuidance::Replanning(ReplanningGuidance::new(
+                config,
+                table,
+                self.interpolation,
+                energy,
+                initial,
+                r,
+            )?),
+        })
+    }
+
+    /// The checked table and the other items every guidance needs.
+    #[allow(clippy::type_complexity)]
+    fn parts(
+        &self,
+    ) -> Result<
+        (
+            GuidanceConfig<S>,
+            NodeTable<S, N>,
+            Command<S>,
+            EnergyNormalizer<S>,
+        ),
+        SetupError,
+    > {
         let count = self.count.ok_or(SetupError::Incomplete)?;
         let have = self.have.get(..count).ok_or(SetupError::Incomplete)?;
         if have.iter().any(|h| !h) {
@@ -380,26 +450,56 @@ impl<S: Scalar, const N: usize> SetupBuilder<S, N> {
             return Err(SetupError::Incomplete);
         };
         let table = NodeTable::new(self.independent, nodes, bounds)?;
-        Ok(Guidance::new(
-            config,
-            table,
-            self.interpolation,
-            energy,
-            initial,
-        )?)
+        Ok((config, table, initial, energy))
+    }
+}
+
+/// Guidance built from a set-up: the stored profile, or the stored profile with onboard
+/// re-planning (guidance scalar `S`, node capacity `N`, predictor scalar `P`).
+#[derive(Clone, Debug, PartialEq)]
+// The firmware holds exactly one of these for the whole run, statically: no allocation.
+#[allow(clippy::large_enum_variant)]
+pub enum SetupGuidance<S, const N: usize, P> {
+    /// [`Guidance`] flying the uploaded table.
+    Stored(Guidance<S, N>),
+    /// [`ReplanningGuidance`] re-planning the uploaded table.
+    Replanning(ReplanningGuidance<S, N, P>),
+}
+
+impl<S: Scalar, const N: usize, P: Real> SetupGuidance<S, N, P> {
+    /// The guidance flying the table (held command, ramp, clock, rates).
+    #[must_use]
+    pub fn guidance(&self) -> &Guidance<S, N> {
+        match self {
+            SetupGuidance::Stored(g) => g,
+            SetupGuidance::Replanning(r) => r.guidance(),
+        }
+    }
+
+    /// One navigation sample ([`Guidance::update`], or [`ReplanningGuidance::update`]).
+    ///
+    /// # Errors
+    /// As the guidance's own update.
+    pub fn update(&mut self, nav: &NavState<S>) -> Result<GuidanceOutput<S>, GuidanceError> {
+        match self {
+            SetupGuidance::Stored(g) => g.update(nav),
+            SetupGuidance::Replanning(r) => r.update(nav).map(|o| o.guidance),
+        }
     }
 }
 
 /// The set-up items of a guidance configuration, in the order the host sends them (table,
-/// nodes, bounds, config, initial attitude, E-hat map, commit). `energy` is
-/// (mu \[m^3/s^2\], planet radius \[m\], entry radius \[m\], entry speed \[m/s\]).
-pub fn items<const N: usize>(
-    table: &NodeTable<f64, N>,
+/// nodes, bounds, config, initial attitude, E-hat map, the re-planning items if `replanning`
+/// is given, commit). `energy` is (mu \[m^3/s^2\], planet radius \[m\], entry radius \[m\],
+/// entry speed \[m/s\]).
+pub fn items<'a, const N: usize>(
+    table: &'a NodeTable<f64, N>,
     interpolation: Interpolation<f64>,
     config: GuidanceConfig<f64>,
     initial: Command<f64>,
     energy: (f64, f64, f64, f64),
-) -> impl Iterator<Item = SetupItem> + '_ {
+    replanning: Option<&crate::replan::ReplanningConfig<f64>>,
+) -> impl Iterator<Item = SetupItem> + 'a {
     let count = u32::try_from(table.len()).unwrap_or(u32::MAX);
     let head = [SetupItem::Table {
         count,
@@ -421,7 +521,15 @@ pub fn items<const N: usize>(
             entry_radius_m: energy.2,
             entry_speed_m_s: energy.3,
         },
-        SetupItem::Commit,
     ];
-    head.into_iter().chain(nodes).chain(tail)
+    let replan = replanning
+        .map(replan_items)
+        .into_iter()
+        .flatten()
+        .map(SetupItem::Replan);
+    head.into_iter()
+        .chain(nodes)
+        .chain(tail)
+        .chain(replan)
+        .chain([SetupItem::Commit])
 }

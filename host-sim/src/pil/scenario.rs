@@ -1,11 +1,13 @@
 //! Any scenario in PIL: the scenario's guidance (node table in either independent variable, any
-//! interpolation, bounds, period, rates, initial attitude, E-hat map) is uploaded to the
-//! firmware as set-up frames, then flown with the same vehicle, environment and settings as SIL.
+//! interpolation, bounds, period, rates, initial attitude, E-hat map and, with a
+//! `[replanning]` section, the re-planner's target and configuration with the predictor model
+//! SIL uses) is uploaded to the firmware as set-up frames, then flown with the same vehicle,
+//! environment and settings as SIL.
 
 use guidance_core::setup::{SetupItem, items};
 
 use crate::dynamics::Dynamics;
-use crate::scenario::{Scenario, build_guidance};
+use crate::scenario::{Scenario, ScenarioError, build_guidance, build_replanning};
 use crate::sim::{self, SimResult};
 
 use super::reference::unwrap_pil_error;
@@ -22,6 +24,13 @@ pub fn scenario_setup(
 ) -> Result<(Vec<SetupItem>, FrameLimits), PilError> {
     let env = sc.environment.build();
     let g = build_guidance(sc, &env.planet, file)?;
+    let replanning = match &sc.replanning {
+        Some(_) => {
+            let veh = sc.load_vehicle().map_err(ScenarioError::from)?;
+            build_replanning(sc, &env, &veh, file)?
+        }
+        None => None,
+    };
     let config = g.config();
     let initial = g.command();
     let energy = (
@@ -30,7 +39,15 @@ pub fn scenario_setup(
         sc.entry.radius_m,
         sc.entry.speed_m_s,
     );
-    let list = items(g.table(), g.interpolator().kind(), config, initial, energy).collect();
+    let list = items(
+        g.table(),
+        g.interpolator().kind(),
+        config,
+        initial,
+        energy,
+        replanning.as_ref(),
+    )
+    .collect();
     let limits = FrameLimits {
         bounds: g.table().bounds(),
         rates: config.rates,

@@ -73,6 +73,7 @@ impl Default for Scenario {
             interface_altitude_m: sim.interface_altitude_m,
             g_rate_window_s: sim.g_rate_window_s,
             nose_radius_m: None,
+            replanning: None,
         }
     }
 }

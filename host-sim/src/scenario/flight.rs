@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{Scenario, ScenarioError, build_guidance};
+use super::{Scenario, ScenarioError, build_guidance, build_replanning_guidance};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
 use crate::report;
@@ -40,7 +40,8 @@ impl std::fmt::Debug for Flight {
     }
 }
 
-/// Fly a scenario closed-loop with `guidance-core`'s guidance (no files written).
+/// Fly a scenario closed-loop with `guidance-core`'s guidance (no files written): its
+/// `Guidance`, or its `ReplanningGuidance` when the scenario has a `[replanning]` section.
 ///
 /// # Errors
 /// [`ScenarioError`] for vehicle, guidance or simulation failures.
@@ -51,9 +52,17 @@ pub fn fly(
 ) -> Result<Flight, ScenarioError> {
     let vehicle = sc.load_vehicle()?;
     let environment = sc.environment.build();
-    let source = sim::CoreGuidance::new(build_guidance(sc, &environment.planet, file)?);
     let dynm = Dynamics::from_environment(&environment, &vehicle);
-    let (result, _) = sim::simulate(dynm, source, &sc.sim_config(), progress)?;
+    let result = match build_replanning_guidance(sc, &environment, &vehicle, file)? {
+        Some(g) => {
+            let source = sim::GuidanceSource::new(g);
+            sim::simulate(dynm, source, &sc.sim_config(), progress)?.0
+        }
+        None => {
+            let source = sim::CoreGuidance::new(build_guidance(sc, &environment.planet, file)?);
+            sim::simulate(dynm, source, &sc.sim_config(), progress)?.0
+        }
+    };
     Ok(Flight {
         result,
         vehicle,

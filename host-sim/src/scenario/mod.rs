@@ -96,6 +96,7 @@ mod guidance;
 mod resolve;
 mod resolve_environment;
 mod resolve_guidance;
+mod resolve_replanning;
 mod to_toml;
 
 use std::path::PathBuf;
@@ -103,6 +104,7 @@ use std::sync::Arc;
 
 use guidance_core::guidance::Command;
 use guidance_core::nodes::Independent;
+use guidance_core::replan::{PredictorMode, RangeTarget};
 
 use crate::dynamics::SphericalState;
 use crate::env::{
@@ -114,7 +116,10 @@ use crate::sim::{SimConfig, Termination};
 
 pub use error::ScenarioError;
 pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
-pub use guidance::{build_guidance, guidance_bounds};
+pub use guidance::{
+    PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
+    guidance_bounds,
+};
 pub use resolve::{parse_scenario, read_scenario};
 pub use to_toml::scenario_to_toml;
 
@@ -364,6 +369,46 @@ pub struct Scenario {
     pub g_rate_window_s: f64,
     /// Nose radius replacing the vehicle's \[m\] (`[heat_flux] nose_radius_m`).
     pub nose_radius_m: Option<f64>,
+    /// Onboard re-planning (`[replanning]`; `None`: the stored profile is flown as is).
+    pub replanning: Option<ReplanningSpec>,
+}
+
+/// The `[replanning]` section, resolved (SI units, radians): the settings of
+/// `guidance_core::replan::ReplanningGuidance` except the predictor model, which
+/// [`build_replanning`] derives from the vehicle and the environment when the scenario is
+/// flown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReplanningSpec {
+    /// Re-plan every N guidance ticks \[ticks\].
+    pub every_n_ticks: u16,
+    /// Predictor calls per tick (0: the whole solve in its tick).
+    pub steps_per_tick: u8,
+    /// Target: a point, or the total range angle along the path \[rad\].
+    pub target: RangeTarget<f64>,
+    /// Predictor final speed \[m/s\].
+    pub final_speed_m_s: f64,
+    /// Peak heat-flux limit \[W/m^2\] (`None`: the vehicle's).
+    pub heat_flux_limit_w_m2: Option<f64>,
+    /// Peak g-load limit \[-\] (`None`: the vehicle's).
+    pub g_load_limit: Option<f64>,
+    /// Total lift parameter \[-\].
+    pub lambda: f64,
+    /// Smallest vertical lift fraction \[-\].
+    pub min_vertical_fraction: f64,
+    /// Largest vertical lift fraction \[-\].
+    pub max_vertical_fraction: f64,
+    /// Accepted range miss \[m\].
+    pub tolerance_m: f64,
+    /// Corrector iterations.
+    pub max_iterations: u8,
+    /// Predictor skip budget.
+    pub max_skips: u8,
+    /// Predictor.
+    pub mode: PredictorMode,
+    /// Apply the nearest end of the interval when the target is out of reach.
+    pub apply_out_of_reach: bool,
+    /// Mach number of the vehicle polar the predictor uses \[-\].
+    pub polar_mach: f64,
 }
 
 impl Scenario {

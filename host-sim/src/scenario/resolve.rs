@@ -167,6 +167,9 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     if let Some(t) = sf.output {
         output(&f, t, &mut sc)?;
     }
+    if let Some(t) = sf.replanning {
+        super::resolve_replanning::replanning(&f, t, &mut sc)?;
+    }
     cross_checks(&f, &sc)?;
     Ok(sc)
 }

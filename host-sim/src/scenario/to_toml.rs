@@ -1,8 +1,9 @@
 //! The scenario as TOML text (the inverse of [`parse_scenario`](super::parse_scenario)).
 
 use guidance_core::nodes::Independent;
+use guidance_core::replan::{PredictorMode, RangeTarget};
 
-use super::{AtmosphereSpec, InterpolationKind, Scenario, VehicleSpec};
+use super::{AtmosphereSpec, InterpolationKind, ReplanningSpec, Scenario, VehicleSpec};
 
 /// Rounding to 10 decimals for printing degree values (keeps 40.0 from printing as
 /// 39.99999999999999 after a radian round trip).
@@ -145,5 +146,55 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
         sc.g_rate_window_s
     );
     let _ = writeln!(s, "\n[output]\ninterval_s = {:?}", sc.output_interval_s);
+    if let Some(rp) = &sc.replanning {
+        replanning(&mut s, rp, r);
+    }
     s
+}
+
+/// The `[replanning]` section (planet radius `r` \[m\] for a range target).
+fn replanning(s: &mut String, rp: &ReplanningSpec, r: f64) {
+    use std::fmt::Write as _;
+    let _ = writeln!(
+        s,
+        "\n[replanning]\nevery_n_ticks = {}\nsteps_per_tick = {}",
+        rp.every_n_ticks, rp.steps_per_tick
+    );
+    match rp.target {
+        RangeTarget::Point(p) => {
+            let _ = writeln!(
+                s,
+                "target_latitude_deg = {:?}\ntarget_longitude_deg = {:?}",
+                p.latitude_rad.to_degrees(),
+                p.longitude_rad.to_degrees()
+            );
+        }
+        RangeTarget::FlownRangeAngle { total_rad } => {
+            let _ = writeln!(s, "range_km = {:?}", total_rad * r / 1e3);
+        }
+    }
+    let _ = writeln!(s, "final_speed_m_s = {:?}", rp.final_speed_m_s);
+    if let Some(q) = rp.heat_flux_limit_w_m2 {
+        let _ = writeln!(s, "heat_flux_limit_kw_m2 = {:?}", q / 1e3);
+    }
+    if let Some(n) = rp.g_load_limit {
+        let _ = writeln!(s, "g_load_limit = {n:?}");
+    }
+    let _ = writeln!(
+        s,
+        "lambda = {:?}\nmin_vertical_fraction = {:?}\nmax_vertical_fraction = {:?}\ntolerance_m = {:?}\nmax_iterations = {}\nmax_skips = {}\npredictor = {:?}\napply_out_of_reach = {}\npolar_mach = {:?}",
+        rp.lambda,
+        rp.min_vertical_fraction,
+        rp.max_vertical_fraction,
+        rp.tolerance_m,
+        rp.max_iterations,
+        rp.max_skips,
+        match rp.mode {
+            PredictorMode::Chain => "chain",
+            PredictorMode::Glide => "glide",
+            PredictorMode::Auto => "auto",
+        },
+        rp.apply_out_of_reach,
+        rp.polar_mach
+    );
 }

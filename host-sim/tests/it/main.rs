@@ -15,6 +15,7 @@ mod navconv;
 mod pil;
 mod pil_faults;
 mod pil_reliability;
+mod pil_replanning;
 mod pil_scenarios;
 mod replan_loop;
 mod run_dir_kill;

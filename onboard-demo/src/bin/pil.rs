@@ -218,7 +218,7 @@ mod firmware {
         let cmd_fd = open(&path, n, MODE_WB)?;
         let mut link = SemihostingLink { nav_fd, cmd_fd };
         let mut status = StatusLevel(false);
-        match serve::<S, CAPACITY, _, _>(&mut link, &mut status, reference) {
+        match serve::<S, CAPACITY, f32, _, _>(&mut link, &mut status, reference) {
             Ok(o) => Ok((o.frames, o.faults)),
             Err(AppError::EndOfLink) => Err("end of file on nav FIFO"),
             Err(AppError::Read(_)) => Err("read failed"),

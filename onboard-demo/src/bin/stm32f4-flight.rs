@@ -75,7 +75,7 @@ mod firmware {
                 .serial((gpioa.pa2, gpioa.pa3), 115_200.bps(), &mut rcc)
             {
                 let mut link = UartLink(serial);
-                let _ = serve::<f32, CAPACITY, _, _>(&mut link, &mut led, reference);
+                let _ = serve::<f32, CAPACITY, f32, _, _>(&mut link, &mut led, reference);
             }
             led.set_low();
         }
