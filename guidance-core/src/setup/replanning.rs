@@ -374,3 +374,273 @@ impl ReplanParts {
         }
     }
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
+mod tests {
+    use super::*;
+    use crate::guidance::{Command, GuidanceConfig};
+    use crate::interp::Interpolation;
+    use crate::nodes::{AngleBounds, Independent, Node, NodeTable};
+    use crate::setup::{SetupBuilder, SetupGuidance, SetupItem, items};
+    use crate::{Fixed, NavState, Scalar};
+
+    fn config(target: RangeTarget<f64>, mode: PredictorMode) -> ReplanningConfig<f64> {
+        ReplanningConfig {
+            every_n_ticks: 5,
+            target,
+            limits: ReplanLimits {
+                heat_flux_w_m2: 5e5,
+                g_load: 3.0,
+            },
+            solver: ReplanConfig {
+                lambda: 1.0,
+                min_vertical_fraction: 0.05,
+                max_vertical_fraction: 1.0,
+                tolerance_m: 1000.0,
+                max_iterations: 20,
+                predictor: PredictorConfig {
+                    final_speed_m_s: 2500.0,
+                    max_skips: 4,
+                },
+                mode,
+            },
+            model: PredictorModel {
+                planet: Planet::earth(),
+                atmosphere: ExpAtmosphere::earth(),
+                vehicle: VehicleParams {
+                    mass_kg: 38.77,
+                    reference_area_m2: 0.441,
+                    cd0: 0.2576,
+                    k_polar: 0.1879,
+                    nose_radius_m: 0.9,
+                },
+                rotation_rate_rad_s: 7.292_115e-5,
+            },
+            apply_out_of_reach: true,
+            steps_per_tick: 3,
+        }
+    }
+
+    fn targets() -> [RangeTarget<f64>; 2] {
+        [
+            RangeTarget::Point(TargetPoint {
+                latitude_rad: -0.4,
+                longitude_rad: 2.5,
+            }),
+            RangeTarget::FlownRangeAngle { total_rad: 2.8 },
+        ]
+    }
+
+    fn table() -> NodeTable<f64> {
+        let d = core::f64::consts::PI / 180.0;
+        let n = |x: f64, s: f64| Node {
+            x,
+            alpha_rad: 0.0,
+            sigma_rad: s * d,
+        };
+        NodeTable::new(
+            Independent::NormalizedEnergy,
+            &[n(1.0, 0.0), n(0.8, 40.0), n(0.4, 60.0), n(0.0, 0.0)],
+            AngleBounds {
+                alpha_min_rad: 0.0,
+                alpha_max_rad: 45.0 * d,
+                sigma_min_rad: -90.0 * d,
+                sigma_max_rad: 90.0 * d,
+            },
+        )
+        .unwrap()
+    }
+
+    fn all_items(rc: Option<&ReplanningConfig<f64>>) -> ([SetupItem; 32], usize) {
+        let t = table();
+        let energy = (3.986_004_418e14, 6_378_137.0, 6_478_137.0, 7658.34);
+        let mut out = [SetupItem::Commit; 32];
+        let mut n = 0;
+        for (slot, it) in out.iter_mut().zip(items(
+            &t,
+            Interpolation::Linear,
+            GuidanceConfig::thesis_default(),
+            Command::from_deg(0.0, 0.0).unwrap(),
+            energy,
+            rc,
+        )) {
+            *slot = it;
+            n += 1;
+        }
+        (out, n)
+    }
+
+    /// Every re-planning item survives its slots, and the whole configuration survives the
+    /// builder (for `f64`: exactly).
+    #[test]
+    fn replanning_items_round_trip() {
+        for target in targets() {
+            for mode in [
+                PredictorMode::Chain,
+                PredictorMode::Glide,
+                PredictorMode::Auto,
+            ] {
+                let rc = config(target, mode);
+                for it in replan_items(&rc) {
+                    let slots = SetupItem::Replan(it).to_slots();
+                    assert_eq!(SetupItem::from_slots(&slots), Ok(SetupItem::Replan(it)));
+                }
+                let mut parts = ReplanParts::default();
+                for it in replan_items(&rc) {
+                    parts.apply(it);
+                }
+                assert_eq!(parts.config::<f64>(), Ok(Some(rc)));
+            }
+        }
+    }
+
+    /// Malformed integer or enumeration slots and unknown codes are `BadItem`.
+    #[test]
+    fn malformed_replanning_items_are_rejected() {
+        let rc = config(targets()[1], PredictorMode::Auto);
+        let schedule = SetupItem::Replan(replan_items(&rc)[0]).to_slots();
+        for (slot, value) in [
+            (1, 1.5),
+            (1, 70_000.0),
+            (2, 256.0),
+            (3, 2.0),
+            (4, 3.0),
+            (5, -1.0),
+        ] {
+            let mut s = schedule;
+            s[slot] = value;
+            assert_eq!(
+                SetupItem::from_slots(&s),
+                Err(SetupError::BadItem),
+                "{slot}"
+            );
+        }
+        let mut target = SetupItem::Replan(replan_items(&rc)[1]).to_slots();
+        target[1] = 2.0;
+        assert_eq!(SetupItem::from_slots(&target), Err(SetupError::BadItem));
+        // A flown-range target carries no longitude: a non-zero one is not canonical.
+        target[1] = 1.0;
+        target[3] = 0.5;
+        assert_eq!(SetupItem::from_slots(&target), Err(SetupError::BadItem));
+        let mut unknown = schedule;
+        unknown[0] = 13.0;
+        assert_eq!(SetupItem::from_slots(&unknown), Err(SetupError::BadItem));
+    }
+
+    fn nav_s<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
+        NavState {
+            time_s: S::from_f64(n.time_s),
+            radius_m: S::from_f64(n.radius_m),
+            speed_m_s: S::from_f64(n.speed_m_s),
+            flight_path_angle_rad: S::from_f64(n.flight_path_angle_rad),
+            heading_rad: S::from_f64(n.heading_rad),
+            latitude_rad: S::from_f64(n.latitude_rad),
+            longitude_rad: S::from_f64(n.longitude_rad),
+        }
+    }
+
+    fn builder<S: crate::Scalar>(list: &[SetupItem]) -> SetupBuilder<S, 16> {
+        let mut b = SetupBuilder::<S, 16>::new();
+        for it in list.iter().filter(|i| **i != SetupItem::Commit) {
+            b.apply(it).unwrap();
+        }
+        b
+    }
+
+    /// With all five items the builder makes `ReplanningGuidance` (f32, and fixed point with an
+    /// f32 re-planner); with some missing it is `Incomplete`; the core's checks reject a bad
+    /// configuration; `build` refuses re-planning items; without them it is the stored profile.
+    #[test]
+    fn builder_makes_replanning_guidance_with_the_core_checks() {
+        let rc = config(targets()[1], PredictorMode::Auto);
+        let (list, n) = all_items(Some(&rc));
+        let b = builder::<f32>(&list[..n]);
+        assert!(matches!(
+            b.build_flight::<f32>(),
+            Ok(SetupGuidance::Replanning(_))
+        ));
+        assert_eq!(b.build().err(), Some(SetupError::BadItem));
+        let bf = builder::<Fixed>(&list[..n]);
+        assert!(matches!(
+            bf.build_flight::<f32>(),
+            Ok(SetupGuidance::Replanning(_))
+        ));
+        // One item short.
+        let short: [SetupItem; 31] = core::array::from_fn(|i| {
+            if i + 2 == n {
+                SetupItem::Commit
+            } else {
+                list[i]
+            }
+        });
+        assert_eq!(
+            builder::<f32>(&short[..n - 1]).build_flight::<f32>().err(),
+            Some(SetupError::Incomplete)
+        );
+        // The core rejects a vertical-fraction interval outside (0, 1] and a bad model.
+        let mut bad = rc;
+        bad.solver.min_vertical_fraction = 0.0;
+        let (list, n) = all_items(Some(&bad));
+        assert_eq!(
+            builder::<f32>(&list[..n]).build_flight::<f32>().err(),
+            Some(SetupError::Guidance(crate::GuidanceError::InvalidConfig))
+        );
+        let mut bad = rc;
+        bad.model.vehicle.mass_kg = -1.0;
+        let (list, n) = all_items(Some(&bad));
+        assert_eq!(
+            builder::<f32>(&list[..n]).build_flight::<f32>().err(),
+            Some(SetupError::Guidance(crate::GuidanceError::InvalidConfig))
+        );
+        let (list, n) = all_items(None);
+        assert!(matches!(
+            builder::<f32>(&list[..n]).build_flight::<f32>(),
+            Ok(SetupGuidance::Stored(_))
+        ));
+        assert!(builder::<f32>(&list[..n]).build().is_ok());
+    }
+
+    /// Fixed-point guidance with an f32 re-planner re-plans where f32 guidance does, to the
+    /// same bank (the predictor sees the same f32 state up to the fixed-point rounding of the
+    /// navigation values), and its commands stay within the table's bounds.
+    #[test]
+    fn fixed_point_tick_with_f32_replanner_follows_f32() {
+        let mut rc = config(
+            RangeTarget::FlownRangeAngle { total_rad: 2.83 },
+            PredictorMode::Auto,
+        );
+        rc.model.rotation_rate_rad_s = 0.0;
+        let (list, n) = all_items(Some(&rc));
+        let (SetupGuidance::Replanning(mut g32), SetupGuidance::Replanning(mut gfx)) = (
+            builder::<f32>(&list[..n]).build_flight::<f32>().unwrap(),
+            builder::<Fixed>(&list[..n]).build_flight::<f32>().unwrap(),
+        ) else {
+            panic!("not re-planning");
+        };
+        let mut applied = 0;
+        for k in 0..12u8 {
+            let t = 2.0 * f64::from(k);
+            let nav = NavState {
+                time_s: t,
+                radius_m: 6_478_137.0 - 50.0 * t,
+                speed_m_s: 7658.34 - 0.5 * t,
+                flight_path_angle_rad: -0.004_47,
+                heading_rad: 1.5,
+                latitude_rad: 0.0,
+                longitude_rad: 1.2e-3 * t,
+            };
+            let a = g32.update(&nav_s::<f32>(&nav)).unwrap();
+            let b = gfx.update(&nav_s::<Fixed>(&nav)).unwrap();
+            assert_eq!(a.replan.is_some(), b.replan.is_some(), "tick {k}");
+            if let (Some(ra), Some(rb)) = (a.replan, b.replan) {
+                assert_eq!(ra.case, rb.case);
+                assert!((ra.bank_rad - rb.bank_rad).abs() < 1e-3, "{ra:?} {rb:?}");
+                applied += u32::from(rb.applied);
+            }
+            let (ca, cb) = (a.guidance.command, b.guidance.command);
+            assert!((f64::from(ca.sigma_rad) - cb.sigma_rad.to_f64()).abs() < 1e-3);
+        }
+        assert!(applied > 0, "{:?}", g32.last_replan());
+    }
+}

@@ -271,3 +271,96 @@ fn host_scenarios_take_256_nodes() {
         .to_string();
     assert!(e.contains("guidance.nodes") && e.contains("256"), "{e}");
 }
+
+/// The re-planning example (`[replanning]`): it parses into the core's settings, prints back
+/// to the same scenario, and flies to its flown-range target: the stored profile alone ends
+/// hundreds of km short, re-planning within 10 km.
+#[test]
+fn replanning_example_flies_to_its_target() {
+    let sc = read_scenario(&examples().join("srm-glide-replanning.toml")).unwrap();
+    let rp = sc.replanning.expect("a [replanning] section");
+    let guidance_core::replan::RangeTarget::FlownRangeAngle { total_rad } = rp.target else {
+        panic!("flown-range target expected: {:?}", rp.target);
+    };
+    assert!(rel(total_rad * sc.environment.planet.radius_m, 18_034.65e3) < 1e-15);
+    assert_eq!(rp.every_n_ticks, 5);
+    assert_eq!(rp.mode, guidance_core::replan::PredictorMode::Auto);
+    assert!(!rp.apply_out_of_reach);
+    let text = host_sim::scenario::scenario_to_toml(&sc);
+    let back = parse_scenario(&text, "printed.toml", Path::new(".")).unwrap();
+    assert_eq!(back.replanning, sc.replanning);
+    let radius = sc.environment.planet.radius_m;
+    let flown = |sc: &Scenario| {
+        fly(sc, "(test)", &mut |_| {})
+            .unwrap()
+            .result
+            .summary
+            .flown_range_angle_rad
+            * radius
+    };
+    let r = flown(&sc);
+    let stored = Scenario {
+        replanning: None,
+        ..sc.clone()
+    };
+    let s = flown(&stored);
+    let target = total_rad * radius;
+    println!(
+        "flown-range miss: stored {:.1} km, re-planned {:.1} km",
+        (s - target) / 1e3,
+        (r - target) / 1e3
+    );
+    assert!((s - target).abs() > 300e3);
+    assert!((r - target).abs() < 10e3);
+}
+
+/// `[replanning]` errors name the file, the field and the value.
+#[test]
+fn bad_replanning_settings_are_named() {
+    let energy =
+        "[guidance]\nindependent = \"energy\"\nnodes = [[1, 0, 0], [0.5, 0, 40], [0, 0, 0]]\n";
+    let cases: &[(String, &[&str])] = &[
+        (
+            "[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\n".into(),
+            &["s.toml", "guidance.independent", "energy-indexed"],
+        ),
+        (
+            format!("{energy}[replanning]\nrange_km = 1000\n"),
+            &["s.toml", "replanning.final_speed_m_s", "missing"],
+        ),
+        (
+            format!("{energy}[replanning]\nfinal_speed_m_s = 2500\n"),
+            &["s.toml", "replanning.range_km", "either"],
+        ),
+        (
+            format!(
+                "{energy}[replanning]\nrange_km = 1000\ntarget_latitude_deg = 1\ntarget_longitude_deg = 2\nfinal_speed_m_s = 2500\n"
+            ),
+            &["s.toml", "replanning.range_km", "1000"],
+        ),
+        (
+            format!(
+                "{energy}[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\nmin_vertical_fraction = 0\n"
+            ),
+            &["s.toml", "replanning.min_vertical_fraction", "0", "(0, 1]"],
+        ),
+        (
+            format!(
+                "{energy}[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\nmax_iterations = 2.5\n"
+            ),
+            &["s.toml", "replanning.max_iterations", "2.5", "integer"],
+        ),
+        (
+            format!("{energy}[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\nevery = 3\n"),
+            &["s.toml", "replanning.every"],
+        ),
+    ];
+    for (text, words) in cases {
+        let e = parse_scenario(text, "s.toml", Path::new("."))
+            .expect_err(text)
+            .to_string();
+        for w in *words {
+            assert!(e.contains(w), "{text}: `{e}` lacks `{w}`");
+        }
+    }
+}
