@@ -1,7 +1,7 @@
 //! Re-planning set-up items: the whole [`ReplanningConfig`] (schedule, target and limits,
 //! corrector, predictor model) as five set-up items (codes 8 to 12), uploaded after the
 //! guidance items when a scenario uses re-planning. The firmware collects them
-//! ([`ReplanParts`]) and, at commit, builds a [`crate::replan::ReplanningGuidance`] whose
+//! (`SetupBuilder`) and, at commit, builds a [`crate::replan::ReplanningGuidance`] whose
 //! constructor runs the core's checks on them.
 
 use super::{SetupError, small_int};

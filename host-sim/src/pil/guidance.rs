@@ -52,7 +52,7 @@ impl PilGuidance {
     ///
     /// # Errors
     /// [`PilError::QemuMissing`], [`PilError::ElfMissing`], [`PilError::Fifo`],
-    /// [`PilError::Qemu`], [`PilError::QemuExited`] or [`PilError::Timeout`]; QEMU is stopped
+    /// [`PilError::QemuSpawn`], [`PilError::QemuExited`] or [`PilError::Timeout`]; QEMU is stopped
     /// and the FIFOs removed.
     pub fn start(cfg: PilConfig) -> Result<Self, PilError> {
         let mission =

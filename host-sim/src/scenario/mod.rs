@@ -77,7 +77,30 @@
 //! [output]
 //! interval_s = 0.0                # 0: one sample per guidance tick; else [0.001, 1e6] s
 //!                                 # and >= termination.max_time_s / 1e7 (10 million samples)
+//!
+//! # [replanning]                  # onboard re-planning (guidance_core::replan), energy tables
+//! # every_n_ticks = 5             # integer in [1, 65535]
+//! # steps_per_tick = 0            # predictor calls per tick, [0, 255]; 0: whole solve per tick
+//! # range_km = 18034.65           # total flown range from the entry, (0, 1e5] km; or
+//! # target_latitude_deg = -27.9   # a target point: latitude [-90, 90] deg and
+//! # target_longitude_deg = 155.3  #   longitude [-360, 360] deg
+//! # final_speed_m_s = 2500.0      # required: the predictor's end, (0, entry speed) m/s
+//! # heat_flux_limit_kw_m2 = 500.0 # > 0; default: the vehicle's
+//! # g_load_limit = 3.0            # > 0; default: the vehicle's
+//! # lambda = 1.0                  # total lift parameter, [0, 10]
+//! # min_vertical_fraction = 0.05  # (0, 1], <= max_vertical_fraction
+//! # max_vertical_fraction = 1.0   # (0, 1]
+//! # tolerance_m = 1000.0          # > 0
+//! # max_iterations = 20           # integer in [1, 40]
+//! # max_skips = 4                 # integer in [0, 8]
+//! # predictor = "auto"            # "chain", "glide" or "auto"
+//! # apply_out_of_reach = true
+//! # polar_mach = 20.0             # Mach number of the vehicle polar, (0, 100]
 //! ```
+//!
+//! With `[replanning]` the scenario flies `guidance_core::replan::ReplanningGuidance` (SIL and
+//! PIL); its predictor model is the vehicle's polar at `polar_mach` and an exponential fit of
+//! the environment's atmosphere between [`PREDICTOR_FIT_ALTITUDES_M`] ([`build_replanning`]).
 //!
 //! Ranges are checked before the run (the cross-field ones once every section is read), so a
 //! setting that would only fail after millions of integrator steps or samples ("maximum
