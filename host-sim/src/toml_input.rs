@@ -33,11 +33,28 @@ impl<'de> serde::Deserialize<'de> for Num {
     }
 }
 
+/// A TOML syntax error: the parser's own error (line, column and the offending text), shown
+/// without its trailing newline.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TomlSyntax(pub Box<toml::de::Error>);
+
+impl std::fmt::Display for TomlSyntax {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0.to_string().trim_end())
+    }
+}
+
+impl std::error::Error for TomlSyntax {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&*self.0)
+    }
+}
+
 /// Why a TOML input could not be read into its structs.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum TomlInputError {
     /// Not valid TOML: the parser's message (line, column and the offending text).
-    Syntax(String),
+    Syntax(TomlSyntax),
     /// A field is unknown, missing or of the wrong type.
     Field {
         /// Dotted path, e.g. `entry.altitude_km` or `aero.cl[1]`.
@@ -88,9 +105,9 @@ fn reason_of(message: &str) -> String {
 /// [`TomlInputError::Syntax`] for malformed TOML, [`TomlInputError::Field`] naming the field,
 /// its value and the reason for an unknown, missing or mistyped field.
 pub fn parse<T: DeserializeOwned>(text: &str) -> Result<(T, Table), TomlInputError> {
-    let doc: Table = text.parse().map_err(|e: toml::de::Error| {
-        TomlInputError::Syntax(e.to_string().trim_end().to_string())
-    })?;
+    let doc: Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| TomlInputError::Syntax(TomlSyntax(Box::new(e))))?;
     let value: T = serde_path_to_error::deserialize(doc.clone()).map_err(|e| {
         let message = e.inner().message().to_string();
         let mut field = e.path().to_string();

@@ -85,6 +85,47 @@ pub const DEFAULT_POINTS: usize = 201;
 /// Smallest and largest accepted number of samples.
 pub const POINTS_RANGE: (usize, usize) = (3, 100_000);
 
+/// Why a vehicle has no usable drag polar for the closed forms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NoPolar {
+    /// It has neither a drag polar nor fixed trim coefficients.
+    Missing,
+    /// Its trim coefficients are not finite and positive.
+    BadTrim {
+        /// Trim lift coefficient \[-\].
+        cl: f64,
+        /// Trim drag coefficient \[-\].
+        cd: f64,
+    },
+    /// Its drag polar at the Mach number asked for is not finite and positive.
+    BadPolar {
+        /// Mach number of the polar \[-\].
+        mach: f64,
+        /// Zero-lift drag coefficient \[-\].
+        cd0: f64,
+        /// Induced-drag factor \[-\].
+        k: f64,
+    },
+}
+
+impl std::fmt::Display for NoPolar {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            NoPolar::Missing => {
+                f.write_str("no drag polar (give one in the vehicle file: aero kind `drag_polar`)")
+            }
+            NoPolar::BadTrim { cl, cd } => write!(
+                f,
+                "trim coefficients C_L = {cl}, C_D = {cd} must be finite and positive"
+            ),
+            NoPolar::BadPolar { mach, cd0, k } => write!(
+                f,
+                "drag polar at Mach {mach}: C_D0 = {cd0}, K = {k} must be finite and positive"
+            ),
+        }
+    }
+}
+
 /// Analytical-simulator failures.
 #[derive(Debug, thiserror::Error)]
 pub enum AnalyticError {
@@ -94,7 +135,7 @@ pub enum AnalyticError {
         /// Vehicle name.
         vehicle: String,
         /// Why.
-        reason: String,
+        reason: NoPolar,
     },
     /// A setting is out of range.
     #[error("invalid setting `{field}` = {}: {reason}", crate::num_fmt::Compact(*value))]

@@ -4,7 +4,7 @@
 
 use guidance_core::vinh::{LiftControl, VehicleParams};
 
-use super::{AnalyticError, setting};
+use super::{AnalyticError, NoPolar, setting};
 use crate::vehicle::{DragPolar, PolarAerodynamics, Vehicle, VehicleLimits};
 
 /// A vehicle as the closed forms see it: mass properties and a parabolic drag polar.
@@ -51,7 +51,7 @@ impl AnalyticVehicle {
     /// [`AnalyticError::Vehicle`] if the vehicle has neither a polar nor fixed trim
     /// coefficients, or they are not finite and positive.
     pub fn from_vehicle(vehicle: &Vehicle, polar_mach: f64) -> Result<Self, AnalyticError> {
-        let err = |reason: String| AnalyticError::Vehicle {
+        let err = |reason: NoPolar| AnalyticError::Vehicle {
             vehicle: vehicle.name.clone(),
             reason,
         };
@@ -67,10 +67,10 @@ impl AnalyticVehicle {
         } else if !vehicle.aero.controls_alpha() {
             let trim = vehicle.aero.coefficients(polar_mach, 0.0);
             if !(trim.cl.is_finite() && trim.cl > 0.0 && trim.cd.is_finite() && trim.cd > 0.0) {
-                return Err(err(format!(
-                    "trim coefficients C_L = {}, C_D = {} must be finite and positive",
-                    trim.cl, trim.cd
-                )));
+                return Err(err(NoPolar::BadTrim {
+                    cl: trim.cl,
+                    cd: trim.cd,
+                }));
             }
             let cd0 = trim.cd / 2.0;
             (
@@ -81,15 +81,14 @@ impl AnalyticVehicle {
                 Some(trim.cl),
             )
         } else {
-            return Err(err(
-                "no drag polar (give one in the vehicle file: aero kind `drag_polar`)".into(),
-            ));
+            return Err(err(NoPolar::Missing));
         };
         if !(polar.cd0.is_finite() && polar.cd0 > 0.0 && polar.k.is_finite() && polar.k > 0.0) {
-            return Err(err(format!(
-                "drag polar at Mach {polar_mach}: C_D0 = {}, K = {} must be finite and positive",
-                polar.cd0, polar.k
-            )));
+            return Err(err(NoPolar::BadPolar {
+                mach: polar_mach,
+                cd0: polar.cd0,
+                k: polar.k,
+            }));
         }
         Ok(Self {
             name: vehicle.name.clone(),

@@ -72,12 +72,12 @@ pub enum CampaignError {
         reason: String,
     },
     /// Malformed TOML.
-    #[error("{file}: {message}")]
+    #[error("{file}: {source}")]
     Toml {
         /// Settings file.
         file: String,
-        /// The parser's message.
-        message: String,
+        /// The parser's error.
+        source: crate::toml_input::TomlSyntax,
     },
     /// The scenario could not be loaded or flown.
     #[error("{file}: scenario: {source}")]

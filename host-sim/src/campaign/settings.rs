@@ -221,9 +221,9 @@ struct SettingsFile {
 /// mistyped field or a bad value (naming it).
 pub fn parse_settings(text: &str, file: &str) -> Result<DispersionSettings, CampaignError> {
     let (f, _): (SettingsFile, _) = crate::toml_input::parse(text).map_err(|e| match e {
-        TomlInputError::Syntax(message) => CampaignError::Toml {
+        TomlInputError::Syntax(source) => CampaignError::Toml {
             file: file.into(),
-            message,
+            source,
         },
         TomlInputError::Field {
             field,

@@ -18,12 +18,12 @@ pub enum ScenarioError {
         source: std::io::Error,
     },
     /// The file is not valid TOML (the message gives line, column and the offending text).
-    #[error("{file}: malformed TOML: {message}")]
+    #[error("{file}: malformed TOML: {source}")]
     Toml {
         /// File name as given.
         file: String,
-        /// Parser message.
-        message: String,
+        /// The parser's error.
+        source: crate::toml_input::TomlSyntax,
     },
     /// A field is unknown, mistyped or out of range.
     #[error("{file}: field `{field}` = {value}: {reason}")]

@@ -58,9 +58,9 @@ impl Fields<'_> {
 fn read_file(text: &str, file: &str) -> Result<ScenarioFile, ScenarioError> {
     match crate::toml_input::parse(text) {
         Ok((sf, _)) => Ok(sf),
-        Err(TomlInputError::Syntax(message)) => Err(ScenarioError::Toml {
+        Err(TomlInputError::Syntax(source)) => Err(ScenarioError::Toml {
             file: file.to_string(),
-            message,
+            source,
         }),
         Err(TomlInputError::Field {
             field,

@@ -435,9 +435,9 @@ fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFil
 /// mistyped, out-of-range or unknown field (naming file, field and value).
 pub fn from_toml_str(text: &str, file: &str) -> Result<Vehicle, VehicleFileError> {
     let (vf, doc): (VehicleFile, Table) = crate::toml_input::parse(text).map_err(|e| match e {
-        TomlInputError::Syntax(message) => VehicleFileError::Toml {
+        TomlInputError::Syntax(source) => VehicleFileError::Toml {
             file: file.to_string(),
-            message,
+            source,
         },
         TomlInputError::Field {
             field,
@@ -517,9 +517,9 @@ pub fn from_toml_str(text: &str, file: &str) -> Result<Vehicle, VehicleFileError
 /// [`VehicleFileError::Io`] if the file cannot be read, otherwise as [`from_toml_str`].
 pub fn from_toml_file(path: &std::path::Path) -> Result<Vehicle, VehicleFileError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| VehicleFileError::Io {
+    let text = std::fs::read_to_string(path).map_err(|source| VehicleFileError::Io {
         file: file.clone(),
-        message: e.to_string(),
+        source,
     })?;
     from_toml_str(&text, &file)
 }

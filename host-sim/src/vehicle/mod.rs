@@ -85,20 +85,20 @@ pub struct Vehicle {
 #[derive(Debug, thiserror::Error)]
 pub enum VehicleFileError {
     /// The file could not be read.
-    #[error("{file}: cannot read: {message}")]
+    #[error("{file}: cannot read: {source}")]
     Io {
         /// File name as given.
         file: String,
-        /// Operating-system message.
-        message: String,
+        /// The operating system's error.
+        source: std::io::Error,
     },
     /// The file is not valid TOML (the message gives line, column and the offending text).
-    #[error("{file}: invalid TOML: {message}")]
+    #[error("{file}: invalid TOML: {source}")]
     Toml {
         /// File name as given.
         file: String,
-        /// Parser message.
-        message: String,
+        /// The parser's error.
+        source: crate::toml_input::TomlSyntax,
     },
     /// A field is missing, mistyped, out of range or unknown.
     #[error("{file}: field `{field}` = {value}: {reason}")]
