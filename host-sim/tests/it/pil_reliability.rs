@@ -381,3 +381,75 @@ fn pil_fifo_directory_with_space_or_long_path() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 13 item 5, "nothing lost from the record", through the CLI: a PIL run that fails
+/// mid-flight (the fake firmware accepts the set-up, then answers the first nav frame with a
+/// command outside the configuration) exits with the error, writes no run directory, and keeps
+/// the frames exchanged up to the failure beside it as `<out>.failed-pil-record.csv`, the
+/// failing row marked.
+#[test]
+fn pil_cli_keeps_the_record_of_a_failed_run() {
+    let dir = fresh("cli-record");
+    let (items, _) =
+        host_sim::pil::scenario_setup(&host_sim::scenario::Scenario::default(), "(test)").unwrap();
+    let mut answers = Vec::new();
+    for seq in 0..items.len() {
+        let ok = CommandFrame {
+            seq: u32::try_from(seq).unwrap(),
+            status: LinkStatus::Ok,
+            tick_time_s: 0.0,
+            command: Command {
+                alpha_rad: 0.0,
+                sigma_rad: 0.0,
+            },
+            ramp_start: Command {
+                alpha_rad: 0.0,
+                sigma_rad: 0.0,
+            },
+            rates: RateLimits::thesis_default(),
+        };
+        let mut b = [0u8; FRAME_LEN];
+        encode(&Frame::Command(ok), &mut b).unwrap();
+        answers.extend_from_slice(&b);
+    }
+    let mut bad = bad_frame(0.0, 1e300, 0.0);
+    // The nav frame's sequence number follows the set-up's (re-sealed by re-encoding).
+    let Frame::Command(mut c) = guidance_core::link::decode(&bad).unwrap() else {
+        panic!("bad_frame is a command frame");
+    };
+    c.seq = u32::try_from(items.len()).unwrap();
+    encode(&Frame::Command(c), &mut bad).unwrap();
+    answers.extend_from_slice(&bad);
+    let answers_path = dir.join("answers.bin");
+    std::fs::write(&answers_path, &answers).unwrap();
+    let (qemu, _pid) = fake_qemu(
+        &dir,
+        &format!("exec 3<nav 4>cmd\ncat '{}' >&4", answers_path.display()),
+    );
+    let out_dir = dir.join("run");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["simulate", "--pil"])
+        .arg(dir.join("fake-qemu.sh"))
+        .arg("--out")
+        .arg(&out_dir)
+        .env("REENTRY_PIL_QEMU", &qemu)
+        .env("TMPDIR", &dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stdout}{stderr}");
+    assert!(stderr.contains("rejected"), "{stderr}");
+    assert!(stdout.contains("failed-pil-record.csv"), "{stdout}");
+    assert!(!out_dir.exists(), "no run directory for a failed run");
+    let csv = std::fs::read_to_string(dir.join("run.failed-pil-record.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    assert!(rows[0].starts_with("seq,time_s,"), "{csv}");
+    assert!(
+        rows[1].starts_with(&format!("{},", items.len())) && rows[1].contains("rejected"),
+        "{csv}"
+    );
+    assert!(leftovers(&dir).is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
