@@ -167,7 +167,7 @@ def test_scenario_file_base_and_failed_flights(tmp_path):
     for i in range(8):
         a.tell(i, *p.evaluate((glide if i % 2 else steep)))
     v = a.population.violation
-    assert (v[1::2] == np.finfo(float).max).all() and (v[0::2] < 1.0).all()
+    assert (v[1::2] == np.finfo(float).max).all() and (v[0::2] < 100.0).all()
     # pymoo cannot rank NaN: its adapter gives the failure a finite, infeasible value.
     try:
         import pymoo  # noqa: F401
