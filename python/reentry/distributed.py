@@ -488,10 +488,18 @@ def _cmd_bench(a) -> int:
 
 
 def _fly_dispersion_chunk_timed(spec_json: str, start: int, jobs: Sequence[tuple]):
-    """Bench task: :func:`_fly_dispersion_chunk` plus the seconds spent inside the task."""
-    t0 = time.perf_counter()
+    """Bench task: :func:`_fly_dispersion_chunk` plus the wall and CPU seconds spent inside
+    the task (CPU: this thread's, which flies the jobs with the GIL released)."""
+    t0, c0 = time.perf_counter(), time.thread_time()
     out = _fly_dispersion_chunk(spec_json, start, jobs)
-    return out[0], out[1], time.perf_counter() - t0
+    return out[0], out[1], time.perf_counter() - t0, time.thread_time() - c0
+
+
+def _serial_cpu(c: DispersionCampaign):
+    """Bench: the jobs flown in this thread; (results, CPU seconds)."""
+    c0 = time.thread_time()
+    r = c.fly_jobs(c.jobs())
+    return r, time.thread_time() - c0
 
 
 def _cmd_bench_dispersions(a) -> int:
@@ -503,16 +511,20 @@ def _cmd_bench_dispersions(a) -> int:
     camps = {n: _campaign_sized(a, n) for n in sizes}
     print(f"load average before: {os.getloadavg()}", file=sys.stderr)
     serial = {}
-    print("| flights | where | chunk | wall [s] | flights/s | task-overhead fraction |")
-    print("|---|---|---|---|---|---|")
+    print("| flights | where | chunk | wall [s] | flights/s | task-overhead fraction | CPU ms per flight |")
+    print("|---|---|---|---|---|---|---|")
     for n, c in camps.items():
-        serial[n] = _best(lambda: c.fly_jobs(c.jobs()), a.rounds)
+        wall, (res, cpu) = _best(lambda: _serial_cpu(c), a.rounds)
+        serial[n] = (wall, res)
         flights = len(c.jobs())
-        print(f"| {flights} | in process, 1 thread | - | {serial[n][0]:.3f} | {flights / serial[n][0]:.1f} | - |")
+        print(
+            f"| {flights} | in process, 1 thread | - | {wall:.3f} | {flights / wall:.1f} | - | "
+            f"{cpu / flights * 1e3:.1f} |"
+        )
         wall, res = _best(lambda: c.run_local(), a.rounds)
         if res != serial[n][1]:
             raise RuntimeError("run_local differs from the serial run")
-        print(f"| {flights} | in process, host-sim rayon ({os.cpu_count()} threads) | - | {wall:.3f} | {flights / wall:.1f} | - |")
+        print(f"| {flights} | in process, host-sim rayon ({os.cpu_count()} threads) | - | {wall:.3f} | {flights / wall:.1f} | - | - |")
     for w in a.workers_list:
         t0 = time.perf_counter()
         with client_for(None, w) as client:
@@ -545,9 +557,10 @@ def _cmd_bench_dispersions(a) -> int:
                 if got != serial[n][1]:
                     raise RuntimeError("Dask campaign differs from the local one")
                 busy = sum(r[2] for r in res)
+                cpu = sum(r[3] for r in res)
                 print(
                     f"| {flights} | Dask LocalCluster, {w} process(es) | {c} | {wall:.3f} | "
-                    f"{flights / wall:.1f} | {1 - busy / (wall * w):.2f} |"
+                    f"{flights / wall:.1f} | {1 - busy / (wall * w):.2f} | {cpu / flights * 1e3:.1f} |"
                 )
             print(
                 f"(LocalCluster of {w} process(es): {startup:.2f} s to start, {setup:.2f} s for "
