@@ -87,9 +87,12 @@ class DispersionCampaign(_native.DispersionCampaign):
     ):
         if _spec is not None:
             return super().__new__(cls, spec_json=_spec)
+        src = _source(scenario, builtin)
+        if "path" in src:  # the spec travels to workers whose working folder may differ
+            src["path"] = os.path.abspath(src["path"])
         return super().__new__(
             cls,
-            **_source(scenario, builtin),
+            **src,
             **_settings_source(settings),
             cases=cases,
             seed=seed,

@@ -106,6 +106,36 @@ def test_dispersions_on_dask_equal_local_table(client, small, tmp_path):
     assert (tmp_path / "summary.json").exists()
 
 
+def test_command_line_on_a_scheduler_writes_the_cli_files_and_an_exact_table(client, small, tmp_path, monkeypatch):
+    import pandas as pd
+    from reentry.distributed import main
+
+    c, results = small
+    table, out = tmp_path / "table.csv", tmp_path / "out"
+    rc = main([
+        "dispersions", "--builtin", "srm-glide", "-n", "4", "--interface-speed", "2500",
+        "--scheduler", client.scheduler.address, "--chunk-size", "5",
+        "--table", str(table), "--out", str(out),
+    ])
+    assert rc == 0
+    got = pd.read_csv(table)
+    want = c.table(results)
+    assert list(got.columns) == list(want.columns)
+    num = want.select_dtypes("number").columns
+    assert np.array_equal(
+        np.asarray(got[num], dtype=float).view(np.uint64), np.asarray(want[num], dtype=float).view(np.uint64)
+    )
+    ref = tmp_path / "ref"
+    c.write(ref, results)
+    assert filecmp.cmp(out / "summary.json", ref / "summary.json", shallow=False)
+    # A scenario file given by a relative path reaches the workers as an absolute one.
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "srm.toml").write_text(reentry.scenario_toml("srm-glide"))
+    f = reentry.DispersionCampaign("srm.toml", cases=2, interface_speed_m_s=2500.0, modes=["stored"])
+    assert json.loads(f.spec_json())["path"] == str(tmp_path / "srm.toml")
+    assert dispersion_results(f, client) == f.run_local()
+
+
 def test_worker_killed_mid_dispersion_campaign_loses_and_duplicates_nothing(client):
     c = reentry.DispersionCampaign(cases=40, **SRM)  # 120 flights, 40 tasks of 3
     local = c.run_local()
