@@ -116,7 +116,7 @@ class DispersionCampaign(_native.DispersionCampaign):
         """Fly these jobs here (serially, GIL released): one ``CaseResult`` JSON text each."""
         return list(self.fly([(str(m), int(i)) for m, i in jobs]))
 
-    def run_local(self, threads: Optional[int] = None) -> List[str]:  # noqa: D401
+    def run_local(self, threads: Optional[int] = None) -> List[str]:
         """Every job, flown by host-sim's ``run_campaign`` in this process (rayon,
         ``threads`` threads, default all cores; the result does not depend on it), in
         :meth:`jobs` order."""
