@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The Python package's test step (docs/PYTHON.md), run by .ci/run before `cargo xtask test`:
-# a virtual environment with maturin, numpy, pandas, dask[distributed], pytest (and pygmo if
-# it installs: its tests skip otherwise), the wheel built with `maturin build --release` and
+# a virtual environment with maturin, numpy, pandas, dask[distributed], pytest (and pygmo and
+# pymoo if they install: their tests skip otherwise), the wheel built with `maturin build --release` and
 # installed, fmt/clippy of the bindings crate, then pytest against the host-sim binary.
 # Exits non-zero on any failure, including pytest collecting no tests (its exit code 5).
 # Usage: bash python/ci.sh   (from anywhere; needs python3 and cargo)
@@ -28,9 +28,11 @@ fi
 py="$work/venv/bin/python"
 "$py" -m pip install --quiet --upgrade pip
 "$py" -m pip install --quiet maturin numpy pandas "dask[distributed]" pytest
-if ! "$py" -m pip install --quiet pygmo; then
-  echo "python step: pygmo does not install here; its tests will be skipped" >&2
-fi
+for optional in pygmo pymoo; do
+  if ! "$py" -m pip install --quiet "$optional"; then
+    echo "python step: $optional does not install here; its tests will be skipped" >&2
+  fi
+done
 
 echo "python step: fmt and clippy of the bindings crate (python/)"
 if command -v rustup >/dev/null 2>&1; then rustup component add clippy rustfmt >/dev/null 2>&1 || true; fi

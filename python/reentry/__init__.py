@@ -8,13 +8,18 @@ with the GIL released. SI units and radians throughout (unit in each name).
 * :func:`atmosphere`, :func:`vehicles`;
 * :class:`Moead`, :class:`Nsga2`, :class:`Mhaco` (ask/tell), :class:`TestProblem`, :func:`evolve`,
   :func:`hypervolume`, :class:`PygmoProblem` (any of our problems as a pygmo UDP);
-* :mod:`reentry.distributed`: optimisation and flight campaigns on Dask.
+* :class:`DesignProblem`, :class:`VariableDesignProblem` (the thesis' re-entry design
+  problems as pygmo UDPs), :func:`pymoo_problem`;
+* :class:`DispersionCampaign` (host-sim's dispersion campaign, case by case);
+* :mod:`reentry.distributed`: optimisation, dispersion and flight campaigns on Dask.
 
 Errors are :class:`ReentryError` subclasses carrying host-sim's message.
 """
 
 from ._native import (
     TRAJECTORY_COLUMNS,
+    CampaignError,
+    DesignError,
     OptimError,
     ProblemError,
     ReentryError,
@@ -24,6 +29,8 @@ from ._native import (
     hypervolume,
     test_problems,
 )
+from .design import DesignProblem, VariableDesignProblem, design_presets, pymoo_problem
+from .dispersions import DispersionCampaign, campaign_modes
 from .env import atmosphere, vehicles
 from .flight import Flight, fly, fly_summary, scenario_dict, scenario_toml
 from .optim import (
@@ -39,6 +46,10 @@ from .optim import (
 
 __all__ = [
     "TRAJECTORY_COLUMNS",
+    "CampaignError",
+    "DesignError",
+    "DesignProblem",
+    "DispersionCampaign",
     "Flight",
     "Mhaco",
     "Moead",
@@ -50,14 +61,18 @@ __all__ = [
     "ReentryError",
     "ScenarioError",
     "TestProblem",
+    "VariableDesignProblem",
     "VehicleError",
     "atmosphere",
     "builtin_scenarios",
+    "campaign_modes",
+    "design_presets",
     "evaluate_batch",
     "evolve",
     "fly",
     "fly_summary",
     "hypervolume",
+    "pymoo_problem",
     "scenario_dict",
     "scenario_toml",
     "test_problems",

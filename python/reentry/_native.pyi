@@ -10,6 +10,8 @@ class ScenarioError(ReentryError): ...
 class VehicleError(ReentryError): ...
 class OptimError(ReentryError): ...
 class ProblemError(ReentryError): ...
+class DesignError(ReentryError): ...
+class CampaignError(ReentryError): ...
 
 def fly_scenario(
     *,
@@ -77,3 +79,118 @@ class TestProblem:
     def reference_point(self) -> List[float]: ...
     def pareto_front(self, n: int) -> List[List[float]]: ...
     def front_hypervolume(self, reference: Sequence[float], samples: int = 10000) -> Optional[float]: ...
+
+def design_presets() -> List[str]: ...
+
+class DesignProblem:
+    """A fixed-length re-entry design problem (host-sim design::ReentryProblem)."""
+
+    def __new__(
+        cls,
+        preset: Optional[str] = None,
+        *,
+        toml: Optional[str] = None,
+        path: Optional[Union[str, PathLike[str]]] = None,
+        base_dir: Optional[Union[str, PathLike[str]]] = None,
+    ) -> DesignProblem: ...
+    def config_toml(self) -> str:
+        """The [problem] settings as TOML text."""
+    @property
+    def base_dir(self) -> str: ...
+    def get_bounds(self) -> Tuple[List[float], List[float]]:
+        """Per free node: E-hat, alpha [deg] if free, sigma [deg]; then the entry altitude [km] if a variable."""
+    def get_nobj(self) -> int: ...
+    def get_nic(self) -> int: ...
+    def get_nec(self) -> int: ...
+    def evaluate(self, x: Sequence[float]) -> Tuple[List[float], List[float]]:
+        """(objectives, constraints) of one decision: one closed-loop flight; NaN if it failed."""
+    def evaluate_batch(
+        self, xs: Sequence[Sequence[float]]
+    ) -> List[Tuple[List[float], List[float]]]: ...
+    def decode(self, x: Sequence[float]) -> Tuple[List[List[float]], Optional[float]]:
+        """Node table [[E-hat, alpha_rad, sigma_rad], ...] and entry altitude [m] (or None)."""
+    def scenario_toml(self, x: Sequence[float]) -> str:
+        """The scenario TOML a decision flies (for reentry.fly)."""
+
+class VariableDesignProblem:
+    """The variable-length re-entry design problem (host-sim design::VariableReentry)."""
+
+    def __new__(
+        cls,
+        preset: Optional[str] = None,
+        *,
+        toml: Optional[str] = None,
+        path: Optional[Union[str, PathLike[str]]] = None,
+        base_dir: Optional[Union[str, PathLike[str]]] = None,
+        nodes: Optional[Tuple[int, int]] = None,
+    ) -> VariableDesignProblem: ...
+    def config_toml(self) -> str: ...
+    @property
+    def base_dir(self) -> str: ...
+    @property
+    def nodes(self) -> Tuple[int, int]:
+        """(min, max) table nodes, fixed end nodes included."""
+    @property
+    def node_genes(self) -> int:
+        """Genes per free node: 3 ([E-hat, alpha_deg, sigma_deg]) or 2 ([E-hat, sigma_deg])."""
+    def get_bounds(self) -> Tuple[List[float], List[float]]:
+        """Padded decision: max-2 nodes' genes, entry altitude [km] if a variable, free-node count."""
+    def get_nobj(self) -> int: ...
+    def get_nic(self) -> int: ...
+    def get_nec(self) -> int: ...
+    def get_nix(self) -> int:
+        """1: the free-node count (last variable) is an integer."""
+    def chromosome(self, x: Sequence[float]) -> Tuple[List[List[float]], Optional[float]]:
+        """(free nodes, entry altitude [km] or None) of a padded decision."""
+    def evaluate(self, x: Sequence[float]) -> Tuple[List[float], List[float]]: ...
+    def evaluate_batch(
+        self, xs: Sequence[Sequence[float]]
+    ) -> List[Tuple[List[float], List[float]]]: ...
+    def evaluate_chromosome(
+        self, nodes: Sequence[Sequence[float]], altitude_km: Optional[float] = None
+    ) -> Tuple[List[float], List[float]]: ...
+    def table(
+        self, nodes: Sequence[Sequence[float]], altitude_km: Optional[float] = None
+    ) -> Tuple[List[List[float]], Optional[float]]:
+        """Node table [[E-hat, alpha_rad, sigma_rad], ...] and entry altitude [m] of a chromosome."""
+
+def campaign_modes() -> List[str]: ...
+
+class DispersionCampaign:
+    """A dispersion campaign (host-sim campaign): set-up built, jobs (mode, index) flown on demand."""
+
+    def __new__(
+        cls,
+        *,
+        builtin: Optional[str] = None,
+        path: Optional[Union[str, PathLike[str]]] = None,
+        toml: Optional[str] = None,
+        label: Optional[str] = None,
+        base_dir: Optional[Union[str, PathLike[str]]] = None,
+        settings_toml: Optional[str] = None,
+        settings_label: Optional[str] = None,
+        cases: Optional[int] = None,
+        seed: Optional[int] = None,
+        interface_speed_m_s: Optional[float] = None,
+        modes: Optional[Sequence[str]] = None,
+        spec_json: Optional[str] = None,
+    ) -> DispersionCampaign: ...
+    def spec_json(self) -> str:
+        """What rebuilds the campaign (scenario source, settings, modes) as JSON."""
+    def settings_json(self) -> str: ...
+    @property
+    def cases(self) -> int: ...
+    @property
+    def modes(self) -> List[str]: ...
+    @property
+    def interface_speed_m_s(self) -> float: ...
+    def target(self) -> Tuple[float, float, float]:
+        """(latitude_rad, longitude_rad, downrange_m) of the target."""
+    def fly(self, jobs: Sequence[Tuple[str, int]]) -> List[str]:
+        """CaseResult JSON text of each (mode, index) job, flown serially, GIL released."""
+    def nominal(self) -> List[str]:
+        """CaseResult JSON text of each mode's undispersed flight."""
+    def run_local(self, threads: Optional[int] = None) -> List[str]:
+        """Every job by host-sim run_campaign (rayon), in mode then index order."""
+    def write(self, dir: Union[str, PathLike[str]], results: Sequence[str]) -> List[str]:
+        """host-sim dispersions' files (summary.json, cases-<mode>.csv, plots) from gathered results."""

@@ -6,12 +6,17 @@ distribution layer.
   evaluations), and the evaluations are told back by index. The run is bit-identical to the
   single-machine run with the same seed (the algorithms only depend on the evaluations, which
   are pure functions of the decisions).
-* Campaigns: a list of cases (scenarios) is cut into chunks of consecutive indices, one task
+* Dispersion campaigns (:func:`run_dispersions`): the campaign's ``(mode, case)`` jobs are
+  cut into chunks of consecutive jobs, one task per chunk; a task carries the campaign's spec
+  (a short JSON text), each worker process builds the campaign once (cached) and flies its
+  jobs; the results come back keyed by job position and are assembled into host-sim's table.
+* Scenario campaigns: a list of cases (scenarios) is cut into chunks of consecutive indices, one task
   per chunk; every result carries its case index and the table is assembled by index, so a
   task re-run after a worker died (Dask reschedules tasks lost with a worker, ``retries``
   covers exceptions) can neither lose nor duplicate a case.
 
-Command line: ``python -m reentry.distributed {optimize,campaign,bench} --help`` (or
+Command line: ``python -m reentry.distributed {optimize,dispersions,campaign,bench,
+bench-dispersions} --help`` (or
 ``reentry-dask``), with ``--scheduler tcp://HOST:8786`` or a ``LocalCluster`` of
 ``--workers N`` processes. See docs/PYTHON.md.
 """
@@ -30,6 +35,8 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
 
 import numpy as np
 
+from .design import DesignProblem
+from .dispersions import DispersionCampaign
 from .flight import _source, fly_summary, scenario_dict
 from .optim import Moead, Nsga2, TestProblem, evaluate_batch, evolve
 from . import _native
@@ -46,6 +53,26 @@ def _evaluate_chunk(problem, start: int, xs: np.ndarray):
 def _fly_chunk(start: int, cases: Sequence[Any]):
     """Task: summaries of consecutive cases, keyed by their first index."""
     return start, [_fly_case(c) for c in cases]
+
+
+_CAMPAIGNS: Dict[str, DispersionCampaign] = {}
+
+
+def _campaign_of(spec_json: str) -> DispersionCampaign:
+    """The campaign of a spec, built once per worker process (its set-up flies nominal
+    flights) and kept (the two most recent specs)."""
+    c = _CAMPAIGNS.get(spec_json)
+    if c is None:
+        c = DispersionCampaign(_spec=spec_json)
+        while len(_CAMPAIGNS) >= 2:
+            _CAMPAIGNS.pop(next(iter(_CAMPAIGNS)))
+        _CAMPAIGNS[spec_json] = c
+    return c
+
+
+def _fly_dispersion_chunk(spec_json: str, start: int, jobs: Sequence[tuple]):
+    """Task: case results (JSON texts) of consecutive jobs, keyed by their first position."""
+    return start, _campaign_of(spec_json).fly_jobs(jobs)
 
 
 def _fly_case(case) -> Dict[str, Any]:
@@ -174,11 +201,56 @@ def fly_campaign(cases: Sequence[Any], client=None, chunk_size: Optional[int] = 
     return summaries_table(_assemble(n, client.gather(futures), "case"))
 
 
+def dispersion_results(
+    campaign: DispersionCampaign, client, chunk_size: Optional[int] = None, retries: int = 3
+) -> List[str]:
+    """Fly every job of ``campaign`` on the Dask cluster of ``client``: chunks of consecutive
+    jobs (default about 2 per worker thread), one task each, gathered by job position (gaps
+    and duplicates refused; a task lost with a worker is re-run by the scheduler, ``retries``
+    re-runs tasks that raised). Returns the ``CaseResult`` JSON texts in ``campaign.jobs()``
+    order: the same texts, bit for bit, as ``campaign.run_local()``."""
+    jobs = campaign.jobs()
+    n = len(jobs)
+    c = chunk_size or default_chunk_size(n, _worker_count(client))
+    parts = _chunks(n, c)
+    spec = campaign.spec_json()
+    futures = client.map(
+        _fly_dispersion_chunk,
+        [spec] * len(parts),
+        [p.start for p in parts],
+        [jobs[p.start : p.stop] for p in parts],
+        pure=False,
+        retries=retries,
+    )
+    return _assemble(n, client.gather(futures), "job")
+
+
+def run_dispersions(
+    campaign: DispersionCampaign,
+    client=None,
+    chunk_size: Optional[int] = None,
+    retries: int = 3,
+    out: Optional[str] = None,
+    threads: Optional[int] = None,
+):
+    """Run a dispersion campaign and return its table (:meth:`DispersionCampaign.table`).
+    ``client=None``: in this process (host-sim ``run_campaign``, ``threads`` threads);
+    with a Dask client: on its workers (:func:`dispersion_results`), the same table bit for
+    bit. ``out``: also write the CLI's files there (summary.json, cases-<mode>.csv, plots)."""
+    if client is None:
+        results = campaign.run_local(threads)
+    else:
+        results = dispersion_results(campaign, client, chunk_size, retries)
+    if out:
+        campaign.write(out, results)
+    return campaign.table(results)
+
+
 def gamma_sweep_cases(
     n: int, gamma_from_deg: float, gamma_to_deg: float, builtin: str = "horus-2b-reference", path=None
 ) -> List[dict]:
     """``n`` copies of a scenario with the entry flight-path angle swept linearly [deg] (a
-    deterministic stand-in for dispersion cases until the campaign module provides them)."""
+    simple deterministic campaign of scenarios; dispersion campaigns: :func:`run_dispersions`)."""
     base = scenario_dict(builtin, path)
     cases = []
     for g in np.linspace(gamma_from_deg, gamma_to_deg, n):
@@ -242,8 +314,21 @@ def _algorithm(a) -> Any:
     return Nsga2(seed=a.seed, population=a.population)
 
 
+def _problem(a):
+    if a.problem in _native.design_presets():
+        return DesignProblem(a.problem)
+    return TestProblem(a.problem, a.objectives)
+
+
+def _reference_point(problem) -> List[float]:
+    if hasattr(problem, "reference_point"):
+        return list(problem.reference_point())
+    # The design problems: host-sim optimize's default (zero range, 2 GJ/m^2).
+    return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
+
+
 def _cmd_optimize(a) -> int:
-    problem = TestProblem(a.problem, a.objectives)
+    problem = _problem(a)
     algo = _algorithm(a)
     t0 = time.perf_counter()
     if a.local:
@@ -253,11 +338,11 @@ def _cmd_optimize(a) -> int:
             evolve_on_dask(algo, problem, a.generations, client, a.chunk_size)
     wall = time.perf_counter() - t0
     pop = algo.population
-    ref = problem.reference_point()
+    ref = _reference_point(problem)
     feasible = pop.violation == 0.0
     hv = _native.hypervolume(pop.f[feasible].tolist(), ref) if feasible.any() else 0.0
     summary = {
-        "problem": problem.name,
+        "problem": a.problem,
         "algorithm": algo.name,
         "seed": a.seed,
         "generations": algo.generation,
@@ -274,6 +359,37 @@ def _cmd_optimize(a) -> int:
             rows.append(",".join([" ".join(map(repr, map(float, r))) for r in (x, f, g)] + [repr(float(v))]))
         _write_atomic(os.path.join(a.out, "population.csv"), "\n".join(rows) + "\n")
         _write_atomic(os.path.join(a.out, "summary.json"), json.dumps(summary, indent=2) + "\n")
+    return 0
+
+
+def _campaign(a) -> DispersionCampaign:
+    return DispersionCampaign(
+        a.scenario,
+        builtin=None if a.scenario else a.builtin,
+        settings=a.settings,
+        cases=a.cases,
+        seed=a.seed,
+        interface_speed_m_s=a.interface_speed,
+        modes=a.modes,
+    )
+
+
+def _cmd_dispersions(a) -> int:
+    t0 = time.perf_counter()
+    campaign = _campaign(a)
+    if a.local:
+        df = run_dispersions(campaign, out=a.out, threads=a.threads)
+    else:
+        with client_for(a.scheduler, a.workers) as client:
+            df = run_dispersions(campaign, client, a.chunk_size, out=a.out)
+    wall = time.perf_counter() - t0
+    print(
+        f"{len(df)} flights ({campaign.cases} cases x {len(campaign.modes)} modes) in "
+        f"{wall:.2f} s ({len(df) / wall:.1f} flights/s)",
+        file=sys.stderr,
+    )
+    if a.table:
+        _write_table(df.set_index(["mode", "index"]), a.table)
     return 0
 
 
@@ -371,6 +487,101 @@ def _cmd_bench(a) -> int:
     return 0
 
 
+def _fly_dispersion_chunk_timed(spec_json: str, start: int, jobs: Sequence[tuple]):
+    """Bench task: :func:`_fly_dispersion_chunk` plus the wall and CPU seconds spent inside
+    the task (CPU: this thread's, which flies the jobs with the GIL released)."""
+    t0, c0 = time.perf_counter(), time.thread_time()
+    out = _fly_dispersion_chunk(spec_json, start, jobs)
+    return out[0], out[1], time.perf_counter() - t0, time.thread_time() - c0
+
+
+def _serial_cpu(c: DispersionCampaign):
+    """Bench: the jobs flown in this thread; (results, CPU seconds)."""
+    c0 = time.thread_time()
+    r = c.fly_jobs(c.jobs())
+    return r, time.thread_time() - c0
+
+
+def _cmd_bench_dispersions(a) -> int:
+    """Dispersion flights per second: one thread in process, host-sim's rayon campaign with
+    all threads, and LocalClusters of --workers-list processes (one thread each), for several
+    campaign sizes (best of --rounds), checking every table equals the serial one; with the
+    task-overhead fraction 1 - (seconds inside tasks) / (wall x workers)."""
+    sizes = sorted(set(a.sizes))
+    camps = {n: _campaign_sized(a, n) for n in sizes}
+    print(f"load average before: {os.getloadavg()}", file=sys.stderr)
+    serial = {}
+    print("| flights | where | chunk | wall [s] | flights/s | task-overhead fraction | CPU ms per flight |")
+    print("|---|---|---|---|---|---|---|")
+    for n, c in camps.items():
+        wall, (res, cpu) = _best(lambda: _serial_cpu(c), a.rounds)
+        serial[n] = (wall, res)
+        flights = len(c.jobs())
+        print(
+            f"| {flights} | in process, 1 thread | - | {wall:.3f} | {flights / wall:.1f} | - | "
+            f"{cpu / flights * 1e3:.1f} |"
+        )
+        wall, res = _best(lambda: c.run_local(), a.rounds)
+        if res != serial[n][1]:
+            raise RuntimeError("run_local differs from the serial run")
+        print(f"| {flights} | in process, host-sim rayon ({os.cpu_count()} threads) | - | {wall:.3f} | {flights / wall:.1f} | - | - |")
+    for w in a.workers_list:
+        t0 = time.perf_counter()
+        with client_for(None, w) as client:
+            client.wait_for_workers(w)
+            startup = time.perf_counter() - t0
+            t1 = time.perf_counter()
+            for c in camps.values():  # each worker builds each campaign's set-up once
+                client.run(_campaign_of, c.spec_json())
+            setup = time.perf_counter() - t1
+            noop, _ = _best(lambda: client.gather(client.map(_noop, range(500), pure=False)), a.rounds)
+            for n, camp in camps.items():
+                jobs = camp.jobs()
+                flights = len(jobs)
+                c = a.chunk_size or default_chunk_size(flights, w)
+                parts = _chunks(flights, c)
+                spec = camp.spec_json()
+
+                def run():
+                    futs = client.map(
+                        _fly_dispersion_chunk_timed,
+                        [spec] * len(parts),
+                        [p.start for p in parts],
+                        [jobs[p.start : p.stop] for p in parts],
+                        pure=False,
+                    )
+                    return client.gather(futs)
+
+                wall, res = _best(run, a.rounds)
+                got = _assemble(flights, [(r[0], r[1]) for r in res], "job")
+                if got != serial[n][1]:
+                    raise RuntimeError("Dask campaign differs from the local one")
+                busy = sum(r[2] for r in res)
+                cpu = sum(r[3] for r in res)
+                print(
+                    f"| {flights} | Dask LocalCluster, {w} process(es) | {c} | {wall:.3f} | "
+                    f"{flights / wall:.1f} | {1 - busy / (wall * w):.2f} | {cpu / flights * 1e3:.1f} |"
+                )
+            print(
+                f"(LocalCluster of {w} process(es): {startup:.2f} s to start, {setup:.2f} s for "
+                f"the workers' campaign set-ups; 500 empty tasks {noop:.3f} s, "
+                f"{noop / 500 * 1e3:.2f} ms per task)"
+            )
+    print(f"load average after: {os.getloadavg()}", file=sys.stderr)
+    return 0
+
+
+def _campaign_sized(a, n: int) -> DispersionCampaign:
+    return DispersionCampaign(
+        a.scenario,
+        builtin=None if a.scenario else a.builtin,
+        cases=n,
+        seed=a.seed,
+        interface_speed_m_s=a.interface_speed,
+        modes=a.modes,
+    )
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Command line entry point (``python -m reentry.distributed`` / ``reentry-dask``)."""
     p = argparse.ArgumentParser(prog="reentry-dask", description=__doc__.split("\n\n")[0])
@@ -383,8 +594,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         g.add_argument("--local", action="store_true", help="no Dask: evaluate in this process")
         sp.add_argument("--chunk-size", type=int, default=None, help="items per Dask task (default: about 2 tasks per worker)")
 
-    o = sub.add_parser("optimize", help="a test problem with MOEA/D or NSGA-II, batches evaluated on Dask")
-    o.add_argument("--problem", default="zdt1")
+    o = sub.add_parser(
+        "optimize", help="a test or design problem with MOEA/D or NSGA-II, batches evaluated on Dask"
+    )
+    o.add_argument(
+        "--problem", default="zdt1",
+        help="a test problem (zdt1, dtlz2, constr, ...) or a design preset (horus-2b, srm, srm-altitude)",
+    )
     o.add_argument("--objectives", type=int, default=3)
     o.add_argument("--algorithm", choices=["moead", "nsga2"], default="moead")
     o.add_argument("--population", type=int, default=100)
@@ -394,6 +610,38 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     o.add_argument("--out", help="write population.csv and summary.json here")
     where(o)
     o.set_defaults(run=_cmd_optimize)
+
+    def dispersion_args(sp, cases: bool):
+        sp.add_argument("--builtin", default="horus-2b-reference", help="built-in scenario (horus-2b-reference, srm-glide)")
+        sp.add_argument("--scenario", help="scenario TOML file (instead of --builtin)")
+        if cases:
+            sp.add_argument("--settings", help="TOML file with a [dispersions] section")
+            sp.add_argument("-n", "--cases", type=int, default=None, help="cases per mode (overrides the settings)")
+        sp.add_argument("--seed", type=int, default=None)
+        sp.add_argument("--interface-speed", type=float, default=None, help="terminal interface speed [m/s]")
+        sp.add_argument(
+            "--modes", type=lambda s: s.split(","), default=None,
+            help="comma separated: stored, stored-reversals, replan-reversals (default all)",
+        )
+
+    d = sub.add_parser(
+        "dispersions",
+        help="a dispersion campaign (host-sim dispersions) on Dask: the CLI's files and/or a table",
+    )
+    dispersion_args(d, True)
+    d.add_argument("--out", help="write host-sim dispersions' files here (summary.json, cases-<mode>.csv, plots)")
+    d.add_argument("--table", help="write the case table (.csv with %%.17g, or .parquet with pyarrow)")
+    d.add_argument("--threads", type=int, default=None, help="with --local: host-sim threads")
+    where(d)
+    d.set_defaults(run=_cmd_dispersions)
+
+    bd = sub.add_parser("bench-dispersions", help="dispersion flights/s in process and on LocalClusters")
+    dispersion_args(bd, False)
+    bd.add_argument("--workers-list", type=lambda s: [int(x) for x in s.split(",")], default=[1, 2])
+    bd.add_argument("--sizes", type=lambda s: [int(x) for x in s.split(",")], default=[4, 16, 64], help="cases per mode")
+    bd.add_argument("--rounds", type=int, default=2, help="keep the best of this many runs")
+    bd.add_argument("--chunk-size", type=int, default=None)
+    bd.set_defaults(run=_cmd_bench_dispersions)
 
     for name, helptext, run in (
         ("campaign", "fly a flight-path-angle sweep of a scenario on Dask, write the summaries table", _cmd_campaign),

@@ -32,29 +32,39 @@ class Population(NamedTuple):
     violation: np.ndarray
 
 
-class TestProblem(_native.TestProblem):
+class PygmoMethods:
+    """pygmo's user-defined-problem methods over ``evaluate``/``evaluate_batch`` (mixed into
+    our native problems): ``fitness`` (objectives then inequality constraints), ``batch_fitness``
+    (decisions concatenated in, fitness vectors concatenated out), ``has_batch_fitness``."""
+
+    __slots__ = ()
+
+    def fitness(self, x) -> np.ndarray:
+        """pygmo fitness: objectives then inequality constraints (NaN for a failed flight)."""
+        f, g = self.evaluate(np.asarray(x, dtype=float).tolist())
+        return np.asarray(list(f) + list(g), dtype=float)
+
+    def batch_fitness(self, dvs) -> np.ndarray:
+        """pygmo batch fitness: decisions concatenated in, fitness vectors concatenated out
+        (one Rust call, GIL released)."""
+        dim = len(self.get_bounds()[0])
+        xs = np.asarray(dvs, dtype=float).reshape(-1, dim).tolist()
+        return np.asarray(
+            [v for f, g in self.evaluate_batch(xs) for v in list(f) + list(g)], dtype=float
+        )
+
+    def has_batch_fitness(self) -> bool:
+        """pygmo: ``batch_fitness`` is implemented."""
+        return True
+
+
+class TestProblem(PygmoMethods, _native.TestProblem):
     """A host-sim test problem (``zdt1`` ... ``zdt6``, ``dtlz1`` ... ``dtlz7``, ``constr``)
     evaluated in Rust. Has pygmo's problem methods (``fitness``, ``batch_fitness``,
     ``get_bounds``, ``get_nobj``, ``get_nic``, ``get_nec``), so ``pygmo.problem(TestProblem(
     "zdt1"))`` works, and ``evaluate``/``evaluate_batch`` returning ``(f, g)``."""
 
     __test__ = False  # not a pytest class
-
-    def fitness(self, x) -> np.ndarray:
-        """pygmo fitness: objectives then inequality constraints."""
-        f, g = self.evaluate(np.asarray(x, dtype=float).tolist())
-        return np.asarray(f + g, dtype=float)
-
-    def batch_fitness(self, dvs) -> np.ndarray:
-        """pygmo batch fitness: decisions concatenated in, fitness vectors concatenated out."""
-        dim = len(self.get_bounds()[0])
-        xs = np.asarray(dvs, dtype=float).reshape(-1, dim).tolist()
-        return np.asarray(
-            [v for f, g in self.evaluate_batch(xs) for v in f + g], dtype=float
-        )
-
-    def has_batch_fitness(self) -> bool:
-        return True
 
     def get_name(self) -> str:
         return f"reentry {self.name}"

@@ -31,6 +31,18 @@ create_exception!(
 );
 create_exception!(
     reentry,
+    DesignError,
+    ReentryError,
+    "A re-entry design problem that cannot be built: bad setting, unknown preset, unreadable base (host-sim DesignError)."
+);
+create_exception!(
+    reentry,
+    CampaignError,
+    ReentryError,
+    "A dispersion campaign that cannot be set up or flown: bad setting, scenario, failed flight (host-sim CampaignError)."
+);
+create_exception!(
+    reentry,
     ProblemError,
     ReentryError,
     "An unknown or ill-sized test problem (host-sim TestProblemError)."
@@ -43,6 +55,8 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("VehicleError", py.get_type::<VehicleError>())?;
     m.add("OptimError", py.get_type::<OptimError>())?;
     m.add("ProblemError", py.get_type::<ProblemError>())?;
+    m.add("DesignError", py.get_type::<DesignError>())?;
+    m.add("CampaignError", py.get_type::<CampaignError>())?;
     Ok(())
 }
 
@@ -59,4 +73,14 @@ pub(crate) fn vehicle(e: &host_sim::vehicle::VehicleFileError) -> PyErr {
 /// A host-sim optimiser error (or anything convertible to one) as a Python `OptimError`.
 pub(crate) fn optim(e: impl Into<host_sim::optim::OptimError>) -> PyErr {
     OptimError::new_err(e.into().to_string())
+}
+
+/// A host-sim design-problem error as a Python `DesignError`.
+pub(crate) fn design(e: &host_sim::design::DesignError) -> PyErr {
+    DesignError::new_err(e.to_string())
+}
+
+/// A host-sim campaign error as a Python `CampaignError`.
+pub(crate) fn campaign(e: &host_sim::campaign::CampaignError) -> PyErr {
+    CampaignError::new_err(e.to_string())
 }

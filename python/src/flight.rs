@@ -88,7 +88,7 @@ struct FlownColumns {
 }
 
 /// Where a scenario comes from.
-enum Source {
+pub(crate) enum Source {
     Builtin(String),
     File(PathBuf),
     Toml {
@@ -98,7 +98,9 @@ enum Source {
     },
 }
 
-fn resolve(src: &Source) -> Result<(Scenario, String), host_sim::scenario::ScenarioError> {
+pub(crate) fn resolve(
+    src: &Source,
+) -> Result<(Scenario, String), host_sim::scenario::ScenarioError> {
     match src {
         Source::Builtin(name) => Ok((
             Scenario::try_builtin(name)?,
@@ -156,7 +158,7 @@ fn to_python<'py>(py: Python<'py>, f: FlownColumns) -> PyResult<Bound<'py, PyDic
     Ok(out)
 }
 
-fn source(
+pub(crate) fn source(
     builtin: Option<String>,
     path: Option<PathBuf>,
     toml: Option<String>,

@@ -120,6 +120,9 @@ pub fn campaign_plots(
         let name = name.to_string();
         move |source| ReportError::Plot { name, source }
     };
+    // The embedded font: without it the first caption fails with FontUnavailable when no
+    // other plot of this process registered it (`host-sim dispersions` draws these first).
+    crate::report::ensure_font().map_err(plot_err("footprint.svg"))?;
     let mut out = Vec::new();
     let mut svg = String::new();
     draw_footprint(&mut svg, cases).map_err(plot_err("footprint.svg"))?;

@@ -5,6 +5,8 @@
 
 mod csv;
 mod plot;
+
+pub(crate) use plot::ensure_font;
 pub mod run_dir;
 mod summary;
 

@@ -22,8 +22,9 @@ type PlotError = Box<dyn std::error::Error + Send + Sync>;
 /// Plot size \[px\] (SVG user units and PNG pixels).
 const SIZE: (u32, u32) = (720, 460);
 
-/// Register the embedded font as `plotters`' "sans-serif" once per process.
-fn ensure_font() -> Result<(), PlotError> {
+/// Register the embedded font as `plotters`' "sans-serif" once per process (every plot
+/// drawing text calls it first: without it plotters has no font at all).
+pub(crate) fn ensure_font() -> Result<(), PlotError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
         register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular()).is_ok()

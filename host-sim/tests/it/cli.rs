@@ -474,3 +474,42 @@ fn compare_command_line_runs_a_small_grid() {
     assert!(e.contains("points") && e.contains('1'), "{e}");
     assert!(!dir.exists(), "nothing written on bad input");
 }
+
+/// `host-sim dispersions --out` in a fresh process writes its SVG plots: the campaign plots
+/// register the embedded font themselves (without it the first caption failed with
+/// "Font loading error: FontUnavailable" and the command exited 1).
+#[test]
+fn dispersions_writes_its_plots_in_a_fresh_process() {
+    let d = temp_dir("dispersions-plots");
+    let o = bin()
+        .args([
+            "dispersions",
+            "--builtin",
+            "srm-glide",
+            "-n",
+            "2",
+            "--interface-speed",
+            "2500",
+            "--modes",
+            "stored",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "summary.json",
+        "cases-stored.csv",
+        "miss-histogram-stored.svg",
+    ] {
+        assert!(d.join(f).exists(), "{f} missing");
+    }
+    let svg = std::fs::read_to_string(d.join("footprint.svg")).unwrap();
+    assert!(
+        svg.contains("<text") && svg.contains("downrange error"),
+        "{svg}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
