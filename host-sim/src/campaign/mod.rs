@@ -39,11 +39,19 @@ pub enum Mode {
     StoredReversals,
     /// Re-planned magnitude (predictor-corrector on the target's range to go) with reversals.
     ReplanReversals,
+    /// As [`Mode::ReplanReversals`], the predictor flying the model scaled by the onboard
+    /// estimate of L/D and drag scale from sensed accelerations (`guidance_core::estimate`).
+    ReplanEstimation,
 }
 
 impl Mode {
     /// Every mode, in report order.
-    pub const ALL: [Mode; 3] = [Mode::Stored, Mode::StoredReversals, Mode::ReplanReversals];
+    pub const ALL: [Mode; 4] = [
+        Mode::Stored,
+        Mode::StoredReversals,
+        Mode::ReplanReversals,
+        Mode::ReplanEstimation,
+    ];
 
     /// Short name (file and directory names).
     #[must_use]
@@ -52,6 +60,7 @@ impl Mode {
             Mode::Stored => "stored",
             Mode::StoredReversals => "stored-reversals",
             Mode::ReplanReversals => "replan-reversals",
+            Mode::ReplanEstimation => "replan-estimation",
         }
     }
 }

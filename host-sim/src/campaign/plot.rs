@@ -13,6 +13,7 @@ fn colour(m: Mode) -> RGBColor {
         Mode::Stored => RGBColor(200, 60, 40),
         Mode::StoredReversals => RGBColor(40, 110, 200),
         Mode::ReplanReversals => RGBColor(30, 150, 60),
+        Mode::ReplanEstimation => RGBColor(150, 40, 160),
     }
 }
 
@@ -120,6 +121,8 @@ pub fn campaign_plots(
         let name = name.to_string();
         move |source| ReportError::Plot { name, source }
     };
+    // Text needs the embedded font registered (the SVG backend lays out labels).
+    crate::report::ensure_font().map_err(plot_err("footprint.svg"))?;
     let mut out = Vec::new();
     let mut svg = String::new();
     draw_footprint(&mut svg, cases).map_err(plot_err("footprint.svg"))?;

@@ -3,6 +3,7 @@
 //! the lateral logic and of the re-planner. Built once from a scenario by flying it nominally.
 
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::estimate::EstimatorConfig;
 use guidance_core::geo::central_angle;
 use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
 use guidance_core::interp::Interpolation;
@@ -57,6 +58,23 @@ pub struct CampaignSetup {
     pub lateral: LateralConfig<f64>,
     /// Re-planner settings.
     pub replanning: ReplanningConfig<f64>,
+    /// Onboard estimation settings ([`super::Mode::ReplanEstimation`]).
+    pub estimator: EstimatorConfig<f64>,
+}
+
+/// Onboard estimation of the campaigns: fading-memory gains 0.1 (L/D scale: a time constant
+/// of ~20 s at the 2 s clock) and 0.2 (drag scale, ~10 s: it follows the altitude-varying
+/// density), bounds 0.5..2 (L/D) and 0.3..3 (drag), updates from a sensed drag of 0.5 m/s^2
+/// (~0.05 g) on.
+#[must_use]
+pub fn default_estimator() -> EstimatorConfig<f64> {
+    EstimatorConfig {
+        lift_to_drag_gain: 0.1,
+        drag_gain: 0.2,
+        lift_to_drag_bounds: (0.5, 2.0),
+        drag_bounds: (0.3, 3.0),
+        min_drag_m_s2: 0.5,
+    }
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -276,6 +294,7 @@ impl CampaignSetup {
             guidance_config,
             lateral,
             replanning,
+            estimator: default_estimator(),
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).

@@ -33,7 +33,8 @@ pub struct DispersionsArgs {
     /// Threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Modes: stored, stored-reversals, replan-reversals (comma separated; default all).
+    /// Modes: stored, stored-reversals, replan-reversals, replan-estimation (comma separated;
+    /// default all).
     #[arg(long, value_delimiter = ',')]
     pub modes: Vec<String>,
     /// Output directory (default: `runs/dispersions-<scenario>/`); case results there are
@@ -88,7 +89,7 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             .ok_or_else(|| CliError::Argument {
                 field: "modes",
                 value: m.clone(),
-                reason: "unknown mode (stored, stored-reversals, replan-reversals)",
+                reason: "unknown mode (stored, stored-reversals, replan-reversals, replan-estimation)",
             })?;
         modes.push(mode);
     }

@@ -23,7 +23,7 @@ type PlotError = Box<dyn std::error::Error + Send + Sync>;
 const SIZE: (u32, u32) = (720, 460);
 
 /// Register the embedded font as `plotters`' "sans-serif" once per process.
-fn ensure_font() -> Result<(), PlotError> {
+pub(crate) fn ensure_font() -> Result<(), PlotError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
         register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular()).is_ok()
