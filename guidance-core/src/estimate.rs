@@ -208,14 +208,25 @@ impl<S: Real> AeroEstimator<S> {
     /// [`AeroEstimator::scales`].
     ///
     /// # Errors
-    /// [`EstimateError`] for a non-finite or negative acceleration; the estimate is unchanged.
+    /// [`EstimateError::NonFinite`] if any of the four accelerations is not finite, else
+    /// [`EstimateError::Negative`] if any is negative; the estimate is unchanged.
     pub fn update(
         &mut self,
         sensed: &SensedAero<S>,
         expected: &SensedAero<S>,
     ) -> Result<EstimateStatus, EstimateError> {
-        sensed.validate()?;
-        expected.validate()?;
+        let all = [
+            sensed.lift_m_s2,
+            sensed.drag_m_s2,
+            expected.lift_m_s2,
+            expected.drag_m_s2,
+        ];
+        if all.iter().any(|v| !v.is_finite()) {
+            return Err(EstimateError::NonFinite);
+        }
+        if all.iter().any(|v| *v < S::ZERO) {
+            return Err(EstimateError::Negative);
+        }
         let c = &self.config;
         if !(sensed.drag_m_s2 >= c.min_drag_m_s2 && sensed.drag_m_s2 > S::ZERO) {
             return Ok(EstimateStatus::BelowThreshold);
