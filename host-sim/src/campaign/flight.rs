@@ -11,6 +11,7 @@ use guidance_core::replan::{HostReplanningGuidance, ReplanCase, ReplanningGuidan
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
+use super::guidance_settings::CampaignGuidance;
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;
 use super::{CampaignError, Mode};
@@ -60,6 +61,10 @@ pub struct CaseResult {
     /// ([`Mode::ReplanEstimation`] only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub estimated_scales: Option<[f64; 2]>,
+    /// The campaign's guidance settings when they are not the defaults (a stored case is
+    /// reused only by a campaign with the same settings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub guidance: Option<CampaignGuidance>,
     /// Flight time \[s\].
     pub flight_time_s: f64,
     /// Final altitude \[m\].
@@ -282,6 +287,7 @@ pub fn fly_case(
         replans,
         fall_backs,
         estimated_scales,
+        guidance: setup.guidance_key(),
         flight_time_s: s.flight_time_s,
         final_altitude_m: end.radius_m - radius,
         final_speed_m_s: end.speed_m_s,

@@ -2,7 +2,7 @@
 //! a pure function of (setup, settings, index, mode) so the results are bit-identical whatever
 //! the thread count; resumable: each case's result is written atomically to
 //! `<out>/cases/<mode>/<index>.json` as soon as it is done and reused by a later run with the
-//! same settings (a stored case whose draw differs is recomputed).
+//! same settings (a stored case whose draw or guidance settings differ is recomputed).
 
 use std::path::{Path, PathBuf};
 
@@ -104,7 +104,10 @@ pub fn run_campaign(
                             path: p.clone(),
                             source,
                         })?;
-                    if stored.draw == Some(draw) && stored.mode == mode {
+                    if stored.draw == Some(draw)
+                        && stored.mode == mode
+                        && stored.guidance == setup.guidance_key()
+                    {
                         bar.inc(1);
                         return Ok((stored, true));
                     }

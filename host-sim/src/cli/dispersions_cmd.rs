@@ -108,7 +108,8 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("dispersions-{}", sc.name)));
     let started = std::time::Instant::now();
-    let setup = CampaignSetup::new(&sc, &file, settings.interface_speed_m_s)?;
+    let setup =
+        CampaignSetup::with_guidance(&sc, &file, settings.interface_speed_m_s, &settings.guidance)?;
     let opts = RunOptions {
         modes,
         out_dir: Some(dir.clone()),
