@@ -11,7 +11,8 @@
 //! states, in f64, f32 and fixed point), `link` (the frame decoder on random bytes and on valid
 //! frames with 1 to 3 flipped bits, all below the CRC's guaranteed distance of 4), `navconv` (the
 //! navigation interface on hostile Cartesian states, f64 and f32), `closed-forms` (the Vinh
-//! predictor chain and the re-planning solver, f64 and f32).
+//! predictor chain and the re-planning solver, f64 and f32), `lateral` (bank reversals),
+//! `estimate` (onboard aerodynamic estimation, f64 and f32).
 
 mod hostile;
 mod targets;
@@ -21,7 +22,7 @@ use std::time::{Duration, Instant};
 
 use targets::Target;
 
-const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link|navconv|closed-forms|lateral] [--case I]";
+const USAGE: &str = "usage: guidance-fuzz [--seed S] [--cases N | --seconds N (per target)] [--target all|nodes|guidance|link|navconv|closed-forms|lateral|estimate] [--case I]";
 
 struct Options {
     seed: u64,
@@ -63,7 +64,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
                 o.target = match v.as_str() {
                     "all" => None,
                     name => Some(Target::from_name(name).ok_or_else(|| {
-                        format!("--target: unknown target {name:?} (all, nodes, guidance, link, navconv, closed-forms, lateral)")
+                        format!("--target: unknown target {name:?} (all, nodes, guidance, link, navconv, closed-forms, lateral, estimate)")
                     })?),
                 };
             }

@@ -31,6 +31,7 @@ pub mod clock;
 pub mod command;
 pub mod energy;
 pub mod error;
+pub mod estimate;
 pub mod geo;
 pub mod guidance;
 pub mod interp;

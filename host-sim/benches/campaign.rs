@@ -22,7 +22,11 @@ fn bench(c: &mut Criterion) {
     };
     let mut g = c.benchmark_group("campaign_16_flights");
     g.sample_size(10).measurement_time(Duration::from_secs(5));
-    for mode in [Mode::StoredReversals, Mode::ReplanReversals] {
+    for mode in [
+        Mode::StoredReversals,
+        Mode::ReplanReversals,
+        Mode::ReplanEstimation,
+    ] {
         for threads in [1, 2] {
             let opts = RunOptions {
                 modes: vec![mode],

@@ -5,6 +5,7 @@
 //! [`GuidanceSource`].
 
 use guidance_core::NavState;
+use guidance_core::estimate::SensedAero;
 use guidance_core::guidance::Command;
 use guidance_core::lateral::{BankReversalLogic, LateralStatus};
 
@@ -47,6 +48,9 @@ impl<G: FlightGuidance> AttitudeSource for LateralSource<G> {
             self.last = Some(status);
         }
         self.inner.tick(nav)
+    }
+    fn sense(&mut self, nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), TickError> {
+        self.inner.sense(nav, sensed)
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
         self.inner.attitude_at(time_s)

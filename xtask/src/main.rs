@@ -40,7 +40,7 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|s
   defmt     smoke firmware with defmt over semihosting on both machines, decoded by defmt-print\n\
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
-  fuzz      fuzz the flight code (node tables, guidance, frame decoder, closed forms, lateral):\n\
+  fuzz      fuzz the flight code (node tables, guidance, frame decoder, closed forms, lateral, estimate):\n\
             [--seconds N per target | --cases N] [--seed S] [--target T]; default: the CI budget";
 
 fn main() -> ExitCode {

@@ -1,6 +1,7 @@
 //! The fuzz targets and the per-case generator.
 
 mod closed_forms;
+mod estimate;
 mod guidance;
 mod lateral;
 mod link;
@@ -25,17 +26,20 @@ pub enum Target {
     ClosedForms,
     /// Lateral guidance (bank reversals) with hostile configurations and states.
     Lateral,
+    /// Onboard aerodynamic estimation with hostile settings and accelerations.
+    Estimate,
 }
 
 impl Target {
     /// Every target, in the order they run.
-    pub const ALL: [Target; 6] = [
+    pub const ALL: [Target; 7] = [
         Target::Nodes,
         Target::Guidance,
         Target::Link,
         Target::Navconv,
         Target::ClosedForms,
         Target::Lateral,
+        Target::Estimate,
     ];
 
     /// The target's command-line name.
@@ -47,6 +51,7 @@ impl Target {
             Target::Navconv => "navconv",
             Target::ClosedForms => "closed-forms",
             Target::Lateral => "lateral",
+            Target::Estimate => "estimate",
         }
     }
 
@@ -70,6 +75,7 @@ impl Target {
             Target::Navconv => navconv::run(&mut rng),
             Target::ClosedForms => closed_forms::run(&mut rng),
             Target::Lateral => lateral::run(&mut rng),
+            Target::Estimate => estimate::run(&mut rng),
         }
     }
 }

@@ -78,6 +78,7 @@
 
 use crate::energy::EnergyNormalizer;
 use crate::error::GuidanceError;
+use crate::estimate::{AeroEstimator, AeroScales, EstimateError, EstimateStatus, SensedAero};
 use crate::geo::{central_angle, initial_bearing};
 use crate::guidance::{BankSign, Command, Guidance, GuidanceConfig, GuidanceOutput};
 use crate::interp::Interpolation;
@@ -311,6 +312,8 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     last_position: Option<(P, P)>,
     /// The solve in progress.
     pending: Option<Pending<P>>,
+    /// Onboard aerodynamic estimation (`None`: the predictor flies the model as is).
+    estimator: Option<AeroEstimator<P>>,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -425,7 +428,57 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             flown_rad: P::ZERO,
             last_position: None,
             pending: None,
+            estimator: None,
         })
+    }
+
+    /// Enable onboard aerodynamic estimation ([`crate::estimate`]): from now on every solve
+    /// that *starts* predicts with [`PredictorModel`] scaled by the estimate at its start
+    /// ([`AeroScales::apply`]); the estimate is fed by [`ReplanningGuidance::sense`]. Until
+    /// the first accepted sample the scales are 1 and the predictions are those without
+    /// estimation, bit for bit.
+    #[must_use]
+    pub fn with_estimator(mut self, estimator: AeroEstimator<P>) -> Self {
+        self.estimator = Some(estimator);
+        self
+    }
+
+    /// Feed the sensed aerodynamic accelerations at `nav` (the IMU's lift and drag
+    /// accelerations at the navigation sample's time) to the estimator, against the model's
+    /// expectation at `nav`'s radius and speed with the solver's `lambda`
+    /// ([`crate::estimate::expected_aero`]). Call it before [`ReplanningGuidance::update`]
+    /// with the same sample. Without an estimator it does nothing
+    /// (`Ok(None)`).
+    ///
+    /// # Errors
+    /// [`EstimateError`] for a non-finite or negative sensed acceleration (the estimate is
+    /// unchanged).
+    pub fn sense(
+        &mut self,
+        nav: &NavState<S>,
+        sensed: &SensedAero<P>,
+    ) -> Result<Option<EstimateStatus>, EstimateError> {
+        let Some(est) = self.estimator.as_mut() else {
+            return Ok(None);
+        };
+        let m = &self.config.model;
+        sensed.validate()?;
+        let Some(expected) = crate::estimate::expected_aero(
+            &m.atmosphere,
+            &m.vehicle,
+            self.config.solver.lambda,
+            to_p(nav.radius_m),
+            to_p(nav.speed_m_s),
+        ) else {
+            return Ok(Some(EstimateStatus::NoModel));
+        };
+        est.update(sensed, &expected).map(Some)
+    }
+
+    /// The current aerodynamic estimate (`None` without estimation).
+    #[must_use]
+    pub fn aero_scales(&self) -> Option<AeroScales<P>> {
+        self.estimator.as_ref().map(AeroEstimator::scales)
     }
 
     /// Process one navigation sample (see the module docs): re-plan if this sample is a
@@ -515,10 +568,16 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             }
         };
         let planet = m.effective_planet(nav, cfg.solver.predictor.final_speed_m_s);
+        // The model scaled by the onboard estimate (unchanged at scales 1 or without one).
+        let (atmosphere, vehicle) = self
+            .estimator
+            .as_ref()
+            .and_then(|e| e.scales().apply(&m.atmosphere, &m.vehicle))
+            .unwrap_or((m.atmosphere, m.vehicle));
         let solver = ReplanSolver::new(
             &planet,
-            &m.atmosphere,
-            &m.vehicle,
+            &atmosphere,
+            &vehicle,
             nav,
             rtg.unwrap_or(P::ZERO),
             &cfg.limits,

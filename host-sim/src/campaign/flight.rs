@@ -2,6 +2,7 @@
 //! gives at the terminal interface.
 
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::estimate::AeroEstimator;
 use guidance_core::geo::along_cross_track;
 use guidance_core::guidance::HostGuidance;
 use guidance_core::interp::Interpolation;
@@ -10,6 +11,7 @@ use guidance_core::replan::{HostReplanningGuidance, ReplanCase, ReplanningGuidan
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
+use super::guidance_settings::CampaignGuidance;
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;
 use super::{CampaignError, Mode};
@@ -55,6 +57,14 @@ pub struct CaseResult {
     pub replans: u32,
     /// Re-plans that fell back to the table in use.
     pub fall_backs: u32,
+    /// Onboard estimate at the end (L/D scale, drag scale) \[-\]
+    /// ([`Mode::ReplanEstimation`] only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub estimated_scales: Option<[f64; 2]>,
+    /// The campaign's guidance settings when they are not the defaults (a stored case is
+    /// reused only by a campaign with the same settings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub guidance: Option<CampaignGuidance>,
     /// Flight time \[s\].
     pub flight_time_s: f64,
     /// Final altitude \[m\].
@@ -195,20 +205,22 @@ pub fn fly_case(
         source,
     };
     let logic = || BankReversalLogic::new(setup.lateral).map_err(gerr);
-    let run = |src: &mut dyn FnMut() -> Result<(SimResult, u32, u32, u32), CampaignError>| src();
-    let (result, reversals, replans, fall_backs) = match mode {
+    let run = |src: &mut dyn FnMut() -> Result<Flown, CampaignError>| src();
+    let (result, reversals, replans, fall_backs, estimated_scales) = match mode {
         Mode::Stored => run(&mut || {
             let s = LateralSource::new(setup.stored_guidance()?, None);
-            finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |_| (0, 0, 0))
+            finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |_| {
+                (0, 0, 0, None)
+            })
         })?,
         Mode::StoredReversals => run(&mut || {
             let s = LateralSource::new(setup.stored_guidance()?, Some(logic()?));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
-                (u32::from(s.reversals()), 0, 0)
+                (u32::from(s.reversals()), 0, 0, None)
             })
         })?,
-        Mode::ReplanReversals => run(&mut || {
-            let g: HostReplanningGuidance<f64> = ReplanningGuidance::new(
+        Mode::ReplanReversals | Mode::ReplanEstimation => run(&mut || {
+            let mut g: HostReplanningGuidance<f64> = ReplanningGuidance::new(
                 setup.guidance_config,
                 setup.table.clone(),
                 Interpolation::Linear,
@@ -217,6 +229,9 @@ pub fn fly_case(
                 setup.replanning,
             )
             .map_err(gerr)?;
+            if mode == Mode::ReplanEstimation {
+                g = g.with_estimator(AeroEstimator::new(setup.estimator).map_err(gerr)?);
+            }
             let s = LateralSource::new(g, Some(logic()?));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
                 let fb = s
@@ -225,10 +240,16 @@ pub fn fly_case(
                     .iter()
                     .filter(|r| matches!(r.case, ReplanCase::FallBack(_)))
                     .count();
+                let est = s
+                    .inner
+                    .guidance
+                    .aero_scales()
+                    .map(|a| [a.lift_to_drag, a.drag]);
                 (
                     u32::from(s.reversals()),
                     s.inner.guidance.counts().replans,
                     u32::try_from(fb).unwrap_or(u32::MAX),
+                    est,
                 )
             })
         })?,
@@ -265,6 +286,8 @@ pub fn fly_case(
         reversals,
         replans,
         fall_backs,
+        estimated_scales,
+        guidance: setup.guidance_key(),
         flight_time_s: s.flight_time_s,
         final_altitude_m: end.radius_m - radius,
         final_speed_m_s: end.speed_m_s,
@@ -275,16 +298,22 @@ pub fn fly_case(
     })
 }
 
+/// What a source kept: reversals, re-plans, fall-backs, final onboard estimate.
+type Counts = (u32, u32, u32, Option<[f64; 2]>);
+
+/// A flight and its [`Counts`].
+type Flown = (SimResult, u32, u32, u32, Option<[f64; 2]>);
+
 /// The result of a run and the counts its source kept.
 fn finish<A: AttitudeSource>(
     r: Result<(SimResult, A), crate::sim::SimError>,
     index: u32,
-    counts: impl Fn(&A) -> (u32, u32, u32),
-) -> Result<(SimResult, u32, u32, u32), CampaignError> {
+    counts: impl Fn(&A) -> Counts,
+) -> Result<Flown, CampaignError> {
     let (res, src) = r.map_err(|source| CampaignError::Sim {
         index: Some(index),
         source,
     })?;
-    let (a, b, c) = counts(&src);
-    Ok((res, a, b, c))
+    let (a, b, c, e) = counts(&src);
+    Ok((res, a, b, c, e))
 }

@@ -3,6 +3,8 @@
 //! cases, with statistics, a footprint and histograms (docs/DISPERSIONS.md).
 //!
 //! * [`settings`]: the `[dispersions]` TOML section, defaults, validation naming the field;
+//! * [`guidance_settings`]: its `[dispersions.guidance]` table (corridor, re-planner, onboard
+//!   estimation);
 //! * [`draw`]: the dispersed values of case `i`, from a generator seeded by (seed, i) only;
 //! * [`models`]: the dispersed atmosphere (altitude-varying, bounded density scale) and aero;
 //! * [`setup`]: what the cases share (terminal interface, target, stored profile, settings of
@@ -14,6 +16,7 @@
 
 pub mod draw;
 pub mod flight;
+pub mod guidance_settings;
 pub mod models;
 pub mod output;
 pub mod plot;
@@ -25,6 +28,7 @@ pub mod stats;
 use serde::{Deserialize, Serialize};
 
 pub use flight::CaseResult;
+pub use guidance_settings::CampaignGuidance;
 pub use run::{CampaignOutput, run_campaign};
 pub use settings::{Dispersion, DispersionSettings, parse_settings};
 pub use setup::CampaignSetup;
@@ -39,11 +43,19 @@ pub enum Mode {
     StoredReversals,
     /// Re-planned magnitude (predictor-corrector on the target's range to go) with reversals.
     ReplanReversals,
+    /// As [`Mode::ReplanReversals`], the predictor flying the model scaled by the onboard
+    /// estimate of L/D and drag scale from sensed accelerations (`guidance_core::estimate`).
+    ReplanEstimation,
 }
 
 impl Mode {
     /// Every mode, in report order.
-    pub const ALL: [Mode; 3] = [Mode::Stored, Mode::StoredReversals, Mode::ReplanReversals];
+    pub const ALL: [Mode; 4] = [
+        Mode::Stored,
+        Mode::StoredReversals,
+        Mode::ReplanReversals,
+        Mode::ReplanEstimation,
+    ];
 
     /// Short name (file and directory names).
     #[must_use]
@@ -52,6 +64,7 @@ impl Mode {
             Mode::Stored => "stored",
             Mode::StoredReversals => "stored-reversals",
             Mode::ReplanReversals => "replan-reversals",
+            Mode::ReplanEstimation => "replan-estimation",
         }
     }
 }

@@ -1,4 +1,5 @@
-//! Writing a campaign: `summary.json` (settings, target, statistics per mode, nominal flights),
+//! Writing a campaign: `summary.json` (settings, target, statistics per mode, nominal flights,
+//! failed cases with their errors),
 //! `cases-<mode>.csv` (one row per flight) and the SVG plots, each written atomically.
 
 use std::fmt::Write as _;
@@ -7,7 +8,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::plot::campaign_plots;
-use super::run::CampaignOutput;
+use super::run::{CampaignOutput, CaseFailure};
 use super::settings::DispersionSettings;
 use super::setup::CampaignSetup;
 use super::stats::ModeStats;
@@ -24,6 +25,7 @@ struct Summary<'a> {
     interface_speed_m_s: f64,
     nominal: &'a [CaseResult],
     stats: &'a [ModeStats],
+    failed: &'a [CaseFailure],
 }
 
 /// Write the campaign into `dir`; returns the files written.
@@ -47,6 +49,7 @@ pub fn write_campaign(
         interface_speed_m_s: setup.interface_speed_m_s,
         nominal: &out.nominal,
         stats: &out.stats,
+        failed: &out.failed,
     };
     let p = dir.join("summary.json");
     let json = serde_json::to_vec_pretty(&s).map_err(crate::report::ReportError::from)?;

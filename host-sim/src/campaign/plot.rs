@@ -13,6 +13,7 @@ fn colour(m: Mode) -> RGBColor {
         Mode::Stored => RGBColor(200, 60, 40),
         Mode::StoredReversals => RGBColor(40, 110, 200),
         Mode::ReplanReversals => RGBColor(30, 150, 60),
+        Mode::ReplanEstimation => RGBColor(150, 40, 160),
     }
 }
 

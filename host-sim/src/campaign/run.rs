@@ -2,7 +2,7 @@
 //! a pure function of (setup, settings, index, mode) so the results are bit-identical whatever
 //! the thread count; resumable: each case's result is written atomically to
 //! `<out>/cases/<mode>/<index>.json` as soon as it is done and reused by a later run with the
-//! same settings (a stored case whose draw differs is recomputed).
+//! same settings (a stored case whose draw or guidance settings differ is recomputed).
 
 use std::path::{Path, PathBuf};
 
@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::draw::draw_case;
+use super::draw::{CaseDraw, draw_case};
 use super::flight::{CaseResult, fly_case};
 use super::settings::DispersionSettings;
 use super::setup::CampaignSetup;
@@ -31,6 +31,35 @@ pub struct RunOptions {
     pub progress: bool,
 }
 
+/// A case whose flight failed: recorded, and the campaign goes on.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CaseFailure {
+    /// Guidance mode.
+    pub mode: Mode,
+    /// Case index.
+    pub index: u32,
+    /// The dispersed values.
+    pub draw: CaseDraw,
+    /// The error, as displayed (with its sources).
+    pub error: String,
+}
+
+/// The error and its sources, one line.
+fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut src = e.source();
+    while let Some(x) = src {
+        // Messages that already show their source are not repeated.
+        let t = x.to_string();
+        if !s.contains(&t) {
+            s.push_str(": ");
+            s.push_str(&t);
+        }
+        src = x.source();
+    }
+    s
+}
+
 /// What a campaign gives.
 #[derive(Clone, Debug, Serialize)]
 pub struct CampaignOutput {
@@ -40,6 +69,8 @@ pub struct CampaignOutput {
     pub cases: Vec<(Mode, Vec<CaseResult>)>,
     /// Statistics of each mode.
     pub stats: Vec<ModeStats>,
+    /// Cases whose flight failed, by mode then index (not in `cases` nor in the statistics).
+    pub failed: Vec<CaseFailure>,
     /// Cases reused from an earlier run.
     pub resumed: usize,
 }
@@ -53,7 +84,9 @@ fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
 /// Run the campaign.
 ///
 /// # Errors
-/// [`CampaignError`] for a failed flight, a bad stored case file or a write failure.
+/// [`CampaignError`] for bad settings, a bad stored case file, a write failure or a failed
+/// nominal flight. A failed dispersed flight is not an error: it is recorded in
+/// [`CampaignOutput::failed`] with its error and the other cases go on.
 pub fn run_campaign(
     setup: &CampaignSetup,
     settings: &DispersionSettings,
@@ -91,7 +124,8 @@ pub fn run_campaign(
     } else {
         ProgressBar::hidden()
     };
-    let results: Vec<Result<(CaseResult, bool), CampaignError>> = pool.install(|| {
+    type Outcome = Result<(CaseResult, bool), CaseFailure>;
+    let results: Vec<Result<Outcome, CampaignError>> = pool.install(|| {
         jobs.par_iter()
             .map(|&(mode, index)| {
                 let draw = draw_case(settings, index);
@@ -104,19 +138,34 @@ pub fn run_campaign(
                             path: p.clone(),
                             source,
                         })?;
-                    if stored.draw == Some(draw) && stored.mode == mode {
+                    if stored.draw == Some(draw)
+                        && stored.mode == mode
+                        && stored.guidance == setup.guidance_key()
+                    {
                         bar.inc(1);
-                        return Ok((stored, true));
+                        return Ok(Ok((stored, true)));
                     }
                 }
-                let r = fly_case(setup, Some(&draw), mode)?;
+                // A failed flight is recorded with its error; the campaign goes on.
+                let r = match fly_case(setup, Some(&draw), mode) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        bar.inc(1);
+                        return Ok(Err(CaseFailure {
+                            mode,
+                            index,
+                            draw,
+                            error: error_chain(&e),
+                        }));
+                    }
+                };
                 if let Some(p) = &path {
                     let json =
                         serde_json::to_vec_pretty(&r).map_err(crate::report::ReportError::from)?;
                     write_atomic(p, &json)?;
                 }
                 bar.inc(1);
-                Ok((r, false))
+                Ok(Ok((r, false)))
             })
             .collect()
     });
@@ -124,8 +173,15 @@ pub fn run_campaign(
     let mut by_mode: Vec<(Mode, Vec<CaseResult>)> =
         opts.modes.iter().map(|&m| (m, Vec::new())).collect();
     let mut resumed = 0;
+    let mut failed = Vec::new();
     for r in results {
-        let (c, reused) = r?;
+        let (c, reused) = match r? {
+            Ok(x) => x,
+            Err(f) => {
+                failed.push(f);
+                continue;
+            }
+        };
         resumed += usize::from(reused);
         if let Some((_, v)) = by_mode.iter_mut().find(|(m, _)| *m == c.mode) {
             v.push(c);
@@ -137,11 +193,15 @@ pub fn run_campaign(
             .map(|&m| fly_case(setup, None, m))
             .collect::<Result<Vec<_>, _>>()
     })?;
-    let stats = by_mode.iter().map(|(m, v)| ModeStats::of(*m, v)).collect();
+    let stats = by_mode
+        .iter()
+        .map(|(m, v)| ModeStats::of(*m, v, failed.iter().filter(|f| f.mode == *m).count()))
+        .collect();
     Ok(CampaignOutput {
         nominal,
         cases: by_mode,
         stats,
+        failed,
         resumed,
     })
 }

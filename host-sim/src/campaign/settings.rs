@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::CampaignError;
+use super::guidance_settings::CampaignGuidance;
 use crate::toml_input::TomlInputError;
 
 /// One dispersed quantity: a distribution and its 3-sigma value (in the field's unit).
@@ -66,6 +67,9 @@ pub struct DispersionSettings {
     /// Terminal interface \[m/s\]: the energy where the nominal flight slows to this speed
     /// (e.g. the start of the terminal area); absent: the scenario's own end.
     pub interface_speed_m_s: Option<f64>,
+    /// The guidance of the cases (`[dispersions.guidance]`: corridor, re-planner, onboard
+    /// estimation).
+    pub guidance: CampaignGuidance,
 }
 
 impl Default for DispersionSettings {
@@ -86,6 +90,7 @@ impl Default for DispersionSettings {
             drag: Dispersion::normal(0.05),
             mass: Dispersion::normal(0.03),
             interface_speed_m_s: None,
+            guidance: CampaignGuidance::default(),
         }
     }
 }
@@ -130,7 +135,8 @@ impl DispersionSettings {
     /// [`CampaignError::Setting`] naming the field (`dispersions.<field>`) and the value: zero
     /// cases, a negative or non-finite 3-sigma value, an unknown distribution, a non-positive
     /// wavelength, a density or mass dispersion of 30 % or more at 3 sigma (the density scale is
-    /// kept within [0.5, 1.5], the mass must stay positive).
+    /// kept within [0.5, 1.5], the mass must stay positive), a bad guidance setting
+    /// ([`CampaignGuidance::validate`]).
     pub fn validate(&self, file: &str) -> Result<(), CampaignError> {
         let bad = |field: &str, value: String, reason: &str| CampaignError::Setting {
             file: file.to_string(),
@@ -186,7 +192,7 @@ impl DispersionSettings {
                 "must be finite and > 0",
             ));
         }
-        Ok(())
+        self.guidance.validate(file)
     }
 }
 

@@ -3,6 +3,7 @@
 //! the lateral logic and of the re-planner. Built once from a scenario by flying it nominally.
 
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::estimate::EstimatorConfig;
 use guidance_core::geo::central_angle;
 use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
 use guidance_core::interp::Interpolation;
@@ -14,6 +15,7 @@ use guidance_core::replan::{
 use guidance_core::vinh::PredictorConfig;
 
 use super::CampaignError;
+use super::guidance_settings::CampaignGuidance;
 use crate::dynamics::SphericalState;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
@@ -57,6 +59,10 @@ pub struct CampaignSetup {
     pub lateral: LateralConfig<f64>,
     /// Re-planner settings.
     pub replanning: ReplanningConfig<f64>,
+    /// Onboard estimation settings ([`super::Mode::ReplanEstimation`]).
+    pub estimator: EstimatorConfig<f64>,
+    /// The guidance settings these were built from.
+    pub guidance: CampaignGuidance,
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -151,6 +157,21 @@ impl CampaignSetup {
         file: &str,
         interface_speed_m_s: Option<f64>,
     ) -> Result<Self, CampaignError> {
+        Self::with_guidance(sc, file, interface_speed_m_s, &CampaignGuidance::default())
+    }
+
+    /// [`CampaignSetup::new`] with the corridor, re-planner and estimator of `gs`
+    /// (`[dispersions.guidance]`).
+    ///
+    /// # Errors
+    /// As [`CampaignSetup::new`]; [`CampaignError::Setting`] for a bad `gs`.
+    pub fn with_guidance(
+        sc: &Scenario,
+        file: &str,
+        interface_speed_m_s: Option<f64>,
+        gs: &CampaignGuidance,
+    ) -> Result<Self, CampaignError> {
+        gs.validate(file)?;
         let scen = |source| CampaignError::Scenario {
             file: file.into(),
             source: Box::new(source),
@@ -217,13 +238,13 @@ impl CampaignSetup {
             corridor: Corridor {
                 axis: CorridorAxis::Speed,
                 x_high: v_e,
-                width_high_rad: 15.0 * DEG,
-                x_low: v_f + 0.1 * (v_e - v_f),
-                width_low_rad: 3.0 * DEG,
+                width_high_rad: gs.corridor_width_entry_deg * DEG,
+                x_low: v_f + gs.corridor_low_speed_fraction * (v_e - v_f),
+                width_low_rad: gs.corridor_width_final_deg * DEG,
             },
-            hysteresis_rad: 1.0 * DEG,
-            max_reversals: 12,
-            freeze_angle_rad: 30e3 / planet.radius_m,
+            hysteresis_rad: gs.hysteresis_deg * DEG,
+            max_reversals: gs.max_reversals,
+            freeze_angle_rad: gs.freeze_km * 1e3 / planet.radius_m,
         };
         let fit = ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3).map_err(
             |e| CampaignError::Predictor {
@@ -239,7 +260,7 @@ impl CampaignSetup {
                 }
             })?;
         let replanning = ReplanningConfig {
-            every_n_ticks: 5,
+            every_n_ticks: gs.replan_every_n_ticks,
             target: RangeTarget::Point(lateral.target),
             limits: ReplanLimits {
                 heat_flux_w_m2: vehicle.limits.heat_flux_w_m2,
@@ -247,9 +268,9 @@ impl CampaignSetup {
             },
             solver: ReplanConfig {
                 lambda: 1.0,
-                min_vertical_fraction: 0.05,
-                max_vertical_fraction: 1.0,
-                tolerance_m: 1000.0,
+                min_vertical_fraction: gs.min_vertical_fraction,
+                max_vertical_fraction: gs.max_vertical_fraction,
+                tolerance_m: gs.replan_tolerance_km * 1e3,
                 max_iterations: 20,
                 predictor: PredictorConfig {
                     final_speed_m_s: v_f,
@@ -276,6 +297,8 @@ impl CampaignSetup {
             guidance_config,
             lateral,
             replanning,
+            estimator: gs.estimator(),
+            guidance: gs.clone(),
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).
@@ -287,6 +310,12 @@ impl CampaignSetup {
             setup.retarget(setup.target_downrange_rad + f.downrange_error_m / planet.radius_m);
         }
         Ok(setup)
+    }
+
+    /// The guidance settings as stored with each case: `None` for the defaults.
+    #[must_use]
+    pub fn guidance_key(&self) -> Option<CampaignGuidance> {
+        (self.guidance != CampaignGuidance::default()).then(|| self.guidance.clone())
     }
 
     /// Put the target `downrange_rad` along the entry great circle.

@@ -1,4 +1,4 @@
-//! Campaign statistics: mean, standard deviation, 99th percentile and worst case.
+//! Campaign statistics: mean, standard deviation, 50th/95th/99th percentiles and worst case.
 
 use serde::Serialize;
 
@@ -11,6 +11,10 @@ pub struct Stats {
     pub mean: f64,
     /// Standard deviation (population).
     pub std: f64,
+    /// Median (nearest rank: the `ceil(0.5 n)`-th smallest).
+    pub p50: f64,
+    /// 95th percentile (nearest rank: the `ceil(0.95 n)`-th smallest).
+    pub p95: f64,
     /// 99th percentile (nearest rank: the `ceil(0.99 n)`-th smallest).
     pub p99: f64,
     /// Largest value.
@@ -18,7 +22,7 @@ pub struct Stats {
 }
 
 impl Stats {
-    /// Statistics of `values` (non-finite values count as +infinity for p99 and worst, and
+    /// Statistics of `values` (non-finite values count as +infinity for the percentiles and worst, and
     /// make the mean infinite); all zero for no value.
     #[must_use]
     pub fn of(values: &[f64]) -> Self {
@@ -26,6 +30,8 @@ impl Stats {
             return Self {
                 mean: 0.0,
                 std: 0.0,
+                p50: 0.0,
+                p95: 0.0,
                 p99: 0.0,
                 worst: 0.0,
             };
@@ -38,11 +44,16 @@ impl Stats {
         let n = v.len() as f64;
         let mean = v.iter().sum::<f64>() / n;
         let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
-        let rank = ((0.99 * n).ceil() as usize).clamp(1, v.len());
+        let pct = |p: f64| {
+            let rank = ((p * n).ceil() as usize).clamp(1, v.len());
+            v.get(rank - 1).copied().unwrap_or(f64::INFINITY)
+        };
         Self {
             mean,
             std: var.sqrt(),
-            p99: v.get(rank - 1).copied().unwrap_or(f64::INFINITY),
+            p50: pct(0.5),
+            p95: pct(0.95),
+            p99: pct(0.99),
             worst: v.last().copied().unwrap_or(f64::INFINITY),
         }
     }
@@ -53,8 +64,10 @@ impl Stats {
 pub struct ModeStats {
     /// The mode.
     pub mode: Mode,
-    /// Flights.
+    /// Flights (not counting failed ones).
     pub cases: usize,
+    /// Cases whose flight failed (an error instead of a result; not in the statistics).
+    pub failed: usize,
     /// Flights that reached the terminal interface.
     pub reached_interface: usize,
     /// Miss distance \[km\].
@@ -80,9 +93,9 @@ pub struct ModeStats {
 }
 
 impl ModeStats {
-    /// Figures of `cases` (all of one mode).
+    /// Figures of `cases` (all of one mode) and the number of `failed` cases of the mode.
     #[must_use]
-    pub fn of(mode: Mode, cases: &[CaseResult]) -> Self {
+    pub fn of(mode: Mode, cases: &[CaseResult], failed: usize) -> Self {
         let col = |f: &dyn Fn(&CaseResult) -> f64| cases.iter().map(f).collect::<Vec<_>>();
         let over = |i: usize| {
             cases
@@ -97,6 +110,7 @@ impl ModeStats {
         Self {
             mode,
             cases: cases.len(),
+            failed,
             reached_interface: cases.iter().filter(|c| c.reached_interface).count(),
             miss_km: Stats::of(&col(&|c| c.miss_m / 1e3)),
             downrange_km: Stats::of(&col(&|c| c.downrange_error_m / 1e3)),
@@ -122,6 +136,8 @@ mod tests {
         let s = Stats::of(&v);
         assert_eq!(s.mean, 100.5);
         assert_eq!(s.p99, 198.0);
+        assert_eq!(s.p95, 190.0);
+        assert_eq!(s.p50, 100.0);
         assert_eq!(s.worst, 200.0);
         assert!((s.std - (((200.0f64 * 200.0) - 1.0) / 12.0).sqrt()).abs() < 1e-9);
         assert_eq!(Stats::of(&[1.0, f64::NAN]).worst, f64::INFINITY);

@@ -33,7 +33,8 @@ pub struct DispersionsArgs {
     /// Threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Modes: stored, stored-reversals, replan-reversals (comma separated; default all).
+    /// Modes: stored, stored-reversals, replan-reversals, replan-estimation (comma separated;
+    /// default all).
     #[arg(long, value_delimiter = ',')]
     pub modes: Vec<String>,
     /// Output directory (default: `runs/dispersions-<scenario>/`); case results there are
@@ -88,7 +89,7 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             .ok_or_else(|| CliError::Argument {
                 field: "modes",
                 value: m.clone(),
-                reason: "unknown mode (stored, stored-reversals, replan-reversals)",
+                reason: "unknown mode (stored, stored-reversals, replan-reversals, replan-estimation)",
             })?;
         modes.push(mode);
     }
@@ -107,7 +108,8 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("dispersions-{}", sc.name)));
     let started = std::time::Instant::now();
-    let setup = CampaignSetup::new(&sc, &file, settings.interface_speed_m_s)?;
+    let setup =
+        CampaignSetup::with_guidance(&sc, &file, settings.interface_speed_m_s, &settings.guidance)?;
     let opts = RunOptions {
         modes,
         out_dir: Some(dir.clone()),
@@ -132,16 +134,27 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     )?;
     writeln!(
         out,
-        "{:<18} {:>9} {:>9} {:>9} {:>9} | {:>6} {:>6} {:>6} | >5%: q g gdot | rev  replans fallbk | nominal miss",
-        "mode", "mean km", "std km", "p99 km", "worst km", "q/lim", "g/lim", "gd/lim"
+        "{:<18} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} | {:>6} {:>6} {:>6} | >5%: q g gdot | rev  replans fallbk | failed | nominal miss",
+        "mode",
+        "mean km",
+        "std km",
+        "p50 km",
+        "p95 km",
+        "p99 km",
+        "worst km",
+        "q/lim",
+        "g/lim",
+        "gd/lim"
     )?;
     for (s, nom) in res.stats.iter().zip(&res.nominal) {
         writeln!(
             out,
-            "{:<18} {:>9.2} {:>9.2} {:>9.2} {:>9.2} | {:>6.3} {:>6.3} {:>6.3} | {:>3} {:>3} {:>3}  | {:>4.1} {:>7.1} {:>6.1} | {:.2} km",
+            "{:<18} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>9.2} | {:>6.3} {:>6.3} {:>6.3} | {:>3} {:>3} {:>3}  | {:>4.1} {:>7.1} {:>6.1} | {:>6} | {:.2} km",
             s.mode.name(),
             s.miss_km.mean,
             s.miss_km.std,
+            s.miss_km.p50,
+            s.miss_km.p95,
             s.miss_km.p99,
             s.miss_km.worst,
             s.heat_flux_ratio.worst,
@@ -153,7 +166,24 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             s.reversals.mean,
             s.replans.mean,
             s.fall_backs.mean,
+            s.failed,
             nom.miss_m / 1e3
+        )?;
+    }
+    for f in res.failed.iter().take(10) {
+        writeln!(
+            out,
+            "FAILED {} case {}: {}",
+            f.mode.name(),
+            f.index,
+            f.error
+        )?;
+    }
+    if !res.failed.is_empty() {
+        writeln!(
+            out,
+            "{} flights failed (recorded in summary.json; not in the statistics)",
+            res.failed.len()
         )?;
     }
     writeln!(out, "wrote {} files to {}", files.len(), dir.display())?;

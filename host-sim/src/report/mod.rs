@@ -5,8 +5,6 @@
 
 mod csv;
 mod plot;
-
-pub(crate) use plot::ensure_font;
 pub mod run_dir;
 mod summary;
 
@@ -16,6 +14,7 @@ use std::path::{Path, PathBuf};
 use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
+pub(crate) use plot::ensure_font;
 pub use plot::{Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, clean_stale};
 pub use summary::{FinalState, PeakOut, SummaryReport, ViolationsOut, summary_report};

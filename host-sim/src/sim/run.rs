@@ -3,6 +3,7 @@
 
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
+use guidance_core::estimate::SensedAero;
 use guidance_core::monitor::GLoadRateMonitor;
 use guidance_core::navconv::{self, CartesianNav, InertialFrame};
 
@@ -166,10 +167,20 @@ pub fn simulate<A: AttitudeSource>(
     let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN], ticks: &mut u64| {
         let nav = nav_of(t, y, lp.dynm.planet.rotation_rate_rad_s)?;
         *ticks += 1;
-        lp.source.tick(&nav).map_err(|e| SimError::Guidance {
+        let wrap = |e: A::Error| SimError::Guidance {
             time_s: t,
             source: Box::new(e),
-        })
+        };
+        // What an IMU senses at this instant: the aerodynamic accelerations at the attitude
+        // flown now (before the tick's update).
+        let fc = lp.dynm.conditions_at(y, lp.source.attitude_at(t));
+        let m = lp.dynm.vehicle.mass_kg;
+        let sensed = SensedAero {
+            lift_m_s2: fc.lift_n.abs() / m,
+            drag_m_s2: fc.drag_n.abs() / m,
+        };
+        lp.source.sense(&nav, &sensed).map_err(wrap)?;
+        lp.source.tick(&nav).map_err(wrap)
     };
     tick(&mut lp, t, &y, &mut ticks)?;
     lp.observe(t, &y);

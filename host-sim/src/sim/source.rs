@@ -3,6 +3,7 @@
 //! ([`CoreGuidance`]) or with onboard re-planning (`crate::replan_loop::ReplanLoop`), at the
 //! guidance's own clock ([`GuidanceSource`]).
 
+use guidance_core::estimate::{EstimateError, SensedAero};
 use guidance_core::guidance::{BankSign, Command, Guidance, HostGuidance};
 use guidance_core::replan::{ReplanReport, ReplanningGuidance};
 use guidance_core::{GuidanceError, NavState};
@@ -16,6 +17,17 @@ pub trait AttitudeSource {
     /// # Errors
     /// [`AttitudeSource::Error`] when the guidance rejects the state or cannot answer.
     fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error>;
+    /// Called at every guidance tick just before [`AttitudeSource::tick`] with the same
+    /// navigation state and the aerodynamic accelerations an IMU senses there (lift and drag
+    /// of the simulated vehicle in the simulated atmosphere at the attitude flown at that
+    /// instant). Default: ignored.
+    ///
+    /// # Errors
+    /// [`AttitudeSource::Error`] when the source rejects the measurement.
+    fn sense(&mut self, nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), Self::Error> {
+        let _ = (nav, sensed);
+        Ok(())
+    }
     /// Attitude at time `time_s` \[s\] between ticks (continuous) \[rad\].
     fn attitude_at(&self, time_s: f64) -> Command<f64>;
     /// Time of the next tick \[s\]; `f64::INFINITY` for none.
@@ -70,6 +82,19 @@ pub trait FlightGuidance {
     /// Impose the bank sign from the next tick on ([`Guidance::set_bank_sign`]; lateral
     /// guidance, `guidance_core::lateral`).
     fn set_bank_sign(&mut self, sign: Option<BankSign>);
+    /// Feed the sensed aerodynamic accelerations at `nav` to onboard estimation
+    /// ([`ReplanningGuidance::sense`]); default: ignored.
+    ///
+    /// # Errors
+    /// The core's [`EstimateError`].
+    fn sense(
+        &mut self,
+        nav: &NavState<f64>,
+        sensed: &SensedAero<f64>,
+    ) -> Result<(), EstimateError> {
+        let _ = (nav, sensed);
+        Ok(())
+    }
 }
 
 /// The clocked-guidance part of [`FlightGuidance`], the same for every wrapper of a
@@ -116,6 +141,13 @@ impl<const N: usize> FlightGuidance for ReplanningGuidance<f64, N> {
     fn set_bank_sign(&mut self, sign: Option<BankSign>) {
         ReplanningGuidance::set_bank_sign(self, sign);
     }
+    fn sense(
+        &mut self,
+        nav: &NavState<f64>,
+        sensed: &SensedAero<f64>,
+    ) -> Result<(), EstimateError> {
+        ReplanningGuidance::sense(self, nav, sensed).map(|_| ())
+    }
     clocked_guidance!(.guidance());
 }
 
@@ -125,6 +157,9 @@ pub enum TickError {
     /// The core rejected the navigation state or its configuration.
     #[error(transparent)]
     Guidance(#[from] GuidanceError),
+    /// Onboard estimation rejected the sensed accelerations.
+    #[error("onboard estimation: {0}")]
+    Estimate(#[from] EstimateError),
     /// The loop called at a time that is not a guidance tick.
     #[error("guidance did not tick at t = {time_s} s (next tick {next_tick_s} s)")]
     NoTick {
@@ -175,6 +210,9 @@ impl<G: FlightGuidance> AttitudeSource for GuidanceSource<G> {
                 next_tick_s: self.guidance.next_tick_s(),
             })
         }
+    }
+    fn sense(&mut self, nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), TickError> {
+        Ok(self.guidance.sense(nav, sensed)?)
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
         self.guidance.attitude_at(time_s)

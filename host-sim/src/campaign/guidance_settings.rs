@@ -1,0 +1,187 @@
+//! The campaign's guidance settings: the `[dispersions.guidance]` TOML table (lateral
+//! corridor, re-planner, onboard estimation), every field optional with the documented
+//! defaults, validated with errors that name the field.
+
+use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
+use serde::{Deserialize, Serialize};
+
+use super::CampaignError;
+
+/// `[dispersions.guidance]`. Units are those of the field name (deg, km, m/s^2, ticks).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CampaignGuidance {
+    /// Corridor half-width at the entry speed \[deg\] (default 15).
+    pub corridor_width_entry_deg: f64,
+    /// Corridor half-width from `V_f + corridor_low_speed_fraction (V_e - V_f)` down \[deg\]
+    /// (default 3).
+    pub corridor_width_final_deg: f64,
+    /// Where the corridor reaches its final width, as a fraction of the speed span from the
+    /// interface speed `V_f` to the entry speed `V_e` \[-\], in `[0, 1)` (default 0.1).
+    pub corridor_low_speed_fraction: f64,
+    /// Corridor hysteresis \[deg\] (default 1).
+    pub hysteresis_deg: f64,
+    /// Most bank reversals per flight (default 12).
+    pub max_reversals: u8,
+    /// No reversal closer than this to the target \[km\] (default 30).
+    pub freeze_km: f64,
+    /// Re-plan on every N-th 2 s guidance tick, `>= 1` (default 5).
+    pub replan_every_n_ticks: u16,
+    /// Accepted range miss of a re-plan \[km\] (default 1).
+    pub replan_tolerance_km: f64,
+    /// Smallest vertical lift fraction `cos(sigma)` the corrector may command \[-\]
+    /// (default 0.05).
+    pub min_vertical_fraction: f64,
+    /// Largest vertical lift fraction \[-\] (default 1).
+    pub max_vertical_fraction: f64,
+    /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
+    pub estimator_lift_to_drag_gain: f64,
+    /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
+    pub estimator_drag_gain: f64,
+    /// Bounds of the L/D-scale estimate `[min, max]` \[-\] (default `[0.5, 2]`).
+    pub estimator_lift_to_drag_bounds: [f64; 2],
+    /// Bounds of the drag-scale estimate `[min, max]` \[-\] (default `[0.3, 3]`).
+    pub estimator_drag_bounds: [f64; 2],
+    /// Smallest sensed drag acceleration that updates the estimate \[m/s^2\] (default 0.5,
+    /// about 0.05 g).
+    pub estimator_min_drag_m_s2: f64,
+}
+
+impl Default for CampaignGuidance {
+    fn default() -> Self {
+        Self {
+            corridor_width_entry_deg: 15.0,
+            corridor_width_final_deg: 3.0,
+            corridor_low_speed_fraction: 0.1,
+            hysteresis_deg: 1.0,
+            max_reversals: 12,
+            freeze_km: 30.0,
+            replan_every_n_ticks: 5,
+            replan_tolerance_km: 1.0,
+            min_vertical_fraction: 0.05,
+            max_vertical_fraction: 1.0,
+            estimator_lift_to_drag_gain: 0.1,
+            estimator_drag_gain: 0.2,
+            estimator_lift_to_drag_bounds: [0.5, 2.0],
+            estimator_drag_bounds: [0.3, 3.0],
+            estimator_min_drag_m_s2: 0.5,
+        }
+    }
+}
+
+impl CampaignGuidance {
+    /// The onboard estimator's settings.
+    #[must_use]
+    pub fn estimator(&self) -> EstimatorConfig<f64> {
+        let [a, b] = self.estimator_lift_to_drag_bounds;
+        let [c, d] = self.estimator_drag_bounds;
+        EstimatorConfig {
+            lift_to_drag_gain: self.estimator_lift_to_drag_gain,
+            drag_gain: self.estimator_drag_gain,
+            lift_to_drag_bounds: (a, b),
+            drag_bounds: (c, d),
+            min_drag_m_s2: self.estimator_min_drag_m_s2,
+        }
+    }
+
+    /// Check every field (the core checks the built configurations again).
+    ///
+    /// # Errors
+    /// [`CampaignError::Setting`] naming `dispersions.guidance.<field>` and the value.
+    pub fn validate(&self, file: &str) -> Result<(), CampaignError> {
+        let bad = |field: &str, value: String, reason: &str| CampaignError::Setting {
+            file: file.to_string(),
+            field: format!("dispersions.guidance.{field}"),
+            value,
+            reason: reason.into(),
+        };
+        let positive = [
+            ("corridor_width_entry_deg", self.corridor_width_entry_deg),
+            ("corridor_width_final_deg", self.corridor_width_final_deg),
+            ("replan_tolerance_km", self.replan_tolerance_km),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(bad(name, v.to_string(), "must be finite and > 0"));
+            }
+        }
+        let non_negative = [
+            ("hysteresis_deg", self.hysteresis_deg),
+            ("freeze_km", self.freeze_km),
+        ];
+        for (name, v) in non_negative {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(bad(name, v.to_string(), "must be finite and >= 0"));
+            }
+        }
+        let f = self.corridor_low_speed_fraction;
+        if !(f.is_finite() && (0.0..1.0).contains(&f)) {
+            return Err(bad(
+                "corridor_low_speed_fraction",
+                f.to_string(),
+                "must be in [0, 1)",
+            ));
+        }
+        if self.replan_every_n_ticks == 0 {
+            return Err(bad("replan_every_n_ticks", "0".into(), "must be >= 1"));
+        }
+        let (lo, hi) = (self.min_vertical_fraction, self.max_vertical_fraction);
+        if !(lo.is_finite() && lo > 0.0 && lo <= 1.0) {
+            return Err(bad(
+                "min_vertical_fraction",
+                lo.to_string(),
+                "must be in (0, 1]",
+            ));
+        }
+        if !(hi.is_finite() && hi >= lo && hi <= 1.0) {
+            return Err(bad(
+                "max_vertical_fraction",
+                hi.to_string(),
+                "must be in [min_vertical_fraction, 1]",
+            ));
+        }
+        for (name, g) in [
+            (
+                "estimator_lift_to_drag_gain",
+                self.estimator_lift_to_drag_gain,
+            ),
+            ("estimator_drag_gain", self.estimator_drag_gain),
+        ] {
+            if !(g.is_finite() && g > 0.0 && g <= 1.0) {
+                return Err(bad(name, g.to_string(), "must be in (0, 1]"));
+            }
+        }
+        for (name, [l, h]) in [
+            (
+                "estimator_lift_to_drag_bounds",
+                self.estimator_lift_to_drag_bounds,
+            ),
+            ("estimator_drag_bounds", self.estimator_drag_bounds),
+        ] {
+            if !(l.is_finite() && h.is_finite() && l > 0.0 && l <= 1.0 && h >= 1.0) {
+                return Err(bad(
+                    name,
+                    format!("[{l}, {h}]"),
+                    "must be [min, max] with 0 < min <= 1 <= max, finite",
+                ));
+            }
+        }
+        let m = self.estimator_min_drag_m_s2;
+        if !(m.is_finite() && m >= 0.0) {
+            return Err(bad(
+                "estimator_min_drag_m_s2",
+                m.to_string(),
+                "must be finite and >= 0",
+            ));
+        }
+        // The core's own check (one home of the rule); unreachable after the above.
+        AeroEstimator::new(self.estimator()).map_err(|_| {
+            bad(
+                "estimator",
+                format!("{:?}", self.estimator()),
+                "rejected by guidance-core",
+            )
+        })?;
+        Ok(())
+    }
+}
