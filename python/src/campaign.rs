@@ -6,14 +6,16 @@
 //! key into the same table, bit for bit, as the local run and as the CLI's.
 //!
 //! Case results cross into Python as JSON text (host-sim's `CaseResult`, serialised by serde
-//! with shortest round-trip floats, so no bit is lost either way).
+//! with shortest round-trip floats, so no bit is lost either way). A case whose flight fails
+//! is no error: its job gives host-sim's `CaseFailure` (mode, index, draw, `error`) instead,
+//! as `host-sim dispersions` records it, and the campaign goes on.
 
 use std::path::PathBuf;
 
 use host_sim::campaign::draw::draw_case;
 use host_sim::campaign::flight::fly_case;
 use host_sim::campaign::output::write_campaign;
-use host_sim::campaign::run::RunOptions;
+use host_sim::campaign::run::{CaseFailure, RunOptions};
 use host_sim::campaign::{
     CampaignOutput, CampaignSetup, CaseResult, DispersionSettings, Mode, ModeStats, parse_settings,
     run_campaign,
@@ -35,6 +37,25 @@ struct Spec {
     base_dir: Option<PathBuf>,
     settings: DispersionSettings,
     modes: Vec<String>,
+}
+
+/// What one job gives: the flight's result, or the record of its failure (a failure's JSON
+/// has an `error` field, a result's has not; failures are tried first).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+#[allow(clippy::large_enum_variant)] // short-lived, one per job: boxing buys nothing
+enum Outcome {
+    Failed(CaseFailure),
+    Flown(CaseResult),
+}
+
+impl Outcome {
+    fn key(&self) -> (Mode, u32) {
+        match self {
+            Self::Failed(f) => (f.mode, f.index),
+            Self::Flown(c) => (c.mode, c.index),
+        }
+    }
 }
 
 /// A dispersion campaign: scenario, settings and modes, with its set-up built.
@@ -99,7 +120,7 @@ impl PyCampaign {
         Ok((spec, setup, modes))
     }
 
-    fn fly_job(&self, mode: Mode, index: u32) -> Result<CaseResult, String> {
+    fn fly_job(&self, mode: Mode, index: u32) -> Result<Outcome, String> {
         if index >= self.spec.settings.cases {
             return Err(format!(
                 "case {index}: outside the campaign (0 ..= {})",
@@ -107,7 +128,10 @@ impl PyCampaign {
             ));
         }
         let draw = draw_case(&self.spec.settings, index);
-        fly_case(&self.setup, Some(&draw), mode).map_err(|e| e.to_string())
+        Ok(match fly_case(&self.setup, Some(&draw), mode) {
+            Ok(c) => Outcome::Flown(c),
+            Err(e) => Outcome::Failed(CaseFailure::new(mode, index, draw, &e)),
+        })
     }
 }
 
@@ -230,7 +254,8 @@ impl PyCampaign {
     }
 
     /// Fly the jobs `[(mode, index), ...]` (serially, in order, GIL released); one JSON text
-    /// of host-sim's `CaseResult` per job.
+    /// of host-sim's `CaseResult` per job (`CaseFailure`, with an `error` field, for a case
+    /// whose flight failed).
     fn fly(&self, py: Python<'_>, jobs: Vec<(String, u32)>) -> PyResult<Vec<String>> {
         let jobs = jobs
             .iter()
@@ -261,7 +286,8 @@ impl PyCampaign {
 
     /// The whole campaign in this process: host-sim's own `run_campaign` (rayon, `threads`
     /// threads, default all cores; the result does not depend on it), nothing written. Every
-    /// case of every mode, in mode order then index, as JSON texts of `CaseResult`s.
+    /// case of every mode, in mode order then index, as JSON texts of `CaseResult`s
+    /// (`CaseFailure`s for failed flights).
     #[pyo3(signature = (threads=None))]
     fn run_local(&self, py: Python<'_>, threads: Option<usize>) -> PyResult<Vec<String>> {
         if threads == Some(0) {
@@ -276,11 +302,24 @@ impl PyCampaign {
         let out = py
             .detach(|| run_campaign(&self.setup, &self.spec.settings, &opts))
             .map_err(|e| errors::campaign(&e))?;
-        out.cases
-            .iter()
-            .flat_map(|(_, v)| v.iter())
-            .map(to_json)
-            .collect()
+        // Jobs order (mode order, then index), failures in their places.
+        let mut all: Vec<Outcome> = out
+            .cases
+            .into_iter()
+            .flat_map(|(_, v)| v.into_iter().map(Outcome::Flown))
+            .chain(out.failed.into_iter().map(Outcome::Failed))
+            .collect();
+        let rank = |m: Mode| {
+            self.modes
+                .iter()
+                .position(|x| *x == m)
+                .unwrap_or(usize::MAX)
+        };
+        all.sort_by_key(|o| {
+            let (m, i) = o.key();
+            (rank(m), i)
+        });
+        all.iter().map(to_json).collect()
     }
 
     /// Write the campaign's files into `dir` exactly as `host-sim dispersions --out dir`
@@ -290,11 +329,11 @@ impl PyCampaign {
     /// written.
     fn write(&self, py: Python<'_>, dir: PathBuf, results: Vec<String>) -> PyResult<Vec<PathBuf>> {
         let n = self.spec.settings.cases as usize;
-        let mut by_mode: Vec<(Mode, Vec<Option<CaseResult>>)> =
+        let mut by_mode: Vec<(Mode, Vec<Option<Outcome>>)> =
             self.modes.iter().map(|&m| (m, vec![None; n])).collect();
         for text in &results {
-            let c: CaseResult = serde_json::from_str(text).map_err(|e| json_error(&e))?;
-            let (mode, index) = (c.mode, c.index);
+            let c: Outcome = serde_json::from_str(text).map_err(|e| json_error(&e))?;
+            let (mode, index) = c.key();
             let slot = by_mode
                 .iter_mut()
                 .find(|(m, _)| *m == mode)
@@ -313,18 +352,24 @@ impl PyCampaign {
             }
             *slot = Some(c);
         }
+        // As `run_campaign` gathers them: flown cases by mode then index, failures apart.
         let mut cases = Vec::new();
+        let mut failed = Vec::new();
         for (m, v) in by_mode {
-            let mut full = Vec::with_capacity(n);
+            let mut flown = Vec::with_capacity(n);
             for (i, c) in v.into_iter().enumerate() {
-                full.push(c.ok_or_else(|| {
-                    errors::CampaignError::new_err(format!(
-                        "case {i} of mode {}: missing",
-                        m.name()
-                    ))
-                })?);
+                match c {
+                    Some(Outcome::Flown(c)) => flown.push(c),
+                    Some(Outcome::Failed(f)) => failed.push(f),
+                    None => {
+                        return Err(errors::CampaignError::new_err(format!(
+                            "case {i} of mode {}: missing",
+                            m.name()
+                        )));
+                    }
+                }
             }
-            cases.push((m, full));
+            cases.push((m, flown));
         }
         py.detach(|| {
             let nominal = self
@@ -332,11 +377,15 @@ impl PyCampaign {
                 .iter()
                 .map(|&m| fly_case(&self.setup, None, m))
                 .collect::<Result<Vec<_>, _>>()?;
-            let stats = cases.iter().map(|(m, v)| ModeStats::of(*m, v)).collect();
+            let stats = cases
+                .iter()
+                .map(|(m, v)| ModeStats::of(*m, v, failed.iter().filter(|f| f.mode == *m).count()))
+                .collect();
             let out = CampaignOutput {
                 nominal,
                 cases,
                 stats,
+                failed,
                 resumed: 0,
             };
             std::fs::create_dir_all(&dir).map_err(|source| host_sim::report::ReportError::Io {

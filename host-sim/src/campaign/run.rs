@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::draw::{CaseDraw, draw_case};
 use super::flight::{CaseResult, fly_case};
@@ -32,7 +32,7 @@ pub struct RunOptions {
 }
 
 /// A case whose flight failed: recorded, and the campaign goes on.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CaseFailure {
     /// Guidance mode.
     pub mode: Mode,
@@ -42,6 +42,20 @@ pub struct CaseFailure {
     pub draw: CaseDraw,
     /// The error, as displayed (with its sources).
     pub error: String,
+}
+
+impl CaseFailure {
+    /// The record of case `index` of `mode` (drawn as `draw`) whose flight failed with `e`
+    /// (its message and sources, one line).
+    #[must_use]
+    pub fn new(mode: Mode, index: u32, draw: CaseDraw, e: &dyn std::error::Error) -> Self {
+        Self {
+            mode,
+            index,
+            draw,
+            error: error_chain(e),
+        }
+    }
 }
 
 /// The error and its sources, one line.
@@ -151,12 +165,7 @@ pub fn run_campaign(
                     Ok(r) => r,
                     Err(e) => {
                         bar.inc(1);
-                        return Ok(Err(CaseFailure {
-                            mode,
-                            index,
-                            draw,
-                            error: error_chain(&e),
-                        }));
+                        return Ok(Err(CaseFailure::new(mode, index, draw, &e)));
                     }
                 };
                 if let Some(p) = &path {
