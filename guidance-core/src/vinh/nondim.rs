@@ -335,6 +335,8 @@ pub struct NonDim<S> {
     pub(crate) drag_e: S,
     /// Total-lift acceleration at the reference state \[m/s^2\].
     pub(crate) lift_e: S,
+    /// g-load at the reference state `sqrt(drag_e^2 + lift_e^2)/g0` \[-\].
+    pub(crate) g_load_e: S,
 }
 
 /// Smallest accepted `|k1|` for float type `S`: `64 * EPSILON` (1.4e-14 in `f64`, 7.6e-6 in
@@ -394,6 +396,7 @@ impl<S: Real> NonDim<S> {
         let qdyn_s_m = rho_e * v_e * v_e * vehicle.reference_area_m2 / (two * vehicle.mass_kg);
         let drag_e = finite(qdyn_s_m * vehicle.cd0 * one_l2)?;
         let lift_e = finite(qdyn_s_m * sqrt_cd0_k * lambda)?;
+        let g_load_e = finite((drag_e * drag_e + lift_e * lift_e).sqrt() / k(G0_M_S2))?;
         Ok(Self {
             c: Constants {
                 e_star,
@@ -419,6 +422,7 @@ impl<S: Real> NonDim<S> {
             q_e,
             drag_e,
             lift_e,
+            g_load_e,
         })
     }
 
@@ -512,9 +516,16 @@ impl<S: Real> NonDim<S> {
     /// g-load `sqrt(L^2 + D^2)/(m g0)` \[-\] at `x`, `eta v` (eq. 2.1).
     #[must_use]
     pub fn g_load(&self, x: S, eta_v: S) -> S {
-        let d = self.drag_e;
-        let l = self.lift_e;
-        (d * d + l * l).sqrt() / k(G0_M_S2) * (x - eta_v).exp()
+        self.g_load_e * (x - eta_v).exp()
+    }
+
+    /// Drag and total-lift accelerations \[m/s^2\] and g-load \[-\] at `x`, `eta v`: the
+    /// values of [`NonDim::drag_acc_m_s2`], [`NonDim::lift_acc_m_s2`] and [`NonDim::g_load`]
+    /// from one exponential.
+    #[must_use]
+    pub(crate) fn aero_loads(&self, x: S, eta_v: S) -> (S, S, S) {
+        let e = (x - eta_v).exp();
+        (self.drag_e * e, self.lift_e * e, self.g_load_e * e)
     }
 
     /// Vehicle of this set-up.

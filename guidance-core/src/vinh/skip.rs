@@ -44,7 +44,7 @@ use super::error::VinhError;
 use super::nondim::{NonDim, k1_min};
 use super::num::{
     asin_unit, brent, brent_max, expm1mx_over_x2, finite, first_root, first_root_from, k, maximize,
-    sin_cos_reduced,
+    parabolic_max, sin_cos_reduced,
 };
 use crate::scalar::Real;
 
@@ -172,8 +172,8 @@ impl<S: Real> Quad<S> {
         if !(disc > S::ZERO) {
             return Err(VinhError::NotOscillatory);
         }
-        let sd = disc.sqrt_raw();
-        let omega = (-a1).sqrt_raw();
+        let sd = disc.sqrt_fast();
+        let omega = (-a1).sqrt_fast();
         if !(omega > S::ZERO) {
             return Err(VinhError::NotOscillatory);
         }
@@ -219,10 +219,10 @@ impl<S: Real> Quad<S> {
     /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
     fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
         let depth = (self.x1 - x).max(S::ZERO);
-        let arg = (self.omega * (depth / self.sd).sqrt()).min(S::ONE);
+        let arg = (self.omega * (depth / self.sd).sqrt_fast()).min(S::ONE);
         let half = k::<S>(2.0) / self.omega * asin_unit(arg);
         // phi_a = -sd sin(omega Delta)/(2 omega) with sin(omega half/2) = arg (no second sine).
-        let pa = self.sd * arg * (S::ONE - arg * arg).max(S::ZERO).sqrt() / self.omega;
+        let pa = self.sd * arg * (S::ONE - arg * arg).max(S::ZERO).sqrt_fast() / self.omega;
         match leg {
             Leg::Descending => {
                 let tau = self.tau_bottom - half;
@@ -248,12 +248,14 @@ impl<S: Real> Quad<S> {
 /// `(0, x_surf]` (`f1(0) = c^2 > 0`). With upward lift (`k1 > 0`) `f1` is concave, so it has
 /// exactly one positive root; it is bracketed by `x_g = ln(1 + c^2/(2 k1))` (where the lift
 /// term alone cancels `c^2`: an upper bound for `alpha <= 1`, a lower bound above circular
-/// speed) and solved by Brent's method to the working precision. With downward lift (`k1 < 0`,
-/// convex, zero or two roots) the first sign change of a 64-point scan, as in the thesis set-up.
+/// speed) and solved by Newton's method with the exact derivative ([`lift_root`]) to the
+/// working precision. With downward lift (`k1 < 0`, convex, zero or two roots) the first sign
+/// change of a 64-point scan, as in the thesis set-up.
 fn first_order_root<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
     mut f1: F,
     c2: S,
     k1: S,
+    oma: S,
     x_surf: S,
 ) -> Result<S, VinhError> {
     if !(k1 > S::ZERO) {
@@ -264,17 +266,56 @@ fn first_order_root<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
         return Err(VinhError::NoDeepestPoint);
     }
     let x_g = finite((S::ONE + c2 / (k::<S>(2.0) * k1)).ln())?;
-    let (a, fa, b, fb) = if x_g < x_surf && x_g > S::ZERO {
-        let f_g = f1(x_g)?;
-        if f_g > S::ZERO {
-            (x_g, f_g, x_surf, f_surf)
+    let (a, b) = if x_g < x_surf && x_g > S::ZERO {
+        if f1(x_g)? > S::ZERO {
+            (x_g, x_surf)
         } else {
-            (S::ZERO, c2, x_g, f_g)
+            (S::ZERO, x_g)
         }
     } else {
-        (S::ZERO, c2, x_surf, f_surf)
+        (S::ZERO, x_surf)
     };
-    brent(f1, a, b, fa, fb, S::ZERO)
+    lift_root(c2, k1, oma, S::ZERO, a, b)
+}
+
+/// Largest number of Newton steps of [`lift_root`].
+const MAX_NEWTON_STEPS: u32 = 64;
+
+/// Root of `g(x) = c^2 - 2 k1 (e^x - 1) - 2 (1 - alpha) x + offset` on a bracket `[lo, hi]`
+/// with `g(lo) > 0 >= g(hi)`, `k1 > 0` (`g` concave and decreasing past its maximum: one root),
+/// by Newton's method with the exact derivative `-2 k1 e^x - 2 (1 - alpha)` (one exponential
+/// per step for both), kept in the bracket by bisection; stops at the working precision
+/// (`2 EPSILON |x|`). The first-order deepest point is `offset = 0`; beyond the first-order
+/// point the second-order `phi^2` with Vinh's freeze is this `g` with `offset = 2 eta alpha I`
+/// frozen.
+fn lift_root<S: Real>(c2: S, k1: S, oma: S, offset: S, lo: S, hi: S) -> Result<S, VinhError> {
+    let two: S = k(2.0);
+    let (mut lo, mut hi) = (lo, hi);
+    let mut x = lo;
+    let mut n = 0_u32;
+    while n < MAX_NEWTON_STEPS {
+        let e = x.exp();
+        let g = finite(c2 - two * k1 * (e - S::ONE) - two * oma * x + offset)?;
+        let dg = -two * (k1 * e + oma);
+        if g == S::ZERO {
+            return Ok(x);
+        }
+        if g > S::ZERO {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let mut xn = x - g / dg;
+        if !(xn > lo && xn < hi) {
+            xn = (lo + hi).half();
+        }
+        if !((xn - x).abs() > two * S::EPSILON * x.abs()) || !(hi - lo > two * S::EPSILON * hi) {
+            return Ok(xn);
+        }
+        x = xn;
+        n += 1;
+    }
+    Ok(x)
 }
 
 /// Scan intervals of the peak searches ([`SkipSolution::peaks`]).
@@ -336,7 +377,7 @@ impl<S: Real> SkipSolution<S> {
         let f1 = |x: S| -> Result<S, VinhError> {
             finite(c2 - two * c.k1 * (x.exp() - S::ONE) - two * oma * x)
         };
-        let x1_first = first_order_root(f1, c2, c.k1, x_surf)?;
+        let x1_first = first_order_root(f1, c2, c.k1, oma, x_surf)?;
         let mut q = Quad::new(c.c, c.k1, oma, x1_first)?;
         let mut remedy_used = false;
         let passes = 1 + options.deepest_point_refinements.min(8);
@@ -358,15 +399,14 @@ impl<S: Real> SkipSolution<S> {
                         + two * c.eta * c.alpha * i,
                 )
             };
-            // First sign change on a grid of step x1f/2 (the second-order root lies near the
-            // first-order one), then Brent to the working precision. With downward lift the
-            // first-order phi^2 is convex and may have two roots: the original fine scan.
+            // Upward lift: next to the fit's deepest point (`second_order_root`). With downward
+            // lift the first-order phi^2 is convex and may have two roots: the original fine
+            // scan, then Brent.
             let x1 = if c.k1 > S::ZERO {
-                first_root_from(f2, S::ZERO, x_surf, c2, x1_first.half())?
+                Self::second_order_root(nd, &q_fit, f2, x_surf)?
             } else {
-                first_root(f2, S::ZERO, x_surf, c2)?
-            }
-            .ok_or(VinhError::NoDeepestPoint)?;
+                first_root(f2, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?
+            };
             if pass == 0 {
                 remedy_used = froze && x1 > q_fit.x1;
             }
@@ -402,6 +442,55 @@ impl<S: Real> SkipSolution<S> {
         Ok(sol)
     }
 
+    /// Second-order deepest point with upward lift (`k1 > 0`): the first root of eq. 3.50
+    /// (`f2`, with Vinh's freeze beyond the fit's `x1`), found next to the fit's deepest point
+    /// `x_b` (the roots of the first- and second-order `phi^2` lie close together):
+    /// * `f2(x_b) > 0`: the root lies beyond `x_b`, where the freeze makes `f2` the first-order
+    ///   `phi^2` plus the constant `2 eta alpha I(x_b)`: Newton on that ([`lift_root`], one
+    ///   exponential per step, no `I`);
+    /// * else the root lies below: one Newton step from `x_b` (slope of the first-order
+    ///   `phi^2`) overshot twice gives the other end of a bracket, solved by Brent; if that end is
+    ///   not positive or lies below `x_b/2`, the first sign change on the grid of step `x_b/2`
+    ///   from 0 (the thesis set-up's scan, coarse), then Brent.
+    fn second_order_root<F: FnMut(S) -> Result<S, VinhError>>(
+        nd: &NonDim<S>,
+        q_fit: &Quad<S>,
+        mut f2: F,
+        x_surf: S,
+    ) -> Result<S, VinhError> {
+        let c = nd.c;
+        let two: S = k(2.0);
+        let c2 = c.c * c.c;
+        let oma = S::ONE - c.alpha;
+        let x_b = q_fit.x1;
+        if !(x_b > S::ZERO && x_b < x_surf) {
+            return first_root_from(f2, S::ZERO, x_surf, c2, x_b.half())?
+                .ok_or(VinhError::NoDeepestPoint);
+        }
+        let f_b = f2(x_b)?;
+        if f_b > S::ZERO {
+            let e_b = x_b.exp();
+            let offset = f_b - (c2 - two * c.k1 * (e_b - S::ONE) - two * oma * x_b);
+            let f_surf = f2(x_surf)?;
+            if f_surf > S::ZERO {
+                return Err(VinhError::NoDeepestPoint);
+            }
+            return lift_root(c2, c.k1, oma, offset, x_b, x_surf);
+        }
+        if f_b == S::ZERO {
+            return Ok(x_b);
+        }
+        let slope = -two * (c.k1 * x_b.exp() + oma);
+        let x_lo = x_b - two * (f_b / slope).abs();
+        if x_lo.is_finite() && x_lo > x_b.half() {
+            let f_lo = f2(x_lo)?;
+            if f_lo > S::ZERO {
+                return brent(f2, x_lo, x_b, f_lo, f_b, S::ZERO);
+            }
+        }
+        first_root_from(f2, S::ZERO, x_b, c2, x_b.half())?.ok_or(VinhError::NoDeepestPoint)
+    }
+
     /// `I`, `J` and `phi^2` at `(tau, x, phi_a)` on fit `q` (eq. 3.50-3.53, 3.55).
     fn terms_raw(nd: &NonDim<S>, q: &Quad<S>, tau: S, x: S, phi_a: S) -> Terms<S> {
         let c = nd.c;
@@ -431,7 +520,7 @@ impl<S: Real> SkipSolution<S> {
         if phi2 < -tol {
             return Err(VinhError::BeyondDeepestPoint);
         }
-        let mag = phi2.max(S::ZERO).sqrt();
+        let mag = phi2.max(S::ZERO).sqrt_fast();
         let phi = match leg {
             Leg::Descending => mag,
             Leg::Ascending => -mag,
@@ -454,6 +543,8 @@ impl<S: Real> SkipSolution<S> {
         let nd = &self.nd;
         let (phi, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
         let gamma = nd.fpa_from_phi(phi)?;
+        // One exponential for drag, lift and g-load (all scale with e^(x - eta v)).
+        let (drag, lift, g_load) = nd.aero_loads(x, eta_v);
         SkipPoint {
             tau,
             range_angle_rad: nd.range_angle_from_tau(tau),
@@ -464,9 +555,9 @@ impl<S: Real> SkipSolution<S> {
             speed_m_s: nd.speed_from_eta_v(eta_v),
             flight_path_angle_rad: gamma,
             heat_flux_w_m2: nd.heat_flux_w_m2(x, eta_v),
-            drag_acc_m_s2: nd.drag_acc_m_s2(x, eta_v),
-            lift_acc_m_s2: nd.lift_acc_m_s2(x, eta_v),
-            g_load: nd.g_load(x, eta_v),
+            drag_acc_m_s2: drag,
+            lift_acc_m_s2: lift,
+            g_load,
         }
         .check()
     }
@@ -640,14 +731,15 @@ impl<S: Real> SkipSolution<S> {
     /// The point errors.
     pub fn peaks(&self) -> Result<(SkipPoint<S>, SkipPoint<S>), VinhError> {
         let te = self.q.tau_exit;
-        let n: S = k(f64::from(PEAK_SCAN_INTERVALS));
+        // Grid step te/8 (a power of two: every node, the middle tau_bottom included, is exact);
+        // nodes from an integer in `S` arithmetic (no f64 conversion: soft float on an M4F).
+        let step = te / S::from_u32(PEAK_SCAN_INTERVALS);
         let mut heat = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
         let mut load = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
         let tau_at = |i: usize| -> S {
-            if i >= PEAK_SCAN_INTERVALS as usize {
-                te
-            } else {
-                te * k::<S>(i as f64) / n
+            match u32::try_from(i) {
+                Ok(j) if j < PEAK_SCAN_INTERVALS => step * S::from_u32(j),
+                _ => te,
             }
         };
         for (i, (h, l)) in heat.iter_mut().zip(load.iter_mut()).enumerate() {
@@ -664,20 +756,28 @@ impl<S: Real> SkipSolution<S> {
         };
         let (ih, il) = (argmax(&heat), argmax(&load));
         let tol = S::EPSILON * te;
+        // Value tolerance of the refinement: a few ulp of the log-load (the peak value, not its
+        // location, is wanted), at least EPSILON.
+        let tol_f = |v: S| k::<S>(4.0) * S::EPSILON * v.abs().max(S::ONE);
         let refine = |i: usize, v: S, which: usize| -> Result<SkipPoint<S>, VinhError> {
-            let a = if i == 0 { S::ZERO } else { tau_at(i - 1) };
-            let b = tau_at(i + 1);
-            let (t, _) = brent_max(
-                |t| {
-                    let (h, l) = self.log_loads(t)?;
-                    Ok(if which == 0 { h } else { l })
-                },
-                a,
-                b,
-                tau_at(i),
-                v,
-                tol,
-            )?;
+            let samples = if which == 0 { &heat } else { &load };
+            let eval = |t: S| -> Result<S, VinhError> {
+                let (h, l) = self.log_loads(t)?;
+                Ok(if which == 0 { h } else { l })
+            };
+            let left = i
+                .checked_sub(1)
+                .and_then(|j| samples.get(j).map(|&f| (tau_at(j), f)));
+            let right = samples.get(i + 1).map(|&f| (tau_at(i + 1), f));
+            let t = match (left, right) {
+                (Some(l), Some(r)) => parabolic_max(eval, l, (tau_at(i), v), r, tol_f(v))?.0,
+                // The best sample is an end of the skip: Brent from it on its interval.
+                _ => {
+                    let a = if i == 0 { S::ZERO } else { tau_at(i - 1) };
+                    let b = if i == 0 { tau_at(1) } else { te };
+                    brent_max(eval, a, b, tau_at(i), v, None, tol)?.0
+                }
+            };
             self.point_at_tau(t.clamp(S::ZERO, te))
         };
         let hv = heat.get(ih).copied().unwrap_or(S::ZERO);
