@@ -17,13 +17,19 @@ use super::error::VinhError;
 use super::predict::Prediction;
 
 /// Skip entry speeds validated against integration \[m/s\] (`validate_vinh_skip_*`: 7435.5 to
-/// 10 500 m/s).
-pub const SKIP_SPEED_RANGE_M_S: (f64, f64) = (7_400.0, 10_500.0);
+/// 10 500 m/s). The lower end was 7 400 m/s until the skip error map found a skip at exactly
+/// 7 400 m/s (L/D 2.5, vertical fraction 0.5, -4 deg) that the closed form lets exit while the
+/// integration is captured: now the validated grid's edge.
+pub const SKIP_SPEED_RANGE_M_S: (f64, f64) = (7_435.0, 10_500.0);
 /// Skip entry flight-path angles validated \[rad\] (-7 to -2 deg, as magnitudes).
 pub const SKIP_FPA_RANGE_RAD: (f64, f64) = (
     2.0 * core::f64::consts::PI / 180.0 - 1e-9,
     7.0 * core::f64::consts::PI / 180.0 + 1e-9,
 );
+/// Smallest vertical lift-to-drag ratio of a validated skip (skip error map, docs/VINH.md:
+/// at 0.36 an in-grid skip was 18.6 % short in range and 1.4 deg off in exit flight-path
+/// angle, at 0.5 its exit speed 1.9 % high; the validation grids start at 1.2).
+pub const SKIP_MIN_VERTICAL_LD: f64 = 0.6;
 /// Largest `|eta v|` at a validated skip exit (measured 0.33; the exit errors grow with it).
 pub const SKIP_MAX_EXIT_ETA_V: f64 = 0.35;
 /// Glide start altitudes validated to the documented accuracy \[m\] (70 to 110 km; at 50 km
@@ -48,6 +54,14 @@ pub enum Extrapolation {
     SkipFlightPathAngle,
     /// A skip exit with `|eta v|` above [`SKIP_MAX_EXIT_ETA_V`].
     SkipSpeedExpansion,
+    /// A skip with vertical L/D below [`SKIP_MIN_VERTICAL_LD`].
+    SkipVerticalLiftToDrag,
+    /// A chain reaching its final glide through a capture (a skip that does not exit, or an
+    /// exit too shallow for an arc): the descent from the interface radius to the glide start
+    /// radius is not modelled (zero range), and the chain error map shows errors far beyond
+    /// the phases' own (docs/VINH.md). Every chain prediction carries it (unless an earlier
+    /// phase gave another reason).
+    CaptureTransition,
     /// Glide start altitude outside [`GLIDE_ALTITUDE_RANGE_M`].
     GlideAltitude,
     /// Glide vertical L/D outside [`GLIDE_VERTICAL_LD_RANGE`].
