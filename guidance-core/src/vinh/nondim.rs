@@ -188,7 +188,7 @@ impl<S: Real> VehicleParams<S> {
     /// [`VinhError::InvalidVehicle`].
     pub fn cl_max_ld(&self) -> Result<S, VinhError> {
         self.validate()?;
-        finite((self.cd0 / self.k_polar).sqrt_raw())
+        finite((self.cd0 / self.k_polar).sqrt_fast())
     }
 
     /// Maximum lift-to-drag ratio `E* = 1 / (2 sqrt(K C_D0))` \[-\] (eq. 3.18).
@@ -197,7 +197,7 @@ impl<S: Real> VehicleParams<S> {
     /// As for [`VehicleParams::cl_max_ld`].
     pub fn max_lift_to_drag(&self) -> Result<S, VinhError> {
         self.validate()?;
-        finite(S::ONE / (k::<S>(2.0) * (self.k_polar * self.cd0).sqrt_raw()))
+        finite(S::ONE / (k::<S>(2.0) * (self.k_polar * self.cd0).sqrt_fast()))
     }
 }
 
@@ -374,12 +374,12 @@ impl<S: Real> NonDim<S> {
         let h_s = atmosphere.scale_height_m;
         let rho_e = atmosphere.density_kg_m3(r_e)?;
         let g_e = finite(planet.mu_m3_s2 / (r_e * r_e))?;
-        let sqrt_cd0_k = finite((vehicle.cd0 / vehicle.k_polar).sqrt_raw())?;
-        let e_star = finite(S::ONE / (two * (vehicle.k_polar * vehicle.cd0).sqrt_raw()))?;
+        let sqrt_cd0_k = finite((vehicle.cd0 / vehicle.k_polar).sqrt_fast())?;
+        let e_star = finite(S::ONE / (two * (vehicle.k_polar * vehicle.cd0).sqrt_fast()))?;
         let b =
             finite(rho_e * vehicle.reference_area_m2 * r_e / (two * vehicle.mass_kg) * sqrt_cd0_k)?;
         let s = finite(r_e / h_s)?;
-        let sqrt_s = finite(s.sqrt_raw())?;
+        let sqrt_s = finite(s.sqrt_fast())?;
         let eta = finite(b / (e_star * sqrt_s))?;
         let kk = finite(two / (eta * s))?;
         let alpha = finite(g_e * r_e / (v_e * v_e))?;
@@ -389,14 +389,14 @@ impl<S: Real> NonDim<S> {
         let one_l2 = S::ONE + lambda * lambda;
         let e_vertical = finite(two * e_star * lambda * lift.vertical_fraction / one_l2)?;
         let q_e = finite(
-            k::<S>(CHAPMAN_C_STAR) / vehicle.nose_radius_m.sqrt_raw()
-                * (rho_e / k(CHAPMAN_RHO0_KG_M3)).sqrt_raw()
+            k::<S>(CHAPMAN_C_STAR) / vehicle.nose_radius_m.sqrt_fast()
+                * (rho_e / k(CHAPMAN_RHO0_KG_M3)).sqrt_fast()
                 * (v_e / k(CHAPMAN_VC_M_S)).powf(k(CHAPMAN_SPEED_EXPONENT)),
         )?;
         let qdyn_s_m = rho_e * v_e * v_e * vehicle.reference_area_m2 / (two * vehicle.mass_kg);
         let drag_e = finite(qdyn_s_m * vehicle.cd0 * one_l2)?;
         let lift_e = finite(qdyn_s_m * sqrt_cd0_k * lambda)?;
-        let g_load_e = finite((drag_e * drag_e + lift_e * lift_e).sqrt() / k(G0_M_S2))?;
+        let g_load_e = finite((drag_e * drag_e + lift_e * lift_e).sqrt_fast() / k(G0_M_S2))?;
         Ok(Self {
             c: Constants {
                 e_star,

@@ -251,6 +251,7 @@ impl<S: Real> Zeroin<S> {
     ///
     /// # Errors
     /// [`VinhError::NoConvergence`] if the ends do not bracket a sign change or are not finite.
+    #[inline(always)]
     pub(crate) fn new(a: S, fa: S, b: S, fb: S, tol_abs: S) -> Result<Self, VinhError> {
         let all = [a, fa, b, fb, tol_abs];
         if all.iter().any(|v| !v.is_finite()) {
@@ -536,22 +537,24 @@ pub(crate) const MAX_PARABOLIC_EVALS: u32 = 40;
 /// `fa = f(a)`, `fb = f(b)`, by successive parabolic interpolation on a bracket (the vertex of
 /// the parabola through the best point and its two bracketing neighbours; a golden-section
 /// step into the larger side when the vertex is outside the bracket or too close to a sample).
+/// `f` returns its value and a payload (`p0` for `x0`), handed back with the best sample, so
+/// the caller need not recompute what `f` computed there.
 ///
 /// Stops when the parabola predicts a gain over the best sample of at most `tol_f` (the value
 /// is then known to that tolerance without evaluating the vertex: for a peak the value, not its
 /// location, is what is wanted), when the bracket is below `sqrt(EPSILON) (|x| + |b - a|)`, or
-/// after [`MAX_PARABOLIC_EVALS`] evaluations. Returns the best sample `(x, f(x))`.
+/// after [`MAX_PARABOLIC_EVALS`] evaluations. Returns the best sample `(x, f(x), payload)`.
 ///
 /// # Errors
 /// Errors of `f`; [`VinhError::NonFiniteResult`] for a non-finite value;
 /// [`VinhError::NoConvergence`] if the samples are not ordered or `x0` is not the best.
-pub(crate) fn parabolic_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
+pub(crate) fn parabolic_max<S: Real, P: Copy, F: FnMut(S) -> Result<(S, P), VinhError>>(
     mut f: F,
     (mut a, mut fa): (S, S),
-    (mut x, mut fx): (S, S),
+    (mut x, mut fx, mut px): (S, S, P),
     (mut b, mut fb): (S, S),
     tol_f: S,
-) -> Result<(S, S), VinhError> {
+) -> Result<(S, S, P), VinhError> {
     let all = [a, fa, x, fx, b, fb, tol_f];
     if all.iter().any(|v| !v.is_finite()) || !(a < x && x < b) || fa > fx || fb > fx {
         return Err(VinhError::NoConvergence);
@@ -596,7 +599,8 @@ pub(crate) fn parabolic_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
                 x + golden * (b - x)
             };
         }
-        let fu = finite(f(u)?)?;
+        let (fu, pu) = f(u)?;
+        let fu = finite(fu)?;
         n += 1;
         if fu > fx {
             // u becomes the best point; x becomes the bracket end on its side.
@@ -605,14 +609,14 @@ pub(crate) fn parabolic_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
             } else {
                 (a, fa) = (x, fx);
             }
-            (x, fx) = (u, fu);
+            (x, fx, px) = (u, fu, pu);
         } else if u < x {
             (a, fa) = (u, fu);
         } else {
             (b, fb) = (u, fu);
         }
     }
-    Ok((x, fx))
+    Ok((x, fx, px))
 }
 
 /// Number of scan intervals of [`first_root`].

@@ -107,6 +107,7 @@ pub struct SkipPoint<S> {
 }
 
 impl<S: Real> SkipPoint<S> {
+    #[inline(always)]
     fn check(self) -> Result<Self, VinhError> {
         let all = [
             self.tau,
@@ -153,6 +154,7 @@ struct Quad<S> {
 
 impl<S: Real> Quad<S> {
     /// Eq. 3.45-3.47 at deepest point `x1 > 0`, `c > 0`.
+    #[inline(always)]
     fn new(c: S, k1: S, oma: S, x1: S) -> Result<Self, VinhError> {
         if !(x1 > S::ZERO) {
             return Err(VinhError::NoDeepestPoint);
@@ -203,6 +205,7 @@ impl<S: Real> Quad<S> {
     /// `(x, phi_a)` at `tau` from one sine and cosine of `theta = omega (tau - tau_b)/2`
     /// (`|theta| <= pi/2` on the skip; `sin(2 theta) = 2 sin(theta) cos(theta)`), by the
     /// single-precision kernels of [`super::num::sin_cos_reduced`] in `f32`.
+    #[inline(always)]
     fn x_phi_a(&self, tau: S) -> (S, S) {
         let (sn, cs) = sin_cos_reduced((self.omega * (tau - self.tau_bottom)).half());
         let h = sn / self.omega;
@@ -217,6 +220,7 @@ impl<S: Real> Quad<S> {
     }
 
     /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
+    #[inline(always)]
     fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
         let depth = (self.x1 - x).max(S::ZERO);
         let arg = (self.omega * (depth / self.sd).sqrt_fast()).min(S::ONE);
@@ -332,6 +336,17 @@ pub struct SkipSolution<S> {
     exit: SkipPoint<S>,
 }
 
+/// Log-loads at one range angle with the state they came from ([`SkipSolution::peaks`]).
+#[derive(Clone, Copy)]
+struct LoadSample<S> {
+    /// `x/2 - (m/2) eta v` (log heat flux up to a constant).
+    heat: S,
+    /// `x - eta v` (log g-load up to a constant).
+    load: S,
+    /// `(x, phi, eta v)`.
+    state: (S, S, S),
+}
+
 /// Terms of eq. 3.50/3.54 at one point.
 struct Terms<S> {
     phi2: S,
@@ -413,7 +428,9 @@ impl<S: Real> SkipSolution<S> {
             q = Quad::new(c.c, c.k1, oma, x1)?;
             pass += 1;
         }
-        let mut sol = Self {
+        // Built in the return value and completed in place (a `Self` is ~220 bytes: every move
+        // is a `memcpy`, ~800 instructions on the Cortex-M4F at the firmware's opt-level "s").
+        let mut out = Ok(Self {
             nd: *nd,
             q,
             x1_first,
@@ -432,14 +449,17 @@ impl<S: Real> SkipSolution<S> {
                 lift_acc_m_s2: S::ZERO,
                 g_load: S::ZERO,
             },
-        };
-        // A negative phi^2 at the return to x = 0 means the vehicle cannot climb back to the
-        // reference radius: no exit (captured).
-        sol.exit = sol.point_at_tau(q.tau_exit).map_err(|e| match e {
-            VinhError::BeyondDeepestPoint => VinhError::NoAtmosphericExit,
-            other => other,
-        })?;
-        Ok(sol)
+        });
+        if let Ok(sol) = &mut out {
+            // A negative phi^2 at the return to x = 0 means the vehicle cannot climb back to
+            // the reference radius: no exit (captured).
+            match sol.point_at_tau(q.tau_exit) {
+                Ok(p) => sol.exit = p,
+                Err(VinhError::BeyondDeepestPoint) => return Err(VinhError::NoAtmosphericExit),
+                Err(e) => return Err(e),
+            }
+        }
+        out
     }
 
     /// Second-order deepest point with upward lift (`k1 > 0`): the first root of eq. 3.50
@@ -492,6 +512,7 @@ impl<S: Real> SkipSolution<S> {
     }
 
     /// `I`, `J` and `phi^2` at `(tau, x, phi_a)` on fit `q` (eq. 3.50-3.53, 3.55).
+    #[inline(always)]
     fn terms_raw(nd: &NonDim<S>, q: &Quad<S>, tau: S, x: S, phi_a: S) -> Terms<S> {
         let c = nd.c;
         let two: S = k(2.0);
@@ -511,6 +532,7 @@ impl<S: Real> SkipSolution<S> {
     }
 
     /// Second-order `phi` (sign of `leg`), `eta v` and the terms at `(tau, x, phi_a)`.
+    #[inline(always)]
     fn phi_eta_v(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<(S, S, Terms<S>), VinhError> {
         let nd = &self.nd;
         let c = nd.c;
@@ -539,9 +561,16 @@ impl<S: Real> SkipSolution<S> {
     }
 
     /// Second-order point at `(tau, x, phi_a)` with the `phi` sign of `leg`.
+    #[inline(always)]
     fn point(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<SkipPoint<S>, VinhError> {
-        let nd = &self.nd;
         let (phi, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
+        self.point_from(tau, x, phi, eta_v)
+    }
+
+    /// The dimensional point of a second-order state `(tau, x, phi, eta v)`.
+    #[inline(always)]
+    fn point_from(&self, tau: S, x: S, phi: S, eta_v: S) -> Result<SkipPoint<S>, VinhError> {
+        let nd = &self.nd;
         let gamma = nd.fpa_from_phi(phi)?;
         // One exponential for drag, lift and g-load (all scale with e^(x - eta v)).
         let (drag, lift, g_load) = nd.aero_loads(x, eta_v);
@@ -563,6 +592,7 @@ impl<S: Real> SkipSolution<S> {
     }
 
     /// `(x, phi_a, leg)` of the closed form at `tau` in `[0, tau_exit]`.
+    #[inline(always)]
     fn depth_at_tau(&self, tau: S) -> (S, S, Leg) {
         let (x, phi_a) = if tau == self.q.tau_exit {
             (S::ZERO, self.q.phi_a(tau))
@@ -582,11 +612,16 @@ impl<S: Real> SkipSolution<S> {
 
     /// Log heat flux and log g-load (up to constants) at `tau`: `x/2 - (m/2) eta v` and
     /// `x - eta v` (see [`SkipSolution::peaks`]); no dimensional point is built.
-    fn log_loads(&self, tau: S) -> Result<(S, S), VinhError> {
+    #[inline(always)]
+    fn log_loads(&self, tau: S) -> Result<LoadSample<S>, VinhError> {
         let (x, phi_a, leg) = self.depth_at_tau(tau);
-        let (_, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
+        let (phi, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
         let m2: S = k(super::nondim::CHAPMAN_SPEED_EXPONENT / 2.0);
-        Ok((x.half() - m2 * eta_v, x - eta_v))
+        Ok(LoadSample {
+            heat: x.half() - m2 * eta_v,
+            load: x - eta_v,
+            state: (x, phi, eta_v),
+        })
     }
 
     /// State at non-dimensional range angle `tau` in `[0, tau_exit]`.
@@ -595,6 +630,7 @@ impl<S: Real> SkipSolution<S> {
     /// [`VinhError::NonFiniteInput`], [`VinhError::OutsideSkip`] outside `[0, tau_exit]`, and the
     /// point errors ([`VinhError::BeyondDeepestPoint`], [`VinhError::SpeedExpansionInvalid`],
     /// [`VinhError::FlightPathAngleOutOfDomain`], [`VinhError::NonFiniteResult`]).
+    #[inline(always)]
     pub fn point_at_tau(&self, tau: S) -> Result<SkipPoint<S>, VinhError> {
         if !tau.is_finite() {
             return Err(VinhError::NonFiniteInput);
@@ -712,11 +748,16 @@ impl<S: Real> SkipSolution<S> {
     /// Peak Chapman heat flux and peak g-load over the skip: `(heat-flux peak, g-load peak)`.
     ///
     /// Both log-loads (`x/2 - (m/2) eta v`, `x - eta v`: no exponentials, no dimensional point)
-    /// are sampled on one shared grid of [`PEAK_SCAN_INTERVALS`] intervals over the skip; each
-    /// maximum is then refined by Brent's method (parabolic interpolation with golden-section
-    /// safeguard) on the two intervals around its best sample, to `sqrt(EPSILON)` of the range
-    /// angle: the peak value is then exact to the working precision (the peak is flat), and
-    /// `f32` stops after fewer steps than `f64`.
+    /// are sampled on one shared grid of [`PEAK_SCAN_INTERVALS`] intervals over the skip, from
+    /// the three nodes around the deepest point (the middle node) outwards: a node is added
+    /// while the best sample of either load is at an edge of the sampled window, so the window
+    /// ends with each best sample between two lower ones (or at an end of the skip), which is
+    /// the best node of the whole grid whenever the samples rise to one peak and fall after it.
+    /// (Both peaks lie near the deepest point: heat flux on the descending leg, g-load next to
+    /// the bottom; typically 3-4 nodes.) Each maximum is then refined by successive parabolic
+    /// interpolation from its node and the two neighbours ([`super::num::parabolic_max`]) until
+    /// the parabola predicts less than a few ulp of gain; the dimensional point is built from
+    /// the state of the best sample (no recomputation).
     ///
     /// Why not a root of the analytic derivative: the closed-form `phi` changes sign at the
     /// deepest point while eq. 3.50's `phi^2` is not exactly zero there, so `v` (eq. 3.54) and
@@ -724,65 +765,114 @@ impl<S: Real> SkipSolution<S> {
     /// large values next to it; the derivative then has spurious sign changes near the bottom,
     /// where the g-load peak lies (measured during development: peaks 0.4 % low).
     ///
-    /// Cost: `PEAK_SCAN_INTERVALS + 1` log-load evaluations, two Brent searches (typically 6-12
-    /// evaluations each in `f32`) and two points.
+    /// Cost: 3 to `PEAK_SCAN_INTERVALS + 1` log-load evaluations, two parabolic searches
+    /// (typically 2-3 evaluations each in `f32`) and two points; at an end of the skip Brent's
+    /// search from that end.
     ///
     /// # Errors
     /// The point errors.
     pub fn peaks(&self) -> Result<(SkipPoint<S>, SkipPoint<S>), VinhError> {
+        const N: usize = PEAK_SCAN_INTERVALS as usize;
         let te = self.q.tau_exit;
         // Grid step te/8 (a power of two: every node, the middle tau_bottom included, is exact);
         // nodes from an integer in `S` arithmetic (no f64 conversion: soft float on an M4F).
         let step = te / S::from_u32(PEAK_SCAN_INTERVALS);
-        let mut heat = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
-        let mut load = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
         let tau_at = |i: usize| -> S {
             match u32::try_from(i) {
                 Ok(j) if j < PEAK_SCAN_INTERVALS => step * S::from_u32(j),
                 _ => te,
             }
         };
-        for (i, (h, l)) in heat.iter_mut().zip(load.iter_mut()).enumerate() {
-            (*h, *l) = self.log_loads(tau_at(i))?;
+        let mut grid: [Option<LoadSample<S>>; N + 1] = [None; N + 1];
+        let (mut lo, mut hi) = (N / 2 - 1, N / 2 + 1);
+        for i in lo..=hi {
+            if let Some(g) = grid.get_mut(i) {
+                *g = Some(self.log_loads(tau_at(i))?);
+            }
         }
-        let argmax = |v: &[S]| -> usize {
-            let mut best = 0;
-            for (i, &x) in v.iter().enumerate() {
-                if v.get(best).is_some_and(|&b| x > b) {
-                    best = i;
+        let best = |grid: &[Option<LoadSample<S>>], heat: bool| -> Option<(usize, LoadSample<S>)> {
+            let mut out: Option<(usize, LoadSample<S>)> = None;
+            for (i, g) in grid.iter().enumerate() {
+                if let Some(s) = g {
+                    let v = if heat { s.heat } else { s.load };
+                    let better = out.is_none_or(|(_, b)| v > if heat { b.heat } else { b.load });
+                    if better {
+                        out = Some((i, *s));
+                    }
                 }
             }
-            best
+            out
         };
-        let (ih, il) = (argmax(&heat), argmax(&load));
-        let tol = S::EPSILON * te;
+        // Widen the window while a best sample sits on an inner edge (at most N + 1 nodes).
+        loop {
+            let (Some((ih, _)), Some((il, _))) = (best(&grid, true), best(&grid, false)) else {
+                return Err(VinhError::NonFiniteResult);
+            };
+            let next = if (ih == lo || il == lo) && lo > 0 {
+                lo -= 1;
+                lo
+            } else if (ih == hi || il == hi) && hi < N {
+                hi += 1;
+                hi
+            } else {
+                break;
+            };
+            if let Some(g) = grid.get_mut(next) {
+                *g = Some(self.log_loads(tau_at(next))?);
+            }
+        }
         // Value tolerance of the refinement: a few ulp of the log-load (the peak value, not its
         // location, is wanted), at least EPSILON.
         let tol_f = |v: S| k::<S>(4.0) * S::EPSILON * v.abs().max(S::ONE);
-        let refine = |i: usize, v: S, which: usize| -> Result<SkipPoint<S>, VinhError> {
-            let samples = if which == 0 { &heat } else { &load };
-            let eval = |t: S| -> Result<S, VinhError> {
-                let (h, l) = self.log_loads(t)?;
-                Ok(if which == 0 { h } else { l })
+        let refine = |heat: bool| -> Result<SkipPoint<S>, VinhError> {
+            let value = |s: &LoadSample<S>| if heat { s.heat } else { s.load };
+            let Some((i, s)) = best(&grid, heat) else {
+                return Err(VinhError::NonFiniteResult);
             };
-            let left = i
-                .checked_sub(1)
-                .and_then(|j| samples.get(j).map(|&f| (tau_at(j), f)));
-            let right = samples.get(i + 1).map(|&f| (tau_at(i + 1), f));
-            let t = match (left, right) {
-                (Some(l), Some(r)) => parabolic_max(eval, l, (tau_at(i), v), r, tol_f(v))?.0,
+            let eval = |t: S| -> Result<(S, (S, S, S)), VinhError> {
+                let s = self.log_loads(t)?;
+                Ok((value(&s), s.state))
+            };
+            let at = |j: usize| {
+                grid.get(j)
+                    .copied()
+                    .flatten()
+                    .map(|s| (tau_at(j), value(&s)))
+            };
+            let left = i.checked_sub(1).and_then(at);
+            let right = at(i + 1);
+            match (left, right) {
+                (Some(l), Some(r)) => {
+                    let (t, _, (x, phi, eta_v)) = parabolic_max(
+                        eval,
+                        l,
+                        (tau_at(i), value(&s), s.state),
+                        r,
+                        tol_f(value(&s)),
+                    )?;
+                    self.point_from(t, x, phi, eta_v)
+                }
                 // The best sample is an end of the skip: Brent from it on its interval.
                 _ => {
-                    let a = if i == 0 { S::ZERO } else { tau_at(i - 1) };
-                    let b = if i == 0 { tau_at(1) } else { te };
-                    brent_max(eval, a, b, tau_at(i), v, None, tol)?.0
+                    let (a, b) = if i == 0 {
+                        (S::ZERO, tau_at(1))
+                    } else {
+                        (tau_at(N - 1), te)
+                    };
+                    let (t, _) = brent_max(
+                        |t| eval(t).map(|(v, _)| v),
+                        a,
+                        b,
+                        tau_at(i),
+                        value(&s),
+                        None,
+                        S::EPSILON * te,
+                    )?;
+                    self.point_at_tau(t.clamp(S::ZERO, te))
                 }
-            };
-            self.point_at_tau(t.clamp(S::ZERO, te))
+            }
         };
-        let hv = heat.get(ih).copied().unwrap_or(S::ZERO);
-        let lv = load.get(il).copied().unwrap_or(S::ZERO);
-        Ok((refine(ih, hv, 0)?, refine(il, lv, 1)?))
+        Ok((refine(true)?, refine(false)?))
     }
 
     /// Peak Chapman heat flux over the skip (see [`SkipSolution::peaks`]).
