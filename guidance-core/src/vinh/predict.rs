@@ -257,7 +257,7 @@ pub fn predict_with<S: Real>(
     }
     // Final glide from the captured state. The capture itself (the descent from the interface
     // to the glide start radius) is not modelled: the chain error map (docs/VINH.md) measured
-    // range errors of -62 to +900 % for such chains, so a chain is never in domain.
+    // range errors of -62 to +1117 % for such chains, so a chain is never in domain.
     validity = validity.and(true, Extrapolation::CaptureTransition);
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, cur.speed_m_s, r_i)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
