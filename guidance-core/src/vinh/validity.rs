@@ -43,6 +43,12 @@ pub const GLIDE_MIN_FINAL_SPEED_RATIO: f64 = 0.3;
 /// Largest distance between the state and the glide start radius of a glide-mode prediction,
 /// per unit of total L/D \[m\]: `0.56 (1.9)^2 = 2` % of added error (error map).
 pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
+/// Largest distance between the state and the glide start radius of a glide-mode prediction
+/// with the sink modelled (`replan::predict_glide_with_sink`) \[m\]: the largest start offset of
+/// the glide range-error map (8.7 km: an equilibrium start of full lift flown at a vertical
+/// fraction of 0.3), over which that prediction is within 2.9 % for vertical L/D 0.6 to 2.5
+/// (docs/VINH.md).
+pub const GLIDE_MAX_START_OFFSET_M: f64 = 9_000.0;
 
 /// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,7 +75,7 @@ pub enum Extrapolation {
     /// Final speed below [`GLIDE_MIN_FINAL_SPEED_RATIO`] of the glide start speed.
     GlideFinalSpeedRatio,
     /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
-    /// L/D from the state.
+    /// L/D from the state ([`GLIDE_MAX_START_OFFSET_M`] with the sink modelled).
     GlideStartOffset,
 }
 
