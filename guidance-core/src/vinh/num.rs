@@ -414,11 +414,6 @@ pub(crate) const MAX_BRENT_MAX_EVALS: u32 = 64;
 /// within the working precision: the function is flat there), or after
 /// [`MAX_BRENT_MAX_EVALS`] evaluations. Returns `(x, f(x))` with the largest `f` seen.
 ///
-/// With `ends = Some((f(a), f(b)))` (samples of a scan, `f0` not below either) the ends are
-/// Brent's two previous points and the first step is the vertex of the parabola through the
-/// three samples instead of a golden-section step: a smooth peak is then found in a few
-/// evaluations (the golden-section safeguard still applies when the parabola is poor).
-///
 /// # Errors
 /// Errors of `f`; [`VinhError::NonFiniteResult`] for a non-finite value.
 pub(crate) fn brent_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
@@ -427,7 +422,6 @@ pub(crate) fn brent_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
     mut b: S,
     x0: S,
     f0: S,
-    ends: Option<(S, S)>,
     tol_abs: S,
 ) -> Result<(S, S), VinhError> {
     let golden: S = k(0.381_966_011_250_105_1);
@@ -437,24 +431,6 @@ pub(crate) fn brent_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
     let (mut x, mut w, mut v) = (x0, x0, x0);
     let (mut fx, mut fw, mut fv) = (-f0, -f0, -f0);
     let (mut d, mut e) = (S::ZERO, S::ZERO);
-    if let Some((fa, fb)) = ends
-        && fa.is_finite()
-        && fb.is_finite()
-        && !(fa > f0)
-        && !(fb > f0)
-        && a < x0
-        && x0 < b
-    {
-        // Previous points: the better end as w, the other as v; a large "step before last"
-        // lets the first step be parabolic.
-        if fa >= fb {
-            (w, fw, v, fv) = (a, -fa, b, -fb);
-        } else {
-            (w, fw, v, fv) = (b, -fb, a, -fa);
-        }
-        e = b - a;
-        d = e.half();
-    }
     let mut n = 0_u32;
     while n < MAX_BRENT_MAX_EVALS {
         let m = (a + b).half();
@@ -846,7 +822,6 @@ mod tests {
             1.0,
             0.5,
             -0.04 + 0.008,
-            None,
             0.0,
         )
         .unwrap();

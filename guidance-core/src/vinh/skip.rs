@@ -755,7 +755,7 @@ impl<S: Real> SkipSolution<S> {
     /// the best node of the whole grid whenever the samples rise to one peak and fall after it.
     /// (Both peaks lie near the deepest point: heat flux on the descending leg, g-load next to
     /// the bottom; typically 3-4 nodes.) Each maximum is then refined by successive parabolic
-    /// interpolation from its node and the two neighbours ([`super::num::parabolic_max`]) until
+    /// interpolation from its node and the two neighbours (`vinh::num::parabolic_max`) until
     /// the parabola predicts less than a few ulp of gain; the dimensional point is built from
     /// the state of the best sample (no recomputation).
     ///
@@ -865,7 +865,6 @@ impl<S: Real> SkipSolution<S> {
                         b,
                         tau_at(i),
                         value(&s),
-                        None,
                         S::EPSILON * te,
                     )?;
                     self.point_at_tau(t.clamp(S::ZERO, te))
