@@ -74,7 +74,9 @@ use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, Vehicl
 use crate::vinh::predict::{
     PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_validity,
 };
-use crate::vinh::validity::{Extrapolation, GLIDE_MAX_START_OFFSET_PER_LD_M, Validity};
+use crate::vinh::validity::{
+    Extrapolation, GLIDE_MAX_START_OFFSET_M, GLIDE_MAX_START_OFFSET_PER_LD_M, Validity,
+};
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
 pub const MAX_ITERATIONS: u8 = 40;
@@ -203,7 +205,11 @@ pub fn predict_glide<S: Real>(
     )
 }
 
-/// Glide-only prediction from `state` with constant `lift`, peaks as `peaks` asks.
+/// Glide-only prediction from `state` with constant `lift`, peaks as `peaks` asks: the glide
+/// closed form started at the radius where its imposed speed equals the state's speed, the
+/// descent from the state to that radius not modelled (zero range). The re-planner's
+/// [`PredictorMode::Glide`]; see [`predict_glide_with_sink`] for the variant that models the
+/// sink.
 ///
 /// # Errors
 /// Input validation errors, and the domain errors of [`glide_start_radius`] and
@@ -217,6 +223,53 @@ pub fn predict_glide_with<S: Real>(
     state: &EntryState<S>,
     config: &PredictorConfig<S>,
     peaks: PeakMode<S>,
+) -> Result<Prediction<S>, VinhError> {
+    glide_prediction(
+        planet, atmosphere, vehicle, lift, state, config, peaks, false,
+    )
+}
+
+/// As [`predict_glide_with`], plus the range of the sink from the state to the glide start
+/// radius ([`sink_range_angle`]): a state above the equilibrium of the commanded lift (after a
+/// bank change) sinks to it in a phugoid and flies farther than the glide started at its
+/// equilibrium. Against integration (glide range-error map, docs/VINH.md) every start of the
+/// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
+/// the sink: up to -12.7 %), so its validity accepts start offsets up to
+/// [`GLIDE_MAX_START_OFFSET_M`] (without the sink: [`GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
+/// of total L/D).
+///
+/// Not the re-planner's predictor: in the closed loop a state above the predicted glide start
+/// radius is mostly model error (a denser atmosphere than the predictor's raises the real
+/// equilibrium), not a sink to come, and the sink term then adds range that is never flown
+/// (SRM glide with density x 1.1: final range error -6.4 km against +2.8 km without it;
+/// docs/VINH.md).
+///
+/// # Errors
+/// As [`predict_glide_with`].
+pub fn predict_glide_with_sink<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+    peaks: PeakMode<S>,
+) -> Result<Prediction<S>, VinhError> {
+    glide_prediction(
+        planet, atmosphere, vehicle, lift, state, config, peaks, true,
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn glide_prediction<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+    peaks: PeakMode<S>,
+    sink: bool,
 ) -> Result<Prediction<S>, VinhError> {
     if !(config.final_speed_m_s.is_finite()
         && state.radius_m.is_finite()
@@ -234,7 +287,11 @@ pub fn predict_glide_with<S: Real>(
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, state.speed_m_s, r_max)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
-    let theta = end.range_angle_rad;
+    let theta = if sink {
+        end.range_angle_rad + sink_range_angle(planet, atmosphere, state, r_g)
+    } else {
+        end.range_angle_rad
+    };
     let range = theta * planet.radius_m;
     let (q, n, status) = match peaks {
         PeakMode::RangeOnly => (S::ZERO, S::ZERO, PeakStatus::NotComputed),
@@ -277,7 +334,7 @@ pub fn predict_glide_with<S: Real>(
         skips: 0,
         arcs: 0,
         glide_start_radius_m: r_g,
-        glide_range_angle_rad: theta,
+        glide_range_angle_rad: end.range_angle_rad,
         peak_status: status,
         validity: glide_validity(
             Validity::InDomain,
@@ -287,13 +344,53 @@ pub fn predict_glide_with<S: Real>(
             config.final_speed_m_s,
         )
         .and(
-            // Total L/D = vertical L/D / vertical fraction (> 0 for a glide).
-            !((r_g - state.radius_m).abs() * lift.vertical_fraction
-                <= S::from_f64(GLIDE_MAX_START_OFFSET_PER_LD_M)
-                    * glide.nondim().constants().e_vertical),
+            if sink {
+                !((r_g - state.radius_m).abs() <= S::from_f64(GLIDE_MAX_START_OFFSET_M))
+            } else {
+                // Total L/D = vertical L/D / vertical fraction (> 0 for a glide).
+                !((r_g - state.radius_m).abs() * lift.vertical_fraction
+                    <= S::from_f64(GLIDE_MAX_START_OFFSET_PER_LD_M)
+                        * glide.nondim().constants().e_vertical)
+            },
             Extrapolation::GlideStartOffset,
         ),
     })
+}
+
+/// Range angle \[rad\] the glide-mode prediction adds for the sink from the state at
+/// `state.radius_m` to the glide start radius `r_g` (the equilibrium of the commanded lift at
+/// the state's speed), which the glide closed form, started at `r_g`, does not contain.
+///
+/// Model (docs/VINH.md, "sink to the equilibrium glide"): above its new equilibrium by
+/// `dh = r - r_g` the vehicle meets `exp(-dh/H)` of the equilibrium density, so its drag falls
+/// short of the glide's by `1 - exp(-dh/H)`; it sinks to the equilibrium and oscillates about
+/// it (a phugoid of angular frequency `w = sqrt(a/H)`, `a = mu/r^2 - V^2/r` the net downward
+/// acceleration the lift balances), and the range per unit of excess lift,
+/// `V/(r a)`, drops quickly as the vehicle slows near circular speed, so the first swing is not
+/// given back by the later ones. The range gained is taken as the range flown during one
+/// radian of phugoid phase at the initial drag deficit: `(V/r) (1 - exp(-dh/H)) / w`. No
+/// fitted constant; validated against integration by the glide range-error map
+/// ([`predict_glide_with_sink`]; docs/VINH.md). A state below `r_g` gives the symmetric
+/// (negative) term, not validated. Zero when `a <= 0` (at or above circular speed, where the glide closed
+/// form is out of domain anyway) or for non-finite values.
+#[must_use]
+pub fn sink_range_angle<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    state: &EntryState<S>,
+    r_g: S,
+) -> S {
+    let r = state.radius_m;
+    let v = state.speed_m_s;
+    let h_s = atmosphere.scale_height_m;
+    let a = planet.mu_m3_s2 / (r * r) - v * v / r;
+    if !(a > S::ZERO && h_s > S::ZERO && r > S::ZERO) {
+        return S::ZERO;
+    }
+    let deficit = S::ONE - (-(r - r_g) / h_s).exp();
+    let w = (a / h_s).sqrt_raw();
+    let d = v / r * deficit / w;
+    if d.is_finite() { d } else { S::ZERO }
 }
 
 /// Re-plan the vertical lift fraction for `target_range_m` \[m\] of surface range to go from `nav`.

@@ -1,4 +1,5 @@
-//! The Vinh closed forms through the predictor chain (skip, ballistic arc, glide) and the
+//! The Vinh closed forms through the predictor chain (skip, ballistic arc, glide), the
+//! glide-mode prediction with the sink modelled (`predict_glide_with_sink`) and the
 //! re-planning solver, in `f64` and `f32`, from mostly plausible and sometimes hostile vehicles,
 //! lift settings and entry states. Checks: no panic; a prediction is finite (range, peaks, glide
 //! start) with non-negative peaks; a re-plan that commands a vertical fraction (any case but a
@@ -6,10 +7,12 @@
 //! prediction (if any) is finite.
 
 use guidance_core::NavState;
-use guidance_core::replan::{PredictorMode, ReplanCase, ReplanConfig, ReplanLimits, replan};
+use guidance_core::replan::{
+    PredictorMode, ReplanCase, ReplanConfig, ReplanLimits, predict_glide_with_sink, replan,
+};
 use guidance_core::scalar::Real;
 use guidance_core::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
-use guidance_core::vinh::predict::{Prediction, PredictorConfig, predict};
+use guidance_core::vinh::predict::{PeakMode, Prediction, PredictorConfig, predict};
 use rand::{Rng, RngExt};
 
 use crate::hostile::value;
@@ -117,6 +120,20 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
         && !finite_prediction(&p)
     {
         return Err(format!("{ty}: predict gave {p:?} for {i:?}"));
+    }
+    if let Ok(p) = predict_glide_with_sink(
+        &planet,
+        &atmosphere,
+        &vehicle,
+        &lift,
+        &entry,
+        &predictor,
+        PeakMode::Full,
+    ) && !finite_prediction(&p)
+    {
+        return Err(format!(
+            "{ty}: predict_glide_with_sink gave {p:?} for {i:?}"
+        ));
     }
     let config = ReplanConfig {
         lambda: s(i.lift[0]),

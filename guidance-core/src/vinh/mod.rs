@@ -54,6 +54,7 @@ pub use glide::{GlidePoint, GlideSolution};
 pub use nondim::{
     Constants, EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
 };
+pub use predict::skip_validity;
 pub use predict::{
     LoadLimits, PeakMode, PeakStatus, Prediction, PredictorConfig, predict, predict_with,
 };

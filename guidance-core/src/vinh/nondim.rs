@@ -188,7 +188,7 @@ impl<S: Real> VehicleParams<S> {
     /// [`VinhError::InvalidVehicle`].
     pub fn cl_max_ld(&self) -> Result<S, VinhError> {
         self.validate()?;
-        finite((self.cd0 / self.k_polar).sqrt_raw())
+        finite((self.cd0 / self.k_polar).sqrt_fast())
     }
 
     /// Maximum lift-to-drag ratio `E* = 1 / (2 sqrt(K C_D0))` \[-\] (eq. 3.18).
@@ -197,7 +197,7 @@ impl<S: Real> VehicleParams<S> {
     /// As for [`VehicleParams::cl_max_ld`].
     pub fn max_lift_to_drag(&self) -> Result<S, VinhError> {
         self.validate()?;
-        finite(S::ONE / (k::<S>(2.0) * (self.k_polar * self.cd0).sqrt_raw()))
+        finite(S::ONE / (k::<S>(2.0) * (self.k_polar * self.cd0).sqrt_fast()))
     }
 }
 
@@ -335,6 +335,8 @@ pub struct NonDim<S> {
     pub(crate) drag_e: S,
     /// Total-lift acceleration at the reference state \[m/s^2\].
     pub(crate) lift_e: S,
+    /// g-load at the reference state `sqrt(drag_e^2 + lift_e^2)/g0` \[-\].
+    pub(crate) g_load_e: S,
 }
 
 /// Smallest accepted `|k1|` for float type `S`: `64 * EPSILON` (1.4e-14 in `f64`, 7.6e-6 in
@@ -372,12 +374,12 @@ impl<S: Real> NonDim<S> {
         let h_s = atmosphere.scale_height_m;
         let rho_e = atmosphere.density_kg_m3(r_e)?;
         let g_e = finite(planet.mu_m3_s2 / (r_e * r_e))?;
-        let sqrt_cd0_k = finite((vehicle.cd0 / vehicle.k_polar).sqrt_raw())?;
-        let e_star = finite(S::ONE / (two * (vehicle.k_polar * vehicle.cd0).sqrt_raw()))?;
+        let sqrt_cd0_k = finite((vehicle.cd0 / vehicle.k_polar).sqrt_fast())?;
+        let e_star = finite(S::ONE / (two * (vehicle.k_polar * vehicle.cd0).sqrt_fast()))?;
         let b =
             finite(rho_e * vehicle.reference_area_m2 * r_e / (two * vehicle.mass_kg) * sqrt_cd0_k)?;
         let s = finite(r_e / h_s)?;
-        let sqrt_s = finite(s.sqrt_raw())?;
+        let sqrt_s = finite(s.sqrt_fast())?;
         let eta = finite(b / (e_star * sqrt_s))?;
         let kk = finite(two / (eta * s))?;
         let alpha = finite(g_e * r_e / (v_e * v_e))?;
@@ -387,13 +389,14 @@ impl<S: Real> NonDim<S> {
         let one_l2 = S::ONE + lambda * lambda;
         let e_vertical = finite(two * e_star * lambda * lift.vertical_fraction / one_l2)?;
         let q_e = finite(
-            k::<S>(CHAPMAN_C_STAR) / vehicle.nose_radius_m.sqrt_raw()
-                * (rho_e / k(CHAPMAN_RHO0_KG_M3)).sqrt_raw()
+            k::<S>(CHAPMAN_C_STAR) / vehicle.nose_radius_m.sqrt_fast()
+                * (rho_e / k(CHAPMAN_RHO0_KG_M3)).sqrt_fast()
                 * (v_e / k(CHAPMAN_VC_M_S)).powf(k(CHAPMAN_SPEED_EXPONENT)),
         )?;
         let qdyn_s_m = rho_e * v_e * v_e * vehicle.reference_area_m2 / (two * vehicle.mass_kg);
         let drag_e = finite(qdyn_s_m * vehicle.cd0 * one_l2)?;
         let lift_e = finite(qdyn_s_m * sqrt_cd0_k * lambda)?;
+        let g_load_e = finite((drag_e * drag_e + lift_e * lift_e).sqrt_fast() / k(G0_M_S2))?;
         Ok(Self {
             c: Constants {
                 e_star,
@@ -419,6 +422,7 @@ impl<S: Real> NonDim<S> {
             q_e,
             drag_e,
             lift_e,
+            g_load_e,
         })
     }
 
@@ -512,9 +516,16 @@ impl<S: Real> NonDim<S> {
     /// g-load `sqrt(L^2 + D^2)/(m g0)` \[-\] at `x`, `eta v` (eq. 2.1).
     #[must_use]
     pub fn g_load(&self, x: S, eta_v: S) -> S {
-        let d = self.drag_e;
-        let l = self.lift_e;
-        (d * d + l * l).sqrt() / k(G0_M_S2) * (x - eta_v).exp()
+        self.g_load_e * (x - eta_v).exp()
+    }
+
+    /// Drag and total-lift accelerations \[m/s^2\] and g-load \[-\] at `x`, `eta v`: the
+    /// values of [`NonDim::drag_acc_m_s2`], [`NonDim::lift_acc_m_s2`] and [`NonDim::g_load`]
+    /// from one exponential.
+    #[must_use]
+    pub(crate) fn aero_loads(&self, x: S, eta_v: S) -> (S, S, S) {
+        let e = (x - eta_v).exp();
+        (self.drag_e * e, self.lift_e * e, self.g_load_e * e)
     }
 
     /// Vehicle of this set-up.

@@ -204,7 +204,7 @@ pub(crate) fn asin_unit<S: Real>(a: S) -> S {
     if a <= k(0.5) {
         series(a)
     } else {
-        let z = ((S::ONE - a).half()).sqrt();
+        let z = ((S::ONE - a).half()).sqrt_fast();
         k::<S>(core::f64::consts::FRAC_PI_2) - series(z) - series(z)
     }
 }
@@ -251,6 +251,7 @@ impl<S: Real> Zeroin<S> {
     ///
     /// # Errors
     /// [`VinhError::NoConvergence`] if the ends do not bracket a sign change or are not finite.
+    #[inline(always)]
     pub(crate) fn new(a: S, fa: S, b: S, fb: S, tol_abs: S) -> Result<Self, VinhError> {
         let all = [a, fa, b, fb, tol_abs];
         if all.iter().any(|v| !v.is_finite()) {
@@ -425,7 +426,7 @@ pub(crate) fn brent_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
 ) -> Result<(S, S), VinhError> {
     let golden: S = k(0.381_966_011_250_105_1);
     let two: S = k(2.0);
-    let rel = S::EPSILON.sqrt_raw();
+    let rel = S::EPSILON.sqrt_fast();
     // Minimise g = -f.
     let (mut x, mut w, mut v) = (x0, x0, x0);
     let (mut fx, mut fw, mut fv) = (-f0, -f0, -f0);
@@ -503,6 +504,95 @@ pub(crate) fn brent_max<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
         }
     }
     Ok((x, -fx))
+}
+
+/// Largest number of function evaluations of one [`parabolic_max`].
+pub(crate) const MAX_PARABOLIC_EVALS: u32 = 40;
+
+/// Maximum of `f` on `[a, b]` from three scan samples `a < x0 < b` with `f(x0) = f0` not below
+/// `fa = f(a)`, `fb = f(b)`, by successive parabolic interpolation on a bracket (the vertex of
+/// the parabola through the best point and its two bracketing neighbours; a golden-section
+/// step into the larger side when the vertex is outside the bracket or too close to a sample).
+/// `f` returns its value and a payload (`p0` for `x0`), handed back with the best sample, so
+/// the caller need not recompute what `f` computed there.
+///
+/// Stops when the parabola predicts a gain over the best sample of at most `tol_f` (the value
+/// is then known to that tolerance without evaluating the vertex: for a peak the value, not its
+/// location, is what is wanted), when the bracket is below `sqrt(EPSILON) (|x| + |b - a|)`, or
+/// after [`MAX_PARABOLIC_EVALS`] evaluations. Returns the best sample `(x, f(x), payload)`.
+///
+/// # Errors
+/// Errors of `f`; [`VinhError::NonFiniteResult`] for a non-finite value;
+/// [`VinhError::NoConvergence`] if the samples are not ordered or `x0` is not the best.
+pub(crate) fn parabolic_max<S: Real, P: Copy, F: FnMut(S) -> Result<(S, P), VinhError>>(
+    mut f: F,
+    (mut a, mut fa): (S, S),
+    (mut x, mut fx, mut px): (S, S, P),
+    (mut b, mut fb): (S, S),
+    tol_f: S,
+) -> Result<(S, S, P), VinhError> {
+    let all = [a, fa, x, fx, b, fb, tol_f];
+    if all.iter().any(|v| !v.is_finite()) || !(a < x && x < b) || fa > fx || fb > fx {
+        return Err(VinhError::NoConvergence);
+    }
+    let golden: S = k(0.381_966_011_250_105_1);
+    let rel = S::EPSILON.sqrt_fast();
+    let tol_x = rel * (x.abs() + (b - a).abs());
+    let mut n = 0_u32;
+    while n < MAX_PARABOLIC_EVALS {
+        if !(b - a > tol_x + tol_x) {
+            break;
+        }
+        // Vertex of the parabola through (a, fa), (x, fx), (b, fb):
+        // u = x - ((x-a)^2 (fx-fb) - (x-b)^2 (fx-fa)) / (2 ((x-a)(fx-fb) - (x-b)(fx-fa))).
+        let (da, db) = (x - a, x - b);
+        let (ga, gb) = (fx - fa, fx - fb);
+        let num = da * da * gb - db * db * ga;
+        let den = (da * gb - db * ga) * k::<S>(2.0);
+        let mut parabolic = false;
+        let mut u = x;
+        if den != S::ZERO {
+            let step = num / den;
+            // Predicted gain of the parabola at its vertex over fx: p(u) - fx = -p'' step^2/2
+            // with p'' = 2 ((fb-fx)/(b-x) - (fx-fa)/(x-a)) / (b - a) <= 0 (x is the best
+            // sample); `neg_curv` is -p''.
+            let neg_curv = k::<S>(2.0) * (ga / da - gb / db) / (b - a);
+            let gain = neg_curv * step * step / k::<S>(2.0);
+            if gain.is_finite() && !(gain > tol_f) {
+                break;
+            }
+            let cand = x - step;
+            let gap = tol_x.half();
+            if cand.is_finite() && cand > a + gap && cand < b - gap && (cand - x).abs() > gap {
+                u = cand;
+                parabolic = true;
+            }
+        }
+        if !parabolic {
+            u = if x - a > b - x {
+                x - golden * (x - a)
+            } else {
+                x + golden * (b - x)
+            };
+        }
+        let (fu, pu) = f(u)?;
+        let fu = finite(fu)?;
+        n += 1;
+        if fu > fx {
+            // u becomes the best point; x becomes the bracket end on its side.
+            if u < x {
+                (b, fb) = (x, fx);
+            } else {
+                (a, fa) = (x, fx);
+            }
+            (x, fx, px) = (u, fu, pu);
+        } else if u < x {
+            (a, fa) = (u, fu);
+        } else {
+            (b, fb) = (u, fu);
+        }
+    }
+    Ok((x, fx, px))
 }
 
 /// Number of scan intervals of [`first_root`].

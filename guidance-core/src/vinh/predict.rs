@@ -36,7 +36,7 @@ use super::num::{brent, finite, k};
 use super::skip::SkipSolution;
 use super::validity::{
     Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE,
-    SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_SPEED_RANGE_M_S, Validity,
+    SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_MIN_VERTICAL_LD, SKIP_SPEED_RANGE_M_S, Validity,
 };
 use crate::scalar::Real;
 
@@ -222,7 +222,7 @@ pub fn predict_with<S: Real>(
         match SkipSolution::new(&nd) {
             Ok(skip) => {
                 let ex = skip.exit();
-                validity = skip_validity(validity, &cur, ex.eta_v);
+                validity = skip_validity_and(validity, &cur, &skip);
                 if let PeakMode::Limits(l) = peaks {
                     let b = skip.deepest_point()?;
                     if l.exceeded(b.heat_flux_w_m2, b.g_load) {
@@ -255,7 +255,10 @@ pub fn predict_with<S: Real>(
             Err(e) => return Err(e),
         }
     }
-    // Final glide from the captured state.
+    // Final glide from the captured state. The capture itself (the descent from the interface
+    // to the glide start radius) is not modelled: the chain error map (docs/VINH.md) measured
+    // range errors of -62 to +1117 % for such chains, so a chain is never in domain.
+    validity = validity.and(true, Extrapolation::CaptureTransition);
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, cur.speed_m_s, r_i)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
@@ -300,21 +303,42 @@ pub fn predict_with<S: Real>(
     })
 }
 
-/// `v` updated with a skip from `entry` whose exit has `exit_eta_v`.
-fn skip_validity<S: Real>(v: Validity, entry: &EntryState<S>, exit_eta_v: S) -> Validity {
+/// `v` updated with a skip of `skip` from `entry` (see [`skip_validity`]).
+fn skip_validity_and<S: Real>(
+    v: Validity,
+    entry: &EntryState<S>,
+    skip: &SkipSolution<S>,
+) -> Validity {
+    match skip_validity(entry, skip) {
+        Validity::Extrapolated(reason) => v.and(true, reason),
+        _ => v,
+    }
+}
+
+/// Validity of one skip `skip` from `entry`: `InDomain` inside the region validated against
+/// integration (docs/VINH.md: the validation grid and the skip error map), else the first
+/// reason: entry speed outside [`SKIP_SPEED_RANGE_M_S`], entry flight-path angle outside
+/// [`SKIP_FPA_RANGE_RAD`], vertical L/D below [`SKIP_MIN_VERTICAL_LD`], exit `|eta v|` above
+/// [`SKIP_MAX_EXIT_ETA_V`].
+pub fn skip_validity<S: Real>(entry: &EntryState<S>, skip: &SkipSolution<S>) -> Validity {
     let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
-    v.and(
-        !inside(entry.speed_m_s, SKIP_SPEED_RANGE_M_S),
-        Extrapolation::SkipEntrySpeed,
-    )
-    .and(
-        !inside(entry.flight_path_angle_rad.abs(), SKIP_FPA_RANGE_RAD),
-        Extrapolation::SkipFlightPathAngle,
-    )
-    .and(
-        !(exit_eta_v.abs() <= k(SKIP_MAX_EXIT_ETA_V)),
-        Extrapolation::SkipSpeedExpansion,
-    )
+    Validity::InDomain
+        .and(
+            !inside(entry.speed_m_s, SKIP_SPEED_RANGE_M_S),
+            Extrapolation::SkipEntrySpeed,
+        )
+        .and(
+            !inside(entry.flight_path_angle_rad.abs(), SKIP_FPA_RANGE_RAD),
+            Extrapolation::SkipFlightPathAngle,
+        )
+        .and(
+            !(skip.nondim().constants().e_vertical >= k(SKIP_MIN_VERTICAL_LD)),
+            Extrapolation::SkipVerticalLiftToDrag,
+        )
+        .and(
+            !(skip.exit().eta_v.abs() <= k(SKIP_MAX_EXIT_ETA_V)),
+            Extrapolation::SkipSpeedExpansion,
+        )
 }
 
 /// `v` updated with a glide started at `r_g` \[m\] and run to `final_speed_m_s` \[m/s\].

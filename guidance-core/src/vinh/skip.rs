@@ -44,7 +44,7 @@ use super::error::VinhError;
 use super::nondim::{NonDim, k1_min};
 use super::num::{
     asin_unit, brent, brent_max, expm1mx_over_x2, finite, first_root, first_root_from, k, maximize,
-    sin_cos_reduced,
+    parabolic_max, sin_cos_reduced,
 };
 use crate::scalar::Real;
 
@@ -107,6 +107,7 @@ pub struct SkipPoint<S> {
 }
 
 impl<S: Real> SkipPoint<S> {
+    #[inline(always)]
     fn check(self) -> Result<Self, VinhError> {
         let all = [
             self.tau,
@@ -153,6 +154,7 @@ struct Quad<S> {
 
 impl<S: Real> Quad<S> {
     /// Eq. 3.45-3.47 at deepest point `x1 > 0`, `c > 0`.
+    #[inline(always)]
     fn new(c: S, k1: S, oma: S, x1: S) -> Result<Self, VinhError> {
         if !(x1 > S::ZERO) {
             return Err(VinhError::NoDeepestPoint);
@@ -172,8 +174,8 @@ impl<S: Real> Quad<S> {
         if !(disc > S::ZERO) {
             return Err(VinhError::NotOscillatory);
         }
-        let sd = disc.sqrt_raw();
-        let omega = (-a1).sqrt_raw();
+        let sd = disc.sqrt_fast();
+        let omega = (-a1).sqrt_fast();
         if !(omega > S::ZERO) {
             return Err(VinhError::NotOscillatory);
         }
@@ -203,6 +205,7 @@ impl<S: Real> Quad<S> {
     /// `(x, phi_a)` at `tau` from one sine and cosine of `theta = omega (tau - tau_b)/2`
     /// (`|theta| <= pi/2` on the skip; `sin(2 theta) = 2 sin(theta) cos(theta)`), by the
     /// single-precision kernels of [`super::num::sin_cos_reduced`] in `f32`.
+    #[inline(always)]
     fn x_phi_a(&self, tau: S) -> (S, S) {
         let (sn, cs) = sin_cos_reduced((self.omega * (tau - self.tau_bottom)).half());
         let h = sn / self.omega;
@@ -217,12 +220,13 @@ impl<S: Real> Quad<S> {
     }
 
     /// `(tau, phi_a)` at depth `x` in `[0, x1]` on a leg.
+    #[inline(always)]
     fn at_depth(&self, x: S, leg: Leg) -> (S, S) {
         let depth = (self.x1 - x).max(S::ZERO);
-        let arg = (self.omega * (depth / self.sd).sqrt()).min(S::ONE);
+        let arg = (self.omega * (depth / self.sd).sqrt_fast()).min(S::ONE);
         let half = k::<S>(2.0) / self.omega * asin_unit(arg);
         // phi_a = -sd sin(omega Delta)/(2 omega) with sin(omega half/2) = arg (no second sine).
-        let pa = self.sd * arg * (S::ONE - arg * arg).max(S::ZERO).sqrt() / self.omega;
+        let pa = self.sd * arg * (S::ONE - arg * arg).max(S::ZERO).sqrt_fast() / self.omega;
         match leg {
             Leg::Descending => {
                 let tau = self.tau_bottom - half;
@@ -248,12 +252,14 @@ impl<S: Real> Quad<S> {
 /// `(0, x_surf]` (`f1(0) = c^2 > 0`). With upward lift (`k1 > 0`) `f1` is concave, so it has
 /// exactly one positive root; it is bracketed by `x_g = ln(1 + c^2/(2 k1))` (where the lift
 /// term alone cancels `c^2`: an upper bound for `alpha <= 1`, a lower bound above circular
-/// speed) and solved by Brent's method to the working precision. With downward lift (`k1 < 0`,
-/// convex, zero or two roots) the first sign change of a 64-point scan, as in the thesis set-up.
+/// speed) and solved by Newton's method with the exact derivative ([`lift_root`]) to the
+/// working precision. With downward lift (`k1 < 0`, convex, zero or two roots) the first sign
+/// change of a 64-point scan, as in the thesis set-up.
 fn first_order_root<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
     mut f1: F,
     c2: S,
     k1: S,
+    oma: S,
     x_surf: S,
 ) -> Result<S, VinhError> {
     if !(k1 > S::ZERO) {
@@ -264,17 +270,56 @@ fn first_order_root<S: Real, F: FnMut(S) -> Result<S, VinhError>>(
         return Err(VinhError::NoDeepestPoint);
     }
     let x_g = finite((S::ONE + c2 / (k::<S>(2.0) * k1)).ln())?;
-    let (a, fa, b, fb) = if x_g < x_surf && x_g > S::ZERO {
-        let f_g = f1(x_g)?;
-        if f_g > S::ZERO {
-            (x_g, f_g, x_surf, f_surf)
+    let (a, b) = if x_g < x_surf && x_g > S::ZERO {
+        if f1(x_g)? > S::ZERO {
+            (x_g, x_surf)
         } else {
-            (S::ZERO, c2, x_g, f_g)
+            (S::ZERO, x_g)
         }
     } else {
-        (S::ZERO, c2, x_surf, f_surf)
+        (S::ZERO, x_surf)
     };
-    brent(f1, a, b, fa, fb, S::ZERO)
+    lift_root(c2, k1, oma, S::ZERO, a, b)
+}
+
+/// Largest number of Newton steps of [`lift_root`].
+const MAX_NEWTON_STEPS: u32 = 64;
+
+/// Root of `g(x) = c^2 - 2 k1 (e^x - 1) - 2 (1 - alpha) x + offset` on a bracket `[lo, hi]`
+/// with `g(lo) > 0 >= g(hi)`, `k1 > 0` (`g` concave and decreasing past its maximum: one root),
+/// by Newton's method with the exact derivative `-2 k1 e^x - 2 (1 - alpha)` (one exponential
+/// per step for both), kept in the bracket by bisection; stops at the working precision
+/// (`2 EPSILON |x|`). The first-order deepest point is `offset = 0`; beyond the first-order
+/// point the second-order `phi^2` with Vinh's freeze is this `g` with `offset = 2 eta alpha I`
+/// frozen.
+fn lift_root<S: Real>(c2: S, k1: S, oma: S, offset: S, lo: S, hi: S) -> Result<S, VinhError> {
+    let two: S = k(2.0);
+    let (mut lo, mut hi) = (lo, hi);
+    let mut x = lo;
+    let mut n = 0_u32;
+    while n < MAX_NEWTON_STEPS {
+        let e = x.exp();
+        let g = finite(c2 - two * k1 * (e - S::ONE) - two * oma * x + offset)?;
+        let dg = -two * (k1 * e + oma);
+        if g == S::ZERO {
+            return Ok(x);
+        }
+        if g > S::ZERO {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let mut xn = x - g / dg;
+        if !(xn > lo && xn < hi) {
+            xn = (lo + hi).half();
+        }
+        if !((xn - x).abs() > two * S::EPSILON * x.abs()) || !(hi - lo > two * S::EPSILON * hi) {
+            return Ok(xn);
+        }
+        x = xn;
+        n += 1;
+    }
+    Ok(x)
 }
 
 /// Scan intervals of the peak searches ([`SkipSolution::peaks`]).
@@ -289,6 +334,17 @@ pub struct SkipSolution<S> {
     x1_first: S,
     remedy_used: bool,
     exit: SkipPoint<S>,
+}
+
+/// Log-loads at one range angle with the state they came from ([`SkipSolution::peaks`]).
+#[derive(Clone, Copy)]
+struct LoadSample<S> {
+    /// `x/2 - (m/2) eta v` (log heat flux up to a constant).
+    heat: S,
+    /// `x - eta v` (log g-load up to a constant).
+    load: S,
+    /// `(x, phi, eta v)`.
+    state: (S, S, S),
 }
 
 /// Terms of eq. 3.50/3.54 at one point.
@@ -336,7 +392,7 @@ impl<S: Real> SkipSolution<S> {
         let f1 = |x: S| -> Result<S, VinhError> {
             finite(c2 - two * c.k1 * (x.exp() - S::ONE) - two * oma * x)
         };
-        let x1_first = first_order_root(f1, c2, c.k1, x_surf)?;
+        let x1_first = first_order_root(f1, c2, c.k1, oma, x_surf)?;
         let mut q = Quad::new(c.c, c.k1, oma, x1_first)?;
         let mut remedy_used = false;
         let passes = 1 + options.deepest_point_refinements.min(8);
@@ -358,22 +414,23 @@ impl<S: Real> SkipSolution<S> {
                         + two * c.eta * c.alpha * i,
                 )
             };
-            // First sign change on a grid of step x1f/2 (the second-order root lies near the
-            // first-order one), then Brent to the working precision. With downward lift the
-            // first-order phi^2 is convex and may have two roots: the original fine scan.
+            // Upward lift: next to the fit's deepest point (`second_order_root`). With downward
+            // lift the first-order phi^2 is convex and may have two roots: the original fine
+            // scan, then Brent.
             let x1 = if c.k1 > S::ZERO {
-                first_root_from(f2, S::ZERO, x_surf, c2, x1_first.half())?
+                Self::second_order_root(nd, &q_fit, f2, x_surf)?
             } else {
-                first_root(f2, S::ZERO, x_surf, c2)?
-            }
-            .ok_or(VinhError::NoDeepestPoint)?;
+                first_root(f2, S::ZERO, x_surf, c2)?.ok_or(VinhError::NoDeepestPoint)?
+            };
             if pass == 0 {
                 remedy_used = froze && x1 > q_fit.x1;
             }
             q = Quad::new(c.c, c.k1, oma, x1)?;
             pass += 1;
         }
-        let mut sol = Self {
+        // Built in the return value and completed in place (a `Self` is ~220 bytes: every move
+        // is a `memcpy`, ~800 instructions on the Cortex-M4F at the firmware's opt-level "s").
+        let mut out = Ok(Self {
             nd: *nd,
             q,
             x1_first,
@@ -392,17 +449,70 @@ impl<S: Real> SkipSolution<S> {
                 lift_acc_m_s2: S::ZERO,
                 g_load: S::ZERO,
             },
-        };
-        // A negative phi^2 at the return to x = 0 means the vehicle cannot climb back to the
-        // reference radius: no exit (captured).
-        sol.exit = sol.point_at_tau(q.tau_exit).map_err(|e| match e {
-            VinhError::BeyondDeepestPoint => VinhError::NoAtmosphericExit,
-            other => other,
-        })?;
-        Ok(sol)
+        });
+        if let Ok(sol) = &mut out {
+            // A negative phi^2 at the return to x = 0 means the vehicle cannot climb back to
+            // the reference radius: no exit (captured).
+            match sol.point_at_tau(q.tau_exit) {
+                Ok(p) => sol.exit = p,
+                Err(VinhError::BeyondDeepestPoint) => return Err(VinhError::NoAtmosphericExit),
+                Err(e) => return Err(e),
+            }
+        }
+        out
+    }
+
+    /// Second-order deepest point with upward lift (`k1 > 0`): the first root of eq. 3.50
+    /// (`f2`, with Vinh's freeze beyond the fit's `x1`), found next to the fit's deepest point
+    /// `x_b` (the roots of the first- and second-order `phi^2` lie close together):
+    /// * `f2(x_b) > 0`: the root lies beyond `x_b`, where the freeze makes `f2` the first-order
+    ///   `phi^2` plus the constant `2 eta alpha I(x_b)`: Newton on that ([`lift_root`], one
+    ///   exponential per step, no `I`);
+    /// * else the root lies below: one Newton step from `x_b` (slope of the first-order
+    ///   `phi^2`) overshot twice gives the other end of a bracket, solved by Brent; if that end is
+    ///   not positive or lies below `x_b/2`, the first sign change on the grid of step `x_b/2`
+    ///   from 0 (the thesis set-up's scan, coarse), then Brent.
+    fn second_order_root<F: FnMut(S) -> Result<S, VinhError>>(
+        nd: &NonDim<S>,
+        q_fit: &Quad<S>,
+        mut f2: F,
+        x_surf: S,
+    ) -> Result<S, VinhError> {
+        let c = nd.c;
+        let two: S = k(2.0);
+        let c2 = c.c * c.c;
+        let oma = S::ONE - c.alpha;
+        let x_b = q_fit.x1;
+        if !(x_b > S::ZERO && x_b < x_surf) {
+            return first_root_from(f2, S::ZERO, x_surf, c2, x_b.half())?
+                .ok_or(VinhError::NoDeepestPoint);
+        }
+        let f_b = f2(x_b)?;
+        if f_b > S::ZERO {
+            let e_b = x_b.exp();
+            let offset = f_b - (c2 - two * c.k1 * (e_b - S::ONE) - two * oma * x_b);
+            let f_surf = f2(x_surf)?;
+            if f_surf > S::ZERO {
+                return Err(VinhError::NoDeepestPoint);
+            }
+            return lift_root(c2, c.k1, oma, offset, x_b, x_surf);
+        }
+        if f_b == S::ZERO {
+            return Ok(x_b);
+        }
+        let slope = -two * (c.k1 * x_b.exp() + oma);
+        let x_lo = x_b - two * (f_b / slope).abs();
+        if x_lo.is_finite() && x_lo > x_b.half() {
+            let f_lo = f2(x_lo)?;
+            if f_lo > S::ZERO {
+                return brent(f2, x_lo, x_b, f_lo, f_b, S::ZERO);
+            }
+        }
+        first_root_from(f2, S::ZERO, x_b, c2, x_b.half())?.ok_or(VinhError::NoDeepestPoint)
     }
 
     /// `I`, `J` and `phi^2` at `(tau, x, phi_a)` on fit `q` (eq. 3.50-3.53, 3.55).
+    #[inline(always)]
     fn terms_raw(nd: &NonDim<S>, q: &Quad<S>, tau: S, x: S, phi_a: S) -> Terms<S> {
         let c = nd.c;
         let two: S = k(2.0);
@@ -422,6 +532,7 @@ impl<S: Real> SkipSolution<S> {
     }
 
     /// Second-order `phi` (sign of `leg`), `eta v` and the terms at `(tau, x, phi_a)`.
+    #[inline(always)]
     fn phi_eta_v(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<(S, S, Terms<S>), VinhError> {
         let nd = &self.nd;
         let c = nd.c;
@@ -431,7 +542,7 @@ impl<S: Real> SkipSolution<S> {
         if phi2 < -tol {
             return Err(VinhError::BeyondDeepestPoint);
         }
-        let mag = phi2.max(S::ZERO).sqrt();
+        let mag = phi2.max(S::ZERO).sqrt_fast();
         let phi = match leg {
             Leg::Descending => mag,
             Leg::Ascending => -mag,
@@ -450,10 +561,19 @@ impl<S: Real> SkipSolution<S> {
     }
 
     /// Second-order point at `(tau, x, phi_a)` with the `phi` sign of `leg`.
+    #[inline(always)]
     fn point(&self, tau: S, x: S, phi_a: S, leg: Leg) -> Result<SkipPoint<S>, VinhError> {
-        let nd = &self.nd;
         let (phi, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
+        self.point_from(tau, x, phi, eta_v)
+    }
+
+    /// The dimensional point of a second-order state `(tau, x, phi, eta v)`.
+    #[inline(always)]
+    fn point_from(&self, tau: S, x: S, phi: S, eta_v: S) -> Result<SkipPoint<S>, VinhError> {
+        let nd = &self.nd;
         let gamma = nd.fpa_from_phi(phi)?;
+        // One exponential for drag, lift and g-load (all scale with e^(x - eta v)).
+        let (drag, lift, g_load) = nd.aero_loads(x, eta_v);
         SkipPoint {
             tau,
             range_angle_rad: nd.range_angle_from_tau(tau),
@@ -464,14 +584,15 @@ impl<S: Real> SkipSolution<S> {
             speed_m_s: nd.speed_from_eta_v(eta_v),
             flight_path_angle_rad: gamma,
             heat_flux_w_m2: nd.heat_flux_w_m2(x, eta_v),
-            drag_acc_m_s2: nd.drag_acc_m_s2(x, eta_v),
-            lift_acc_m_s2: nd.lift_acc_m_s2(x, eta_v),
-            g_load: nd.g_load(x, eta_v),
+            drag_acc_m_s2: drag,
+            lift_acc_m_s2: lift,
+            g_load,
         }
         .check()
     }
 
     /// `(x, phi_a, leg)` of the closed form at `tau` in `[0, tau_exit]`.
+    #[inline(always)]
     fn depth_at_tau(&self, tau: S) -> (S, S, Leg) {
         let (x, phi_a) = if tau == self.q.tau_exit {
             (S::ZERO, self.q.phi_a(tau))
@@ -491,11 +612,16 @@ impl<S: Real> SkipSolution<S> {
 
     /// Log heat flux and log g-load (up to constants) at `tau`: `x/2 - (m/2) eta v` and
     /// `x - eta v` (see [`SkipSolution::peaks`]); no dimensional point is built.
-    fn log_loads(&self, tau: S) -> Result<(S, S), VinhError> {
+    #[inline(always)]
+    fn log_loads(&self, tau: S) -> Result<LoadSample<S>, VinhError> {
         let (x, phi_a, leg) = self.depth_at_tau(tau);
-        let (_, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
+        let (phi, eta_v, _) = self.phi_eta_v(tau, x, phi_a, leg)?;
         let m2: S = k(super::nondim::CHAPMAN_SPEED_EXPONENT / 2.0);
-        Ok((x.half() - m2 * eta_v, x - eta_v))
+        Ok(LoadSample {
+            heat: x.half() - m2 * eta_v,
+            load: x - eta_v,
+            state: (x, phi, eta_v),
+        })
     }
 
     /// State at non-dimensional range angle `tau` in `[0, tau_exit]`.
@@ -504,6 +630,7 @@ impl<S: Real> SkipSolution<S> {
     /// [`VinhError::NonFiniteInput`], [`VinhError::OutsideSkip`] outside `[0, tau_exit]`, and the
     /// point errors ([`VinhError::BeyondDeepestPoint`], [`VinhError::SpeedExpansionInvalid`],
     /// [`VinhError::FlightPathAngleOutOfDomain`], [`VinhError::NonFiniteResult`]).
+    #[inline(always)]
     pub fn point_at_tau(&self, tau: S) -> Result<SkipPoint<S>, VinhError> {
         if !tau.is_finite() {
             return Err(VinhError::NonFiniteInput);
@@ -621,11 +748,16 @@ impl<S: Real> SkipSolution<S> {
     /// Peak Chapman heat flux and peak g-load over the skip: `(heat-flux peak, g-load peak)`.
     ///
     /// Both log-loads (`x/2 - (m/2) eta v`, `x - eta v`: no exponentials, no dimensional point)
-    /// are sampled on one shared grid of [`PEAK_SCAN_INTERVALS`] intervals over the skip; each
-    /// maximum is then refined by Brent's method (parabolic interpolation with golden-section
-    /// safeguard) on the two intervals around its best sample, to `sqrt(EPSILON)` of the range
-    /// angle: the peak value is then exact to the working precision (the peak is flat), and
-    /// `f32` stops after fewer steps than `f64`.
+    /// are sampled on one shared grid of [`PEAK_SCAN_INTERVALS`] intervals over the skip, from
+    /// the three nodes around the deepest point (the middle node) outwards: a node is added
+    /// while the best sample of either load is at an edge of the sampled window, so the window
+    /// ends with each best sample between two lower ones (or at an end of the skip), which is
+    /// the best node of the whole grid whenever the samples rise to one peak and fall after it.
+    /// (Both peaks lie near the deepest point: heat flux on the descending leg, g-load next to
+    /// the bottom; typically 3-4 nodes.) Each maximum is then refined by successive parabolic
+    /// interpolation from its node and the two neighbours (`vinh::num::parabolic_max`) until
+    /// the parabola predicts less than a few ulp of gain; the dimensional point is built from
+    /// the state of the best sample (no recomputation).
     ///
     /// Why not a root of the analytic derivative: the closed-form `phi` changes sign at the
     /// deepest point while eq. 3.50's `phi^2` is not exactly zero there, so `v` (eq. 3.54) and
@@ -633,56 +765,113 @@ impl<S: Real> SkipSolution<S> {
     /// large values next to it; the derivative then has spurious sign changes near the bottom,
     /// where the g-load peak lies (measured during development: peaks 0.4 % low).
     ///
-    /// Cost: `PEAK_SCAN_INTERVALS + 1` log-load evaluations, two Brent searches (typically 6-12
-    /// evaluations each in `f32`) and two points.
+    /// Cost: 3 to `PEAK_SCAN_INTERVALS + 1` log-load evaluations, two parabolic searches
+    /// (typically 2-3 evaluations each in `f32`) and two points; at an end of the skip Brent's
+    /// search from that end.
     ///
     /// # Errors
     /// The point errors.
     pub fn peaks(&self) -> Result<(SkipPoint<S>, SkipPoint<S>), VinhError> {
+        const N: usize = PEAK_SCAN_INTERVALS as usize;
         let te = self.q.tau_exit;
-        let n: S = k(f64::from(PEAK_SCAN_INTERVALS));
-        let mut heat = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
-        let mut load = [S::ZERO; PEAK_SCAN_INTERVALS as usize + 1];
+        // Grid step te/8 (a power of two: every node, the middle tau_bottom included, is exact);
+        // nodes from an integer in `S` arithmetic (no f64 conversion: soft float on an M4F).
+        let step = te / S::from_u32(PEAK_SCAN_INTERVALS);
         let tau_at = |i: usize| -> S {
-            if i >= PEAK_SCAN_INTERVALS as usize {
-                te
-            } else {
-                te * k::<S>(i as f64) / n
+            match u32::try_from(i) {
+                Ok(j) if j < PEAK_SCAN_INTERVALS => step * S::from_u32(j),
+                _ => te,
             }
         };
-        for (i, (h, l)) in heat.iter_mut().zip(load.iter_mut()).enumerate() {
-            (*h, *l) = self.log_loads(tau_at(i))?;
+        let mut grid: [Option<LoadSample<S>>; N + 1] = [None; N + 1];
+        let (mut lo, mut hi) = (N / 2 - 1, N / 2 + 1);
+        for i in lo..=hi {
+            if let Some(g) = grid.get_mut(i) {
+                *g = Some(self.log_loads(tau_at(i))?);
+            }
         }
-        let argmax = |v: &[S]| -> usize {
-            let mut best = 0;
-            for (i, &x) in v.iter().enumerate() {
-                if v.get(best).is_some_and(|&b| x > b) {
-                    best = i;
+        let best = |grid: &[Option<LoadSample<S>>], heat: bool| -> Option<(usize, LoadSample<S>)> {
+            let mut out: Option<(usize, LoadSample<S>)> = None;
+            for (i, g) in grid.iter().enumerate() {
+                if let Some(s) = g {
+                    let v = if heat { s.heat } else { s.load };
+                    let better = out.is_none_or(|(_, b)| v > if heat { b.heat } else { b.load });
+                    if better {
+                        out = Some((i, *s));
+                    }
                 }
             }
-            best
+            out
         };
-        let (ih, il) = (argmax(&heat), argmax(&load));
-        let tol = S::EPSILON * te;
-        let refine = |i: usize, v: S, which: usize| -> Result<SkipPoint<S>, VinhError> {
-            let a = if i == 0 { S::ZERO } else { tau_at(i - 1) };
-            let b = tau_at(i + 1);
-            let (t, _) = brent_max(
-                |t| {
-                    let (h, l) = self.log_loads(t)?;
-                    Ok(if which == 0 { h } else { l })
-                },
-                a,
-                b,
-                tau_at(i),
-                v,
-                tol,
-            )?;
-            self.point_at_tau(t.clamp(S::ZERO, te))
+        // Widen the window while a best sample sits on an inner edge (at most N + 1 nodes).
+        loop {
+            let (Some((ih, _)), Some((il, _))) = (best(&grid, true), best(&grid, false)) else {
+                return Err(VinhError::NonFiniteResult);
+            };
+            let next = if (ih == lo || il == lo) && lo > 0 {
+                lo -= 1;
+                lo
+            } else if (ih == hi || il == hi) && hi < N {
+                hi += 1;
+                hi
+            } else {
+                break;
+            };
+            if let Some(g) = grid.get_mut(next) {
+                *g = Some(self.log_loads(tau_at(next))?);
+            }
+        }
+        // Value tolerance of the refinement: a few ulp of the log-load (the peak value, not its
+        // location, is wanted), at least EPSILON.
+        let tol_f = |v: S| k::<S>(4.0) * S::EPSILON * v.abs().max(S::ONE);
+        let refine = |heat: bool| -> Result<SkipPoint<S>, VinhError> {
+            let value = |s: &LoadSample<S>| if heat { s.heat } else { s.load };
+            let Some((i, s)) = best(&grid, heat) else {
+                return Err(VinhError::NonFiniteResult);
+            };
+            let eval = |t: S| -> Result<(S, (S, S, S)), VinhError> {
+                let s = self.log_loads(t)?;
+                Ok((value(&s), s.state))
+            };
+            let at = |j: usize| {
+                grid.get(j)
+                    .copied()
+                    .flatten()
+                    .map(|s| (tau_at(j), value(&s)))
+            };
+            let left = i.checked_sub(1).and_then(at);
+            let right = at(i + 1);
+            match (left, right) {
+                (Some(l), Some(r)) => {
+                    let (t, _, (x, phi, eta_v)) = parabolic_max(
+                        eval,
+                        l,
+                        (tau_at(i), value(&s), s.state),
+                        r,
+                        tol_f(value(&s)),
+                    )?;
+                    self.point_from(t, x, phi, eta_v)
+                }
+                // The best sample is an end of the skip: Brent from it on its interval.
+                _ => {
+                    let (a, b) = if i == 0 {
+                        (S::ZERO, tau_at(1))
+                    } else {
+                        (tau_at(N - 1), te)
+                    };
+                    let (t, _) = brent_max(
+                        |t| eval(t).map(|(v, _)| v),
+                        a,
+                        b,
+                        tau_at(i),
+                        value(&s),
+                        S::EPSILON * te,
+                    )?;
+                    self.point_at_tau(t.clamp(S::ZERO, te))
+                }
+            }
         };
-        let hv = heat.get(ih).copied().unwrap_or(S::ZERO);
-        let lv = load.get(il).copied().unwrap_or(S::ZERO);
-        Ok((refine(ih, hv, 0)?, refine(il, lv, 1)?))
+        Ok((refine(true)?, refine(false)?))
     }
 
     /// Peak Chapman heat flux over the skip (see [`SkipSolution::peaks`]).

@@ -17,13 +17,19 @@ use super::error::VinhError;
 use super::predict::Prediction;
 
 /// Skip entry speeds validated against integration \[m/s\] (`validate_vinh_skip_*`: 7435.5 to
-/// 10 500 m/s).
-pub const SKIP_SPEED_RANGE_M_S: (f64, f64) = (7_400.0, 10_500.0);
+/// 10 500 m/s). The lower end was 7 400 m/s until the skip error map found a skip at exactly
+/// 7 400 m/s (L/D 2.5, vertical fraction 0.5, -4 deg) that the closed form lets exit while the
+/// integration is captured: now the validated grid's edge.
+pub const SKIP_SPEED_RANGE_M_S: (f64, f64) = (7_435.0, 10_500.0);
 /// Skip entry flight-path angles validated \[rad\] (-7 to -2 deg, as magnitudes).
 pub const SKIP_FPA_RANGE_RAD: (f64, f64) = (
     2.0 * core::f64::consts::PI / 180.0 - 1e-9,
     7.0 * core::f64::consts::PI / 180.0 + 1e-9,
 );
+/// Smallest vertical lift-to-drag ratio of a validated skip (skip error map, docs/VINH.md:
+/// at 0.36 an in-grid skip was 18.6 % short in range and 1.4 deg off in exit flight-path
+/// angle, at 0.5 its exit speed 1.9 % high; the validation grids start at 1.2).
+pub const SKIP_MIN_VERTICAL_LD: f64 = 0.6;
 /// Largest `|eta v|` at a validated skip exit (measured 0.33; the exit errors grow with it).
 pub const SKIP_MAX_EXIT_ETA_V: f64 = 0.35;
 /// Glide start altitudes validated to the documented accuracy \[m\] (70 to 110 km; at 50 km
@@ -37,6 +43,12 @@ pub const GLIDE_MIN_FINAL_SPEED_RATIO: f64 = 0.3;
 /// Largest distance between the state and the glide start radius of a glide-mode prediction,
 /// per unit of total L/D \[m\]: `0.56 (1.9)^2 = 2` % of added error (error map).
 pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
+/// Largest distance between the state and the glide start radius of a glide-mode prediction
+/// with the sink modelled (`replan::predict_glide_with_sink`) \[m\]: the largest start offset of
+/// the glide range-error map (8.7 km: an equilibrium start of full lift flown at a vertical
+/// fraction of 0.3), over which that prediction is within 2.9 % for vertical L/D 0.6 to 2.5
+/// (docs/VINH.md).
+pub const GLIDE_MAX_START_OFFSET_M: f64 = 9_000.0;
 
 /// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,6 +60,14 @@ pub enum Extrapolation {
     SkipFlightPathAngle,
     /// A skip exit with `|eta v|` above [`SKIP_MAX_EXIT_ETA_V`].
     SkipSpeedExpansion,
+    /// A skip with vertical L/D below [`SKIP_MIN_VERTICAL_LD`].
+    SkipVerticalLiftToDrag,
+    /// A chain reaching its final glide through a capture (a skip that does not exit, or an
+    /// exit too shallow for an arc): the descent from the interface radius to the glide start
+    /// radius is not modelled (zero range), and the chain error map shows errors far beyond
+    /// the phases' own (docs/VINH.md). Every chain prediction carries it (unless an earlier
+    /// phase gave another reason).
+    CaptureTransition,
     /// Glide start altitude outside [`GLIDE_ALTITUDE_RANGE_M`].
     GlideAltitude,
     /// Glide vertical L/D outside [`GLIDE_VERTICAL_LD_RANGE`].
@@ -55,7 +75,7 @@ pub enum Extrapolation {
     /// Final speed below [`GLIDE_MIN_FINAL_SPEED_RATIO`] of the glide start speed.
     GlideFinalSpeedRatio,
     /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
-    /// L/D from the state.
+    /// L/D from the state ([`GLIDE_MAX_START_OFFSET_M`] with the sink modelled).
     GlideStartOffset,
 }
 

@@ -10,6 +10,7 @@ mod vinh_peaks;
 mod vinh_props;
 mod vinh_replan;
 mod vinh_replan_budget;
+mod vinh_skip_map;
 mod vinh_support;
 mod vinh_validation;
 mod vinh_validity;

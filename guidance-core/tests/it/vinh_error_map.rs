@@ -13,14 +13,21 @@ use crate::vinh_replan::{atmosphere, planet};
 use crate::vinh_support::dynamics::{Lift, eom_dim};
 use crate::vinh_support::ode::{Settings, integrate};
 use crate::vinh_support::vehicles::{R_EARTH, Vehicle, srm};
-use guidance_core::replan::predict_glide;
+use guidance_core::replan::{predict_glide, predict_glide_with_sink};
 use guidance_core::vinh::{
-    EntryState, GlideSolution, LiftControl, PredictorConfig, Validity, VehicleParams,
+    GlideSolution, LiftControl, PeakMode, PredictorConfig, Validity, VehicleParams,
 };
 
-/// One map point: L/D, altitude [km], vertical fraction, validity, range error (or `None`
-/// when the predictor is out of domain or the integration does not reach the final speed).
-type Point = (f64, f64, f64, Validity, Option<f64>);
+/// One map point: L/D, altitude [km], vertical fraction, then for `predict_glide` and for
+/// `predict_glide_with_sink`: validity and range error (`None` when the predictor is out of
+/// domain or the integration does not reach the final speed).
+type Point = (
+    f64,
+    f64,
+    f64,
+    (Validity, Option<f64>),
+    (Validity, Option<f64>),
+);
 
 fn vehicle(ld: f64) -> Vehicle {
     let mut v = srm();
@@ -64,37 +71,43 @@ fn map() -> Vec<Point> {
                     lambda: 1.0,
                     vertical_fraction: f,
                 };
-                let r = predict_glide(
+                let config = PredictorConfig {
+                    final_speed_m_s: v_f,
+                    max_skips: 0,
+                };
+                let r = predict_glide(&planet(), &atmosphere(), &p, &lift, &e, &config);
+                let rs = predict_glide_with_sink(
                     &planet(),
                     &atmosphere(),
                     &p,
                     &lift,
-                    &EntryState { ..e },
-                    &PredictorConfig {
-                        final_speed_m_s: v_f,
-                        max_skips: 0,
-                    },
+                    &e,
+                    &config,
+                    PeakMode::RangeOnly,
                 );
-                let validity = guidance_core::vinh::validity_of(&r);
-                let err = r.ok().and_then(|pred| {
-                    let sol = integrate(
-                        eom_dim(
-                            &veh,
-                            Lift {
-                                lambda: 1.0,
-                                cos_bank: f,
-                            },
-                        ),
-                        0.0,
-                        [e.radius_m, e.speed_m_s, e.flight_path_angle_rad, 0.0],
-                        200_000.0,
-                        Settings::tight(5.0),
-                        |_t, y| y[1] - v_f,
-                    );
-                    let (_, ye) = sol.event?;
-                    Some((pred.range_angle_rad - ye[3]) / ye[3])
-                });
-                out.push((ld, h / 1e3, f, validity, err));
+                let sol = integrate(
+                    eom_dim(
+                        &veh,
+                        Lift {
+                            lambda: 1.0,
+                            cos_bank: f,
+                        },
+                    ),
+                    0.0,
+                    [e.radius_m, e.speed_m_s, e.flight_path_angle_rad, 0.0],
+                    200_000.0,
+                    Settings::tight(5.0),
+                    |_t, y| y[1] - v_f,
+                );
+                let reference = sol.event.map(|(_, ye)| ye[3]);
+                let err = |r: &Result<guidance_core::vinh::Prediction<f64>, _>| {
+                    let pred = r.as_ref().ok()?;
+                    let th = reference?;
+                    Some((pred.range_angle_rad - th) / th)
+                };
+                let plain = (guidance_core::vinh::validity_of(&r), err(&r));
+                let sink = (guidance_core::vinh::validity_of(&rs), err(&rs));
+                out.push((ld, h / 1e3, f, plain, sink));
             }
         }
     }
@@ -102,40 +115,58 @@ fn map() -> Vec<Point> {
 }
 
 /// Every map point the validity calls `InDomain` is within the documented glide accuracy
-/// (3.2 %); the map has both in-domain and extrapolated points.
+/// (3.2 %), for both predictors; each map has both in-domain and extrapolated points, and the
+/// sink model (`predict_glide_with_sink`) is in domain at more points (its start offsets up to
+/// 9 km are validated by this map) with every one of them within 3.2 %.
 #[test]
 fn validate_dormand_prince_glide_map_validity_is_honest() {
     let m = map();
-    let mut n_in = 0;
-    let mut n_ext = 0;
-    for &(ld, h, f, v, err) in &m {
-        match v {
-            Validity::InDomain => {
-                let e = err.expect("integration reaches the final speed");
-                assert!(
-                    e.abs() <= 0.032,
-                    "L/D {ld}, {h} km, f {f}: {:+.2} %",
-                    100.0 * e
-                );
-                n_in += 1;
+    for which in 0..2 {
+        let mut n_in = 0;
+        let mut n_ext = 0;
+        for &(ld, h, f, plain, sink) in &m {
+            let (v, err) = if which == 0 { plain } else { sink };
+            match v {
+                Validity::InDomain => {
+                    let e = err.expect("integration reaches the final speed");
+                    assert!(
+                        e.abs() <= 0.032,
+                        "predictor {which}: L/D {ld}, {h} km, f {f}: {:+.2} %",
+                        100.0 * e
+                    );
+                    n_in += 1;
+                }
+                Validity::Extrapolated(_) => n_ext += 1,
+                Validity::OutOfDomain(_) => {}
             }
-            Validity::Extrapolated(_) => n_ext += 1,
-            Validity::OutOfDomain(_) => {}
         }
+        assert!(
+            n_in >= 10 && n_ext >= 10,
+            "predictor {which}: {n_in} in domain, {n_ext} extrapolated"
+        );
+        println!("predictor {which}: {n_in} in domain, {n_ext} extrapolated");
     }
-    assert!(
-        n_in >= 10 && n_ext >= 10,
-        "{n_in} in domain, {n_ext} extrapolated"
-    );
+    let in_domain = |k: usize| {
+        m.iter()
+            .filter(|p| if k == 0 { p.3.0 } else { p.4.0 } == Validity::InDomain)
+            .count()
+    };
+    assert!(in_domain(1) > in_domain(0));
 }
 
 #[test]
 #[ignore = "prints the glide range error map of docs/VINH.md"]
 fn print_glide_range_error_map() {
-    println!("| L/D | h [km] | cos(sigma) | validity | range error [%] |");
-    println!("|---|---|---|---|---|");
-    for (ld, h, f, v, err) in map() {
-        let e = err.map_or("-".to_string(), |e| format!("{:+.2}", 100.0 * e));
-        println!("| {ld} | {h:.0} | {f} | {v:?} | {e} |");
+    println!(
+        "| L/D | h [km] | cos(sigma) | validity | range error [%] | validity with sink | range error with sink [%] |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let pct = |e: Option<f64>| e.map_or("-".to_string(), |e| format!("{:+.2}", 100.0 * e));
+    for (ld, h, f, (v, e), (vs, es)) in map() {
+        println!(
+            "| {ld} | {h:.0} | {f} | {v:?} | {} | {vs:?} | {} |",
+            pct(e),
+            pct(es)
+        );
     }
 }

@@ -9,11 +9,11 @@ use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, NodeTable};
 use guidance_core::replan::{
     HostReplanningGuidance, MAX_PREDICTOR_CALLS, PredictorMode, PredictorModel, RangeTarget,
     ReplanCase, ReplanConfig, ReplanFallBack, ReplanLimits, ReplanningConfig, ReplanningGuidance,
-    TargetPoint, predict_glide, range_to_go_m, replan,
+    TargetPoint, predict_glide, predict_glide_with_sink, range_to_go_m, replan,
 };
 use guidance_core::vinh::{
-    EntryState, ExpAtmosphere, LiftControl, Planet, PredictorConfig, VehicleParams, VinhError,
-    predict,
+    EntryState, ExpAtmosphere, LiftControl, PeakMode, Planet, PredictorConfig, VehicleParams,
+    VinhError, predict,
 };
 use proptest::prelude::*;
 
@@ -851,6 +851,7 @@ proptest! {
 /// at the equilibrium start; below it the prediction falls short (the missing descent) and the
 /// shortfall grows as the start moves away from the equilibrium (smaller cos(sigma)).
 /// Measured (docs/VINH.md): -10.3 % at 0.3, -3.2 % at 0.5, -0.9 % at 0.7, +0.6 % at 1.
+/// `predict_glide_with_sink` adds the sink (`sink_range_angle`): within 3 % at every bank.
 #[test]
 fn validate_dormand_prince_glide_predictor_range() {
     use crate::vinh_support::dynamics::{Lift, eom_dim};
@@ -893,13 +894,30 @@ fn validate_dormand_prince_glide_predictor_range() {
         )
         .unwrap();
         let err = (p.range_angle_rad - ye[3]) / ye[3];
+        let ps = predict_glide_with_sink(
+            &planet(),
+            &atmosphere(),
+            &srm(),
+            &lift,
+            &s,
+            &config().predictor,
+            PeakMode::RangeOnly,
+        )
+        .unwrap();
+        let err_sink = (ps.range_angle_rad - ye[3]) / ye[3];
         println!(
-            "cos(sigma) {f}: predicted {:.2} deg, integrated {:.2} deg, error {:+.2} %",
+            "cos(sigma) {f}: predicted {:.2} deg, with sink {:.2} deg, integrated {:.2} deg, \
+             error {:+.2} %, with sink {:+.2} %",
             p.range_angle_rad.to_degrees(),
+            ps.range_angle_rad.to_degrees(),
             ye[3].to_degrees(),
-            100.0 * err
+            100.0 * err,
+            100.0 * err_sink
         );
         errs.push(err);
+        // With the sink to the equilibrium of the bank modelled, the thesis' <= 3 % at every
+        // bank (measured -0.90 % at 0.3, +1.16 % at 0.5, +1.05 % at 0.7, +0.56 % at 1).
+        assert!(err_sink.abs() < 0.03, "cos(sigma) {f}: {err_sink}");
     }
     // The thesis' glide claim (<= 3 %) applies at the imposed entry (cos(sigma) = 1).
     assert!(errs[3].abs() < 0.03, "{errs:?}");
