@@ -119,7 +119,8 @@ pub trait Real: Scalar {
     fn sqrt_raw(self) -> Self;
     /// Square root for the closed forms' inner loops, NaN for negative input like
     /// [`Real::sqrt_raw`]: `f64` libm; `f32` [`crate::math::sqrtf_kernel`] (single-precision
-    /// arithmetic, within 1 ulp of libm, a quarter of its cost on the Cortex-M4F).
+    /// arithmetic, bit for bit libm's correctly rounded `sqrtf`, about half its cost on the
+    /// Cortex-M4F).
     fn sqrt_fast(self) -> Self;
 }
 
