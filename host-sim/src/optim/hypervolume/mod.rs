@@ -19,6 +19,7 @@
 //! 2-D (O(n log n)), an O(n) box sweep per point in 3-D, and `vol(box) - HV(limit set)` per
 //! point otherwise.
 
+mod contrib3d;
 mod contributions;
 mod error;
 mod hv2d;
