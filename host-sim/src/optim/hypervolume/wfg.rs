@@ -148,7 +148,9 @@ fn limit_set<const N: usize>(
         sc.dominated.push(below);
         if track && m & (m - 1) == 0 {
             let c = m.trailing_zeros() as usize;
-            best[c] = best[c].min(s[c]);
+            if s[c] < best[c] {
+                best[c] = s[c];
+            }
         } else if !(track && filtered(m, s, &best)) {
             // Not dominated by the single-coordinate points so far: check again at the end.
             sc.multi.push((m, i as u32));
@@ -162,25 +164,37 @@ fn limit_set<const N: usize>(
         }
     }
     sc.survivors.clear();
-    for &(m, i) in &sc.multi {
-        if track && filtered(m, &seen[i as usize * dm..i as usize * dm + dm], &best) {
-            continue;
-        }
-        sc.survivors.push((m.count_ones(), i));
-    }
     if dm <= GROUPED {
-        // Few mask sizes: a stable bucket pass per size.
-        let n = sc.survivors.len();
-        for k in 2..=dm as u32 {
-            for j in 0..n {
-                if sc.survivors[j].0 == k {
-                    let v = sc.survivors[j];
-                    sc.survivors.push(v);
-                }
+        // Few mask sizes: a counting sort by size (stable), straight from `multi`.
+        let mut start = [0usize; GROUPED + 2];
+        let mut kept = 0;
+        for j in 0..sc.multi.len() {
+            let (m, i) = sc.multi[j];
+            let s = &seen[i as usize * dm..i as usize * dm + dm];
+            if track && filtered(m, s, &best) {
+                continue;
             }
+            start[m.count_ones() as usize + 1] += 1;
+            sc.multi[kept] = (m, i);
+            kept += 1;
         }
-        sc.survivors.drain(..n);
+        sc.multi.truncate(kept);
+        for k in 1..start.len() {
+            start[k] += start[k - 1];
+        }
+        sc.survivors.resize(kept, (0, 0));
+        for &(m, i) in &sc.multi {
+            let k = m.count_ones() as usize;
+            sc.survivors[start[k]] = (k as u32, i);
+            start[k] += 1;
+        }
     } else {
+        for &(m, i) in &sc.multi {
+            if track && filtered(m, &seen[i as usize * dm..i as usize * dm + dm], &best) {
+                continue;
+            }
+            sc.survivors.push((m.count_ones(), i));
+        }
         sc.survivors.sort_unstable();
     }
     sc.q.clear();
