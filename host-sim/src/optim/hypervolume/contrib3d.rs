@@ -242,12 +242,12 @@ mod tests {
                     if grid { (u * 5.0).floor() / 5.0 } else { u }
                 })
                 .collect();
-            let all = super::super::hv3d::hypervolume(&pts, &r);
+            let all = crate::optim::hypervolume::hv3d::hypervolume(&pts, &r);
             let got = contributions(&pts, &r);
             for (i, &c) in got.iter().enumerate() {
                 let mut rest = pts.clone();
                 rest.drain(3 * i..3 * i + 3);
-                let want = all - super::super::hv3d::hypervolume(&rest, &r);
+                let want = all - crate::optim::hypervolume::hv3d::hypervolume(&rest, &r);
                 assert!(
                     (c - want).abs() <= 1e-12 * all,
                     "case {case}, n = {n}, point {i}: {c} vs {want}"

@@ -298,7 +298,8 @@ mod tests {
         for (t, &i) in order.iter().enumerate() {
             below.extend_from_slice(&pts[4 * i..4 * i + 3]);
             let w_next = order.get(t + 1).map_or(r[3], |&j| pts[4 * j + 3]);
-            vol += super::super::hv3d::hypervolume(&below, r) * (w_next - pts[4 * i + 3]);
+            vol +=
+                crate::optim::hypervolume::hv3d::hypervolume(&below, r) * (w_next - pts[4 * i + 3]);
         }
         vol
     }
