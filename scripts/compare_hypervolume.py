@@ -11,12 +11,16 @@ It writes each random front (points on the unit sphere or the unit simplex, non-
 orthant, reference point 1.1 in every objective) as CSV, times moocore.hypervolume and
 pygmo.hypervolume(...).compute (median of --repeat calls, in-process), runs
 `host-sim hypervolume FRONT.csv --ref ... --repeat K` on the same CSV (median it reports), and
-checks that the three values agree to 1e-12 relative. Prints a Markdown table.
+checks that the three values agree to 1e-12 relative. Prints a Markdown table. On a shared
+machine the wall-clock medians also count the time a process waits for a core, so the table
+also gives CPU time per computation: moocore's median `time.process_time`, host-sim's from
+the child CPU time of a run with 2K repeats less one with K.
 `--check-pagmo7 DIR` also prints moocore's and pygmo's value for pagmo2's 7-objective front.
 """
 
 import argparse
 import pathlib
+import resource
 import subprocess
 import sys
 import time
@@ -37,14 +41,31 @@ def front(kind, d, n, seed):
     return v / v.sum(axis=1, keepdims=True)
 
 
-def median_time(f, repeat):
+def median_time(f, repeat, clock=time.perf_counter):
     times = []
     value = None
     for _ in range(repeat):
-        t = time.perf_counter()
+        t = clock()
         value = f()
-        times.append(time.perf_counter() - t)
+        times.append(clock() - t)
     return value, float(np.median(times))
+
+
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def ours_cpu(binary, path, ref, repeat):
+    """CPU time of one computation: the child CPU time of a run with 2K repeats less that of
+    a run with K (start-up and parsing cancel). On a loaded machine the wall-clock median
+    also counts the time the process waits for a core; CPU time does not."""
+    cpu = []
+    for k in (repeat, 2 * repeat):
+        t = children_cpu()
+        ours(binary, path, ref, k)
+        cpu.append(children_cpu() - t)
+    return max(cpu[1] - cpu[0], 0.0) / repeat
 
 
 def ours(binary, path, ref, repeat):
@@ -54,6 +75,18 @@ def ours(binary, path, ref, repeat):
         check=True, capture_output=True, text=True).stdout
     kv = dict(line.split(": ", 1) for line in out.splitlines() if ": " in line)
     return float(kv["hypervolume"]), float(kv["median_time_s"])
+
+
+def ours_contributions(binary, path, ref, repeat):
+    out = subprocess.run(
+        [binary, "hypervolume", str(path), "--ref", ",".join(repr(float(r)) for r in ref),
+         "--contributions", "--repeat", str(repeat)],
+        check=True, capture_output=True, text=True).stdout
+    kv = dict(line.split(": ", 1) for line in out.splitlines() if ": " in line)
+    rows = [line.split(",") for line in out.splitlines()
+            if line and line[0].isdigit() and "," in line]
+    values = np.array([float(v) for _, v in sorted((int(i), v) for i, v in rows)])
+    return values, float(kv["contributions_median_time_s"])
 
 
 def check_pagmo7(data_dir):
@@ -85,8 +118,9 @@ def main():
     print(f"moocore {moocore.__version__}, pygmo {pygmo.__version__}, numpy {np.__version__}; "
           f"median of {a.repeat} runs (best of {a.rounds} rounds), times in ms")
     print()
-    print("| front | d | n | hypervolume | host-sim | moocore | pygmo | max rel. diff |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| front | d | n | hypervolume | host-sim | moocore | pygmo | host-sim CPU | moocore CPU "
+          "| max rel. diff |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     worst = 0.0
     for d, n in CASES:
         for kind in ("sphere", "simplex"):
@@ -96,7 +130,7 @@ def main():
             np.savetxt(path, pts, delimiter=",", fmt="%.17g")
             pts = np.loadtxt(path, delimiter=",")  # exactly what host-sim reads
             hv_obj = pygmo.hypervolume(pts)
-            t_m = t_p = t_o = float("inf")
+            t_m = t_p = t_o = c_m = c_o = float("inf")
             for _ in range(a.rounds):  # rounds interleave the three tools
                 hv_m, t = median_time(lambda: moocore.hypervolume(pts, ref=ref), a.repeat)
                 t_m = min(t_m, t)
@@ -104,10 +138,34 @@ def main():
                 t_p = min(t_p, t)
                 hv_o, t = ours(a.bin, path, ref, a.repeat)
                 t_o = min(t_o, t)
+                _, t = median_time(lambda: moocore.hypervolume(pts, ref=ref), a.repeat,
+                                   time.process_time)
+                c_m = min(c_m, t)
+                c_o = min(c_o, ours_cpu(a.bin, path, ref, a.repeat))
             rel = max(abs(hv_o - hv_m), abs(hv_o - hv_p)) / abs(hv_m)
             worst = max(worst, rel)
             print(f"| {kind} | {d} | {n} | {hv_o:.15g} | {t_o * 1e3:.3f} | {t_m * 1e3:.3f} "
-                  f"| {t_p * 1e3:.3f} | {rel:.1e} |")
+                  f"| {t_p * 1e3:.3f} | {c_o * 1e3:.3f} | {c_m * 1e3:.3f} | {rel:.1e} |")
+    print()
+    print("All exclusive contributions (3-D): host-sim `--contributions` against "
+          "moocore.hv_contributions; the difference is relative to the hypervolume.")
+    print()
+    print("| front | d | n | host-sim | moocore | max diff / HV |")
+    print("|---|---|---|---|---|---|")
+    for kind in ("sphere", "simplex"):
+        d, n = 3, 2000
+        path = out / f"{kind}_d{d}_n{n}.csv"
+        pts = np.loadtxt(path, delimiter=",")
+        ref = np.full(d, 1.1)
+        t_m = t_o = float("inf")
+        for _ in range(a.rounds):
+            c_m, t = median_time(lambda: moocore.hv_contributions(pts, ref=ref), a.repeat)
+            t_m = min(t_m, t)
+            c_o, t = ours_contributions(a.bin, path, ref, a.repeat)
+            t_o = min(t_o, t)
+        rel = float(np.max(np.abs(c_o - c_m))) / moocore.hypervolume(pts, ref=ref)
+        worst = max(worst, rel)
+        print(f"| {kind} | {d} | {n} | {t_o * 1e3:.3f} | {t_m * 1e3:.3f} | {rel:.1e} |")
     print()
     ok = worst <= 1e-12
     print(f"values agree to 1e-12 relative: {'yes' if ok else 'NO'} (worst {worst:.1e})")

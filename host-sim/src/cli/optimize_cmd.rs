@@ -15,8 +15,8 @@ use crate::optim::hypervolume::{HypervolumeError, hypervolume};
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
 use crate::optim::{
-    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
-    OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
+    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
+    Nsga2, Nsga2Config, OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
 };
 use crate::report::{ReportError, RunDir};
 
@@ -53,6 +53,16 @@ pub enum WeightsArg {
     LowDiscrepancy,
     /// Unit vectors then random simplex points.
     Random,
+}
+
+/// MHACO constraint handling on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MhacoConstraintsArg {
+    /// Feasible candidates first, then infeasible ones by violation (thesis sec. 10.2).
+    FeasibilityFirst,
+    /// Constraints as extra objectives, the thesis' normalisation (sec. 9.3.2: unit scales,
+    /// cap 2.0, penalty 0.5).
+    Objectives,
 }
 
 /// Arguments of `optimize`.
@@ -92,6 +102,15 @@ pub struct OptimizeArgs {
     /// --threads evaluate in parallel).
     #[arg(long, default_value_t = 1)]
     pub batch_size: usize,
+    /// MHACO solution archive size ker, in [2, population] (default min(63, population)).
+    #[arg(long, value_name = "K")]
+    pub ker: Option<usize>,
+    /// MHACO period of the standard-deviation schedule (pagmo's n_gen_mark), at least 1.
+    #[arg(long, value_name = "G", default_value_t = 7)]
+    pub n_gen_mark: u64,
+    /// MHACO constraint handling (no effect on unconstrained problems).
+    #[arg(long, value_enum, default_value = "feasibility-first")]
+    pub mhaco_constraints: MhacoConstraintsArg,
     /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
     /// gains only with --batch-size > 1.
     #[arg(long, default_value_t = 1)]
@@ -131,6 +150,22 @@ impl OptimizeArgs {
     #[must_use]
     pub fn generations_given(&self) -> bool {
         self.generations != DEFAULT_GENERATIONS
+    }
+}
+
+/// The MHACO settings of the flags.
+pub(super) fn mhaco_config(a: &OptimizeArgs) -> MhacoConfig {
+    MhacoConfig {
+        population: a.population,
+        ker: a
+            .ker
+            .unwrap_or_else(|| a.population.min(MhacoConfig::default().ker)),
+        n_gen_mark: a.n_gen_mark,
+        constraints: match a.mhaco_constraints {
+            MhacoConstraintsArg::FeasibilityFirst => ConstraintHandling::FeasibilityFirst,
+            MhacoConstraintsArg::Objectives => ConstraintHandling::thesis_objectives(),
+        },
+        ..MhacoConfig::default()
     }
 }
 
@@ -341,11 +376,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
             drive(Nsga2::new(config, a.seed), &problem, a.generations, pool)?
         }
         AlgorithmName::Mhaco => {
-            let config = MhacoConfig {
-                population: a.population,
-                ker: a.population.min(MhacoConfig::default().ker),
-                ..MhacoConfig::default()
-            };
+            let config = mhaco_config(a);
             drive(Mhaco::new(config, a.seed), &problem, a.generations, pool)?
         }
         AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, pool)?,
@@ -469,6 +500,9 @@ mod tests {
             neighbours: 5,
             mutation_probability: None,
             batch_size: 1,
+            ker: None,
+            n_gen_mark: 7,
+            mhaco_constraints: MhacoConstraintsArg::FeasibilityFirst,
             threads: 1,
             reference: None,
             out,
@@ -535,6 +569,53 @@ mod tests {
         let mut a = args("zdt1", AlgorithmName::Nsga2, None);
         a.threads = 0;
         assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads)));
+    }
+
+    #[test]
+    fn optimize_mhaco_flags_reach_the_algorithm() {
+        let dir = |t: &str| {
+            std::env::temp_dir().join(format!(
+                "host-sim-optimize-mhaco-{t}-{}",
+                std::process::id()
+            ))
+        };
+        let mut a = args("constr", AlgorithmName::Mhaco, None);
+        let default = mhaco_config(&a);
+        assert_eq!((default.ker, default.n_gen_mark), (20, 7));
+        assert_eq!(default.constraints, ConstraintHandling::FeasibilityFirst);
+        a.ker = Some(10);
+        a.n_gen_mark = 3;
+        a.mhaco_constraints = MhacoConstraintsArg::Objectives;
+        let c = mhaco_config(&a);
+        assert_eq!((c.ker, c.n_gen_mark), (10, 3));
+        assert_eq!(c.constraints, ConstraintHandling::thesis_objectives());
+        // Each flag changes the run (same seed).
+        let mut runs = Vec::new();
+        for (tag, ker, mark, mode) in [
+            ("base", None, 7, MhacoConstraintsArg::FeasibilityFirst),
+            ("ker", Some(10), 7, MhacoConstraintsArg::FeasibilityFirst),
+            ("mark", None, 2, MhacoConstraintsArg::FeasibilityFirst),
+            ("obj", None, 7, MhacoConstraintsArg::Objectives),
+        ] {
+            let mut a = args("constr", AlgorithmName::Mhaco, Some(dir(tag)));
+            a.generations = 20;
+            (a.ker, a.n_gen_mark, a.mhaco_constraints) = (ker, mark, mode);
+            run(&a, &mut Vec::new()).unwrap();
+            runs.push(std::fs::read_to_string(dir(tag).join("population.csv")).unwrap());
+            std::fs::remove_dir_all(dir(tag)).unwrap();
+        }
+        for (i, r) in runs.iter().enumerate().skip(1) {
+            assert_ne!(&runs[0], r, "flag set {i} left the run unchanged");
+        }
+        // Bad values are the algorithm's typed errors naming the setting.
+        let mut a = args("zdt1", AlgorithmName::Mhaco, None);
+        a.ker = Some(21);
+        let e = run(&a, &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("ker"), "{e}");
+        a.ker = None;
+        a.n_gen_mark = 0;
+        let e = run(&a, &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("n_gen_mark"), "{e}");
     }
 
     #[test]

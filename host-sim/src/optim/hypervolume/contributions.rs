@@ -1,7 +1,7 @@
 //! Exclusive contributions (the volume dominated by one point and by no other) and the least
 //! contributor.
 
-use super::{HypervolumeError, finite, hv2d, hv3d, hypervolume_of, nonneg, prepare, wfg};
+use super::{HypervolumeError, contrib3d, finite, hv2d, hypervolume_of, nonneg, prepare, wfg};
 
 /// The exclusive contribution of each point, in the order given: the hypervolume lost when
 /// that point alone is removed. Points that do not strictly dominate `reference`, weakly
@@ -18,7 +18,7 @@ pub fn contributions<P: AsRef<[f64]>>(
     let inner = match d {
         1 => contributions_1d(&flat, reference[0]),
         2 => hv2d::contributions(&flat, reference),
-        3 => hv3d::contributions(&flat, reference),
+        3 => contrib3d::contributions(&flat, reference),
         _ => contributions_generic(&flat, d, reference),
     };
     let mut out = vec![0.0; points.len()];

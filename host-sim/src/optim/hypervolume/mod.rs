@@ -14,11 +14,12 @@
 //!
 //! Algorithms (see docs/HYPERVOLUME.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
 //! dimension sweep with a bit-set staircase (O(n log n)); 4-D by sweeping the fourth
-//! coordinate and adding each point's exclusive 3-D contribution (O(n^2)); 5-D and more by
-//! WFG slicing the last objective down to the 4-D case. Exclusive contributions: a sweep in
-//! 2-D (O(n log n)), an O(n) box sweep per point in 3-D, and `vol(box) - HV(limit set)` per
-//! point otherwise.
+//! coordinate and adding each point's exclusive 3-D contribution, computed locally (O(n^2));
+//! 5-D and more by WFG slicing the last objective down to the 4-D case. Exclusive
+//! contributions: a sweep in 2-D and a strip sweep in 3-D (both O(n log n)), and
+//! `vol(box) - HV(limit set)` per point otherwise.
 
+mod contrib3d;
 mod contributions;
 mod error;
 mod hv2d;

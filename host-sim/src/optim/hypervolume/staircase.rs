@@ -45,12 +45,6 @@ impl BitSet {
         }
     }
 
-    /// The level-0 words (bit `i % 64` of word `i / 64` is element `i`).
-    #[inline]
-    pub(super) fn words(&self) -> &[u64] {
-        &self.levels[0]
-    }
-
     /// Whether `i` is in the set.
     #[inline]
     pub(super) fn contains(&self, i: usize) -> bool {
@@ -81,6 +75,16 @@ impl BitSet {
                 return;
             }
             i >>= 6;
+        }
+    }
+
+    /// The smallest element.
+    #[inline]
+    pub(super) fn first(&self) -> Option<usize> {
+        if self.contains(0) {
+            Some(0)
+        } else {
+            self.next_after(0)
         }
     }
 

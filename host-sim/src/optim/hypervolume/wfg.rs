@@ -133,25 +133,62 @@ fn limit_set<const N: usize>(
     out.clear();
     sc.dominated.clear();
     sc.multi.clear();
-    let mut best = [f64::INFINITY; 64];
-    for (i, s) in seen.chunks_exact(dm).enumerate() {
-        let s = &s[..dm];
-        let mut m = 0u64;
-        let mut below = true;
-        for c in 0..dm {
-            m |= u64::from(s[c] > p[c]) << (c & 63);
-            below &= p[c] <= s[c];
+    // best[c]: the lowest single-coordinate point in coordinate c; slot 64 is a sink.
+    let mut best = [f64::INFINITY; 65];
+    if N > 0 && N < 64 {
+        // Few coordinates: branch-free, every multi-coordinate point is filtered at the end.
+        let count = seen.len() / dm;
+        sc.dominated.resize(count, false);
+        sc.multi.resize(count, (0, 0));
+        let mut k = 0;
+        for (i, s) in seen.chunks_exact(dm).enumerate() {
+            let s = &s[..dm];
+            let mut m = 0u64;
+            let mut below = true;
+            for c in 0..dm {
+                m |= u64::from(s[c] > p[c]) << c;
+                below &= p[c] <= s[c];
+            }
+            if m == 0 {
+                return false;
+            }
+            sc.dominated[i] = below;
+            let single = m & (m - 1) == 0;
+            let v = s[m.trailing_zeros() as usize];
+            let slot = if single {
+                m.trailing_zeros() as usize
+            } else {
+                64
+            };
+            let b = best[slot];
+            best[slot] = if v < b { v } else { b };
+            sc.multi[k] = (m, i as u32);
+            k += usize::from(!single);
         }
-        if m == 0 {
-            return false;
-        }
-        sc.dominated.push(below);
-        if track && m & (m - 1) == 0 {
-            let c = m.trailing_zeros() as usize;
-            best[c] = best[c].min(s[c]);
-        } else if !(track && filtered(m, s, &best)) {
-            // Not dominated by the single-coordinate points so far: check again at the end.
-            sc.multi.push((m, i as u32));
+        sc.multi.truncate(k);
+    } else {
+        for (i, s) in seen.chunks_exact(dm).enumerate() {
+            let s = &s[..dm];
+            let mut m = 0u64;
+            let mut below = true;
+            for c in 0..dm {
+                m |= u64::from(s[c] > p[c]) << (c & 63);
+                below &= p[c] <= s[c];
+            }
+            if m == 0 {
+                return false;
+            }
+            sc.dominated.push(below);
+            if track && m & (m - 1) == 0 {
+                let c = m.trailing_zeros() as usize;
+                if s[c] < best[c] {
+                    best[c] = s[c];
+                }
+            } else if !(track && filtered(m, s, &best)) {
+                // Not dominated by the single-coordinate points so far: check again at the
+                // end.
+                sc.multi.push((m, i as u32));
+            }
         }
     }
     if track {
@@ -162,25 +199,37 @@ fn limit_set<const N: usize>(
         }
     }
     sc.survivors.clear();
-    for &(m, i) in &sc.multi {
-        if track && filtered(m, &seen[i as usize * dm..i as usize * dm + dm], &best) {
-            continue;
-        }
-        sc.survivors.push((m.count_ones(), i));
-    }
     if dm <= GROUPED {
-        // Few mask sizes: a stable bucket pass per size.
-        let n = sc.survivors.len();
-        for k in 2..=dm as u32 {
-            for j in 0..n {
-                if sc.survivors[j].0 == k {
-                    let v = sc.survivors[j];
-                    sc.survivors.push(v);
-                }
+        // Few mask sizes: a counting sort by size (stable), straight from `multi`.
+        let mut start = [0usize; GROUPED + 2];
+        let mut kept = 0;
+        for j in 0..sc.multi.len() {
+            let (m, i) = sc.multi[j];
+            let s = &seen[i as usize * dm..i as usize * dm + dm];
+            if track && filtered(m, s, &best) {
+                continue;
             }
+            start[m.count_ones() as usize + 1] += 1;
+            sc.multi[kept] = (m, i);
+            kept += 1;
         }
-        sc.survivors.drain(..n);
+        sc.multi.truncate(kept);
+        for k in 1..start.len() {
+            start[k] += start[k - 1];
+        }
+        sc.survivors.resize(kept, (0, 0));
+        for &(m, i) in &sc.multi {
+            let k = m.count_ones() as usize;
+            sc.survivors[start[k]] = (k as u32, i);
+            start[k] += 1;
+        }
     } else {
+        for &(m, i) in &sc.multi {
+            if track && filtered(m, &seen[i as usize * dm..i as usize * dm + dm], &best) {
+                continue;
+            }
+            sc.survivors.push((m.count_ones(), i));
+        }
         sc.survivors.sort_unstable();
     }
     sc.q.clear();
@@ -260,7 +309,7 @@ fn limit_set<const N: usize>(
 /// Whether the clipped point of `s` (mask `m`, at most 64 coordinates) is weakly dominated
 /// by one of the single-coordinate points `best` (coordinate c at `best[c]`, the rest at p).
 #[inline]
-fn filtered(m: u64, s: &[f64], best: &[f64; 64]) -> bool {
+fn filtered(m: u64, s: &[f64], best: &[f64; 65]) -> bool {
     let mut dominated = false;
     for (c, (&v, &b)) in s.iter().zip(best).enumerate() {
         dominated |= ((m >> c) & 1 == 1) & (b <= v);
