@@ -79,18 +79,49 @@ impl ChapmanHeatFlux {
     /// non-positive nose radius (as the core's plain function).
     #[must_use]
     pub fn heat_flux_w_m2(&self, density_kg_m3: f64, speed_m_s: f64, nose_radius_m: f64) -> f64 {
-        let finite =
-            density_kg_m3.is_finite() && speed_m_s.is_finite() && nose_radius_m.is_finite();
-        if !finite || density_kg_m3 < 0.0 || speed_m_s < 0.0 || nose_radius_m <= 0.0 {
+        self.at_nose(nose_radius_m)
+            .heat_flux_w_m2(density_kg_m3, speed_m_s)
+    }
+
+    /// The relation for one nose radius `nose_radius_m` \[m\], with `c* / sqrt(R_N)` computed
+    /// once (the simulator's right-hand side evaluates it thousands of times per flight).
+    #[must_use]
+    pub fn at_nose(&self, nose_radius_m: f64) -> NoseHeatFlux {
+        let coefficient = (nose_radius_m.is_finite() && nose_radius_m > 0.0)
+            .then(|| self.coefficient / math::sqrt(nose_radius_m));
+        NoseHeatFlux {
+            model: *self,
+            coefficient,
+        }
+    }
+}
+
+/// [`ChapmanHeatFlux`] for one nose radius ([`ChapmanHeatFlux::at_nose`]): the same values,
+/// bit for bit, as [`ChapmanHeatFlux::heat_flux_w_m2`] with that radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NoseHeatFlux {
+    model: ChapmanHeatFlux,
+    /// `c* / sqrt(R_N)` \[W/m^2\]; `None` for a non-finite or non-positive nose radius.
+    coefficient: Option<f64>,
+}
+
+impl NoseHeatFlux {
+    /// Stagnation-point heat flux \[W/m^2\] at density `density_kg_m3` and speed `speed_m_s`;
+    /// 0 for non-finite or negative input or a bad nose radius (as the core's plain function).
+    #[must_use]
+    pub fn heat_flux_w_m2(&self, density_kg_m3: f64, speed_m_s: f64) -> f64 {
+        let Some(k) = self.coefficient else {
+            return 0.0;
+        };
+        let finite = density_kg_m3.is_finite() && speed_m_s.is_finite();
+        if !finite || density_kg_m3 < 0.0 || speed_m_s < 0.0 {
             return 0.0;
         }
         // The core's Scalar::sqrt: 0 for non-positive input.
         let sqrt = |x: f64| if x > 0.0 { math::sqrt(x) } else { 0.0 };
-        let rho_ratio = density_kg_m3 / self.reference_density_kg_m3;
-        let v_ratio = speed_m_s / self.reference_speed_m_s;
-        let q = self.coefficient / sqrt(nose_radius_m)
-            * sqrt(rho_ratio)
-            * math::pow(v_ratio, self.speed_exponent);
+        let rho_ratio = density_kg_m3 / self.model.reference_density_kg_m3;
+        let v_ratio = speed_m_s / self.model.reference_speed_m_s;
+        let q = k * sqrt(rho_ratio) * math::pow(v_ratio, self.model.speed_exponent);
         if q.is_finite() { q } else { 0.0 }
     }
 }

@@ -11,7 +11,9 @@ use super::{
     AttitudeSource, Peak, Sample, SampleKind, SimConfig, SimError, SimResult, Summary, Termination,
     TerminationReason, great_circle, state_atol, validate_config, violations,
 };
-use crate::dynamics::{Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, STATE_LEN, cartesian_of};
+use crate::dynamics::{
+    Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, RhsCache, STATE_LEN, cartesian_of,
+};
 use crate::integrate::{Direction, OdeProblem, Rkf45, Stats};
 
 /// Progress of a run, reported at every guidance tick and output sample.
@@ -25,6 +27,7 @@ pub struct Progress {
 
 struct Loop<'a, A> {
     dynm: Dynamics<'a>,
+    rhs_cache: RhsCache,
     source: A,
     term: Termination,
     interface_m: f64,
@@ -75,7 +78,8 @@ impl<A: AttitudeSource> Loop<'_, A> {
 
 impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
     fn rhs(&mut self, t: f64, y: &[f64; STATE_LEN]) -> [f64; STATE_LEN] {
-        self.dynm.cartesian_rhs(y, self.source.attitude_at(t)).0
+        let att = self.source.attitude_at(t);
+        self.dynm.cartesian_derivative(y, att, &mut self.rhs_cache)
     }
     fn event_count(&self) -> usize {
         Event::ALL.len()
@@ -148,6 +152,7 @@ pub fn simulate<A: AttitudeSource>(
     .map_err(SimError::Entry)?;
     let mut lp = Loop {
         dynm,
+        rhs_cache: dynm.rhs_cache(),
         source,
         term: cfg.termination,
         interface_m: cfg.interface_altitude_m,
