@@ -38,6 +38,9 @@ struct Loop<'a, A> {
     peak_gdot: Peak,
     g_rate: GLoadRateMonitor<f64>,
     g_rate_last_s: Option<f64>,
+    /// Guidance ticks so far: the attitude function changes only at ticks
+    /// ([`OdeProblem::rhs_generation`]).
+    ticks: u64,
 }
 
 impl<A: AttitudeSource> Loop<'_, A> {
@@ -106,6 +109,9 @@ impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
     fn on_step(&mut self, t: f64, y: &[f64; STATE_LEN]) {
         self.observe(t, y);
     }
+    fn rhs_generation(&self) -> Option<u64> {
+        Some(self.ticks)
+    }
 }
 
 /// The navigation state guidance sees, as flight computes it: the inertial Cartesian state
@@ -163,20 +169,20 @@ pub fn simulate<A: AttitudeSource>(
         peak_gdot: Peak::default(),
         g_rate: GLoadRateMonitor::new(),
         g_rate_last_s: None,
+        ticks: 0,
     };
     let mut integ = Rkf45::new(cfg.tolerances, state_atol(cfg.tolerances.rtol));
     let mut t = 0.0_f64;
     let mut y = dynm.initial_state(&cfg.entry, 0.0);
-    let mut ticks = 0u64;
-    let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN], ticks: &mut u64| {
+    let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN]| {
         let nav = nav_of(t, y, lp.dynm.planet.rotation_rate_rad_s)?;
-        *ticks += 1;
+        lp.ticks += 1;
         lp.source.tick(&nav).map_err(|e| SimError::Guidance {
             time_s: t,
             source: Box::new(e),
         })
     };
-    tick(&mut lp, t, &y, &mut ticks)?;
+    tick(&mut lp, t, &y)?;
     lp.observe(t, &y);
     let mut samples = vec![lp.sample(t, &y, SampleKind::Start)];
     let mut crossings = Vec::new();
@@ -243,7 +249,7 @@ pub fn simulate<A: AttitudeSource>(
         }
         let mut record = false;
         if t >= t_tick {
-            tick(&mut lp, t, &y, &mut ticks)?;
+            tick(&mut lp, t, &y)?;
             record = out_dt == 0.0;
         }
         if t >= t_out {
@@ -280,7 +286,7 @@ pub fn simulate<A: AttitudeSource>(
         rhs_evals: stats.rhs_evals,
         accepted_steps: stats.accepted,
         rejected_steps: stats.rejected,
-        ticks,
+        ticks: lp.ticks,
     };
     Ok((SimResult { samples, summary }, lp.source))
 }
