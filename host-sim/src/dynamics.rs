@@ -366,9 +366,10 @@ impl<'a> Dynamics<'a> {
     }
 
     /// Time derivative of the Cartesian state `[r, v, Q, theta]` (inertial frame) under
-    /// attitude `att`: what the simulator integrates. The same values as
-    /// [`Dynamics::cartesian_rhs`], bit for bit, without the flight conditions it does not
-    /// need (g-load); `cache` must come from [`Dynamics::rhs_cache`] of this `Dynamics`.
+    /// attitude `att`: what the simulator integrates ([`Dynamics::cartesian_rhs`] without
+    /// the flight conditions, which it does not need). The heat-load rate comes from
+    /// [`crate::env::NoseHeatFlux`] (host `powf`, within a few ulp of the core's Chapman
+    /// value). `cache` must come from [`Dynamics::rhs_cache`] of this `Dynamics`.
     #[must_use]
     pub fn cartesian_derivative(
         &self,
