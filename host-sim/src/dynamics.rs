@@ -355,6 +355,27 @@ impl<'a> Dynamics<'a> {
         (self.cartesian_derivative(y, att, &mut self.rhs_cache()), fc)
     }
 
+    /// Stagnation heat flux \[W/m^2\] (as the right-hand side computes it,
+    /// [`crate::env::NoseHeatFlux`]) and g-load \[-\] at an integrated state `y` under `att`:
+    /// what the loop's peak monitors need after every step, without the rest of
+    /// [`Dynamics::conditions_at`]. The g-load is that of `conditions_at`, bit for bit.
+    #[must_use]
+    pub fn heat_flux_and_g_load(
+        &self,
+        y: &[f64; STATE_LEN],
+        att: Command<f64>,
+        cache: &RhsCache,
+    ) -> (f64, f64) {
+        let r = Vector3::new(y[0], y[1], y[2]);
+        let v = Vector3::new(y[3], y[4], y[5]);
+        let vr = (v - self.omega().cross(&r)).norm();
+        let a = self.aero(r.norm() - self.planet.radius_m, vr, att.alpha_rad);
+        (
+            cache.heat_flux.heat_flux_w_m2(a.rho, vr),
+            guidance_core::monitor::g_load(a.lift, a.drag, self.vehicle.mass_kg),
+        )
+    }
+
     /// The constants and the bank-angle cache of [`Dynamics::cartesian_derivative`].
     #[must_use]
     pub fn rhs_cache(&self) -> RhsCache {
