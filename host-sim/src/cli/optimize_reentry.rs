@@ -210,6 +210,15 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             format!("give {m} finite values (one per objective)"),
         );
     }
+    if c.problem.objectives.target_range_deg.is_some() && c.reference[0] <= 0.0 {
+        return bad(
+            "reference",
+            format!("{:?}", c.reference),
+            "with objectives.target_range_deg the first objective is a miss distance >= 0: \
+             give a first value > 0 (e.g. 1)"
+                .into(),
+        );
+    }
     Ok(())
 }
 
