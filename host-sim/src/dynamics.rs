@@ -24,7 +24,7 @@
 use guidance_core::guidance::Command;
 use nalgebra::Vector3;
 
-use crate::env::{Atmosphere, ChapmanHeatFlux, Environment, Gravity, Planet};
+use crate::env::{Atmosphere, ChapmanHeatFlux, Environment, Gravity, NoseHeatFlux, Planet};
 use crate::vehicle::Vehicle;
 
 /// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1); `guidance-core`'s value.
@@ -224,6 +224,47 @@ pub fn lift_direction(rhat: &Vector3<f64>, vhat: &Vector3<f64>, sigma_rad: f64) 
     e_up * c + vhat.cross(&e_up) * s
 }
 
+/// [`lift_direction`] with the sine and cosine of the bank angle given (the right-hand side
+/// keeps them while the bank angle holds).
+fn lift_direction_sc(
+    rhat: &Vector3<f64>,
+    vhat: &Vector3<f64>,
+    sin_cos: (f64, f64),
+) -> Vector3<f64> {
+    let mut e_up = rhat - vhat * rhat.dot(vhat);
+    if e_up.norm() < 1e-12 {
+        e_up = Vector3::z().cross(vhat);
+        if e_up.norm() < 1e-12 {
+            e_up = Vector3::x().cross(vhat);
+        }
+    }
+    let e_up = e_up.normalize();
+    let (s, c) = sin_cos;
+    e_up * c + vhat.cross(&e_up) * s
+}
+
+/// What the simulator's right-hand side ([`Dynamics::cartesian_derivative`]) keeps between
+/// calls: the heat-flux relation at the vehicle's nose radius and the sine and cosine of the
+/// last bank angle. Made by [`Dynamics::rhs_cache`] for one `Dynamics`.
+#[derive(Clone, Copy, Debug)]
+pub struct RhsCache {
+    heat_flux: NoseHeatFlux,
+    sigma_rad: f64,
+    sin_cos: (f64, f64),
+}
+
+/// Air data and aerodynamic forces at one instant (what the right-hand side needs).
+#[derive(Clone, Copy, Debug)]
+struct Aero {
+    rho: f64,
+    mach: f64,
+    q_dyn: f64,
+    cl: f64,
+    cd: f64,
+    lift: f64,
+    drag: f64,
+}
+
 impl<'a> Dynamics<'a> {
     /// Dynamics from an environment bundle and a vehicle.
     #[must_use]
@@ -241,9 +282,9 @@ impl<'a> Dynamics<'a> {
         Vector3::new(0.0, 0.0, self.planet.rotation_rate_rad_s)
     }
 
-    /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s`.
-    #[must_use]
-    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Command<f64>) -> FlightConditions {
+    /// Air data and forces at altitude `altitude_m` and airspeed `v_m_s` (one atmosphere call,
+    /// one aerodynamic lookup).
+    fn aero(&self, altitude_m: f64, v_m_s: f64, alpha_rad: f64) -> Aero {
         let atm = self.atmosphere.state(altitude_m);
         let rho = atm.density_kg_m3.max(0.0);
         let mach = if atm.speed_of_sound_m_s > 0.0 {
@@ -253,26 +294,41 @@ impl<'a> Dynamics<'a> {
         };
         let q_dyn = 0.5 * rho * v_m_s * v_m_s;
         let (cl, cd, lift, drag) = if q_dyn > 0.0 {
-            let c = self.vehicle.aero.coefficients(mach, att.alpha_rad);
+            let c = self.vehicle.aero.coefficients(mach, alpha_rad);
             let qs = q_dyn * self.vehicle.reference_area_m2;
             (c.cl, c.cd, c.cl * qs, c.cd * qs)
         } else {
             (0.0, 0.0, 0.0, 0.0)
         };
-        FlightConditions {
-            altitude_m,
-            density_kg_m3: rho,
-            airspeed_m_s: v_m_s,
+        Aero {
+            rho,
             mach,
-            dynamic_pressure_pa: q_dyn,
+            q_dyn,
             cl,
             cd,
-            lift_n: lift,
-            drag_n: drag,
+            lift,
+            drag,
+        }
+    }
+
+    /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s`.
+    #[must_use]
+    pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Command<f64>) -> FlightConditions {
+        let a = self.aero(altitude_m, v_m_s, att.alpha_rad);
+        FlightConditions {
+            altitude_m,
+            density_kg_m3: a.rho,
+            airspeed_m_s: v_m_s,
+            mach: a.mach,
+            dynamic_pressure_pa: a.q_dyn,
+            cl: a.cl,
+            cd: a.cd,
+            lift_n: a.lift,
+            drag_n: a.drag,
             heat_flux_w_m2: self
                 .heat_flux
-                .heat_flux_w_m2(rho, v_m_s, self.vehicle.nose_radius_m),
-            g_load: guidance_core::monitor::g_load(lift, drag, self.vehicle.mass_kg),
+                .heat_flux_w_m2(a.rho, v_m_s, self.vehicle.nose_radius_m),
+            g_load: guidance_core::monitor::g_load(a.lift, a.drag, self.vehicle.mass_kg),
         }
     }
 
@@ -294,28 +350,79 @@ impl<'a> Dynamics<'a> {
         att: Command<f64>,
     ) -> ([f64; STATE_LEN], FlightConditions) {
         let r = Vector3::new(y[0], y[1], y[2]);
+        let v_rel = Vector3::new(y[3], y[4], y[5]) - self.omega().cross(&r);
+        let fc = self.conditions(r.norm() - self.planet.radius_m, v_rel.norm(), att);
+        (self.cartesian_derivative(y, att, &mut self.rhs_cache()), fc)
+    }
+
+    /// Stagnation heat flux \[W/m^2\] (as the right-hand side computes it,
+    /// [`crate::env::NoseHeatFlux`]) and g-load \[-\] at an integrated state `y` under `att`:
+    /// what the loop's peak monitors need after every step, without the rest of
+    /// [`Dynamics::conditions_at`]. The g-load is that of `conditions_at`, bit for bit.
+    #[must_use]
+    pub fn heat_flux_and_g_load(
+        &self,
+        y: &[f64; STATE_LEN],
+        att: Command<f64>,
+        cache: &RhsCache,
+    ) -> (f64, f64) {
+        let r = Vector3::new(y[0], y[1], y[2]);
+        let v = Vector3::new(y[3], y[4], y[5]);
+        let vr = (v - self.omega().cross(&r)).norm();
+        let a = self.aero(r.norm() - self.planet.radius_m, vr, att.alpha_rad);
+        (
+            cache.heat_flux.heat_flux_w_m2(a.rho, vr),
+            guidance_core::monitor::g_load(a.lift, a.drag, self.vehicle.mass_kg),
+        )
+    }
+
+    /// The constants and the bank-angle cache of [`Dynamics::cartesian_derivative`].
+    #[must_use]
+    pub fn rhs_cache(&self) -> RhsCache {
+        RhsCache {
+            heat_flux: self.heat_flux.at_nose(self.vehicle.nose_radius_m),
+            sigma_rad: 0.0,
+            sin_cos: (0.0, 1.0),
+        }
+    }
+
+    /// Time derivative of the Cartesian state `[r, v, Q, theta]` (inertial frame) under
+    /// attitude `att`: what the simulator integrates ([`Dynamics::cartesian_rhs`] without
+    /// the flight conditions, which it does not need). The heat-load rate comes from
+    /// [`crate::env::NoseHeatFlux`] (host `powf`, within a few ulp of the core's Chapman
+    /// value). `cache` must come from [`Dynamics::rhs_cache`] of this `Dynamics`.
+    #[must_use]
+    pub fn cartesian_derivative(
+        &self,
+        y: &[f64; STATE_LEN],
+        att: Command<f64>,
+        cache: &mut RhsCache,
+    ) -> [f64; STATE_LEN] {
+        let r = Vector3::new(y[0], y[1], y[2]);
         let v = Vector3::new(y[3], y[4], y[5]);
         let rn = r.norm();
         let rhat = r / rn;
         let v_rel = v - self.omega().cross(&r);
         let vr = v_rel.norm();
-        let fc = self.conditions(rn - self.planet.radius_m, vr, att);
+        let aero = self.aero(rn - self.planet.radius_m, vr, att.alpha_rad);
         let mut a = self.gravity.acceleration(&r);
         let mut theta_dot = 0.0;
         if vr > 0.0 {
             let vhat = v_rel / vr;
             let m = self.vehicle.mass_kg;
-            if fc.dynamic_pressure_pa > 0.0 {
-                a += lift_direction(&rhat, &vhat, att.sigma_rad) * (fc.lift_n / m)
-                    - vhat * (fc.drag_n / m);
+            if aero.q_dyn > 0.0 {
+                if att.sigma_rad.to_bits() != cache.sigma_rad.to_bits() {
+                    cache.sigma_rad = att.sigma_rad;
+                    cache.sin_cos = att.sigma_rad.sin_cos();
+                }
+                a += lift_direction_sc(&rhat, &vhat, cache.sin_cos) * (aero.lift / m)
+                    - vhat * (aero.drag / m);
             }
             // Horizontal planet-relative speed over r.
             theta_dot = (v_rel - rhat * v_rel.dot(&rhat)).norm() / rn;
         }
-        (
-            [v.x, v.y, v.z, a.x, a.y, a.z, fc.heat_flux_w_m2, theta_dot],
-            fc,
-        )
+        let q = cache.heat_flux.heat_flux_w_m2(aero.rho, vr);
+        [v.x, v.y, v.z, a.x, a.y, a.z, q, theta_dot]
     }
 
     /// Time derivative of the planet-relative spherical state `[r, tau, delta, V, gamma, chi]`

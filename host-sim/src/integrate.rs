@@ -15,14 +15,33 @@
 //! of the O(h^5) local error of the embedded fourth-order solution; the thesis' eq. 5.19 uses
 //! 1/4, which is only more conservative.
 //!
+//! Short landing steps: a step that lands on a breakpoint and is much shorter than the
+//! controller's step (at most [`SHORT_STEP_FRACTION`] of it; in the closed loop, the few
+//! milliseconds from a guidance tick to the end of the attitude ramp it starts) is first tried
+//! with the Bogacki-Shampine 3(2) pair (four stages, the last one the derivative at the step
+//! end, which the next step reuses as its first stage): it is accepted under the same error
+//! test (the third-order solution propagated, the error of the embedded second-order one
+//! estimated, so the test is conservative), and on failure the Fehlberg step of the same
+//! length is taken. Such a step leaves the controller's step as it was.
+//!
+//! Derivative reuse: the first stage `f(t, y)` of a step is kept and reused by a retry after
+//! a rejection and by every trial step of an event search from the same point; across
+//! [`Rkf45::advance_to`] calls only while the problem's [`OdeProblem::rhs_generation`] says
+//! its right-hand side has not changed.
+//!
 //! Events: after each accepted step every event function is compared at both ends; on a
 //! sign change in the requested direction the crossing time is located by the Illinois
-//! (modified regula falsi) method, where the state inside the step is obtained by a fresh
-//! Fehlberg step of the trial length from the step start (so the located state has the full
-//! integrator order, not that of an interpolant). The root is bracketed until the bracket is
-//! shorter than [`Tolerances::event_time_tol_s`]; the state returned is the one at the end of
-//! the bracket *past* the crossing, so integration resumed from it does not see the same
-//! crossing again.
+//! (modified regula falsi) method on the step's dense output, the cubic Hermite interpolant
+//! of the two end states and derivatives (one right-hand-side evaluation for the end
+//! derivative, none per iteration), until the bracket is shorter than
+//! [`Tolerances::event_time_tol_s`]. Both ends of that bracket are then checked with fresh
+//! Fehlberg steps from the step start (so the states have the full integrator order, not that
+//! of the interpolant): the upper end must be past the crossing, the lower end not. The state
+//! at the upper end is returned, so integration resumed from it does not see the same
+//! crossing again. Should the check fail (the interpolant's error exceeding the bracket: long
+//! steps, fast-changing forces), the search goes on from the bracket the check left (between
+//! the failed end and the interpolant's bracket) with a fresh Fehlberg step per trial, as
+//! before the dense output.
 
 use std::fmt;
 
@@ -63,6 +82,19 @@ mod fehlberg {
     ];
 }
 
+/// Bogacki-Shampine 3(2) coefficients (Bogacki & Shampine 1989), for short landing steps.
+mod bogacki_shampine {
+    pub const A: [f64; 4] = [0.0, 1.0 / 2.0, 3.0 / 4.0, 1.0];
+    /// Third-order weights (the fourth stage is the derivative at the new state).
+    pub const B3: [f64; 3] = [2.0 / 9.0, 1.0 / 3.0, 4.0 / 9.0];
+    /// Third- minus second-order weights (second order: 7/24, 1/4, 1/3, 1/8).
+    pub const E: [f64; 4] = [-5.0 / 72.0, 1.0 / 12.0, 1.0 / 9.0, -1.0 / 8.0];
+}
+
+/// A landing step at most this fraction of the controller's step is first tried with the
+/// Bogacki-Shampine 3(2) pair (module documentation).
+pub const SHORT_STEP_FRACTION: f64 = 0.02;
+
 /// Direction of a zero crossing an event reacts to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Direction {
@@ -93,6 +125,13 @@ pub trait OdeProblem<const N: usize> {
     }
     /// Called after every accepted step with the new time and state.
     fn on_step(&mut self, _t: f64, _y: &[f64; N]) {}
+    /// A count the problem changes whenever its right-hand side changes between
+    /// [`Rkf45::advance_to`] calls (the closed loop: at every guidance tick), so a derivative
+    /// computed in one call may be reused in the next at the same time and state. `None`
+    /// (the default): no reuse across calls.
+    fn rhs_generation(&self) -> Option<u64> {
+        None
+    }
 }
 
 /// Step-size control and event settings of [`Rkf45`].
@@ -262,8 +301,23 @@ pub fn fehlberg_step<const N: usize, P: OdeProblem<N> + ?Sized>(
     h: f64,
     stats: &mut Stats,
 ) -> ([f64; N], [f64; N]) {
+    let k1 = p.rhs(t, y);
+    stats.rhs_evals += 1;
+    fehlberg_step_from(p, t, y, h, &k1, stats)
+}
+
+/// [`fehlberg_step`] with its first stage `k1 = f(t, y)` given (five RHS evaluations).
+fn fehlberg_step_from<const N: usize, P: OdeProblem<N> + ?Sized>(
+    p: &mut P,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    k1: &[f64; N],
+    stats: &mut Stats,
+) -> ([f64; N], [f64; N]) {
     let mut k = [[0.0; N]; 6];
-    for s in 0..6 {
+    k[0] = *k1;
+    for s in 1..6 {
         let mut ys = *y;
         for (j, kj) in k.iter().enumerate().take(s) {
             let b = fehlberg::B[s][j];
@@ -289,6 +343,76 @@ pub fn fehlberg_step<const N: usize, P: OdeProblem<N> + ?Sized>(
     (y5, err)
 }
 
+/// One Bogacki-Shampine 3(2) step of length `h` from `(t, y)` with first stage `k1`: the
+/// third-order solution, the error estimate and the derivative at the new state (three RHS
+/// evaluations).
+fn bs3_step<const N: usize, P: OdeProblem<N> + ?Sized>(
+    p: &mut P,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    k1: &[f64; N],
+    stats: &mut Stats,
+) -> ([f64; N], [f64; N], [f64; N]) {
+    use bogacki_shampine::{A, B3, E};
+    let mut ys = *y;
+    for i in 0..N {
+        ys[i] += h * A[1] * k1[i];
+    }
+    let k2 = p.rhs(t + A[1] * h, &ys);
+    let mut ys = *y;
+    for i in 0..N {
+        ys[i] += h * A[2] * k2[i];
+    }
+    let k3 = p.rhs(t + A[2] * h, &ys);
+    let mut y3 = *y;
+    for i in 0..N {
+        y3[i] += h * (B3[0] * k1[i] + B3[1] * k2[i] + B3[2] * k3[i]);
+    }
+    let k4 = p.rhs(t + h, &y3);
+    stats.rhs_evals += 3;
+    let mut err = [0.0; N];
+    for i in 0..N {
+        err[i] = h * (E[0] * k1[i] + E[1] * k2[i] + E[2] * k3[i] + E[3] * k4[i]);
+    }
+    (y3, err, k4)
+}
+
+/// The cubic Hermite interpolant of a step `(y0, f0) -> (y1, f1)` of length `h` at fraction
+/// `th` of it.
+fn hermite<const N: usize>(
+    y0: &[f64; N],
+    f0: &[f64; N],
+    y1: &[f64; N],
+    f1: &[f64; N],
+    h: f64,
+    th: f64,
+) -> [f64; N] {
+    let (t2, t3) = (th * th, th * th * th);
+    let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+    let h10 = t3 - 2.0 * t2 + th;
+    let h01 = 3.0 * t2 - 2.0 * t3;
+    let h11 = t3 - t2;
+    let mut out = [0.0; N];
+    for i in 0..N {
+        out[i] = h00 * y0[i] + h * h10 * f0[i] + h01 * y1[i] + h * h11 * f1[i];
+    }
+    out
+}
+
+/// A derivative `f(t, y)` kept for reuse (see the module documentation).
+#[derive(Clone, Copy, Debug)]
+struct KeptDerivative<const N: usize> {
+    generation: Option<u64>,
+    t: f64,
+    y: [f64; N],
+    f: [f64; N],
+}
+
+fn same_point<const N: usize>(t0: f64, y0: &[f64; N], t1: f64, y1: &[f64; N]) -> bool {
+    t0.to_bits() == t1.to_bits() && y0.iter().zip(y1).all(|(a, b)| a.to_bits() == b.to_bits())
+}
+
 /// Adaptive Runge-Kutta-Fehlberg 4(5) integrator with per-component absolute tolerances.
 #[derive(Clone, Debug)]
 pub struct Rkf45<const N: usize> {
@@ -296,6 +420,8 @@ pub struct Rkf45<const N: usize> {
     atol: [f64; N],
     /// Suggested next step (kept across breakpoints).
     h: f64,
+    /// The last derivative computed at a step start or end, for reuse.
+    kept: Option<KeptDerivative<N>>,
     /// Work counters.
     pub stats: Stats,
 }
@@ -308,6 +434,7 @@ impl<const N: usize> Rkf45<N> {
             tol,
             atol,
             h: tol.h_init,
+            kept: None,
             stats: Stats::default(),
         }
     }
@@ -325,6 +452,34 @@ impl<const N: usize> Rkf45<N> {
             e = e.max(err[i].abs() / sc);
         }
         e
+    }
+
+    /// `f(t, y)`: the kept derivative if it is at this point, else a fresh evaluation
+    /// (counted), which is then kept.
+    fn derivative_at<P: OdeProblem<N> + ?Sized>(
+        &mut self,
+        p: &mut P,
+        t: f64,
+        y: &[f64; N],
+    ) -> [f64; N] {
+        if let Some(k) = &self.kept
+            && same_point(k.t, &k.y, t, y)
+        {
+            return k.f;
+        }
+        let f = p.rhs(t, y);
+        self.stats.rhs_evals += 1;
+        self.keep(p, t, y, f);
+        f
+    }
+
+    fn keep<P: OdeProblem<N> + ?Sized>(&mut self, p: &P, t: f64, y: &[f64; N], f: [f64; N]) {
+        self.kept = Some(KeptDerivative {
+            generation: p.rhs_generation(),
+            t,
+            y: *y,
+            f,
+        });
     }
 
     /// Integrate from `(*t, *y)` towards `t_end`, landing on it exactly.
@@ -354,6 +509,14 @@ impl<const N: usize> Rkf45<N> {
         if m > MAX_EVENTS {
             return Err(IntegrateError::TooManyEvents);
         }
+        // A derivative from an earlier call is reused only under the same right-hand side.
+        let generation = p.rhs_generation();
+        if self
+            .kept
+            .is_some_and(|k| generation.is_none() || k.generation != generation)
+        {
+            self.kept = None;
+        }
         let mut g0 = [0.0; MAX_EVENTS];
         let mut g1 = [0.0; MAX_EVENTS];
         if m > 0 {
@@ -369,49 +532,82 @@ impl<const N: usize> Rkf45<N> {
             // leave a sliver step behind (the 0.9 safety factor covers the stretch).
             let landing = remaining <= 1.1 * h_ctrl;
             let h = if landing { remaining } else { h_ctrl };
-            let (y1, err) = fehlberg_step(p, *t, y, h, &mut self.stats);
-            let e = self.error_norm(y, &y1, &err);
-            if !e.is_finite() || !all_finite(&y1) {
-                // Treat as a failed step: shrink hard, error out below h_min.
-                self.stats.rejected += 1;
-                let h_new = h * 0.1;
-                if h_new < self.tol.h_min {
-                    return Err(IntegrateError::NonFinite { t: *t });
+            let k1 = self.derivative_at(p, *t, y);
+            // A short landing step: the Bogacki-Shampine pair first (module documentation).
+            let mut short = None;
+            if landing && h <= SHORT_STEP_FRACTION * h_ctrl {
+                let (y3, err, k4) = bs3_step(p, *t, y, h, &k1, &mut self.stats);
+                let e = self.error_norm(y, &y3, &err);
+                if e <= 1.0 && all_finite(&y3) {
+                    short = Some((y3, k4));
                 }
-                self.h = h_new;
-                continue;
             }
-            let factor = if e == 0.0 {
-                5.0
+            let (y1, f1, factor) = if let Some((y3, k4)) = short {
+                (y3, Some(k4), None)
             } else {
-                (0.9 * e.powf(-0.2)).clamp(0.2, 5.0)
-            };
-            if e > 1.0 {
-                self.stats.rejected += 1;
-                let h_new = h * factor;
-                if h_new < self.tol.h_min {
-                    return Err(IntegrateError::StepTooSmall { t: *t, h: h_new });
+                let (y1, err) = fehlberg_step_from(p, *t, y, h, &k1, &mut self.stats);
+                let e = self.error_norm(y, &y1, &err);
+                if !e.is_finite() || !all_finite(&y1) {
+                    // Treat as a failed step: shrink hard, error out below h_min.
+                    self.stats.rejected += 1;
+                    let h_new = h * 0.1;
+                    if h_new < self.tol.h_min {
+                        return Err(IntegrateError::NonFinite { t: *t });
+                    }
+                    self.h = h_new;
+                    continue;
                 }
-                self.h = h_new;
-                continue;
-            }
+                let factor = if e == 0.0 {
+                    5.0
+                } else {
+                    (0.9 * e.powf(-0.2)).clamp(0.2, 5.0)
+                };
+                if e > 1.0 {
+                    self.stats.rejected += 1;
+                    let h_new = h * factor;
+                    if h_new < self.tol.h_min {
+                        return Err(IntegrateError::StepTooSmall { t: *t, h: h_new });
+                    }
+                    self.h = h_new;
+                    continue;
+                }
+                (y1, None, Some(factor))
+            };
             // Accepted.
             self.stats.accepted += 1;
             let t1 = if landing { t_end } else { *t + h };
-            // A shortened landing step says nothing about the controller's step: keep the
-            // larger of the two suggestions.
-            let h_next = (h * factor).min(self.tol.h_max);
-            self.h = if landing { h_next.max(h_ctrl) } else { h_next };
+            if let Some(factor) = factor {
+                // A shortened landing step says nothing about the controller's step: keep
+                // the larger of the two suggestions.
+                let h_next = (h * factor).min(self.tol.h_max);
+                self.h = if landing { h_next.max(h_ctrl) } else { h_next };
+            }
             if m > 0 {
                 p.events(t1, &y1, &mut g1[..m]);
-                if let Some(hit) = self.locate(p, *t, y, h, &g0[..m], &g1[..m])? {
-                    let (yh, _) = fehlberg_step(p, *t, y, hit.time - *t, &mut self.stats);
-                    *y = yh;
-                    *t = hit.time;
-                    p.on_step(*t, y);
-                    return Ok(Some(hit));
+                if any_triggered(p, &g0[..m], &g1[..m]) {
+                    let f1 = match f1 {
+                        Some(f) => f,
+                        None => self.derivative_at(p, t1, &y1),
+                    };
+                    let step = Step {
+                        t0: *t,
+                        y0: *y,
+                        f0: k1,
+                        h,
+                        y1,
+                        f1,
+                    };
+                    if let Some((hit, yh)) = self.locate(p, &step, &g0[..m], &g1[..m])? {
+                        *y = yh;
+                        *t = hit.time;
+                        p.on_step(*t, y);
+                        return Ok(Some(hit));
+                    }
                 }
                 g0 = g1;
+            }
+            if let Some(k4) = f1 {
+                self.keep(p, t1, &y1, k4);
             }
             *y = y1;
             *t = t1;
@@ -420,80 +616,193 @@ impl<const N: usize> Rkf45<N> {
         Ok(None)
     }
 
-    /// Locate the earliest triggered crossing in the step `(t0, y0) + h`.
+    /// Locate the earliest triggered crossing in an accepted step: on its dense output
+    /// first, then (if the fresh state there is not past the crossing) with fresh steps.
+    /// Returns the hit and the state at its time.
     fn locate<P: OdeProblem<N> + ?Sized>(
         &mut self,
         p: &mut P,
-        t0: f64,
-        y0: &[f64; N],
-        h: f64,
+        step: &Step<N>,
         g0: &[f64],
         g1: &[f64],
+    ) -> Result<Option<(EventHit, [f64; N])>, IntegrateError> {
+        let dense = |_p: &mut P, _s: &mut Stats, th: f64| -> Option<[f64; N]> {
+            Some(hermite(
+                &step.y0,
+                &step.f0,
+                &step.y1,
+                &step.f1,
+                step.h,
+                th / step.h,
+            ))
+        };
+        let Some(hit) = self.bracket(p, step, g0, g1, dense)? else {
+            return Ok(None);
+        };
+        // Check the bracket with fresh steps at both ends: the upper one past the crossing,
+        // the lower one not (the step start is known not to be).
+        let (i, a) = (hit.index, g0[hit.index]);
+        let th_hi = hit.time - step.t0;
+        let th_lo = th_hi - hit.bracket;
+        let (yh, g_hi) = self.fresh_event(p, step, th_hi, i, g0.len())?;
+        let fresh_bracket = if !past(a, g_hi) {
+            // The crossing is later than the interpolant says.
+            ((th_hi, g_hi), (step.h, g1[i]))
+        } else if th_lo <= 0.0 {
+            return Ok(Some((hit, yh)));
+        } else {
+            let (_, g_lo) = self.fresh_event(p, step, th_lo, i, g0.len())?;
+            if !past(a, g_lo) {
+                return Ok(Some((hit, yh)));
+            }
+            // Earlier than the interpolant says.
+            ((0.0, a), (th_lo, g_lo))
+        };
+        // The interpolant was not close enough: the search goes on from the bracket the
+        // checks left, with a fresh step for every trial.
+        let f0 = step.f0;
+        let mut fresh = |p: &mut P, s: &mut Stats, th: f64| -> Option<[f64; N]> {
+            let (yt, _) = fehlberg_step_from(p, step.t0, &step.y0, th, &f0, s);
+            all_finite(&yt).then_some(yt)
+        };
+        let (lo, hi) = fresh_bracket;
+        let hit = self.illinois(p, step, i, a, lo, hi, &mut fresh)?;
+        let (yh, _) = self.fresh_event(p, step, hit.time - step.t0, i, g0.len())?;
+        Ok(Some((hit, yh)))
+    }
+
+    /// The state a fresh Fehlberg step reaches at fraction `th` of the step and event `i`
+    /// there (`m` events).
+    fn fresh_event<P: OdeProblem<N> + ?Sized>(
+        &mut self,
+        p: &mut P,
+        step: &Step<N>,
+        th: f64,
+        i: usize,
+        m: usize,
+    ) -> Result<([f64; N], f64), IntegrateError> {
+        let (y, _) = fehlberg_step_from(p, step.t0, &step.y0, th, &step.f0, &mut self.stats);
+        if !all_finite(&y) {
+            return Err(IntegrateError::NonFinite { t: step.t0 });
+        }
+        let mut buf = [0.0; MAX_EVENTS];
+        p.events(step.t0 + th, &y, &mut buf[..m]);
+        Ok((y, buf[i]))
+    }
+
+    /// Bracket the earliest triggered crossing of the step with the Illinois method, the
+    /// state at a trial fraction `th` of the step coming from `state_at` (`None`: not
+    /// finite).
+    fn bracket<P: OdeProblem<N> + ?Sized>(
+        &mut self,
+        p: &mut P,
+        step: &Step<N>,
+        g0: &[f64],
+        g1: &[f64],
+        mut state_at: impl FnMut(&mut P, &mut Stats, f64) -> Option<[f64; N]>,
     ) -> Result<Option<EventHit>, IntegrateError> {
         let mut best: Option<EventHit> = None;
-        let mut buf = [0.0; MAX_EVENTS];
-        let m = g0.len();
-        for i in 0..m {
+        for i in 0..g0.len() {
             let (a, b) = (g0[i], g1[i]);
-            let triggered = match p.event_direction(i) {
-                Direction::Rising => a < 0.0 && b >= 0.0,
-                Direction::Falling => a > 0.0 && b <= 0.0,
-                Direction::Either => (a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0),
-            };
-            if !triggered {
+            if !triggered(p.event_direction(i), a, b) {
                 continue;
             }
-            // Illinois on theta in [0, h]; bracket [lo, hi] with g(lo) on the old side.
-            let (mut lo, mut hi) = (0.0_f64, h);
-            let (mut glo, mut ghi) = (a, b);
-            let mut side = 0i8;
-            let mut iter = 0;
-            while hi - lo > self.tol.event_time_tol_s && iter < 200 {
-                iter += 1;
-                let mut th = if ghi != glo {
-                    hi - ghi * (hi - lo) / (ghi - glo)
-                } else {
-                    0.5 * (lo + hi)
-                };
-                // Keep the trial strictly inside, away from the ends.
-                let w = hi - lo;
-                if !(th > lo + 1e-3 * w && th < hi - 1e-3 * w) {
-                    th = 0.5 * (lo + hi);
-                }
-                let (yt, _) = fehlberg_step(p, t0, y0, th, &mut self.stats);
-                if !all_finite(&yt) {
-                    return Err(IntegrateError::NonFinite { t: t0 });
-                }
-                p.events(t0 + th, &yt, &mut buf[..m]);
-                let gt = buf[i];
-                let past = if a < 0.0 { gt >= 0.0 } else { gt <= 0.0 };
-                if past {
-                    hi = th;
-                    ghi = gt;
-                    if side == 1 {
-                        glo *= 0.5;
-                    }
-                    side = 1;
-                } else {
-                    lo = th;
-                    glo = gt;
-                    if side == -1 {
-                        ghi *= 0.5;
-                    }
-                    side = -1;
-                }
-            }
-            let hit = EventHit {
-                index: i,
-                time: t0 + hi,
-                bracket: hi - lo,
-            };
+            let hit = self.illinois(p, step, i, a, (0.0, a), (step.h, b), &mut state_at)?;
             if best.is_none_or(|b| hit.time < b.time) {
                 best = Some(hit);
             }
         }
         Ok(best)
     }
+
+    /// The Illinois method on event `i` (value `a` at the step start) from the bracket
+    /// `[lo, hi]` (fractions of the step with their event values, `lo` on the old side)
+    /// until it is shorter than the tolerance.
+    #[allow(clippy::too_many_arguments)]
+    fn illinois<P: OdeProblem<N> + ?Sized>(
+        &mut self,
+        p: &mut P,
+        step: &Step<N>,
+        i: usize,
+        a: f64,
+        (mut lo, mut glo): (f64, f64),
+        (mut hi, mut ghi): (f64, f64),
+        state_at: &mut impl FnMut(&mut P, &mut Stats, f64) -> Option<[f64; N]>,
+    ) -> Result<EventHit, IntegrateError> {
+        let m = p.event_count().min(MAX_EVENTS);
+        let mut buf = [0.0; MAX_EVENTS];
+        let mut side = 0i8;
+        let mut iter = 0;
+        while hi - lo > self.tol.event_time_tol_s && iter < 200 {
+            iter += 1;
+            let mut th = if ghi != glo {
+                hi - ghi * (hi - lo) / (ghi - glo)
+            } else {
+                0.5 * (lo + hi)
+            };
+            // Keep the trial strictly inside, away from the ends.
+            let w = hi - lo;
+            if !(th > lo + 1e-3 * w && th < hi - 1e-3 * w) {
+                th = 0.5 * (lo + hi);
+            }
+            let Some(yt) = state_at(p, &mut self.stats, th) else {
+                return Err(IntegrateError::NonFinite { t: step.t0 });
+            };
+            p.events(step.t0 + th, &yt, &mut buf[..m]);
+            let gt = buf[i];
+            if past(a, gt) {
+                hi = th;
+                ghi = gt;
+                if side == 1 {
+                    glo *= 0.5;
+                }
+                side = 1;
+            } else {
+                lo = th;
+                glo = gt;
+                if side == -1 {
+                    ghi *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        Ok(EventHit {
+            index: i,
+            time: step.t0 + hi,
+            bracket: hi - lo,
+        })
+    }
+}
+
+/// An accepted step: start, first stage, length, end and the derivative there.
+struct Step<const N: usize> {
+    t0: f64,
+    y0: [f64; N],
+    f0: [f64; N],
+    h: f64,
+    y1: [f64; N],
+    f1: [f64; N],
+}
+
+/// Whether an event value `a` at a step start and `b` at its end cross in `dir`.
+fn triggered(dir: Direction, a: f64, b: f64) -> bool {
+    match dir {
+        Direction::Rising => a < 0.0 && b >= 0.0,
+        Direction::Falling => a > 0.0 && b <= 0.0,
+        Direction::Either => (a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0),
+    }
+}
+
+/// Whether `gt` lies past the crossing of an event that started at `a`.
+fn past(a: f64, gt: f64) -> bool {
+    if a < 0.0 { gt >= 0.0 } else { gt <= 0.0 }
+}
+
+fn any_triggered<const N: usize, P: OdeProblem<N> + ?Sized>(p: &P, g0: &[f64], g1: &[f64]) -> bool {
+    g0.iter()
+        .zip(g1)
+        .enumerate()
+        .any(|(i, (a, b))| triggered(p.event_direction(i), *a, *b))
 }
 
 /// One classical fourth-order Runge-Kutta step (four RHS evaluations, counted in `stats`).

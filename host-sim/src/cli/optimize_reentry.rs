@@ -18,8 +18,8 @@ use super::optimize_reentry_out::{Record, record_of, write_final, write_generati
 use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
 use crate::optim::chromosome::Chromosome;
 use crate::optim::{
-    Algorithm, Individual, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, OptimError, Problem,
-    Rayon, Scea, SceaConfig, Serial, evolve,
+    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
+    Nsga2, Nsga2Config, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -28,7 +28,10 @@ use crate::scenario::Scenario;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ReentryRunConfig {
-    /// `moead`, `nsga2` or `scea` (variable length: 4 to `problem.encoding.nodes` nodes).
+    /// `moead`, `nsga2`, `scea` (variable length: 4 to `problem.encoding.nodes` nodes),
+    /// `mhaco` (feasible candidates first) or `mhaco-objectives` (MHACO with the constraints
+    /// as extra objectives, the thesis' sec. 9.3.2: `c / c_max` capped at 2, 0.5 added to
+    /// every objective per violated constraint).
     pub algorithm: String,
     /// Population size.
     pub population: usize,
@@ -186,11 +189,14 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             reason,
         })
     };
-    if !matches!(c.algorithm.as_str(), "moead" | "nsga2" | "scea") {
+    if !matches!(
+        c.algorithm.as_str(),
+        "moead" | "nsga2" | "scea" | "mhaco" | "mhaco-objectives"
+    ) {
         return bad(
             "algorithm",
             c.algorithm.clone(),
-            "use moead, nsga2 or scea".into(),
+            "use moead, nsga2, scea, mhaco or mhaco-objectives".into(),
         );
     }
     if c.threads == 0 {
@@ -202,6 +208,15 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             "reference",
             format!("{:?}", c.reference),
             format!("give {m} finite values (one per objective)"),
+        );
+    }
+    if c.problem.objectives.target_range_deg.is_some() && c.reference[0] <= 0.0 {
+        return bad(
+            "reference",
+            format!("{:?}", c.reference),
+            "with objectives.target_range_deg the first objective is a miss distance >= 0: \
+             give a first value > 0 (e.g. 1)"
+                .into(),
         );
     }
     Ok(())
@@ -318,6 +333,25 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
                 ..Nsga2Config::default()
             };
             drive(&ctx, Nsga2::new(cfg, c.seed), out)
+        }
+        "mhaco" | "mhaco-objectives" => {
+            let constraints = if c.algorithm == "mhaco" {
+                ConstraintHandling::FeasibilityFirst
+            } else {
+                // The problem's constraints are already c / c_max - 1 (scale 1).
+                ConstraintHandling::AsObjectives {
+                    scales: None,
+                    cap: 2.0,
+                    penalty: 0.5,
+                }
+            };
+            let cfg = MhacoConfig {
+                population: c.population,
+                ker: c.population.min(MhacoConfig::default().ker),
+                constraints,
+                ..MhacoConfig::default()
+            };
+            drive(&ctx, Mhaco::new(cfg, c.seed), out)
         }
         _ => drive(&ctx, Moead::new(moead, c.seed), out),
     }

@@ -22,6 +22,46 @@ fn read(dir: &Path, f: &str) -> String {
     std::fs::read_to_string(dir.join(f)).unwrap()
 }
 
+/// MHACO in both constraint modes on a re-entry problem: an interrupted run resumed gives
+/// the uninterrupted run's files, and the two modes are different runs.
+#[test]
+fn mhaco_runs_both_modes_and_resumes() {
+    let common = ["--problem", "srm", "--population", "4", "--seed", "7"];
+    let run = |dir: &Path, g: &str, extra: &[&str]| {
+        let mut v = common.to_vec();
+        let d = dir.to_str().unwrap();
+        v.extend(["--generations", g, "--out", d]);
+        v.extend(extra);
+        optimize(&v).unwrap()
+    };
+    let (a, b) = (tmp("mhaco_a"), tmp("mhaco_b"));
+    run(&a, "2", &["--algorithm", "mhaco"]);
+    run(&b, "1", &["--algorithm", "mhaco"]);
+    optimize(&["--resume", b.to_str().unwrap(), "--generations", "2"]).unwrap();
+    for f in ["generations.json", "population.csv", "front.csv"] {
+        assert_eq!(read(&a, f), read(&b, f), "{f}");
+    }
+    assert!(read(&a, "config.toml").contains("algorithm = \"mhaco\""));
+    // The constraints-as-objectives mode from a config file.
+    let c = tmp("mhaco_c");
+    std::fs::create_dir_all(&c).unwrap();
+    let text = read(&a, "config.toml")
+        .replace("algorithm = \"mhaco\"", "algorithm = \"mhaco-objectives\"");
+    let cfg = c.join("run.toml");
+    std::fs::write(&cfg, text).unwrap();
+    let out = c.join("run");
+    optimize(&[
+        "--config",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+    .unwrap();
+    assert!(read(&out, "config.toml").contains("mhaco-objectives"));
+    assert_eq!(read(&out, "generations.csv").lines().count(), 4);
+    assert_ne!(read(&a, "population.csv"), read(&out, "population.csv"));
+}
+
 /// Interrupting after one generation (a run of 1 generation) and resuming to 2 gives the
 /// bit-identical records, population and front of an uninterrupted 2-generation run; the
 /// front's scenario files fly to the front's objectives.
@@ -153,7 +193,7 @@ fn config_template_and_errors_name_the_field() {
     let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
     assert!(
         e.to_string()
-            .contains("field `algorithm` = pso: use moead, nsga2 or scea"),
+            .contains("field `algorithm` = pso: use moead, nsga2, scea, mhaco or mhaco-objectives"),
         "{e}"
     );
     std::fs::write(&file, text.replace("nodes = 8", "nodes = 1")).unwrap();

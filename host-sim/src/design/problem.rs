@@ -6,7 +6,11 @@
 //!   integrated angle travelled over the planet, which like the thesis' can exceed pi, whereas
 //!   the great-circle angle between entry and end points saturates at pi) and
 //!   `f_Q = Q / Q_scale` (heat load, `Q_scale` = [`Objectives::heat_load_scale_j_m2`]);
-//!   optionally the number of skips as a third objective;
+//!   optionally the number of skips as a third objective. With a target range
+//!   ([`Objectives::target_range_deg`]) the first objective is the miss distance instead,
+//!   `f_r = |theta - theta_target| / pi` (flown range angle against the target, as a
+//!   fraction of pi like eq. 9.1; times the planet radius it is the miss in metres along the
+//!   track);
 //! * constraints (`g <= 0` feasible): `q_max / q_lim - 1`, `n_max / n_lim - 1`,
 //!   `ndot_max / ndot_lim - 1` (eq. 4.9-4.11 as continuous functions with the same zero
 //!   crossing), optionally `skips - max_skips`.
@@ -56,6 +60,11 @@ pub struct Objectives {
     pub heat_load_scale_j_m2: f64,
     /// The number of skips as a third objective.
     pub skips: bool,
+    /// Target flown range angle \[deg\]: when set, the first objective is the miss distance
+    /// `|theta - target| / pi` instead of `-theta / pi` (issue 11 item 2); `None`: the
+    /// thesis' maximal range. In (0, 720] deg.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_range_deg: Option<f64>,
 }
 
 impl Default for Objectives {
@@ -63,6 +72,7 @@ impl Default for Objectives {
         Self {
             heat_load_scale_j_m2: 1e9,
             skips: false,
+            target_range_deg: None,
         }
     }
 }
@@ -117,6 +127,15 @@ impl ReentryProblem {
                     reason: "use a finite positive value",
                 });
             }
+        }
+        if let Some(t) = objectives.target_range_deg
+            && !(t.is_finite() && t > 0.0 && t <= 720.0)
+        {
+            return Err(DesignError::Setting {
+                field: "objectives.target_range_deg",
+                value: t.to_string(),
+                reason: "use a flown range angle in (0, 720] deg",
+            });
         }
         // The base must load and build its guidance (vehicle files, bounds).
         base.load_vehicle()
@@ -181,10 +200,12 @@ impl ReentryProblem {
         if !finished {
             return Evaluation::failure(self.objectives(), self.constraints());
         }
-        let mut f = vec![
-            -s.flown_range_angle_rad / std::f64::consts::PI,
-            s.heat_load_j_m2 / self.objectives.heat_load_scale_j_m2,
-        ];
+        let pi = std::f64::consts::PI;
+        let f_r = match self.objectives.target_range_deg {
+            Some(t) => (s.flown_range_angle_rad - t.to_radians()).abs() / pi,
+            None => -s.flown_range_angle_rad / pi,
+        };
+        let mut f = vec![f_r, s.heat_load_j_m2 / self.objectives.heat_load_scale_j_m2];
         if self.objectives.skips {
             f.push(f64::from(s.skips));
         }

@@ -164,3 +164,30 @@ fn variable_length_problem_flies_its_table() {
     };
     assert!(v.evaluate(&short).is_err());
 }
+
+/// With a target range the first objective is the miss distance |theta - target| / pi of
+/// the same flight, the heat load and constraints unchanged; a bad target names the field.
+#[test]
+fn target_range_makes_the_miss_distance_the_first_objective() {
+    let x = horus_decision();
+    let plain = horus().evaluate(&x).unwrap();
+    let theta = -plain.objectives[0] * std::f64::consts::PI;
+    for target_deg in [40.0, 120.0] {
+        let mut c = DesignConfig::preset("horus-2b").unwrap();
+        c.objectives.target_range_deg = Some(target_deg);
+        let p = c.problem(std::path::Path::new(".")).unwrap();
+        let ev = p.evaluate(&x).unwrap();
+        let miss = (theta - f64::to_radians(target_deg)).abs() / std::f64::consts::PI;
+        assert!((ev.objectives[0] - miss).abs() < 1e-12, "{ev:?} vs {miss}");
+        assert!(ev.objectives[0] >= 0.0);
+        assert_eq!(ev.objectives[1], plain.objectives[1]);
+        assert_eq!(ev.constraints, plain.constraints);
+    }
+    let mut c = DesignConfig::preset("horus-2b").unwrap();
+    c.objectives.target_range_deg = Some(-5.0);
+    let e = c
+        .problem(std::path::Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("objectives.target_range_deg"), "{e}");
+}

@@ -93,6 +93,53 @@ impl ChapmanHeatFlux {
             * math::pow(v_ratio, self.speed_exponent);
         if q.is_finite() { q } else { 0.0 }
     }
+
+    /// The relation for one nose radius `nose_radius_m` \[m\] as the simulator's right-hand
+    /// side evaluates it (thousands of times per flight): `c* / sqrt(R_N)` computed once and
+    /// the power taken with the host's `powf` (see [`NoseHeatFlux`]).
+    #[must_use]
+    pub fn at_nose(&self, nose_radius_m: f64) -> NoseHeatFlux {
+        let coefficient = (nose_radius_m.is_finite() && nose_radius_m > 0.0)
+            .then(|| self.coefficient / math::sqrt(nose_radius_m));
+        NoseHeatFlux {
+            model: *self,
+            coefficient,
+        }
+    }
+}
+
+/// [`ChapmanHeatFlux`] for one nose radius ([`ChapmanHeatFlux::at_nose`]), the integrand of
+/// the simulated heat load. It takes `(V / V_ref)^m` from the host's `f64::powf` instead of
+/// `libm`'s `pow` (which the core must use, `no_std`, and which cost a third of a flight's
+/// CPU time), so it may differ from [`ChapmanHeatFlux::heat_flux_w_m2`] in the last bit or
+/// two (test: within 3 ulp relative); reported heat fluxes and their peaks come from
+/// [`ChapmanHeatFlux::heat_flux_w_m2`], the core's values bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NoseHeatFlux {
+    model: ChapmanHeatFlux,
+    /// `c* / sqrt(R_N)` \[W/m^2\]; `None` for a non-finite or non-positive nose radius.
+    coefficient: Option<f64>,
+}
+
+impl NoseHeatFlux {
+    /// Stagnation-point heat flux \[W/m^2\] at density `density_kg_m3` and speed `speed_m_s`;
+    /// 0 for non-finite or negative input or a bad nose radius (as the core's plain function).
+    #[must_use]
+    pub fn heat_flux_w_m2(&self, density_kg_m3: f64, speed_m_s: f64) -> f64 {
+        let Some(k) = self.coefficient else {
+            return 0.0;
+        };
+        let finite = density_kg_m3.is_finite() && speed_m_s.is_finite();
+        if !finite || density_kg_m3 < 0.0 || speed_m_s < 0.0 {
+            return 0.0;
+        }
+        // The core's Scalar::sqrt: 0 for non-positive input.
+        let sqrt = |x: f64| if x > 0.0 { math::sqrt(x) } else { 0.0 };
+        let rho_ratio = density_kg_m3 / self.model.reference_density_kg_m3;
+        let v_ratio = speed_m_s / self.model.reference_speed_m_s;
+        let q = k * sqrt(rho_ratio) * v_ratio.powf(self.model.speed_exponent);
+        if q.is_finite() { q } else { 0.0 }
+    }
 }
 
 #[cfg(test)]
@@ -128,6 +175,33 @@ mod tests {
                 0.0
             );
         }
+    }
+
+    /// The right-hand side's variant (host `powf`) stays within 3 ulp of the core's value.
+    #[test]
+    fn nose_variant_agrees_with_the_core_to_a_few_ulp() {
+        let m = ChapmanHeatFlux::thesis();
+        let mut worst: f64 = 0.0;
+        for rn in [0.1, 0.3, 1.0, 2.5] {
+            let nose = m.at_nose(rn);
+            for i in 0..200 {
+                let rho = 1e-9 * 1.13f64.powi(i);
+                for j in 0..60 {
+                    let v = 1.0 + 150.0 * f64::from(j);
+                    let core = guidance_core::monitor::chapman_heat_flux_w_m2(rho, v, rn);
+                    let rel = (nose.heat_flux_w_m2(rho, v) - core).abs() / core;
+                    worst = worst.max(rel);
+                }
+            }
+        }
+        assert!(
+            worst <= 3.0 * f64::EPSILON,
+            "worst relative difference {worst:e}"
+        );
+        let bad = m.at_nose(0.0);
+        assert_eq!(bad.heat_flux_w_m2(1.0, 1.0), 0.0);
+        assert_eq!(m.at_nose(1.0).heat_flux_w_m2(f64::NAN, 1.0), 0.0);
+        assert_eq!(m.at_nose(1.0).heat_flux_w_m2(1.0, -1.0), 0.0);
     }
 
     #[test]

@@ -20,7 +20,7 @@ pub use atmosphere::{
     Us76,
 };
 pub use gravity::{CentralGravity, Gravity, J2Gravity};
-pub use heat_flux::{ChapmanHeatFlux, HeatFluxError};
+pub use heat_flux::{ChapmanHeatFlux, HeatFluxError, NoseHeatFlux};
 pub use planet::Planet;
 
 /// The environment presets: the one list, used by scenarios and by the analytical comparison.

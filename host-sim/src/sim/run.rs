@@ -12,7 +12,9 @@ use super::{
     AttitudeSource, Peak, Sample, SampleKind, SimConfig, SimError, SimResult, Summary, Termination,
     TerminationReason, great_circle, state_atol, validate_config, violations,
 };
-use crate::dynamics::{Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, STATE_LEN, cartesian_of};
+use crate::dynamics::{
+    Dynamics, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, RhsCache, STATE_LEN, cartesian_of,
+};
 use crate::integrate::{Direction, OdeProblem, Rkf45, Stats};
 
 /// Progress of a run, reported at every guidance tick and output sample.
@@ -26,6 +28,7 @@ pub struct Progress {
 
 struct Loop<'a, A> {
     dynm: Dynamics<'a>,
+    rhs_cache: RhsCache,
     source: A,
     term: Termination,
     interface_m: f64,
@@ -36,19 +39,25 @@ struct Loop<'a, A> {
     peak_gdot: Peak,
     g_rate: GLoadRateMonitor<f64>,
     g_rate_last_s: Option<f64>,
+    /// Guidance ticks so far: the attitude function changes only at ticks
+    /// ([`OdeProblem::rhs_generation`]).
+    ticks: u64,
 }
 
 impl<A: AttitudeSource> Loop<'_, A> {
     fn observe(&mut self, t: f64, y: &[f64; STATE_LEN]) {
-        let fc = self.dynm.conditions_at(y, self.source.attitude_at(t));
-        self.peak_q.update(fc.heat_flux_w_m2, t);
-        self.peak_g.update(fc.g_load, t);
+        // The right-hand side's heat flux (within a few ulp of the core's) and the g-load.
+        let (q, g_load) =
+            self.dynm
+                .heat_flux_and_g_load(y, self.source.attitude_at(t), &self.rhs_cache);
+        self.peak_q.update(q, t);
+        self.peak_g.update(g_load, t);
         // g-load rate from successive samples at least one window apart (core monitor).
         if self
             .g_rate_last_s
             .is_none_or(|t0| t - t0 >= self.g_rate_window_s)
         {
-            if let Ok(Some(rate)) = self.g_rate.update(t, fc.g_load) {
+            if let Ok(Some(rate)) = self.g_rate.update(t, g_load) {
                 self.peak_gdot.update(rate.abs(), t);
             }
             self.g_rate_last_s = Some(t);
@@ -76,7 +85,8 @@ impl<A: AttitudeSource> Loop<'_, A> {
 
 impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
     fn rhs(&mut self, t: f64, y: &[f64; STATE_LEN]) -> [f64; STATE_LEN] {
-        self.dynm.cartesian_rhs(y, self.source.attitude_at(t)).0
+        let att = self.source.attitude_at(t);
+        self.dynm.cartesian_derivative(y, att, &mut self.rhs_cache)
     }
     fn event_count(&self) -> usize {
         Event::ALL.len()
@@ -102,6 +112,9 @@ impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
     }
     fn on_step(&mut self, t: f64, y: &[f64; STATE_LEN]) {
         self.observe(t, y);
+    }
+    fn rhs_generation(&self) -> Option<u64> {
+        Some(self.ticks)
     }
 }
 
@@ -149,6 +162,7 @@ pub fn simulate<A: AttitudeSource>(
     .map_err(SimError::Entry)?;
     let mut lp = Loop {
         dynm,
+        rhs_cache: dynm.rhs_cache(),
         source,
         term: cfg.termination,
         interface_m: cfg.interface_altitude_m,
@@ -159,14 +173,14 @@ pub fn simulate<A: AttitudeSource>(
         peak_gdot: Peak::default(),
         g_rate: GLoadRateMonitor::new(),
         g_rate_last_s: None,
+        ticks: 0,
     };
     let mut integ = Rkf45::new(cfg.tolerances, state_atol(cfg.tolerances.rtol));
     let mut t = 0.0_f64;
     let mut y = dynm.initial_state(&cfg.entry, 0.0);
-    let mut ticks = 0u64;
-    let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN], ticks: &mut u64| {
+    let tick = |lp: &mut Loop<'_, A>, t: f64, y: &[f64; STATE_LEN]| {
         let nav = nav_of(t, y, lp.dynm.planet.rotation_rate_rad_s)?;
-        *ticks += 1;
+        lp.ticks += 1;
         let wrap = |e: A::Error| SimError::Guidance {
             time_s: t,
             source: Box::new(e),
@@ -182,7 +196,7 @@ pub fn simulate<A: AttitudeSource>(
         lp.source.sense(&nav, &sensed).map_err(wrap)?;
         lp.source.tick(&nav).map_err(wrap)
     };
-    tick(&mut lp, t, &y, &mut ticks)?;
+    tick(&mut lp, t, &y)?;
     lp.observe(t, &y);
     let mut samples = vec![lp.sample(t, &y, SampleKind::Start)];
     let mut crossings = Vec::new();
@@ -249,7 +263,7 @@ pub fn simulate<A: AttitudeSource>(
         }
         let mut record = false;
         if t >= t_tick {
-            tick(&mut lp, t, &y, &mut ticks)?;
+            tick(&mut lp, t, &y)?;
             record = out_dt == 0.0;
         }
         if t >= t_out {
@@ -286,7 +300,7 @@ pub fn simulate<A: AttitudeSource>(
         rhs_evals: stats.rhs_evals,
         accepted_steps: stats.accepted,
         rejected_steps: stats.rejected,
-        ticks,
+        ticks: lp.ticks,
     };
     Ok((SimResult { samples, summary }, lp.source))
 }

@@ -107,9 +107,17 @@ pub struct TableAerodynamics {
 
 impl Aerodynamics for TableAerodynamics {
     fn coefficients(&self, mach: f64, alpha_rad: f64) -> AeroCoefficients {
+        // One grid lookup for both coefficients when the tables share their axes (the
+        // built-in and file tables do); the values are those of two separate lookups.
+        let cell = self.cl.cell(mach, alpha_rad);
+        let cd = if self.cl.same_axes(&self.cd) {
+            self.cd.value_in(&cell)
+        } else {
+            self.cd.value(mach, alpha_rad)
+        };
         AeroCoefficients {
-            cl: self.cl.value(mach, alpha_rad),
-            cd: self.cd.value(mach, alpha_rad),
+            cl: self.cl.value_in(&cell),
+            cd,
         }
     }
 

@@ -53,6 +53,16 @@ pub enum GapFill {
     HoldLastAlpha,
 }
 
+/// A point's place in a table grid: lower Mach index and fraction, lower alpha index and
+/// fraction (see [`CoefficientTable::cell`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    i: usize,
+    fm: f64,
+    j: usize,
+    fa: f64,
+}
+
 /// A rectangular table C(Mach, alpha): bilinear interpolation, clamped to the edges.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CoefficientTable {
@@ -174,8 +184,24 @@ impl CoefficientTable {
     /// Bilinear interpolation at (`mach`, `alpha_rad`), both clamped to the table's range.
     #[must_use]
     pub fn value(&self, mach: f64, alpha_rad: f64) -> f64 {
+        self.value_in(&self.cell(mach, alpha_rad))
+    }
+
+    /// Where (`mach`, `alpha_rad`) falls in this table's grid: the lookup of
+    /// [`CoefficientTable::value`], done once for every table on the same axes
+    /// ([`CoefficientTable::same_axes`]).
+    #[must_use]
+    pub fn cell(&self, mach: f64, alpha_rad: f64) -> Cell {
         let (i, fm) = locate(&self.mach, mach);
         let (j, fa) = locate(&self.alpha_rad, alpha_rad);
+        Cell { i, fm, j, fa }
+    }
+
+    /// Bilinear interpolation in a cell of this table's grid (from [`CoefficientTable::cell`]
+    /// of this table or of one with the same axes).
+    #[must_use]
+    pub fn value_in(&self, cell: &Cell) -> f64 {
+        let Cell { i, fm, j, fa } = *cell;
         let at = |i: usize, j: usize| -> f64 {
             self.values
                 .get(i)
@@ -188,6 +214,12 @@ impl CoefficientTable {
         let lo = at(i, j) + fa * (at(i, j1) - at(i, j));
         let hi = at(i1, j) + fa * (at(i1, j1) - at(i1, j));
         if i1 == i { lo } else { lo + fm * (hi - lo) }
+    }
+
+    /// Whether `other` has the same Mach and alpha axes (so one [`Cell`] serves both).
+    #[must_use]
+    pub fn same_axes(&self, other: &Self) -> bool {
+        self.mach == other.mach && self.alpha_rad == other.alpha_rad
     }
 
     /// The Mach axis [-].

@@ -10,6 +10,7 @@ mod hypervolume;
 mod hypervolume_cli;
 mod hypervolume_pagmo2;
 mod input_ranges;
+mod integrator_reuse;
 mod layering;
 mod navconv;
 mod pil;
