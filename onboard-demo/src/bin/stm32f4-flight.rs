@@ -66,7 +66,7 @@ mod firmware {
     }
 
     /// TIM2 counting microseconds over its full 32-bit range: the tick timer. (The HAL's
-    /// counter reloads at `u32::MAX - 1`, so a duration across a wrap reads 1 us long: once
+    /// counter reloads at `u32::MAX - 1`, so a duration across a wrap reads 1 us too long: once
     /// every 71.6 min.)
     struct Tim2Us(CounterUs<pac::TIM2>);
 
