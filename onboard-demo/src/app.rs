@@ -1,8 +1,10 @@
 //! The flight application, independent of the board: generic over the embedded-io link to the
-//! navigation system / host ([`embedded_io::Read`] + [`embedded_io::Write`]) and an
-//! embedded-hal 1.0 status discrete ([`OutputPin`]). The QEMU `pil` firmware runs it on
-//! semihosting FIFOs; `stm32f4-flight` (feature `stm32f4`, compile only) on an STM32F407's
-//! USART2 with stm32f4xx-hal.
+//! navigation system / host ([`embedded_io::Read`] + [`embedded_io::Write`]), an
+//! embedded-hal 1.0 status discrete ([`OutputPin`]), a monotonic microsecond tick timer
+//! ([`TickTimer`]) and a pacing mode ([`Pacing`], free-running with an embedded-hal
+//! `DelayNs`). The QEMU `pil` firmware runs it on semihosting FIFOs and SysTick, in lockstep;
+//! `stm32f4-flight` (feature `stm32f4`, compile only) on an STM32F407's USART2 and timers with
+//! stm32f4xx-hal, free-running.
 //!
 //! Protocol (`guidance_core::link`): set-up frames build the guidance (`guidance_core::setup`:
 //! the stored profile, or with onboard re-planning when its items were uploaded; the core's
@@ -12,9 +14,13 @@
 //! flying and the answer carries the status. The status discrete is high while the last
 //! update was accepted, low after a fault or before guidance exists.
 //!
-//! Guidance time is the nav frame's time stamp (the navigation system's clock), so the
-//! application needs no timer of its own.
+//! Clock ([`crate::clock`]): guidance time is the nav frame's time stamp (the navigation
+//! system's clock; in lockstep PIL the host's simulated time, so runs stay deterministic). The
+//! tick timer measures every guidance tick, from its nav frame read to its command frame
+//! written, against the guidance period: overruns and the longest tick are counted in
+//! [`Outcome::timing`]. Free-running, the application then waits out the rest of the period.
 
+use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
 use embedded_io::{Read, ReadExactError, Write};
 use guidance_core::guidance::{Command, Guidance, RateLimits};
@@ -24,6 +30,8 @@ use guidance_core::link::{
 use guidance_core::setup::{SetupBuilder, SetupGuidance, SetupItem};
 use guidance_core::{NavState, Real, Scalar};
 
+use crate::clock::{Pacing, TickMonitor, TickStats, TickTimer, pace, period_us};
+
 /// How a run ended normally.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Outcome {
@@ -31,6 +39,8 @@ pub struct Outcome {
     pub frames: u32,
     /// Faults counted (undecodable frames, rejected samples).
     pub faults: u32,
+    /// Guidance tick timing: ticks measured, overruns of the period, longest tick \[us\].
+    pub timing: TickStats,
 }
 
 /// Why a run stopped early.
@@ -107,13 +117,17 @@ fn answer<S: Scalar, const N: usize>(
 /// Serve the link until an end frame: guidance in scalar `S` with node capacity `N`, an
 /// uploaded re-planner in scalar `R` (`f32` on both Cortex-M targets: hardware float on the
 /// M4F, soft float beside the fixed-point guidance tick on the M3). `fallback` builds the
-/// guidance flown when a nav frame arrives before any set-up.
+/// guidance flown when a nav frame arrives before any set-up. `timer` measures each tick
+/// (a nav frame that made guidance tick: read to answer written) against the guidance period;
+/// `pacing` says whether to wait out the rest of the period after it ([`crate::clock`]).
 ///
 /// # Errors
 /// [`AppError`] if the link fails or ends; guidance problems are statuses, not errors.
-pub fn serve<S, const N: usize, R, L, D>(
+pub fn serve<S, const N: usize, R, L, D, T, P>(
     link: &mut L,
     status: &mut D,
+    timer: &mut T,
+    mut pacing: Pacing<P>,
     fallback: impl Fn() -> Option<Guidance<S, N>>,
 ) -> Result<Outcome, AppError<L::Error>>
 where
@@ -121,6 +135,8 @@ where
     R: Real,
     L: Read + Write,
     D: OutputPin,
+    T: TickTimer,
+    P: DelayNs,
 {
     let mut setup = SetupBuilder::<S, N>::new();
     let mut guidance: Option<SetupGuidance<S, N, R>> = None;
@@ -129,7 +145,9 @@ where
     let mut out = Outcome {
         frames: 0,
         faults: 0,
+        timing: TickStats::default(),
     };
+    let mut monitor = TickMonitor::new(period_us(2.0));
     // A discrete that cannot be driven must not stop guidance: its error is ignored.
     let _ = status.set_low();
     loop {
@@ -137,7 +155,9 @@ where
             ReadExactError::UnexpectedEof => AppError::EndOfLink,
             ReadExactError::Other(e) => AppError::Read(e),
         })?;
+        let start_us = timer.now_us();
         let mut healthy = false;
+        let mut ticked = false;
         let reply = match decode(&inb) {
             Ok(Frame::End(_)) => return Ok(out),
             Ok(Frame::Setup(SetupFrame { seq, item })) => {
@@ -173,6 +193,8 @@ where
                             }
                         };
                         healthy = matches!(st, LinkStatus::Ok | LinkStatus::NotTicked);
+                        ticked = st == LinkStatus::Ok;
+                        monitor.set_period_us(period_us(g.guidance().config().period_s.to_f64()));
                         answer(Some(g.guidance()), seq, st)
                     }
                     None => answer::<S, N>(None, seq, LinkStatus::InvalidConfig),
@@ -201,5 +223,184 @@ where
         link.write_all(&outb).map_err(AppError::Write)?;
         link.flush().map_err(AppError::Write)?;
         out.frames = out.frames.wrapping_add(1);
+        if ticked {
+            monitor.record(start_us, timer.now_us());
+            out.timing = monitor.stats();
+            pace(&mut pacing, timer, &monitor, start_us);
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
+mod tests {
+    use super::*;
+    use crate::clock::LOCKSTEP;
+    use guidance_core::energy::EARTH_RADIUS_M;
+    use guidance_core::missions::{HORUS2B_ENTRY, horus2b_reference};
+    use std::vec::Vec;
+
+    /// Frames in, answers out.
+    struct MemLink {
+        input: Vec<u8>,
+        pos: usize,
+        output: Vec<u8>,
+    }
+
+    impl embedded_io::ErrorType for MemLink {
+        type Error = core::convert::Infallible;
+    }
+
+    impl Read for MemLink {
+        fn read(&mut self, buf: &mut [u8]) -> Result<usize, Self::Error> {
+            let rest = &self.input[self.pos..];
+            let n = rest.len().min(buf.len());
+            buf[..n].copy_from_slice(&rest[..n]);
+            self.pos += n;
+            Ok(n)
+        }
+    }
+
+    impl Write for MemLink {
+        fn write(&mut self, buf: &[u8]) -> Result<usize, Self::Error> {
+            self.output.extend_from_slice(buf);
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> Result<(), Self::Error> {
+            Ok(())
+        }
+    }
+
+    struct Pin;
+    impl embedded_hal::digital::ErrorType for Pin {
+        type Error = core::convert::Infallible;
+    }
+    impl OutputPin for Pin {
+        fn set_low(&mut self) -> Result<(), Self::Error> {
+            Ok(())
+        }
+        fn set_high(&mut self) -> Result<(), Self::Error> {
+            Ok(())
+        }
+    }
+
+    /// Each reading returns the counter, then advances it by `step_us` (wrapping).
+    struct SteppingTimer {
+        now_us: u32,
+        step_us: u32,
+    }
+    impl TickTimer for SteppingTimer {
+        fn now_us(&mut self) -> u32 {
+            let t = self.now_us;
+            self.now_us = t.wrapping_add(self.step_us);
+            t
+        }
+    }
+
+    /// Records each delay \[ns\].
+    struct Delays(Vec<u32>);
+    impl DelayNs for Delays {
+        fn delay_ns(&mut self, ns: u32) {
+            self.0.push(ns);
+        }
+    }
+
+    /// Ten nav samples 1 s apart (ticks at 0, 2, 4, 6, 8 s), then the end frame.
+    fn link() -> MemLink {
+        let mut input = Vec::new();
+        let mut b = [0u8; FRAME_LEN];
+        for k in 0..10u32 {
+            let nav = NavState {
+                time_s: f64::from(k),
+                radius_m: EARTH_RADIUS_M + 120e3 - 100.0 * f64::from(k),
+                speed_m_s: HORUS2B_ENTRY.speed_m_s,
+                flight_path_angle_rad: HORUS2B_ENTRY.flight_path_angle_rad,
+                heading_rad: HORUS2B_ENTRY.heading_rad,
+                latitude_rad: HORUS2B_ENTRY.latitude_rad,
+                longitude_rad: HORUS2B_ENTRY.longitude_rad,
+            };
+            encode(&Frame::Nav(NavFrame { seq: k, nav }), &mut b).unwrap();
+            input.extend_from_slice(&b);
+        }
+        encode(&Frame::End(10), &mut b).unwrap();
+        input.extend_from_slice(&b);
+        MemLink {
+            input,
+            pos: 0,
+            output: Vec::new(),
+        }
+    }
+
+    const CAP: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
+
+    fn reference() -> Option<Guidance<f64, CAP>> {
+        let m = horus2b_reference::<f64>().ok()?;
+        m.guidance(m.earth_energy_normalizer().ok()?).ok()
+    }
+
+    fn ok_answers(l: &MemLink) -> u32 {
+        let n = l
+            .output
+            .chunks_exact(FRAME_LEN)
+            .filter(|c| {
+                matches!(
+                    decode(c),
+                    Ok(Frame::Command(CommandFrame {
+                        status: LinkStatus::Ok,
+                        ..
+                    }))
+                )
+            })
+            .count();
+        u32::try_from(n).unwrap()
+    }
+
+    fn run<P: DelayNs>(step_us: u32, pacing: Pacing<P>) -> (Outcome, MemLink) {
+        let mut l = link();
+        // Start 3 s before the u32 wrap: the run's readings cross it.
+        let mut t = SteppingTimer {
+            now_us: u32::MAX - 3_000_000,
+            step_us,
+        };
+        let o = serve::<f64, CAP, f64, _, _, _, _>(&mut l, &mut Pin, &mut t, pacing, reference)
+            .unwrap();
+        (o, l)
+    }
+
+    #[test]
+    fn lockstep_ticks_within_the_period_have_no_overrun() {
+        let (o, l) = run(1_000_000, LOCKSTEP);
+        assert_eq!(o.frames, 10);
+        assert_eq!(ok_answers(&l), 5);
+        assert_eq!(
+            o.timing,
+            TickStats {
+                ticks: 5,
+                overruns: 0,
+                max_tick_us: 1_000_000,
+                last_tick_us: 1_000_000
+            }
+        );
+    }
+
+    #[test]
+    fn lockstep_ticks_longer_than_the_period_are_overruns() {
+        let (o, _) = run(2_000_001, LOCKSTEP);
+        assert_eq!(o.timing.ticks, 5);
+        assert_eq!(o.timing.overruns, 5);
+        assert_eq!(o.timing.max_tick_us, 2_000_001);
+    }
+
+    #[test]
+    fn free_running_waits_out_each_period() {
+        // Tick read -> answer 0.5 s; the pacing reading 0.5 s later: 1 s of the period left.
+        let mut d = Delays(Vec::new());
+        let (o, _) = run(500_000, Pacing::FreeRunning(&mut d));
+        assert_eq!(o.timing.ticks, 5);
+        assert_eq!(o.timing.overruns, 0);
+        // `delay_us` of embedded-hal's default implementation: in 1 ms (or shorter) chunks
+        // of `delay_ns`; 1 s in total per tick.
+        let total_ns: u64 = d.0.iter().map(|&n| u64::from(n)).sum();
+        assert_eq!(total_ns, 5 * 1_000_000_000);
     }
 }

@@ -92,6 +92,16 @@ fn pil_run(
             .firmware_stack_bytes
             .map_or_else(|| "not reported".to_string(), |b| format!("{b} bytes"))
     )?;
+    if let (Some(ticks), Some(overruns), Some(max_us)) = (
+        stats.firmware_ticks,
+        stats.firmware_overruns,
+        stats.firmware_max_tick_us,
+    ) {
+        writeln!(
+            out,
+            "PIL tick timing (firmware tick timer; under QEMU emulator wall time): {ticks} ticks, {overruns} over the guidance period, longest {max_us} us"
+        )?;
+    }
     if faults.is_some() {
         let f = stats.faults;
         writeln!(

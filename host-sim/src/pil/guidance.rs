@@ -323,19 +323,14 @@ impl PilGuidance {
         };
         match q.wait(timeout) {
             Some(e) if q.succeeded() => {
-                // "pil: end of run after N frames; faults F; stack M bytes"
-                self.stats.firmware_stack_bytes = e
-                    .stdout
-                    .split("; stack ")
-                    .nth(1)
-                    .and_then(|r| r.split(' ').next())
-                    .and_then(|n| n.parse().ok());
-                self.stats.firmware_faults = e
-                    .stdout
-                    .split("; faults ")
-                    .nth(1)
-                    .and_then(|r| r.split(';').next())
-                    .and_then(|n| n.trim().parse().ok());
+                // "pil: end of run after N frames; faults F; ticks K; overruns O;
+                // max tick T us; stack M bytes"
+                let field = |key: &str| summary_field(&e.stdout, key);
+                self.stats.firmware_stack_bytes = field("stack");
+                self.stats.firmware_faults = field("faults");
+                self.stats.firmware_ticks = field("ticks");
+                self.stats.firmware_overruns = field("overruns");
+                self.stats.firmware_max_tick_us = field("max tick");
                 Ok(self.stats)
             }
             Some(e) => Err(PilError::QemuExited(e)),
@@ -345,6 +340,13 @@ impl PilGuidance {
             )),
         }
     }
+}
+
+/// The number after `; KEY ` in the firmware's summary line (`None` if absent or not a
+/// number).
+fn summary_field(stdout: &str, key: &str) -> Option<u64> {
+    let rest = stdout.split(&format!("; {key} ")).nth(1)?;
+    rest.split([';', ' ']).next()?.trim().parse().ok()
 }
 
 impl Drop for PilGuidance {
@@ -391,5 +393,26 @@ impl AttitudeSource for PilGuidance {
         self.last
             .and_then(|c| c.ramp_end().next_after(time_s))
             .unwrap_or(f64::INFINITY)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::summary_field;
+
+    #[test]
+    fn summary_line_fields() {
+        let line = "pil: end of run after 812 frames; faults 3; ticks 405; overruns 0; \
+                    max tick 1234 us; stack 8636 bytes\n";
+        assert_eq!(summary_field(line, "faults"), Some(3));
+        assert_eq!(summary_field(line, "ticks"), Some(405));
+        assert_eq!(summary_field(line, "overruns"), Some(0));
+        assert_eq!(summary_field(line, "max tick"), Some(1234));
+        assert_eq!(summary_field(line, "stack"), Some(8636));
+        // An older firmware's line: the timing is not reported.
+        let old = "pil: end of run after 812 frames; faults 3; stack 8636 bytes or more\n";
+        assert_eq!(summary_field(old, "overruns"), None);
+        assert_eq!(summary_field(old, "stack"), Some(8636));
+        assert_eq!(summary_field("pil: FAIL", "stack"), None);
     }
 }

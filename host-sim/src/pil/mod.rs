@@ -285,4 +285,13 @@ pub struct PilStats {
     /// Faults the firmware counted (rejected frames and samples), as it printed at the end
     /// (`None`: not reported).
     pub firmware_faults: Option<u64>,
+    /// Guidance ticks the firmware timed with its tick timer, as it printed at the end
+    /// (`None`: not reported).
+    pub firmware_ticks: Option<u64>,
+    /// Ticks whose execution (nav frame read to command written) exceeded the guidance period
+    /// on the firmware's tick timer (`None`: not reported). Under QEMU this is emulator wall
+    /// time, not a real core's.
+    pub firmware_overruns: Option<u64>,
+    /// Longest tick execution on the firmware's tick timer \[us\] (`None`: not reported).
+    pub firmware_max_tick_us: Option<u64>,
 }

@@ -108,6 +108,18 @@ fn pil_reference_mission_matches_sil() {
         stats.frames as f64 / wall,
         1e6 * stats.link_s / stats.frames as f64
     );
+    // The firmware timed every tick with its SysTick tick timer (lockstep: every nav frame is
+    // a tick); the durations are QEMU wall time, so only their presence is checked.
+    println!(
+        "firmware tick timing: {:?} ticks, {:?} overruns, longest {:?} us",
+        stats.firmware_ticks, stats.firmware_overruns, stats.firmware_max_tick_us
+    );
+    assert_eq!(stats.firmware_ticks, Some(stats.frames));
+    assert!(stats.firmware_overruns.is_some());
+    assert!(
+        stats.firmware_max_tick_us.is_some_and(|us| us > 0),
+        "SysTick tick timer not running"
+    );
     let sil = fly_reference_sil().unwrap();
     assert_eq!(pil.summary.termination, sil.summary.termination);
     assert_eq!(pil.summary.ticks, sil.summary.ticks);

@@ -20,6 +20,11 @@
 //! command frame (same sequence number); an end frame exits 0. A link failure, panic or
 //! HardFault exits 1.
 //!
+//! Clock: lockstep. Guidance time is the nav frame's time stamp (the host's simulated time,
+//! so PIL runs are deterministic); SysTick (`onboard_demo::systick`) times every guidance
+//! tick against the period, and the summary line reports the overruns and the longest tick
+//! (QEMU wall-clock microseconds, not a real core's time).
+//!
 //! Firmware only: built for the host (as `cargo test --workspace` and `cargo clippy
 //! --workspace` do) this binary is a stub that says so and exits 2.
 #![cfg_attr(target_os = "none", no_std)]
@@ -43,6 +48,8 @@ mod firmware {
     use guidance_core::guidance::Guidance;
     use guidance_core::missions::horus2b_reference;
     use onboard_demo::app::{AppError, serve};
+    use onboard_demo::clock::{LOCKSTEP, TickStats};
+    use onboard_demo::systick::SysTickTimer;
 
     /// Default FIFO directory when the command line names none.
     const DEFAULT_DIR: &str = match option_env!("PIL_FIFO_DIR") {
@@ -198,7 +205,10 @@ mod firmware {
         mission.guidance(energy).ok()
     }
 
-    fn run() -> Result<(u32, u32), &'static str> {
+    /// A run's counters: frames answered, faults counted, tick timing.
+    type RunCounts = (u32, u32, TickStats);
+
+    fn run() -> Result<RunCounts, &'static str> {
         let mut dir = [0u8; PATH_MAX];
         let dir_len = match cmdline_dir(&mut dir) {
             Some(n) => n,
@@ -218,8 +228,20 @@ mod firmware {
         let cmd_fd = open(&path, n, MODE_WB)?;
         let mut link = SemihostingLink { nav_fd, cmd_fd };
         let mut status = StatusLevel(false);
-        match serve::<S, CAPACITY, f32, _, _>(&mut link, &mut status, reference) {
-            Ok(o) => Ok((o.frames, o.faults)),
+        let syst = cortex_m::Peripherals::take()
+            .ok_or("core peripherals taken twice")?
+            .SYST;
+        let mut timer = SysTickTimer::start(syst);
+        let r = serve::<S, CAPACITY, f32, _, _, _, _>(
+            &mut link,
+            &mut status,
+            &mut timer,
+            LOCKSTEP,
+            reference,
+        );
+        let _ = timer.free();
+        match r {
+            Ok(o) => Ok((o.frames, o.faults, o.timing)),
             Err(AppError::EndOfLink) => Err("end of file on nav FIFO"),
             Err(AppError::Read(_)) => Err("read failed"),
             Err(AppError::Write(_)) => Err("write to cmd FIFO failed"),
@@ -234,11 +256,14 @@ mod firmware {
         // builder, frame buffers and every update) is printed at the end.
         let (stack, r) = onboard_demo::stack::max_stack_bytes(run);
         match r {
-            Ok((n, faults)) => {
+            Ok((n, faults, timing)) => {
                 hprintln!(
-                    "pil: end of run after {} frames; faults {}; stack {} bytes{}",
+                    "pil: end of run after {} frames; faults {}; ticks {}; overruns {}; max tick {} us; stack {} bytes{}",
                     n,
                     faults,
+                    timing.ticks,
+                    timing.overruns,
+                    timing.max_tick_us,
                     stack.bytes,
                     if stack.overflowed { " or more" } else { "" }
                 );
@@ -249,6 +274,12 @@ mod firmware {
                 onboard_demo::exit(false)
             }
         }
+    }
+
+    /// SysTick wrapped: extend the tick timer.
+    #[exception]
+    fn SysTick() {
+        onboard_demo::systick::on_wrap();
     }
 
     #[exception]

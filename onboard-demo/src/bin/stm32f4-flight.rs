@@ -5,6 +5,11 @@
 //! the status discrete is PA5 (the user LED of the usual boards). Guidance is `f32` (FPU).
 //! Without a set-up the board flies the HORUS-2B reference mission.
 //!
+//! Clock: free-running. TIM2 (32-bit) counts microseconds as the tick timer (it measures every
+//! guidance tick against the period: overruns and the longest tick), and TIM5's embedded-hal
+//! `DelayNs` waits out the rest of each 2 s period after a tick, so ticks start at most once
+//! per period in real time. Guidance time stays the nav frame's time stamp.
+//!
 //! Not run here (no STM32F4 machine in QEMU 7.2 that the HAL supports); the panic handler of
 //! `onboard_demo` uses semihosting, which needs a debugger on hardware.
 #![cfg_attr(target_os = "none", no_std)]
@@ -25,10 +30,12 @@ mod firmware {
     use guidance_core::guidance::Guidance;
     use guidance_core::missions::horus2b_reference;
     use onboard_demo::app::serve;
+    use onboard_demo::clock::{Pacing, TickTimer};
     use stm32f4xx_hal::pac;
     use stm32f4xx_hal::prelude::*;
     use stm32f4xx_hal::rcc::Config;
     use stm32f4xx_hal::serial::{Instance, Serial};
+    use stm32f4xx_hal::timer::{CounterUs, TimerExt};
 
     const CAPACITY: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
 
@@ -58,6 +65,17 @@ mod firmware {
         }
     }
 
+    /// TIM2 counting microseconds over its full 32-bit range: the tick timer. (The HAL's
+    /// counter reloads at `u32::MAX - 1`, so a duration across a wrap reads 1 us too long: once
+    /// every 71.6 min.)
+    struct Tim2Us(CounterUs<pac::TIM2>);
+
+    impl TickTimer for Tim2Us {
+        fn now_us(&mut self) -> u32 {
+            self.0.now().ticks()
+        }
+    }
+
     fn reference() -> Option<Guidance<f32, CAPACITY>> {
         let mission = horus2b_reference::<f32>().ok()?;
         let energy = mission.earth_energy_normalizer().ok()?;
@@ -70,12 +88,22 @@ mod firmware {
             let mut rcc = dp.RCC.freeze(Config::hse(8.MHz()).sysclk(168.MHz()));
             let gpioa = dp.GPIOA.split(&mut rcc);
             let mut led = gpioa.pa5.into_push_pull_output();
-            if let Ok(serial) = dp
-                .USART2
-                .serial((gpioa.pa2, gpioa.pa3), 115_200.bps(), &mut rcc)
-            {
+            let mut counter = dp.TIM2.counter_us(&mut rcc);
+            let delay = dp.TIM5.delay_us(&mut rcc);
+            if let (Ok(serial), Ok(())) = (
+                dp.USART2
+                    .serial((gpioa.pa2, gpioa.pa3), 115_200.bps(), &mut rcc),
+                counter.start(u32::MAX.micros()),
+            ) {
                 let mut link = UartLink(serial);
-                let _ = serve::<f32, CAPACITY, f32, _, _>(&mut link, &mut led, reference);
+                let mut timer = Tim2Us(counter);
+                let _ = serve::<f32, CAPACITY, f32, _, _, _, _>(
+                    &mut link,
+                    &mut led,
+                    &mut timer,
+                    Pacing::FreeRunning(delay),
+                    reference,
+                );
             }
             led.set_low();
         }
