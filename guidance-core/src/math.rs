@@ -133,7 +133,7 @@ pub fn sqrtf(x: f32) -> f32 {
 /// without `unsafe`); this kernel takes an inverse-square-root estimate from the exponent
 /// bits, two Newton steps on it and one correction on the square root itself (within 1 ulp),
 /// then rounds exactly: the result moves to a neighbour when `x` lies beyond the square of
-/// the midpoint between them (an exact integer comparison, [`beyond_midpoint`]). So it is
+/// the midpoint between them (an exact integer comparison, `beyond_midpoint`). So it is
 /// bit for bit libm's correctly rounded `sqrtf` (`tests::sqrtf_kernel_is_libm_bit_for_bit`),
 /// and a Cortex-M4F, a Cortex-M3 and the host replaying either compute the same bits. Zero,
 /// subnormal, infinite, NaN and negative inputs go to [`sqrtf`] (so negative -> NaN, as
