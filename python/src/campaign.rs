@@ -141,7 +141,7 @@ impl PyCampaign {
     /// `base_dir`), none: the HORUS-2B reference mission) with the `[dispersions]` settings of
     /// `settings_toml` (TOML text; `settings_label` names it in errors; none: host-sim's
     /// defaults), overridden by `cases`, `seed`, `interface_speed_m_s` as the CLI's flags do,
-    /// flown in `modes` (names; none: all three). `spec_json` (from [`PyCampaign::spec_json`])
+    /// flown in `modes` (names; none: all of them). `spec_json` (from [`PyCampaign::spec_json`])
     /// instead rebuilds a campaign and excludes the other arguments. Builds the set-up
     /// (nominal flights), GIL released.
     #[new]
