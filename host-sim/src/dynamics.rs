@@ -311,7 +311,8 @@ impl<'a> Dynamics<'a> {
         }
     }
 
-    /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s`.
+    /// Aerodynamic and heating quantities at altitude `altitude_m` and airspeed `v_m_s` (the
+    /// heat flux as the right-hand side integrates it, [`crate::env::NoseHeatFlux`]).
     #[must_use]
     pub fn conditions(&self, altitude_m: f64, v_m_s: f64, att: Command<f64>) -> FlightConditions {
         let a = self.aero(altitude_m, v_m_s, att.alpha_rad);
@@ -327,7 +328,8 @@ impl<'a> Dynamics<'a> {
             drag_n: a.drag,
             heat_flux_w_m2: self
                 .heat_flux
-                .heat_flux_w_m2(a.rho, v_m_s, self.vehicle.nose_radius_m),
+                .at_nose(self.vehicle.nose_radius_m)
+                .heat_flux_w_m2(a.rho, v_m_s),
             g_load: guidance_core::monitor::g_load(a.lift, a.drag, self.vehicle.mass_kg),
         }
     }
@@ -339,6 +341,19 @@ impl<'a> Dynamics<'a> {
         let v = Vector3::new(y[3], y[4], y[5]);
         let v_rel = v - self.omega().cross(&r);
         self.conditions(r.norm() - self.planet.radius_m, v_rel.norm(), att)
+    }
+
+    /// Magnitudes of the lift and drag accelerations \[m/s^2\] at an integrated state `y`
+    /// under `att` (what an IMU senses): `|lift| / m` and `|drag| / m` of
+    /// [`Dynamics::conditions_at`], bit for bit, without its heat flux and g-load.
+    #[must_use]
+    pub fn aero_accelerations_at(&self, y: &[f64; STATE_LEN], att: Command<f64>) -> (f64, f64) {
+        let r = Vector3::new(y[0], y[1], y[2]);
+        let v = Vector3::new(y[3], y[4], y[5]);
+        let vr = (v - self.omega().cross(&r)).norm();
+        let a = self.aero(r.norm() - self.planet.radius_m, vr, att.alpha_rad);
+        let m = self.vehicle.mass_kg;
+        (a.lift.abs() / m, a.drag.abs() / m)
     }
 
     /// Time derivative of the Cartesian state `[r, v, Q, theta]` (inertial frame) under

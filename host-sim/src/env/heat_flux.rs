@@ -112,8 +112,9 @@ impl ChapmanHeatFlux {
 /// the simulated heat load. It takes `(V / V_ref)^m` from the host's `f64::powf` instead of
 /// `libm`'s `pow` (which the core must use, `no_std`, and which cost a third of a flight's
 /// CPU time), so it may differ from [`ChapmanHeatFlux::heat_flux_w_m2`] in the last bit or
-/// two (test: within 3 ulp relative); reported heat fluxes and their peaks come from
-/// [`ChapmanHeatFlux::heat_flux_w_m2`], the core's values bit for bit.
+/// two (test: within 3 ulp relative). The simulator reports these values too (its flight
+/// conditions, samples and peaks), so what it integrates and what it reports agree bit for
+/// bit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NoseHeatFlux {
     model: ChapmanHeatFlux,

@@ -187,11 +187,10 @@ pub fn simulate<A: AttitudeSource>(
         };
         // What an IMU senses at this instant: the aerodynamic accelerations at the attitude
         // flown now (before the tick's update).
-        let fc = lp.dynm.conditions_at(y, lp.source.attitude_at(t));
-        let m = lp.dynm.vehicle.mass_kg;
+        let (lift_m_s2, drag_m_s2) = lp.dynm.aero_accelerations_at(y, lp.source.attitude_at(t));
         let sensed = SensedAero {
-            lift_m_s2: fc.lift_n.abs() / m,
-            drag_m_s2: fc.drag_n.abs() / m,
+            lift_m_s2,
+            drag_m_s2,
         };
         lp.source.sense(&nav, &sensed).map_err(wrap)?;
         lp.source.tick(&nav).map_err(wrap)
