@@ -13,7 +13,7 @@ use std::time::Instant;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use super::optimize_cmd::OptimizeArgs;
+use super::optimize_cmd::{MhacoConstraintsArg, OptimizeArgs};
 use super::optimize_reentry_out::{Record, record_of, write_final, write_generation};
 use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
 use crate::optim::chromosome::Chromosome;
@@ -160,13 +160,35 @@ fn parse_toml(path: &Path) -> Result<ReentryRunConfig, ReentryError> {
     })
 }
 
+/// `--FLAG VALUE` given for a re-entry problem, which fixes it.
+fn flag_not_here(field: &'static str, value: String) -> ReentryError {
+    ReentryError::Setting {
+        source_name: "command line".into(),
+        field,
+        value,
+        reason: "fixed on the re-entry problems (MHACO ker = min(63, population), n_gen_mark 7)"
+            .into(),
+    }
+}
+
 /// The run configuration of flags (a preset `--problem`) or `--config`.
 fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     if let Some(path) = &a.config {
         return parse_toml(path);
     }
     let mut c = ReentryRunConfig::thesis(&a.problem)?;
-    c.algorithm = a.algorithm_name().into();
+    // MHACO's archive size and schedule are fixed on the re-entry problems (the file has no
+    // field for them): refuse the flags rather than ignore them.
+    if let Some(k) = a.ker {
+        return Err(flag_not_here("ker", k.to_string()));
+    }
+    if a.n_gen_mark != MhacoConfig::default().n_gen_mark {
+        return Err(flag_not_here("n-gen-mark", a.n_gen_mark.to_string()));
+    }
+    c.algorithm = match (a.algorithm_name(), a.mhaco_constraints) {
+        ("mhaco", MhacoConstraintsArg::Objectives) => "mhaco-objectives".into(),
+        (name, _) => name.into(),
+    };
     c.population = a.population;
     c.generations = a.generations;
     c.seed = a.seed;

@@ -60,6 +60,23 @@ fn mhaco_runs_both_modes_and_resumes() {
     assert!(read(&out, "config.toml").contains("mhaco-objectives"));
     assert_eq!(read(&out, "generations.csv").lines().count(), 4);
     assert_ne!(read(&a, "population.csv"), read(&out, "population.csv"));
+    // The same mode from the flag: the same run as from the file.
+    let f = tmp("mhaco_f");
+    run(
+        &f,
+        "2",
+        &["--algorithm", "mhaco", "--mhaco-constraints", "objectives"],
+    );
+    assert!(read(&f, "config.toml").contains("algorithm = \"mhaco-objectives\""));
+    assert_eq!(read(&f, "population.csv"), read(&out, "population.csv"));
+    // Flags the re-entry problems fix are refused, not ignored.
+    for extra in [["--ker", "3"], ["--n-gen-mark", "2"]] {
+        let mut v = common.to_vec();
+        v.extend(["--algorithm", "mhaco", "--generations", "1"]);
+        v.extend(extra);
+        let e = optimize(&v).unwrap_err().to_string();
+        assert!(e.contains("fixed on the re-entry problems"), "{e}");
+    }
 }
 
 /// Interrupting after one generation (a run of 1 generation) and resuming to 2 gives the
