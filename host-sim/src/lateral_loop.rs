@@ -52,6 +52,9 @@ impl<G: FlightGuidance> AttitudeSource for LateralSource<G> {
     fn sense(&mut self, nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), TickError> {
         self.inner.sense(nav, sensed)
     }
+    fn senses(&self) -> bool {
+        self.inner.senses()
+    }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
         self.inner.attitude_at(time_s)
     }

@@ -186,13 +186,15 @@ pub fn simulate<A: AttitudeSource>(
             source: Box::new(e),
         };
         // What an IMU senses at this instant: the aerodynamic accelerations at the attitude
-        // flown now (before the tick's update).
-        let (lift_m_s2, drag_m_s2) = lp.dynm.aero_accelerations_at(y, lp.source.attitude_at(t));
-        let sensed = SensedAero {
-            lift_m_s2,
-            drag_m_s2,
-        };
-        lp.source.sense(&nav, &sensed).map_err(wrap)?;
+        // flown now (before the tick's update), for a source that uses them.
+        if lp.source.senses() {
+            let (lift_m_s2, drag_m_s2) = lp.dynm.aero_accelerations_at(y, lp.source.attitude_at(t));
+            let sensed = SensedAero {
+                lift_m_s2,
+                drag_m_s2,
+            };
+            lp.source.sense(&nav, &sensed).map_err(wrap)?;
+        }
         lp.source.tick(&nav).map_err(wrap)
     };
     tick(&mut lp, t, &y)?;

@@ -20,13 +20,18 @@ pub trait AttitudeSource {
     /// Called at every guidance tick just before [`AttitudeSource::tick`] with the same
     /// navigation state and the aerodynamic accelerations an IMU senses there (lift and drag
     /// of the simulated vehicle in the simulated atmosphere at the attitude flown at that
-    /// instant). Default: ignored.
+    /// instant). Called only when [`AttitudeSource::senses`]. Default: ignored.
     ///
     /// # Errors
     /// [`AttitudeSource::Error`] when the source rejects the measurement.
     fn sense(&mut self, nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), Self::Error> {
         let _ = (nav, sensed);
         Ok(())
+    }
+    /// Whether [`AttitudeSource::sense`] uses its measurements (the loop computes them at a
+    /// tick only then). Default: no.
+    fn senses(&self) -> bool {
+        false
     }
     /// Attitude at time `time_s` \[s\] between ticks (continuous) \[rad\].
     fn attitude_at(&self, time_s: f64) -> Command<f64>;
@@ -95,6 +100,11 @@ pub trait FlightGuidance {
         let _ = (nav, sensed);
         Ok(())
     }
+    /// Whether [`FlightGuidance::sense`] uses its measurements (an onboard estimator is
+    /// running); default: no.
+    fn senses(&self) -> bool {
+        false
+    }
 }
 
 /// The clocked-guidance part of [`FlightGuidance`], the same for every wrapper of a
@@ -147,6 +157,9 @@ impl<const N: usize> FlightGuidance for ReplanningGuidance<f64, N> {
         sensed: &SensedAero<f64>,
     ) -> Result<(), EstimateError> {
         ReplanningGuidance::sense(self, nav, sensed).map(|_| ())
+    }
+    fn senses(&self) -> bool {
+        self.aero_scales().is_some()
     }
     clocked_guidance!(.guidance());
 }
@@ -213,6 +226,9 @@ impl<G: FlightGuidance> AttitudeSource for GuidanceSource<G> {
     }
     fn sense(&mut self, nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), TickError> {
         Ok(self.guidance.sense(nav, sensed)?)
+    }
+    fn senses(&self) -> bool {
+        self.guidance.senses()
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
         self.guidance.attitude_at(time_s)
