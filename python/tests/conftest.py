@@ -51,3 +51,49 @@ def client():
     ) as cluster, distributed.Client(cluster) as c:
         c.wait_for_workers(2)
         yield c
+
+
+@pytest.fixture
+def kill_a_worker_during(client):
+    """Run ``work()`` (a campaign on ``client``) in a thread, SIGKILL one busy worker process
+    once ``after_done`` tasks are in memory, and return ``work()``'s result; asserts that the
+    kill happened while the campaign was running and that it finished without error within
+    ``join_s`` seconds."""
+    import signal
+    import threading
+    import time
+
+    def run(work, after_done: int, join_s: float):
+        pids = client.run(os.getpid)  # worker address -> pid
+        result, error = {}, {}
+
+        def target():
+            try:
+                result["r"] = work()
+            except BaseException as e:  # pragma: no cover - reported below
+                error["e"] = e
+
+        t = threading.Thread(target=target)
+        t.start()
+        killed = None
+        deadline = time.monotonic() + 60
+        while killed is None and time.monotonic() < deadline and t.is_alive():
+            busy = {w: ks for w, ks in client.processing().items() if ks}
+            done = sum(
+                1 for state in client.run_on_scheduler(
+                    lambda dask_scheduler: [ts.state for ts in dask_scheduler.tasks.values()]
+                ) if state == "memory"
+            )
+            if done >= after_done and busy:
+                victim = next(iter(busy))
+                os.kill(pids[victim], signal.SIGKILL)
+                killed = victim
+            else:
+                time.sleep(0.02)
+        assert killed is not None, "the campaign finished before a worker could be killed"
+        assert t.is_alive(), "the worker was killed after the campaign had finished"
+        t.join(join_s)
+        assert not error, error
+        return result["r"]
+
+    return run

@@ -1,10 +1,6 @@
 """Dask: optimisation and campaigns on a LocalCluster of 2 worker processes equal the local
 runs bit for bit; a worker killed mid-campaign loses and duplicates nothing."""
 
-import os
-import signal
-import threading
-import time
 
 import numpy as np
 import pytest
@@ -52,40 +48,10 @@ def test_campaign_on_dask_equals_local_table(client):
     assert local["range_km"].nunique() == 9
 
 
-def test_worker_killed_mid_campaign_loses_and_duplicates_nothing(client):
+def test_worker_killed_mid_campaign_loses_and_duplicates_nothing(client, kill_a_worker_during):
     cases = gamma_sweep_cases(150, -1.7, -1.1)
     local = fly_campaign(cases)
-    pids = client.run(os.getpid)  # worker address -> pid
-    result, error = {}, {}
-
-    def run():
-        try:
-            result["df"] = fly_campaign(cases, client, chunk_size=3)
-        except BaseException as e:  # pragma: no cover - reported below
-            error["e"] = e
-
-    t = threading.Thread(target=run)
-    t.start()
-    killed = None
-    deadline = time.monotonic() + 60
-    while killed is None and time.monotonic() < deadline and t.is_alive():
-        busy = {w: ks for w, ks in client.processing().items() if ks}
-        done = sum(
-            1 for f in client.run_on_scheduler(
-                lambda dask_scheduler: [ts.state for ts in dask_scheduler.tasks.values()]
-            ) if f == "memory"
-        )
-        if done >= 5 and busy:
-            victim = next(iter(busy))
-            os.kill(pids[victim], signal.SIGKILL)
-            killed = victim
-        else:
-            time.sleep(0.02)
-    assert killed is not None, "the campaign finished before a worker could be killed"
-    assert t.is_alive(), "the worker was killed after the campaign had finished"
-    t.join(120)
-    assert not error, error
-    df = result["df"]
+    df = kill_a_worker_during(lambda: fly_campaign(cases, client, chunk_size=3), 5, 120)
     assert list(df.index) == list(range(len(cases)))
     assert df["scenario"].is_unique
     assert local.equals(df)

@@ -7,9 +7,6 @@ import filecmp
 import json
 import os
 import pickle
-import signal
-import threading
-import time
 
 import numpy as np
 import pytest
@@ -136,40 +133,12 @@ def test_command_line_on_a_scheduler_writes_the_cli_files_and_an_exact_table(cli
     assert dispersion_results(f, client) == f.run_local()
 
 
-def test_worker_killed_mid_dispersion_campaign_loses_and_duplicates_nothing(client):
-    c = reentry.DispersionCampaign(cases=40, **SRM)  # 120 flights, 40 tasks of 3
+def test_worker_killed_mid_dispersion_campaign_loses_and_duplicates_nothing(
+    client, kill_a_worker_during
+):
+    c = reentry.DispersionCampaign(cases=40, **SRM)  # 40 cases of every mode, tasks of 3
     local = c.run_local()
-    pids = client.run(os.getpid)  # worker address -> pid
-    result, error = {}, {}
-
-    def run():
-        try:
-            result["r"] = dispersion_results(c, client, chunk_size=3)
-        except BaseException as e:  # pragma: no cover - reported below
-            error["e"] = e
-
-    t = threading.Thread(target=run)
-    t.start()
-    killed = None
-    deadline = time.monotonic() + 60
-    while killed is None and time.monotonic() < deadline and t.is_alive():
-        busy = {w: ks for w, ks in client.processing().items() if ks}
-        done = sum(
-            1 for s in client.run_on_scheduler(
-                lambda dask_scheduler: [ts.state for ts in dask_scheduler.tasks.values()]
-            ) if s == "memory"
-        )
-        if done >= 4 and busy:
-            victim = next(iter(busy))
-            os.kill(pids[victim], signal.SIGKILL)
-            killed = victim
-        else:
-            time.sleep(0.02)
-    assert killed is not None, "the campaign finished before a worker could be killed"
-    assert t.is_alive(), "the worker was killed after the campaign had finished"
-    t.join(180)
-    assert not error, error
-    got = result["r"]
+    got = kill_a_worker_during(lambda: dispersion_results(c, client, chunk_size=3), 4, 180)
     assert len(got) == len(c.jobs())
     keys = [(json.loads(r)["mode"], json.loads(r)["index"]) for r in got]
     assert len(set(keys)) == len(keys)

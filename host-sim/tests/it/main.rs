@@ -18,6 +18,7 @@ mod pil_faults;
 mod pil_reliability;
 mod pil_replanning;
 mod pil_scenarios;
+mod pil_support;
 mod replan_loop;
 mod run_dir_kill;
 mod scenario_files;

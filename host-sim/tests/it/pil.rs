@@ -6,50 +6,16 @@
 //! The ELF is `$PIL_ELF`, else `<target dir>/thumbv7em-none-eabihf/firmware/pil`; `cargo xtask
 //! test` builds it and runs this test in its "PIL closed loop" step.
 
-use guidance_core::guidance::Command;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use guidance_core::NavState;
 use host_sim::pil::{
     PilConfig, PilError, fly_reference, fly_reference_pil, fly_reference_sil,
     reference_sil_guidance,
 };
-use host_sim::sim::{AttitudeSource, SimResult};
+use host_sim::sim::SimResult;
 
-fn elf() -> PathBuf {
-    if let Some(p) = std::env::var_os("PIL_ELF") {
-        return PathBuf::from(p);
-    }
-    let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target"),
-        PathBuf::from,
-    );
-    target.join("thumbv7em-none-eabihf/firmware/pil")
-}
-
-/// SIL guidance with a constant offset `delta` [rad] added to both commanded angles.
-struct Offset(host_sim::sim::CoreGuidance, f64);
-
-impl AttitudeSource for Offset {
-    type Error = host_sim::sim::TickError;
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error> {
-        self.0.tick(nav)
-    }
-    fn attitude_at(&self, time_s: f64) -> Command<f64> {
-        let a = self.0.attitude_at(time_s);
-        Command {
-            alpha_rad: a.alpha_rad + self.1,
-            sigma_rad: a.sigma_rad + self.1,
-        }
-    }
-    fn next_tick_s(&self) -> f64 {
-        self.0.next_tick_s()
-    }
-    fn next_kink_s(&self, time_s: f64) -> f64 {
-        self.0.next_kink_s(time_s)
-    }
-}
+use crate::pil_support::{Offset, reference_pil_elf};
 
 /// (range angle [rad], peak heat flux [W/m^2], final speed [m/s], final latitude [rad],
 /// final longitude [rad], flight time [s]).
@@ -91,7 +57,7 @@ const ATTITUDE_BOUND_RAD: f64 = 1e-5;
 #[test]
 fn pil_reference_mission_matches_sil() {
     let t0 = Instant::now();
-    let (pil, stats) = match fly_reference_pil(PilConfig::new(elf())) {
+    let (pil, stats) = match fly_reference_pil(PilConfig::new(reference_pil_elf())) {
         Ok(r) => r,
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
@@ -175,7 +141,7 @@ fn fresh(name: &str) -> PathBuf {
 
 /// A missing ELF is reported as such (and no FIFO directory is left behind).
 #[test]
-fn pil_names_a_missing_elf() {
+fn pil_names_a_missing_reference_pil_elf() {
     let mut cfg = PilConfig::new(PathBuf::from("/nonexistent/pil-firmware.elf"));
     let dir = fresh("missing");
     cfg.fifo_parent = dir.clone();
@@ -193,7 +159,7 @@ fn pil_names_a_missing_elf() {
 /// timeout), and cleans up its FIFOs.
 #[test]
 fn pil_reports_firmware_that_exits_without_opening_the_link() {
-    let smoke = elf().with_file_name("onboard-demo");
+    let smoke = reference_pil_elf().with_file_name("onboard-demo");
     let mut cfg = PilConfig::new(smoke);
     let dir = fresh("smoke");
     cfg.fifo_parent = dir.clone();

@@ -3,24 +3,10 @@
 //! held command and counts exactly the faults it saw (every corrupted and every late frame);
 //! the record holds every attempt; the same seed gives the same run.
 
-use std::path::PathBuf;
-
 use host_sim::pil::{FaultConfig, PilConfig, PilError, fly_scenario_pil};
 use host_sim::scenario::Scenario;
 
-fn elf() -> PathBuf {
-    std::env::var_os("PIL_ELF").map_or_else(
-        || {
-            std::env::var_os("CARGO_TARGET_DIR")
-                .map_or_else(
-                    || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target"),
-                    PathBuf::from,
-                )
-                .join("thumbv7em-none-eabihf/firmware/pil")
-        },
-        PathBuf::from,
-    )
-}
+use crate::pil_support::reference_pil_elf;
 
 #[test]
 fn pil_link_faults_are_survived_counted_and_recorded() {
@@ -32,7 +18,7 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
         p_delay: 0.05,
     };
     let run = || {
-        let mut cfg = PilConfig::new(elf());
+        let mut cfg = PilConfig::new(reference_pil_elf());
         cfg.faults = Some(faults);
         fly_scenario_pil(&sc, "(test)", cfg)
     };

@@ -30,44 +30,15 @@ use guidance_core::{Fixed, NavState, Scalar};
 use host_sim::dynamics::Dynamics;
 use host_sim::pil::{PilConfig, PilError, fly_scenario_pil, scenario_setup};
 use host_sim::scenario::{Scenario, build_replanning_guidance, read_scenario};
-use host_sim::sim::{self, AttitudeSource, GuidanceSource, SimResult};
+use host_sim::sim::{self, GuidanceSource, SimResult};
+
+use crate::pil_support::{Offset, pil_elf};
 
 const CAPACITY: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
-
-fn elf(target: &str) -> PathBuf {
-    let dir = std::env::var_os("CARGO_TARGET_DIR").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target"),
-        PathBuf::from,
-    );
-    dir.join(target).join("firmware/pil")
-}
 
 fn scenario() -> Scenario {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/srm-glide-replanning.toml");
     read_scenario(&p).unwrap()
-}
-
-/// A constant attitude offset on top of any source.
-struct Offset<A>(A, f64);
-
-impl<A: AttitudeSource> AttitudeSource for Offset<A> {
-    type Error = A::Error;
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error> {
-        self.0.tick(nav)
-    }
-    fn attitude_at(&self, time_s: f64) -> Command<f64> {
-        let a = self.0.attitude_at(time_s);
-        Command {
-            alpha_rad: a.alpha_rad + self.1,
-            sigma_rad: a.sigma_rad + self.1,
-        }
-    }
-    fn next_tick_s(&self) -> f64 {
-        self.0.next_tick_s()
-    }
-    fn next_kink_s(&self, time_s: f64) -> f64 {
-        self.0.next_kink_s(time_s)
-    }
 }
 
 /// SIL (`ReplanningGuidance<f64>`), the target's total range moved by `dtarget_m`, the
@@ -200,7 +171,7 @@ fn path_bound(sc: &Scenario, fixed: bool) -> f64 {
 fn check(target: &str, fixed: bool) {
     let sc = scenario();
     let name = format!("{} on {target}", sc.name);
-    let (run, record) = fly_scenario_pil(&sc, "(test)", PilConfig::new(elf(target)));
+    let (run, record) = fly_scenario_pil(&sc, "(test)", PilConfig::new(pil_elf(target)));
     let (pil, stats) = match run {
         Ok(r) => r,
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))

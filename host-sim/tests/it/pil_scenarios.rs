@@ -20,43 +20,13 @@
 
 use std::path::PathBuf;
 
-use guidance_core::NavState;
-use guidance_core::guidance::Command;
 use guidance_core::nodes::Independent;
 use host_sim::dynamics::Dynamics;
 use host_sim::pil::{PilConfig, PilError, fly_scenario_pil};
 use host_sim::scenario::{Scenario, build_guidance};
-use host_sim::sim::{self, AttitudeSource, CoreGuidance, SimResult};
+use host_sim::sim::{self, CoreGuidance, SimResult};
 
-fn elf(target: &str) -> PathBuf {
-    let dir = std::env::var_os("CARGO_TARGET_DIR").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../target"),
-        PathBuf::from,
-    );
-    dir.join(target).join("firmware/pil")
-}
-
-struct Offset(CoreGuidance, f64);
-
-impl AttitudeSource for Offset {
-    type Error = sim::TickError;
-    fn tick(&mut self, nav: &NavState<f64>) -> Result<(), Self::Error> {
-        self.0.tick(nav)
-    }
-    fn attitude_at(&self, time_s: f64) -> Command<f64> {
-        let a = self.0.attitude_at(time_s);
-        Command {
-            alpha_rad: a.alpha_rad + self.1,
-            sigma_rad: a.sigma_rad + self.1,
-        }
-    }
-    fn next_tick_s(&self) -> f64 {
-        self.0.next_tick_s()
-    }
-    fn next_kink_s(&self, time_s: f64) -> f64 {
-        self.0.next_kink_s(time_s)
-    }
-}
+use crate::pil_support::{Offset, pil_elf};
 
 fn sil(sc: &Scenario, offset: f64) -> SimResult {
     let env = sc.environment.build();
@@ -126,7 +96,7 @@ fn attitude_bound(sc: &Scenario, fixed: bool) -> f64 {
 
 fn check(sc: &Scenario, target: &str, fixed: bool) {
     let name = format!("{} on {target}", sc.name);
-    let elf = elf(target);
+    let elf = pil_elf(target);
     let (pil, stats) = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf)).0 {
         Ok(r) => r,
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
