@@ -19,6 +19,9 @@ fn main() -> ExitCode {
     // at a breakpoint does so on drop.
     let second = std::sync::atomic::AtomicBool::new(false);
     let handler = ctrlc::set_handler(move || {
+        // No run may start between the check and the exit (it would leave its temporary
+        // directory behind): new runs wait on this guard, which the exit never releases.
+        let _gate = sim::hold_new_runs();
         if second.swap(true, std::sync::atomic::Ordering::SeqCst) || !sim::runs_active() {
             // The handler runs on its own thread (ctrlc), not in signal context. Flag the stop
             // first: the cleanup below makes the main thread's PIL link fail, and if it returns

@@ -134,6 +134,9 @@ impl RunDir {
                 ),
             });
         }
+        // Count as an active run before the temporary directory exists: Ctrl-C with no run
+        // active exits the process at once, which would leave the directory behind.
+        let active = crate::sim::ActiveRun::start();
         clean_stale(&parent);
         let seq = SEQ.fetch_add(1, Ordering::Relaxed);
         let tmp = parent.join(format!(".{name}{TMP_MARK}{}-{seq}", std::process::id()));
@@ -141,7 +144,10 @@ impl RunDir {
             let _ = fs::remove_dir_all(&tmp);
         }
         fs::create_dir(&tmp).map_err(io_err(&tmp))?;
-        fs::write(tmp.join(MARKER), MARKER_TEXT).map_err(io_err(&tmp))?;
+        if let Err(e) = fs::write(tmp.join(MARKER), MARKER_TEXT) {
+            let _ = fs::remove_dir_all(&tmp);
+            return Err(io_err(&tmp)(e));
+        }
         Ok(Self {
             target: target.to_path_buf(),
             parent,
@@ -150,7 +156,7 @@ impl RunDir {
             tmp,
             written: Vec::new(),
             done: false,
-            _active: crate::sim::ActiveRun::start(),
+            _active: active,
         })
     }
 

@@ -38,4 +38,4 @@ pub use source::{
     ramp_kink,
 };
 pub(crate) use stop::ActiveRun;
-pub use stop::{request_stop, runs_active, stop_requested};
+pub use stop::{hold_new_runs, request_stop, runs_active, stop_requested};

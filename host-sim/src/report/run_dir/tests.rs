@@ -223,3 +223,47 @@ fn a_directory_that_is_not_a_run_is_never_replaced() {
     assert!(empty.join(MARKER).is_file());
     let _ = fs::remove_dir_all(&parent);
 }
+
+/// The race behind a temporary directory left by Ctrl-C: the handler exits at once when no
+/// run is active, so a writer must count as active before its temporary directory exists,
+/// and must not start between the handler's check and its exit (the handler holds
+/// [`crate::sim::hold_new_runs`] for both).
+#[test]
+fn no_temporary_directory_appears_while_ctrl_c_decides_to_exit() {
+    use std::sync::mpsc::channel;
+    let parent = scratch("gate");
+    let target = parent.join("run");
+    let gate = crate::sim::hold_new_runs();
+    let (begun, wait_begun) = channel();
+    let (finish, wait_finish) = channel::<()>();
+    let writer = {
+        let target = target.clone();
+        std::thread::spawn(move || {
+            let run = RunDir::begin(&target).unwrap();
+            begun.send(()).unwrap();
+            wait_finish.recv().unwrap();
+            drop(run);
+        })
+    };
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    assert!(
+        leftovers(&parent, "run").is_empty(),
+        "a temporary directory appeared while new runs were held: {:?}",
+        leftovers(&parent, "run")
+    );
+    drop(gate);
+    wait_begun.recv().unwrap();
+    assert_eq!(
+        leftovers(&parent, "run").len(),
+        1,
+        "the writer's temporary directory"
+    );
+    assert!(
+        crate::sim::runs_active(),
+        "a writer did not count as an active run"
+    );
+    finish.send(()).unwrap();
+    writer.join().unwrap();
+    assert!(leftovers(&parent, "run").is_empty());
+    let _ = fs::remove_dir_all(&parent);
+}
