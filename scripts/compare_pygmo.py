@@ -89,7 +89,11 @@ def main():
     ap.add_argument("--generations", type=int, default=250)
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--tools", nargs="+", default=["pygmo", "host-sim"], choices=["pygmo", "host-sim"])
+    ap.add_argument("--csv", help="also write one row per (problem, algorithm, tool, seed): "
+                    "hypervolume, best wall time and CPU time")
     a = ap.parse_args()
+    rows = []
     print(f"pygmo {pg.__version__}, moocore {moocore.__version__}; population {a.population}, "
           f"{a.generations} generations, seeds 1..{a.seeds}, best of {a.repeats} per seed")
     print(f"{'problem':8} {'algorithm':9} {'tool':9} {'median ms':>10} {'best ms':>8} {'cpu ms':>7} "
@@ -98,16 +102,24 @@ def main():
         for algorithm in a.algorithms:
             for tool, fn in (("pygmo", lambda s: pygmo_run(problem, algorithm, a.population, a.generations, s)),
                              ("host-sim", lambda s: ours_run(a.host_sim, problem, algorithm, a.population, a.generations, s))):
+                if tool not in a.tools:
+                    continue
                 times, hvs, cpus = [], [], []
                 for seed in range(1, a.seeds + 1):
                     runs = [fn(seed) for _ in range(a.repeats)]
                     times.append(min(r[0] for r in runs))
                     cpus.append(min(r[2] for r in runs))
                     hvs.append(runs[0][1])
+                    rows.append((problem, algorithm, tool, seed, hvs[-1], times[-1], cpus[-1]))
                 print(f"{problem:8} {algorithm:9} {tool:9} {1e3 * statistics.median(times):10.1f} "
                       f"{1e3 * min(times):8.1f} {1e3 * statistics.median(cpus):7.1f} "
                       f"{statistics.median(hvs):10.4f} {min(hvs):8.4f} {max(hvs):8.4f}",
                       flush=True)
+    if a.csv:
+        with open(a.csv, "w") as fh:
+            fh.write("problem,algorithm,tool,seed,hypervolume,wall_s,cpu_s\n")
+            for r in rows:
+                fh.write(",".join(map(str, r)) + "\n")
 
 
 if __name__ == "__main__":

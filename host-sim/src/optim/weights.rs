@@ -208,8 +208,9 @@ pub fn tchebycheff(f: &[f64], w: &[f64], z: &[f64]) -> f64 {
     r
 }
 
-/// For every weight, the indices of its `t` nearest weights (Euclidean, itself first; ties
-/// by index).
+/// For every weight, the indices of the `t` nearest *other* weights (Euclidean, nearest
+/// first, ties by index): pagmo's `kNN`, which leaves a weight out of its own neighbourhood,
+/// so a subproblem mates with and offers its child to `t` others.
 #[must_use]
 pub fn neighbourhoods(weights: &[Vec<f64>], t: usize) -> Vec<Vec<usize>> {
     weights
@@ -219,9 +220,10 @@ pub fn neighbourhoods(weights: &[Vec<f64>], t: usize) -> Vec<Vec<usize>> {
             let mut d: Vec<(f64, usize)> = weights
                 .iter()
                 .enumerate()
+                .filter(|&(j, _)| j != i)
                 .map(|(j, wj)| {
                     let d2: f64 = wi.iter().zip(wj).map(|(a, b)| (a - b) * (a - b)).sum();
-                    (if i == j { -1.0 } else { d2 }, j)
+                    (d2, j)
                 })
                 .collect();
             d.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
@@ -303,8 +305,9 @@ mod tests {
             &generate(5, 2, WeightGeneration::Grid, &mut OptimRng::new(0)).unwrap(),
             3,
         );
-        assert_eq!(nb[0], vec![0, 1, 2]);
-        assert_eq!(nb[2], vec![2, 1, 3]);
+        assert_eq!(nb[0], vec![1, 2, 3]);
+        assert_eq!(nb[2], vec![1, 3, 0]);
+        assert_eq!(nb[4], vec![3, 2, 1]);
     }
 
     // pygmo 2.20: `pg.decomposition_weights(m, n, method, 1)` and `pg.decompose_objectives`.

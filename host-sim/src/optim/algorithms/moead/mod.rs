@@ -3,7 +3,8 @@
 //!
 //! Per generation the subproblems are visited in a fresh random order. For subproblem `n`:
 //! with probability `realb` (or always, without `preserve_diversity`) the parents come from
-//! its neighbourhood, else from the whole population; two distinct parents `a, b` are drawn;
+//! its neighbourhood (the `neighbours` nearest *other* weights, pagmo's `kNN`: `n` is not its
+//! own neighbour), else from the whole population; two distinct parents `a, b` are drawn;
 //! the child is `x_n + F (x_a - x_b)` per variable with probability `CR` (bound repair as in
 //! pagmo), then polynomial mutation (probability `1/dim` unless set, index `eta_m`). The child
 //! updates the ideal point, replaces the member of subproblem `n` if it solves `n` better, and
@@ -454,7 +455,8 @@ impl<D: Decision, V> MoeadWith<D, V> {
             self.neighbourhoods[origin.subproblem].len()
         };
         // First the child's own subproblem (pagmo: "first try on problem n"), then the pool in
-        // random order; both count towards `limit`.
+        // random order (the neighbourhood, which does not hold n, or the whole population);
+        // both count towards `limit`.
         let n = origin.subproblem;
         let mut replaced = 0;
         if self.child_wins(child, &self.population[n], &self.weights[n]) {

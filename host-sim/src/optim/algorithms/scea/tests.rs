@@ -220,16 +220,18 @@ fn scea_finds_every_length_of_the_free_count_problem() {
     assert!(counts[1] >= SCEA_NODES_LENGTHS[1], "population: {counts:?}");
 }
 
-// Thresholds: measured values of these seeds (docs/OPTIMISERS.md) less about 2 %.
-// Free-count problem: lengths 10-11 (three legs) are not reached in 100 generations.
+// Thresholds of the ratios: the smallest ratio measured over seeds 1..=8 with these settings
+// (`scea_threshold_survey`, docs/OPTIMISERS.md) less about 2 %, rounded down; the tests run
+// seed 1. Free-count problem (seed 3's measured lengths): 10-11 nodes (three legs) are not
+// reached in 100 generations.
 const SCEA_NODES_LENGTHS: [usize; 2] = [9, 8];
 /// [random genes, population genes][vlmop1..=5].
 const SCEA_VL: [[f64; 5]; 2] = [
-    [0.95, 0.97, 0.84, 0.89, 0.78],
-    [0.96, 0.96, 0.81, 0.90, 0.85],
+    [0.95, 0.96, 0.77, 0.88, 0.80],
+    [0.95, 0.96, 0.78, 0.89, 0.78],
 ];
-const SCEA_ZDT1: f64 = 0.95;
-const SCEA_DTLZ2: f64 = 0.76;
+const SCEA_ZDT1: f64 = 0.92;
+const SCEA_DTLZ2: f64 = 0.74;
 
 /// Li & Deb's problems with the thesis' constraint: population 100 (91 for three objectives),
 /// 30 generations (20 for three objectives), seed 1, both gene sources.
@@ -276,6 +278,80 @@ fn scea_table() {
     }
 }
 
+/// The settings of `scea_converges_on_the_variable_length_problems` (and the fixed-length
+/// ZDT1 run) over seeds 1..=8: the thresholds above derive from these minima (release:
+/// `cargo test --release -p host-sim --lib scea_threshold_survey -- --ignored --nocapture`).
+#[test]
+#[ignore = "survey: run in release"]
+fn scea_threshold_survey() {
+    for (k, genes) in [NewGenes::Random, NewGenes::Population]
+        .into_iter()
+        .enumerate()
+    {
+        for id in 1..=5u8 {
+            let p = Vlmop::standard(id).unwrap();
+            let (pop, gens) = if id <= 3 { (100, 30) } else { (91, 20) };
+            let ratios: Vec<f64> = (1..=8)
+                .map(|seed| vl_ratio(&run(scea(pop, genes, seed), &p, gens), &p))
+                .collect();
+            let min = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+            let shown: Vec<String> = ratios.iter().map(|r| format!("{r:.4}")).collect();
+            println!(
+                "scea {genes:?} vlmop{id}: {} (min {min:.4}, threshold {})",
+                shown.join(" "),
+                SCEA_VL[k][usize::from(id) - 1]
+            );
+        }
+    }
+    let zdt1 = FixedLength::new(TestProblem::Zdt(Zdt::standard(1).unwrap()));
+    let r = [1.1, 1.1];
+    let truth = zdt1.inner().front_hypervolume(&r, 2000).unwrap();
+    let ratios: Vec<String> = (1..=8)
+        .map(|seed| {
+            let a = run(scea(100, NewGenes::Population, seed), &zdt1, 250);
+            format!(
+                "{:.4}",
+                hypervolume(&feasible_front(a.population()), &r).unwrap() / truth
+            )
+        })
+        .collect();
+    println!(
+        "scea zdt1 fixed length: {} (threshold {SCEA_ZDT1})",
+        ratios.join(" ")
+    );
+    let dtlz2 = FixedLength::new(TestProblem::Dtlz(Dtlz::standard(2, 3).unwrap()));
+    let r = dtlz2.inner().reference_point();
+    let truth = dtlz2.inner().front_hypervolume(&r, 2000).unwrap();
+    let ratios: Vec<String> = (1..=8)
+        .map(|seed| {
+            let a = run(fixed_dtlz2_scea(seed), &dtlz2, 100);
+            format!(
+                "{:.4}",
+                hypervolume(&feasible_front(a.population()), &r).unwrap() / truth
+            )
+        })
+        .collect();
+    println!(
+        "scea dtlz2 fixed length: {} (threshold {SCEA_DTLZ2})",
+        ratios.join(" ")
+    );
+}
+
+/// SCEA on DTLZ2 as a fixed-length chromosome: population 91 on the grid, MOEA/D defaults.
+fn fixed_dtlz2_scea(seed: u64) -> Scea {
+    Scea::new(
+        SceaConfig {
+            moead: MoeadConfig {
+                population: 91,
+                weights: WeightGeneration::Grid,
+                ..MoeadConfig::default()
+            },
+            ..SceaConfig::default()
+        },
+        seed,
+    )
+}
+
 #[test]
 #[ignore = "heavy in debug builds: run in release"]
 fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
@@ -287,21 +363,7 @@ fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
     println!("scea zdt1 {ratio:.4}");
     assert!(ratio > SCEA_ZDT1, "zdt1 {ratio}");
     let dtlz2 = FixedLength::new(TestProblem::Dtlz(Dtlz::standard(2, 3).unwrap()));
-    let a = run(
-        Scea::new(
-            SceaConfig {
-                moead: MoeadConfig {
-                    population: 91,
-                    weights: WeightGeneration::Grid,
-                    ..MoeadConfig::default()
-                },
-                ..SceaConfig::default()
-            },
-            1,
-        ),
-        &dtlz2,
-        100,
-    );
+    let a = run(fixed_dtlz2_scea(1), &dtlz2, 100);
     let r = dtlz2.inner().reference_point();
     let ratio = hypervolume(&feasible_front(a.population()), &r).unwrap()
         / dtlz2.inner().front_hypervolume(&r, 2000).unwrap();
