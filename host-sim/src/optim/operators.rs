@@ -148,10 +148,12 @@ pub fn polynomial_mutation(
     }
 }
 
-/// Simulated binary crossover (Deb & Agrawal; pagmo's bounded form): with probability `cr`
-/// the pair is crossed, each variable with probability 1/2, with distribution index `eta`;
-/// children are clamped to the bounds and swapped with probability 1/2 per variable.
-/// Returns the two children.
+/// Simulated binary crossover (Deb & Agrawal; pagmo's bounded form since its PR #439, as in
+/// pygmo 2.20): with probability `cr` the pair is crossed, each variable with probability 1/2
+/// when the parents differ by more than 1e-14, with distribution index `eta`; one uniform
+/// number per variable, the lower child's spread from the distance to the lower bound and the
+/// upper child's from the distance to the upper bound; children are clamped to the bounds and
+/// swapped with probability 1/2 per variable. Returns the two children.
 #[must_use]
 pub fn sbx(
     p1: &[f64],
@@ -180,7 +182,7 @@ pub fn sbx(
         let rand = rng.uniform();
         let betaq = |beta: f64| {
             let alpha = 2.0 - pow(beta, -(eta + 1.0));
-            if rand <= 1.0 / alpha {
+            if rand < 1.0 / alpha {
                 (rand * alpha).powf(root)
             } else {
                 (1.0 / (2.0 - rand * alpha)).powf(root)
