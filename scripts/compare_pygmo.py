@@ -10,6 +10,10 @@ Run:
 
     /tmp/venv/bin/python scripts/compare_pygmo.py            # ZDT1, MOEA/D and NSGA-II, seeds 1..10
     /tmp/venv/bin/python scripts/compare_pygmo.py --problems zdt1 zdt2 zdt3 zdt4 zdt6 --repeats 5
+    /tmp/venv/bin/python scripts/compare_pygmo.py --repeats 1 --seeds 500 --tools pygmo --csv /tmp/pygmo.csv
+
+`--tools` runs only the tools named; `--csv FILE` also writes one row per seed (hypervolume,
+best wall time, CPU time) for `scripts/compare_distributions.py`.
 
 For every (problem, algorithm, seed) both tools run `--repeats` times; the time of a seed is
 the best of its repeats (wall time of the evolution alone: pygmo's `algorithm.evolve`,
