@@ -75,7 +75,8 @@ use crate::vinh::predict::{
     PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_validity,
 };
 use crate::vinh::validity::{
-    Extrapolation, GLIDE_MAX_START_OFFSET_M, GLIDE_MAX_START_OFFSET_PER_LD_M, Validity,
+    Extrapolation, GLIDE_MAX_START_ABOVE_STATE_M, GLIDE_MAX_START_OFFSET_M,
+    GLIDE_MAX_START_OFFSET_PER_LD_M, Validity,
 };
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
@@ -353,6 +354,10 @@ fn glide_prediction<S: Real>(
                         * glide.nondim().constants().e_vertical)
             },
             Extrapolation::GlideStartOffset,
+        )
+        .and(
+            !(r_g - state.radius_m <= S::from_f64(GLIDE_MAX_START_ABOVE_STATE_M)),
+            Extrapolation::GlideBelowEquilibrium,
         ),
     })
 }

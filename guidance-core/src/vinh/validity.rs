@@ -49,6 +49,13 @@ pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
 /// fraction of 0.3), over which that prediction is within 2.9 % for vertical L/D 0.6 to 2.5
 /// (docs/VINH.md).
 pub const GLIDE_MAX_START_OFFSET_M: f64 = 9_000.0;
+/// Largest distance a glide-mode prediction may start *above* the state \[m\] (the state below
+/// the equilibrium of the commanded lift at its speed). The glide error map starts every glide
+/// at or below the state; the re-planning domain (the re-plans of host-sim's closed-loop
+/// scenarios and campaigns recomputed against integration, docs/VINH.md) found states up to
+/// 5 km below their glide start radius, descending at up to 0.8 deg, whose prediction was up to
+/// 5.8 % long; up to 1 km below it every in-domain prediction was within 2.5 %.
+pub const GLIDE_MAX_START_ABOVE_STATE_M: f64 = 1_000.0;
 
 /// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,6 +84,9 @@ pub enum Extrapolation {
     /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
     /// L/D from the state ([`GLIDE_MAX_START_OFFSET_M`] with the sink modelled).
     GlideStartOffset,
+    /// Glide-mode start radius more than [`GLIDE_MAX_START_ABOVE_STATE_M`] above the state (the
+    /// state below the equilibrium of the commanded lift; not validated).
+    GlideBelowEquilibrium,
 }
 
 /// Validity of a prediction.
