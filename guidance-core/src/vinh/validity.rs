@@ -56,6 +56,12 @@ pub const GLIDE_MAX_START_OFFSET_M: f64 = 9_000.0;
 /// 5 km below their glide start radius, descending at up to 0.8 deg, whose prediction was up to
 /// 5.8 % long; up to 1 km below it every in-domain prediction was within 2.5 %.
 pub const GLIDE_MAX_START_ABOVE_STATE_M: f64 = 1_000.0;
+/// Largest difference between the state's flight-path angle and the one the glide imposes at
+/// its start radius (eq. 3.79) for a glide started from the state \[rad\] (0.2 deg). The glide
+/// does not use the state's flight-path angle; in the re-planning domain (docs/VINH.md) states
+/// descending 0.2-0.3 deg steeper than the glide were up to 3.9 % long, within 0.2 deg every
+/// prediction that met the other glide checks was within 2.7 %.
+pub const GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD: f64 = 0.2 * core::f64::consts::PI / 180.0;
 
 /// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,11 +75,12 @@ pub enum Extrapolation {
     SkipSpeedExpansion,
     /// A skip with vertical L/D below [`SKIP_MIN_VERTICAL_LD`].
     SkipVerticalLiftToDrag,
-    /// A chain reaching its final glide through a capture (a skip that does not exit, or an
-    /// exit too shallow for an arc): the descent from the interface radius to the glide start
-    /// radius is not modelled (zero range), and the chain error map shows errors far beyond
-    /// the phases' own (docs/VINH.md). Every chain prediction carries it (unless an earlier
-    /// phase gave another reason).
+    /// A chain reaching its final glide through a capture after a skip or an arc (a skip that
+    /// does not exit, or an exit too shallow for an arc): the descent from the interface radius
+    /// to the glide start radius is not modelled (zero range), and the chain error map shows
+    /// errors far beyond the phases' own (docs/VINH.md). A chain captured in its first skip
+    /// from a descending state is the glide started from the state and is checked as one
+    /// instead (start offset, flight-path angle).
     CaptureTransition,
     /// Glide start altitude outside [`GLIDE_ALTITUDE_RANGE_M`].
     GlideAltitude,
@@ -87,6 +94,10 @@ pub enum Extrapolation {
     /// Glide-mode start radius more than [`GLIDE_MAX_START_ABOVE_STATE_M`] above the state (the
     /// state below the equilibrium of the commanded lift; not validated).
     GlideBelowEquilibrium,
+    /// The state's flight-path angle more than [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] from
+    /// the one the glide imposes at its start (a glide started from the state: glide mode, or a
+    /// chain captured in its first skip).
+    GlideFlightPathAngle,
 }
 
 /// Validity of a prediction.

@@ -99,6 +99,8 @@ pub struct Point {
     pub start_offset_km: f64,
     /// The glide-mode prediction with the sink term at the same fraction (glide points only).
     pub with_sink_rad: Option<f64>,
+    /// Flight-path angle the glide imposes at its start radius (eq. 3.79) [deg].
+    pub glide_gamma_deg: f64,
 }
 
 impl Point {
@@ -191,7 +193,16 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
                 .map(|p| p.range_angle_rad)
             })
             .flatten();
+        let glide_gamma_deg = guidance_core::vinh::GlideSolution::new(
+            &planet,
+            &atm,
+            &veh,
+            &lift,
+            prediction.glide_start_radius_m,
+        )
+        .map_or(f64::NAN, |g| g.imposed_entry().flight_path_angle_rad / DEG);
         out.push(Point {
+            glide_gamma_deg,
             with_sink_rad: with_sink,
             scenario: scenario.into(),
             altitude_km: (nav.radius_m - planet.radius_m) / 1e3,
@@ -306,9 +317,9 @@ fn summarise(points: &[Point]) {
     let mut names: Vec<&str> = points.iter().map(|p| p.scenario.as_str()).collect();
     names.dedup();
     println!(
-        "| scenario | re-plans | chain / glide | h [km] | V [km/s] | gamma [deg] | L/D | cos(sigma) | start offset [km] | range error [%] min / max | |err| > 3 % |"
+        "| scenario | re-plans | chain / glide | h [km] | V [km/s] | gamma [deg] | L/D | cos(sigma) | start offset [km] | range error [%] min / max | |err| > 3 % | > 500 km to go: |err| max [%], > 3 % | in domain | in domain: |err| max [%] |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let mm = |it: &mut dyn Iterator<Item = f64>| {
         it.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
             (a.min(x), b.max(x))
@@ -328,8 +339,28 @@ fn summarise(points: &[Point]) {
             .iter()
             .filter(|p| p.error_pct().is_none_or(|e| e.abs() > 3.0))
             .count();
+        let far: Vec<&&Point> = ps
+            .iter()
+            .filter(|p| p.reference_rad.is_some_and(|r| r * 6_378_137.0 > 500e3))
+            .collect();
+        let far_max = far
+            .iter()
+            .filter_map(|p| p.error_pct())
+            .fold(0.0_f64, |a, e| a.max(e.abs()));
+        let far_bad = far
+            .iter()
+            .filter(|p| p.error_pct().is_none_or(|e| e.abs() > 3.0))
+            .count();
+        let inside: Vec<&&Point> = ps
+            .iter()
+            .filter(|p| p.prediction.validity == guidance_core::vinh::Validity::InDomain)
+            .collect();
+        let in_max = inside
+            .iter()
+            .map(|p| p.error_pct().map_or(f64::INFINITY, f64::abs))
+            .fold(0.0_f64, f64::max);
         println!(
-            "| {name} | {} | {chain} / {} | {:.1}-{:.1} | {:.2}-{:.2} | {:.2}-{:.2} | {:.2}-{:.2} | {:.2}-{:.2} | {:.1}-{:.1} | {:+.2} / {:+.2} | {bad} |",
+            "| {name} | {} | {chain} / {} | {:.1}-{:.1} | {:.2}-{:.2} | {:.2}-{:.2} | {:.2}-{:.2} | {:.2}-{:.2} | {:.1}-{:.1} | {:+.2} / {:+.2} | {bad} | {far_max:.2}, {far_bad} of {} | {} | {in_max:.2} |",
             ps.len(),
             ps.len() - chain,
             h.0,
@@ -346,6 +377,8 @@ fn summarise(points: &[Point]) {
             o.1,
             err.0,
             err.1,
+            far.len(),
+            inside.len(),
         );
     }
 }
@@ -356,7 +389,7 @@ fn dump(points: &[Point]) {
     );
     for p in points {
         println!(
-            "{},{:.3},{:.1},{:.4},{:.3},{:.4},{:?},{},{},{:.3},{:.4},{:.4},{:.3},{:?},{:.3}",
+            "{},{:.3},{:.1},{:.4},{:.3},{:.4},{:?},{},{},{:.3},{:.4},{:.4},{:.3},{:?},{:.3},{:.4}",
             p.scenario,
             p.altitude_km,
             p.speed_m_s,
@@ -375,6 +408,7 @@ fn dump(points: &[Point]) {
                 (Some(a), Some(r)) => 100.0 * (a - r) / r,
                 _ => f64::NAN,
             },
+            p.glide_gamma_deg,
         );
     }
 }
