@@ -11,7 +11,13 @@
 //! error is <= 2.8 % for vertical L/D 0.72 to 2.5 and -4.4 % at 0.5; a start above the
 //! equilibrium of the commanded bank (the descent to it is not modelled) adds about
 //! `0.56 (dh_km / E)^2` percent for a start `dh_km` above the glide start radius and a total
-//! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5).
+//! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5). A glide started from the
+//! state (glide mode, or a chain captured in its first skip) is also checked against the
+//! re-planning domain (every re-plan applied in host-sim's closed-loop runs and campaigns,
+//! recomputed against integration; docs/VINH.md): the state at most
+//! [`GLIDE_MAX_START_ABOVE_STATE_M`] below the glide start and within
+//! [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] of the glide's flight-path angle; there every
+//! in-domain prediction was within 2.65 %.
 
 use super::error::VinhError;
 use super::predict::Prediction;
