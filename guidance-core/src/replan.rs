@@ -72,11 +72,10 @@ use crate::vinh::VinhError;
 use crate::vinh::glide::GlideSolution;
 use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
 use crate::vinh::predict::{
-    PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_validity,
+    PeakMode, PeakStatus, Prediction, PredictorConfig, glide_start_radius, glide_start_validity,
+    glide_validity,
 };
-use crate::vinh::validity::{
-    Extrapolation, GLIDE_MAX_START_OFFSET_M, GLIDE_MAX_START_OFFSET_PER_LD_M, Validity,
-};
+use crate::vinh::validity::Validity;
 
 /// Largest accepted [`ReplanConfig::max_iterations`].
 pub const MAX_ITERATIONS: u8 = 40;
@@ -235,7 +234,7 @@ pub fn predict_glide_with<S: Real>(
 /// equilibrium. Against integration (glide range-error map, docs/VINH.md) every start of the
 /// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
 /// the sink: up to -12.7 %), so its validity accepts start offsets up to
-/// [`GLIDE_MAX_START_OFFSET_M`] (without the sink: [`GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
+/// [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_M`] (without the sink: [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
 /// of total L/D).
 ///
 /// Not the re-planner's predictor: in the closed loop a state above the predicted glide start
@@ -336,23 +335,18 @@ fn glide_prediction<S: Real>(
         glide_start_radius_m: r_g,
         glide_range_angle_rad: end.range_angle_rad,
         peak_status: status,
-        validity: glide_validity(
-            Validity::InDomain,
+        validity: glide_start_validity(
+            glide_validity(
+                Validity::InDomain,
+                &glide,
+                planet,
+                r_g,
+                config.final_speed_m_s,
+            ),
             &glide,
-            planet,
-            r_g,
-            config.final_speed_m_s,
-        )
-        .and(
-            if sink {
-                !((r_g - state.radius_m).abs() <= S::from_f64(GLIDE_MAX_START_OFFSET_M))
-            } else {
-                // Total L/D = vertical L/D / vertical fraction (> 0 for a glide).
-                !((r_g - state.radius_m).abs() * lift.vertical_fraction
-                    <= S::from_f64(GLIDE_MAX_START_OFFSET_PER_LD_M)
-                        * glide.nondim().constants().e_vertical)
-            },
-            Extrapolation::GlideStartOffset,
+            state,
+            lift,
+            sink,
         ),
     })
 }

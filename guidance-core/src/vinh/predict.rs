@@ -35,8 +35,10 @@ use super::nondim::{EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, Vehi
 use super::num::{brent, finite, k};
 use super::skip::SkipSolution;
 use super::validity::{
-    Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE,
-    SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_MIN_VERTICAL_LD, SKIP_SPEED_RANGE_M_S, Validity,
+    Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD,
+    GLIDE_MAX_START_ABOVE_STATE_M, GLIDE_MAX_START_OFFSET_M, GLIDE_MAX_START_OFFSET_PER_LD_M,
+    GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE, SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V,
+    SKIP_MIN_VERTICAL_LD, SKIP_SPEED_RANGE_M_S, Validity,
 };
 use crate::scalar::Real;
 
@@ -257,12 +259,18 @@ pub fn predict_with<S: Real>(
     }
     // Final glide from the captured state. The capture itself (the descent from the interface
     // to the glide start radius) is not modelled: the chain error map (docs/VINH.md) measured
-    // range errors of -62 to +1117 % for such chains, so a chain is never in domain.
-    validity = validity.and(true, Extrapolation::CaptureTransition);
+    // range errors of -62 to +1117 % for chains captured after a skip or an arc, which are never
+    // in domain. Captured in the first skip from a descending state, the chain is the glide
+    // started from the state (as the glide mode): checked as one (re-planning domain).
+    let first_capture = skips == 0 && arcs == 0;
+    validity = validity.and(!first_capture, Extrapolation::CaptureTransition);
     let r_g = glide_start_radius(planet, atmosphere, vehicle, lift, cur.speed_m_s, r_i)?;
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
     validity = glide_validity(validity, &glide, planet, r_g, config.final_speed_m_s);
+    if first_capture {
+        validity = glide_start_validity(validity, &glide, state, lift, false);
+    }
     if let PeakMode::Limits(l) = peaks {
         let start = glide.point_at_u(glide.u_entry())?;
         let (qb, nb) = (
@@ -364,6 +372,40 @@ pub(crate) fn glide_validity<S: Real>(
         !(ratio >= k(GLIDE_MIN_FINAL_SPEED_RATIO)),
         Extrapolation::GlideFinalSpeedRatio,
     )
+}
+
+/// `v` updated with the checks of a glide started at `glide`'s radius `r_g` from `state` (the
+/// glide mode, [`crate::replan::predict_glide_with`], or a chain captured in its first skip):
+/// the distance from the state to `r_g` ([`GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit of total
+/// L/D, or [`GLIDE_MAX_START_OFFSET_M`] with the sink modelled), the state at most
+/// [`GLIDE_MAX_START_ABOVE_STATE_M`] below `r_g`, and its flight-path angle within
+/// [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] of the glide's imposed one.
+pub(crate) fn glide_start_validity<S: Real>(
+    v: Validity,
+    glide: &GlideSolution<S>,
+    state: &EntryState<S>,
+    lift: &LiftControl<S>,
+    sink: bool,
+) -> Validity {
+    let start = glide.imposed_entry();
+    let r_g = start.radius_m;
+    let offset = if sink {
+        !((r_g - state.radius_m).abs() <= k(GLIDE_MAX_START_OFFSET_M))
+    } else {
+        // Total L/D = vertical L/D / vertical fraction (> 0 for a glide).
+        !((r_g - state.radius_m).abs() * lift.vertical_fraction
+            <= k::<S>(GLIDE_MAX_START_OFFSET_PER_LD_M) * glide.nondim().constants().e_vertical)
+    };
+    v.and(offset, Extrapolation::GlideStartOffset)
+        .and(
+            !(r_g - state.radius_m <= k(GLIDE_MAX_START_ABOVE_STATE_M)),
+            Extrapolation::GlideBelowEquilibrium,
+        )
+        .and(
+            !((state.flight_path_angle_rad - start.flight_path_angle_rad).abs()
+                <= k(GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD)),
+            Extrapolation::GlideFlightPathAngle,
+        )
 }
 
 /// A prediction stopped by [`PeakMode::Limits`] (range so far; the loads that exceeded).

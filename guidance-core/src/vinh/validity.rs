@@ -11,7 +11,13 @@
 //! error is <= 2.8 % for vertical L/D 0.72 to 2.5 and -4.4 % at 0.5; a start above the
 //! equilibrium of the commanded bank (the descent to it is not modelled) adds about
 //! `0.56 (dh_km / E)^2` percent for a start `dh_km` above the glide start radius and a total
-//! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5).
+//! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5). A glide started from the
+//! state (glide mode, or a chain captured in its first skip) is also checked against the
+//! re-planning domain (every re-plan applied in host-sim's closed-loop runs and campaigns,
+//! recomputed against integration; docs/VINH.md): the state at most
+//! [`GLIDE_MAX_START_ABOVE_STATE_M`] below the glide start and within
+//! [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] of the glide's flight-path angle; there every
+//! in-domain prediction was within 2.65 %.
 
 use super::error::VinhError;
 use super::predict::Prediction;
@@ -49,6 +55,19 @@ pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
 /// fraction of 0.3), over which that prediction is within 2.9 % for vertical L/D 0.6 to 2.5
 /// (docs/VINH.md).
 pub const GLIDE_MAX_START_OFFSET_M: f64 = 9_000.0;
+/// Largest distance a glide-mode prediction may start *above* the state \[m\] (the state below
+/// the equilibrium of the commanded lift at its speed). The glide error map starts every glide
+/// at or below the state; the re-planning domain (the re-plans of host-sim's closed-loop
+/// scenarios and campaigns recomputed against integration, docs/VINH.md) found states up to
+/// 5 km below their glide start radius, descending at up to 0.8 deg, whose prediction was up to
+/// 5.8 % long; up to 1 km below it every in-domain prediction was within 2.5 %.
+pub const GLIDE_MAX_START_ABOVE_STATE_M: f64 = 1_000.0;
+/// Largest difference between the state's flight-path angle and the one the glide imposes at
+/// its start radius (eq. 3.79) for a glide started from the state \[rad\] (0.2 deg). The glide
+/// does not use the state's flight-path angle; in the re-planning domain (docs/VINH.md) states
+/// descending 0.2-0.3 deg steeper than the glide were up to 3.9 % long, within 0.2 deg every
+/// prediction that met the other glide checks was within 2.7 %.
+pub const GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD: f64 = 0.2 * core::f64::consts::PI / 180.0;
 
 /// Why a prediction is extrapolated (the first phase and quantity outside the validated grid).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -62,11 +81,12 @@ pub enum Extrapolation {
     SkipSpeedExpansion,
     /// A skip with vertical L/D below [`SKIP_MIN_VERTICAL_LD`].
     SkipVerticalLiftToDrag,
-    /// A chain reaching its final glide through a capture (a skip that does not exit, or an
-    /// exit too shallow for an arc): the descent from the interface radius to the glide start
-    /// radius is not modelled (zero range), and the chain error map shows errors far beyond
-    /// the phases' own (docs/VINH.md). Every chain prediction carries it (unless an earlier
-    /// phase gave another reason).
+    /// A chain reaching its final glide through a capture after a skip or an arc (a skip that
+    /// does not exit, or an exit too shallow for an arc): the descent from the interface radius
+    /// to the glide start radius is not modelled (zero range), and the chain error map shows
+    /// errors far beyond the phases' own (docs/VINH.md). A chain captured in its first skip
+    /// from a descending state is the glide started from the state and is checked as one
+    /// instead (start offset, flight-path angle).
     CaptureTransition,
     /// Glide start altitude outside [`GLIDE_ALTITUDE_RANGE_M`].
     GlideAltitude,
@@ -77,6 +97,13 @@ pub enum Extrapolation {
     /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
     /// L/D from the state ([`GLIDE_MAX_START_OFFSET_M`] with the sink modelled).
     GlideStartOffset,
+    /// Glide-mode start radius more than [`GLIDE_MAX_START_ABOVE_STATE_M`] above the state (the
+    /// state below the equilibrium of the commanded lift; not validated).
+    GlideBelowEquilibrium,
+    /// The state's flight-path angle more than [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] from
+    /// the one the glide imposes at its start (a glide started from the state: glide mode, or a
+    /// chain captured in its first skip).
+    GlideFlightPathAngle,
 }
 
 /// Validity of a prediction.

@@ -230,17 +230,23 @@ fn validate_dormand_prince_skip_map_validity_is_honest() {
     );
 }
 
-/// No chain prediction is `InDomain` (the capture transition is not modelled:
-/// `CaptureTransition`), because the map's chains that the phase limits alone accepted were
-/// off by -8.9 to +409 %; every chain the predictor computes is compared.
+/// Every chain prediction classed `InDomain` is within the glide's bound (3.2 %) of the
+/// integration. The capture transition after a skip or an arc is not modelled
+/// (`CaptureTransition`: the map's chains that the phase limits alone accepted were off by -8.9
+/// to +409 %); a chain captured in its first skip is the glide from the state and is classed by
+/// the glide-start checks, which every chain of this map (entries at 1-7 deg, far from the
+/// glide's flight-path angle) fails: measured 0 in domain. Every chain the predictor computes
+/// is compared.
 #[test]
 fn validate_dormand_prince_chain_map_validity_is_honest() {
     let mut compared = 0;
     for (ld, v, g, f, val, err) in chain_map() {
-        assert!(
-            !matches!(val, Validity::InDomain),
-            "L/D {ld}, {v} m/s, {g} deg, f {f}: {err:?}"
-        );
+        if matches!(val, Validity::InDomain) {
+            assert!(
+                err.is_some_and(|e| e.abs() <= 3.2),
+                "L/D {ld}, {v} m/s, {g} deg, f {f}: {err:?}"
+            );
+        }
         compared += usize::from(err.is_some());
     }
     assert!(compared >= 60, "{compared}");

@@ -135,3 +135,90 @@ fn chain_predictions_carry_their_validity() {
     let r = predict(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500);
     assert_ne!(validity_of(&r), Validity::InDomain, "{r:?}");
 }
+
+/// The glide-start checks derived from the re-planning domain (docs/VINH.md): a glide-mode
+/// prediction from the SRM glide entry is in domain at the glide's flight-path angle,
+/// `GlideFlightPathAngle` 0.4 deg steeper, `GlideBelowEquilibrium` from 3 km below its glide start
+/// radius (in domain from 0.5 km below).
+#[test]
+fn glide_start_checks_of_the_replanning_domain() {
+    let n = glide_nav(0.0);
+    let at = |dr: f64, gamma: f64| {
+        let s = EntryState {
+            radius_m: n.radius_m + dr,
+            speed_m_s: n.speed_m_s,
+            flight_path_angle_rad: gamma,
+        };
+        predict_glide(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500).unwrap()
+    };
+    let p = at(0.0, n.flight_path_angle_rad);
+    assert_eq!(p.validity, Validity::InDomain);
+    let deg = std::f64::consts::PI / 180.0;
+    assert_eq!(
+        at(0.0, n.flight_path_angle_rad - 0.4 * deg).validity,
+        Validity::Extrapolated(Extrapolation::GlideFlightPathAngle)
+    );
+    let below = p.glide_start_radius_m - n.radius_m;
+    assert_eq!(
+        at(below - 500.0, n.flight_path_angle_rad).validity,
+        Validity::InDomain
+    );
+    assert_eq!(
+        at(below - 3000.0, n.flight_path_angle_rad).validity,
+        Validity::Extrapolated(Extrapolation::GlideBelowEquilibrium)
+    );
+}
+
+/// A chain captured in its first skip from a descending state is the glide started from the
+/// state: the same range (to 1e-9) and the same validity as the glide mode, never
+/// `CaptureTransition`. States near the SRM glide entry with `mu` lowered as the rotation
+/// correction lowers it (where the skip closed form is oscillatory and captures at once); at
+/// least one such chain must be found and in domain.
+#[test]
+fn chain_captured_in_its_first_skip_is_the_glide_from_the_state() {
+    let deg = std::f64::consts::PI / 180.0;
+    let (mut found, mut in_domain) = (0, 0);
+    for mu_factor in [1.0, 0.99, 0.98, 0.97] {
+        let pl = Planet {
+            mu_m3_s2: MU * mu_factor,
+            radius_m: R_EARTH,
+        };
+        for h_km in [85.0, 90.0, 95.0, 100.0] {
+            for v in [7400.0, 7550.0, 7650.0] {
+                for g_deg in [-0.05, -0.15, -0.3] {
+                    for f in [0.6, 0.8, 1.0] {
+                        let s = EntryState {
+                            radius_m: R_EARTH + h_km * 1e3,
+                            speed_m_s: v,
+                            flight_path_angle_rad: g_deg * deg,
+                        };
+                        let Ok(c) = predict(&pl, &atmosphere(), &srm(), &lift(f), &s, &TO_2500)
+                        else {
+                            continue;
+                        };
+                        if c.skips != 0 || c.arcs != 0 {
+                            continue;
+                        }
+                        found += 1;
+                        let g = predict_glide(&pl, &atmosphere(), &srm(), &lift(f), &s, &TO_2500)
+                            .unwrap();
+                        assert!(
+                            (c.range_m - g.range_m).abs() <= 1e-9 * g.range_m,
+                            "{h_km} km {v} m/s {g_deg} deg f {f}: {} vs {}",
+                            c.range_m,
+                            g.range_m
+                        );
+                        assert_eq!(c.validity, g.validity);
+                        assert_ne!(
+                            c.validity,
+                            Validity::Extrapolated(Extrapolation::CaptureTransition)
+                        );
+                        in_domain += usize::from(c.validity == Validity::InDomain);
+                    }
+                }
+            }
+        }
+    }
+    println!("{found} first-capture chains, {in_domain} in domain");
+    assert!(found > 0 && in_domain > 0, "{found} / {in_domain}");
+}

@@ -7,7 +7,7 @@ use guidance_core::geo::along_cross_track;
 use guidance_core::guidance::HostGuidance;
 use guidance_core::interp::Interpolation;
 use guidance_core::lateral::BankReversalLogic;
-use guidance_core::replan::{HostReplanningGuidance, ReplanCase, ReplanningGuidance};
+use guidance_core::replan::{HostReplanningGuidance, ReplanCase, ReplanReport, ReplanningGuidance};
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
@@ -20,7 +20,8 @@ use crate::env::Environment;
 use crate::lateral_loop::LateralSource;
 use crate::scenario::Scenario;
 use crate::sim::{
-    AttitudeSource, GuidanceSource, SimConfig, SimResult, TerminationReason, simulate,
+    AttitudeSource, GuidanceSource, ReportContext, SimConfig, SimResult, TerminationReason,
+    simulate,
 };
 use crate::vehicle::Vehicle;
 
@@ -115,6 +116,22 @@ pub fn fly_case(
     draw: Option<&CaseDraw>,
     mode: Mode,
 ) -> Result<CaseResult, CampaignError> {
+    fly_case_logged(setup, draw, mode).map(|(r, _)| r)
+}
+
+/// The re-plans of a flight: each report with the context of its tick (empty for the modes
+/// without re-planning).
+pub type ReplanLog = Vec<(ReplanReport<f64>, ReportContext)>;
+
+/// [`fly_case`], also returning the flight's re-plans ([`ReplanLog`]).
+///
+/// # Errors
+/// As [`fly_case`].
+pub fn fly_case_logged(
+    setup: &CampaignSetup,
+    draw: Option<&CaseDraw>,
+    mode: Mode,
+) -> Result<(CaseResult, ReplanLog), CampaignError> {
     let sc = &setup.scenario;
     let scen = |source| CampaignError::Scenario {
         file: setup.file.clone(),
@@ -206,17 +223,17 @@ pub fn fly_case(
     };
     let logic = || BankReversalLogic::new(setup.lateral).map_err(gerr);
     let run = |src: &mut dyn FnMut() -> Result<Flown, CampaignError>| src();
-    let (result, reversals, replans, fall_backs, estimated_scales) = match mode {
+    let (result, reversals, replans, fall_backs, estimated_scales, log) = match mode {
         Mode::Stored => run(&mut || {
             let s = LateralSource::new(setup.stored_guidance()?, None);
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |_| {
-                (0, 0, 0, None)
+                (0, 0, 0, None, Vec::new())
             })
         })?,
         Mode::StoredReversals => run(&mut || {
             let s = LateralSource::new(setup.stored_guidance()?, Some(logic()?));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
-                (u32::from(s.reversals()), 0, 0, None)
+                (u32::from(s.reversals()), 0, 0, None, Vec::new())
             })
         })?,
         Mode::ReplanReversals | Mode::ReplanEstimation => run(&mut || {
@@ -245,11 +262,19 @@ pub fn fly_case(
                     .guidance
                     .aero_scales()
                     .map(|a| [a.lift_to_drag, a.drag]);
+                let log = s
+                    .inner
+                    .reports
+                    .iter()
+                    .copied()
+                    .zip(s.inner.contexts.iter().copied())
+                    .collect();
                 (
                     u32::from(s.reversals()),
                     s.inner.guidance.counts().replans,
                     u32::try_from(fb).unwrap_or(u32::MAX),
                     est,
+                    log,
                 )
             })
         })?,
@@ -266,7 +291,7 @@ pub fn fly_case(
         along_cross_track(e0, t, (end.latitude_rad, end.longitude_rad)).unwrap_or((0.0, 0.0));
     let s = &result.summary;
     let lim = vehicle.limits;
-    Ok(CaseResult {
+    let case = CaseResult {
         index: d.index,
         mode,
         draw: draw.copied(),
@@ -295,14 +320,15 @@ pub fn fly_case(
         final_heading_rad: end.heading_rad,
         final_latitude_rad: end.latitude_rad,
         final_longitude_rad: end.longitude_rad,
-    })
+    };
+    Ok((case, log))
 }
 
-/// What a source kept: reversals, re-plans, fall-backs, final onboard estimate.
-type Counts = (u32, u32, u32, Option<[f64; 2]>);
+/// What a source kept: reversals, re-plans, fall-backs, final onboard estimate, re-plan log.
+type Counts = (u32, u32, u32, Option<[f64; 2]>, ReplanLog);
 
 /// A flight and its [`Counts`].
-type Flown = (SimResult, u32, u32, u32, Option<[f64; 2]>);
+type Flown = (SimResult, u32, u32, u32, Option<[f64; 2]>, ReplanLog);
 
 /// The result of a run and the counts its source kept.
 fn finish<A: AttitudeSource>(
@@ -314,6 +340,6 @@ fn finish<A: AttitudeSource>(
         index: Some(index),
         source,
     })?;
-    let (a, b, c, e) = counts(&src);
-    Ok((res, a, b, c, e))
+    let (a, b, c, e, l) = counts(&src);
+    Ok((res, a, b, c, e, l))
 }

@@ -3,7 +3,7 @@
 //! ([`CoreGuidance`]) or with onboard re-planning (`crate::replan_loop::ReplanLoop`), at the
 //! guidance's own clock ([`GuidanceSource`]).
 
-use guidance_core::estimate::{EstimateError, SensedAero};
+use guidance_core::estimate::{AeroScales, EstimateError, SensedAero};
 use guidance_core::guidance::{BankSign, Command, Guidance, HostGuidance};
 use guidance_core::replan::{ReplanReport, ReplanningGuidance};
 use guidance_core::{GuidanceError, NavState};
@@ -105,6 +105,11 @@ pub trait FlightGuidance {
     fn senses(&self) -> bool {
         false
     }
+    /// The onboard aerodynamic estimate the next solve would start from
+    /// ([`ReplanningGuidance::aero_scales`]); default: none.
+    fn aero_scales(&self) -> Option<AeroScales<f64>> {
+        None
+    }
 }
 
 /// The clocked-guidance part of [`FlightGuidance`], the same for every wrapper of a
@@ -159,7 +164,10 @@ impl<const N: usize> FlightGuidance for ReplanningGuidance<f64, N> {
         ReplanningGuidance::sense(self, nav, sensed).map(|_| ())
     }
     fn senses(&self) -> bool {
-        self.aero_scales().is_some()
+        ReplanningGuidance::aero_scales(self).is_some()
+    }
+    fn aero_scales(&self) -> Option<AeroScales<f64>> {
+        ReplanningGuidance::aero_scales(self)
     }
     clocked_guidance!(.guidance());
 }
@@ -183,16 +191,32 @@ pub enum TickError {
     },
 }
 
+/// What the guidance had in hand at the tick that completed a report: the navigation state
+/// and the onboard aerodynamic estimate (with a whole solve per tick,
+/// `ReplanningConfig::steps_per_tick = 0`, these are the solve's inputs: the predictor's state
+/// and the scales applied to its model). Kept so a run's predictions can be recomputed and
+/// checked (docs/VINH.md, the re-planning domain).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReportContext {
+    /// Navigation state of the tick \[SI, rad\].
+    pub nav: NavState<f64>,
+    /// Onboard aerodynamic estimate at the tick (`None` without estimation).
+    pub aero_scales: Option<AeroScales<f64>>,
+}
+
 /// A `guidance-core` guidance as the attitude source of the closed loop: called at every
 /// tick with the navigation state; the attitude between ticks is its rate-limited ramp
 /// ([`Guidance::attitude_at`]). Every report a tick makes is kept in
-/// [`GuidanceSource::reports`] (the re-plans of a run).
+/// [`GuidanceSource::reports`] (the re-plans of a run), with its [`ReportContext`] in
+/// [`GuidanceSource::contexts`].
 #[derive(Clone, Debug)]
 pub struct GuidanceSource<G: FlightGuidance> {
     /// The flight guidance.
     pub guidance: G,
     /// Every report of the run, in order.
     pub reports: Vec<G::Report>,
+    /// The context of each report (same index).
+    pub contexts: Vec<ReportContext>,
 }
 
 /// `guidance-core`'s [`Guidance`] in the loop, with a host-sized node table (up to
@@ -206,6 +230,7 @@ impl<G: FlightGuidance> GuidanceSource<G> {
         Self {
             guidance,
             reports: Vec::new(),
+            contexts: Vec::new(),
         }
     }
 }
@@ -213,8 +238,16 @@ impl<G: FlightGuidance> GuidanceSource<G> {
 impl<G: FlightGuidance> AttitudeSource for GuidanceSource<G> {
     type Error = TickError;
     fn tick(&mut self, nav: &NavState<f64>) -> Result<(), TickError> {
+        // The estimate the solve of this tick starts from (before the update).
+        let aero_scales = self.guidance.aero_scales();
         let (ticked, report) = self.guidance.update(nav)?;
-        self.reports.extend(report);
+        if let Some(r) = report {
+            self.reports.push(r);
+            self.contexts.push(ReportContext {
+                nav: *nav,
+                aero_scales,
+            });
+        }
         if ticked {
             Ok(())
         } else {

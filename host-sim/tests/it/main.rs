@@ -19,6 +19,7 @@ mod pil_reliability;
 mod pil_replanning;
 mod pil_scenarios;
 mod pil_support;
+mod replan_domain;
 mod replan_loop;
 mod run_dir_kill;
 mod scenario_files;

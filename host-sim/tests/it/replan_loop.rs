@@ -67,14 +67,14 @@ fn stored_table() -> NodeTable<f64> {
     .unwrap()
 }
 
-struct Setup {
+pub(crate) struct Setup {
     env: Environment,
     veh: host_sim::vehicle::Vehicle,
     cfg: SimConfig,
     energy: EnergyNormalizer<f64>,
 }
 
-fn setup(density_factor: f64, dgamma_deg: f64) -> Setup {
+pub(crate) fn setup(density_factor: f64, dgamma_deg: f64) -> Setup {
     let nominal = ExponentialAtmosphere::earth();
     let atm = ExponentialAtmosphere::new(
         nominal.rho0_kg_m3() * density_factor,
@@ -114,7 +114,7 @@ fn initial() -> Command<f64> {
     }
 }
 
-fn fly_stored(s: &Setup) -> SimResult {
+pub(crate) fn fly_stored(s: &Setup) -> SimResult {
     let g = guidance_core::guidance::Guidance::new(
         GuidanceConfig::thesis_default(),
         stored_table(),
@@ -129,7 +129,7 @@ fn fly_stored(s: &Setup) -> SimResult {
         .0
 }
 
-fn replanning_config(
+pub(crate) fn replanning_config(
     target: RangeTarget<f64>,
     every: u16,
     mode: PredictorMode,
@@ -161,7 +161,7 @@ fn replanning_config(
     }
 }
 
-fn fly_replanning(s: &Setup, rc: ReplanningConfig<f64>) -> (SimResult, ReplanLoop) {
+pub(crate) fn fly_replanning(s: &Setup, rc: ReplanningConfig<f64>) -> (SimResult, ReplanLoop) {
     let g = ReplanningGuidance::new(
         GuidanceConfig::thesis_default(),
         stored_table(),
@@ -228,7 +228,7 @@ fn check_rate(lp: &ReplanLoop, r: &SimResult, every: u16) {
     );
 }
 
-const EVERY: u16 = 5;
+pub(crate) const EVERY: u16 = 5;
 
 /// SIL, simplified environment (thesis sec. 8.1.3: exponential atmosphere, central gravity,
 /// no rotation), SRM glide from 100 km. The target is the total flown range of the nominal
@@ -352,6 +352,23 @@ fn out_of_domain_predictions_fall_back_to_the_stored_profile() {
 /// flown-range errors [m] of the stored profile and of re-planning, and the re-plan counts.
 /// Predictor: exponential fit to US76 at 50/100 km, effective-gravity rotation correction.
 fn full_environment(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<(f64, f64, ReplanCounts)> {
+    full_environment_runs(heading_deg, dgammas_deg)
+        .into_iter()
+        .map(|r| (r.stored_m, r.replanned_m, r.lp.guidance.counts()))
+        .collect()
+}
+
+/// One re-planned run of [`full_environment_runs`].
+pub(crate) struct FullRun {
+    pub(crate) dgamma_deg: f64,
+    pub(crate) stored_m: f64,
+    pub(crate) replanned_m: f64,
+    pub(crate) config: ReplanningConfig<f64>,
+    pub(crate) lp: ReplanLoop,
+}
+
+/// The re-planned runs of the full environment (see [`full_environment`]).
+pub(crate) fn full_environment_runs(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<FullRun> {
     let env = Environment::full();
     let veh = host_sim::vehicle::by_name("srm").unwrap();
     let e0 = entry(0.0);
@@ -412,11 +429,13 @@ fn full_environment(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<(f64, f64, Rep
             .unwrap();
             let (r, lp) = simulate(dynm, ReplanLoop::new(rg), &mk(dg), &mut |_| {}).unwrap();
             check_rate(&lp, &r, EVERY);
-            (
-                (stored.summary.flown_range_angle_rad - total) * re,
-                (r.summary.flown_range_angle_rad - total) * re,
-                lp.guidance.counts(),
-            )
+            FullRun {
+                dgamma_deg: dg,
+                stored_m: (stored.summary.flown_range_angle_rad - total) * re,
+                replanned_m: (r.summary.flown_range_angle_rad - total) * re,
+                config: rc,
+                lp,
+            }
         })
         .collect()
 }
