@@ -385,3 +385,45 @@ fn scea_gene_source_from_the_command_line() {
         std::fs::remove_dir_all(&d).unwrap();
     }
 }
+
+/// `sample` counts a failed evaluation (an analytical table outside the closed form's domain:
+/// NaN objectives) as infeasible with an infinite violation, not as feasible.
+#[test]
+fn sample_counts_failed_evaluations_as_infeasible() {
+    let dir = tmp("sample-fail");
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("s.csv");
+    let mut out = Vec::new();
+    let args = [
+        "host-sim",
+        "sample",
+        "--problem",
+        "srm-analytical",
+        "--count",
+        "40",
+    ];
+    let mut v: Vec<&str> = args.to_vec();
+    let fs = f.to_str().unwrap().to_string();
+    v.extend(["--out", &fs]);
+    cli_run(v, &mut out).unwrap();
+    let text = std::fs::read_to_string(&f).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let failed = rows.iter().filter(|r| r[12].is_nan()).count();
+    assert!(failed > 0 && failed < 40, "{text}");
+    assert!(
+        rows.iter()
+            .filter(|r| r[12].is_nan())
+            .all(|r| r[17] == f64::INFINITY)
+    );
+    let feasible = rows
+        .iter()
+        .filter(|r| r[12].is_finite() && r[14..17].iter().all(|g| *g <= 0.0))
+        .count();
+    let said = String::from_utf8(out).unwrap();
+    assert!(said.contains(&format!(": {feasible} feasible;")), "{said}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
