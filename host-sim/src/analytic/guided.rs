@@ -7,7 +7,8 @@
 //! * **Segments.** Node `k` of the table `[E-hat, alpha, sigma]` sets the bank flown from its
 //!   normalised energy down to node `k + 1`'s (zero-order hold on energy: the thesis'
 //!   analytical simulator "sets a value at the start of a trajectory segment", sec. 1). The
-//!   last node only ends the table. The vehicle must be steered by bank only (a trim-only
+//!   last node's bank is held to the end (as the closed loop holds its last command; with the
+//!   presets' last node at `E-hat = 0` it is never reached). The vehicle must be steered by bank only (a trim-only
 //!   vehicle such as the SRM capsule, thesis sec. 4.2.1): `C_L = C_L,trim`, bank `sigma`.
 //! * **Entry.** The first segment starts at the entry altitude with the speed and flight-path
 //!   angle that the closed form imposes for the first node's lift (thesis sec. 9.2: 100 km
@@ -21,9 +22,8 @@
 //!   altitude and speed jump along the energy level to the new equilibrium (the vehicle's
 //!   phugoid is not modelled); time and range angle are continuous. Keeping the altitude
 //!   instead would make the speed jump up (thesis sec. 8.1.5), creating energy.
-//! * **End.** At the termination altitude (in any segment), or at the last node's energy if
-//!   that is reached first. A join whose new equilibrium lies below the termination altitude
-//!   ends the glide at the join.
+//! * **End.** At the termination altitude (in any segment); a join whose new equilibrium lies
+//!   below the termination altitude ends the glide at the join.
 //! * **Peaks and rates.** Peak heat flux and g-load are the closed forms' own maximisations per
 //!   segment; the g-load rate is the largest finite difference between samples *within* a
 //!   segment: the jumps at the joins take no time in the model and are not rates (a real
@@ -285,24 +285,26 @@ pub fn guided_glide(g: &GuidedGlide<'_>) -> Result<AnalyticRun, AnalyticError> {
     let mut rows: Vec<Planar> = Vec::new();
     let mut theta0 = 0.0;
     let (mut peak_q, mut peak_g): (Option<Planar>, Option<Planar>) = (None, None);
-    let mut termination = TerminationReason::NormalizedEnergy;
-    let segments = lifts.iter().zip(g.nodes.iter().skip(1)).enumerate();
-    for (seg, (lift, next)) in segments {
+    // The last node's bank is held to the end, as the closed loop holds the last command.
+    let next_energies = g
+        .nodes
+        .iter()
+        .skip(1)
+        .map(|n| n[0])
+        .chain(std::iter::once(f64::NEG_INFINITY));
+    for (seg, (lift, next_energy)) in lifts.iter().zip(next_energies).enumerate() {
         if seg > 0 {
             let start = rows
                 .last()
                 .map_or(e_entry, |p: &Planar| en.of(p.radius, p.speed));
             match join(g, &planet, &en, lift, start)? {
                 Some(next) => glide = next,
-                None => {
-                    termination = TerminationReason::Altitude;
-                    break;
-                }
+                None => break,
             }
         }
         let u_e = glide.u_entry();
         let u_alt = u_at_radius(&glide, end_radius, END_SCAN_DECADES).map_err(dom)?;
-        let target = en.at(next[0]);
+        let target = en.at(next_energy);
         let alt_end = glide.point_at_u(u_alt).map_err(dom)?;
         let (u_end, ends_here) = if en.of(alt_end.radius_m, alt_end.speed_m_s) >= target {
             (u_alt, true)
@@ -334,7 +336,6 @@ pub fn guided_glide(g: &GuidedGlide<'_>) -> Result<AnalyticRun, AnalyticError> {
         }
         theta0 = rows.last().map_or(theta0, |p| p.theta);
         if ends_here {
-            termination = TerminationReason::Altitude;
             break;
         }
     }
@@ -348,7 +349,7 @@ pub fn guided_glide(g: &GuidedGlide<'_>) -> Result<AnalyticRun, AnalyticError> {
         planet,
         placement: g.placement,
     };
-    let result = ctx.assemble(&rows, peak_q, peak_g, termination);
+    let result = ctx.assemble(&rows, peak_q, peak_g, TerminationReason::Altitude);
     let deepest = rows.iter().map(|p| p.radius).fold(f64::INFINITY, f64::min) - planet.radius_m;
     Ok(AnalyticRun {
         result,

@@ -241,3 +241,22 @@ fn analytical_errors_name_the_field() {
     let text = toml::to_string(&DesignConfig::preset("srm").unwrap()).unwrap();
     assert!(!text.contains("simulator"), "{text}");
 }
+
+/// A table whose last node lies above `E-hat = 0` holds that node's bank to the termination
+/// altitude, as the closed loop holds its last command.
+#[test]
+fn analytical_last_node_is_held_to_the_end() {
+    let p = problem("srm-analytical");
+    let mut sc = p.scenario_of(&srm_decision()).unwrap();
+    sc.guidance.nodes.truncate(4);
+    let last = sc.guidance.nodes[3];
+    assert!(last[0] > 0.3, "{last:?}");
+    let run = p.analytical().unwrap().fly(&sc).unwrap();
+    let end = run.result.samples.last().unwrap();
+    assert!(
+        (end.conditions.altitude_m - 25_000.0).abs() < 1.0,
+        "{end:?}"
+    );
+    assert_eq!(end.attitude.sigma_rad, last[2]);
+    assert!(end.normalized_energy < last[0]);
+}
