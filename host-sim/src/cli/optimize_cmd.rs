@@ -222,6 +222,14 @@ pub enum OptimizeError {
         /// Problem asked for.
         problem: String,
     },
+    /// `--scea-genes random` for another algorithm (it would be ignored).
+    #[error(
+        "command line: --scea-genes random applies to --algorithm scea only (given --algorithm {algorithm}); drop it or use --algorithm scea"
+    )]
+    SceaGenesWithoutScea {
+        /// Algorithm asked for.
+        algorithm: &'static str,
+    },
     /// `--threads 0`.
     #[error("command line: --threads 0: use at least 1")]
     Threads,
@@ -340,6 +348,16 @@ pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, Opt
 /// # Errors
 /// [`OptimizeError`].
 pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
+    // A config file or a resumed run decides its own algorithm and gene source.
+    if a.scea_genes == super::optimize_structured::SceaGenesArg::Random
+        && a.algorithm != AlgorithmName::Scea
+        && a.config.is_none()
+        && a.resume.is_none()
+    {
+        return Err(OptimizeError::SceaGenesWithoutScea {
+            algorithm: a.algorithm_name(),
+        });
+    }
     if super::optimize_reentry::wants_reentry(a) {
         return Ok(super::optimize_reentry::run(a, out)?);
     }

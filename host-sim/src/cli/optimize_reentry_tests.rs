@@ -381,6 +381,13 @@ fn scea_gene_source_from_the_command_line() {
     assert_eq!(read(&r, "population.csv"), read(&r1, "population.csv"));
     let e = optimize(&["--problem", "srm", "--scea-genes", "parents"]).unwrap_err();
     assert!(e.to_string().contains("scea-genes"), "{e}");
+    // Refused, not ignored, for another algorithm.
+    let e = optimize(&["--problem", "srm", "--scea-genes", "random"]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("--scea-genes random applies to --algorithm scea only"),
+        "{e}"
+    );
     for d in [r, h, r1] {
         std::fs::remove_dir_all(&d).unwrap();
     }
