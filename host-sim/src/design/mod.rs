@@ -1,7 +1,8 @@
 //! Re-entry mission design (issue 11): the thesis' guidance problems (sec. 4.2) for the
 //! generic optimisers of [`crate::optim`], whose `Problem` trait they implement. An evaluation
 //! flies the closed loop (guidance-core's `Guidance` at its 2 s clock in the numerical
-//! simulator).
+//! simulator), or for an analytical problem the glide closed form along the node table
+//! ([`analytical`]).
 //!
 //! * [`encoding`]: decision vector <-> node table (fixed end nodes, free energy nodes, the
 //!   entry altitude as an optional variable);

@@ -1,6 +1,8 @@
 //! The re-entry guidance problem (thesis sec. 4.2): a decision is a node table (see
 //! [`Encoding`]); its evaluation flies the closed loop (guidance-core's `Guidance` at its 2 s
-//! clock in the numerical simulator) and returns
+//! clock in the numerical simulator; or, after [`ReentryProblem::with_simulator`] with
+//! [`Simulator::Analytical`], the analytical simulator's node-guided glide) and returns, from
+//! the flight's [`Summary`] either way,
 //!
 //! * objectives (minimised): `f_r = -theta / pi` (eq. 9.1; `theta` the flown range angle, the
 //!   integrated angle travelled over the planet, which like the thesis' can exceed pi, whereas
