@@ -61,7 +61,8 @@ def _rebuild(cls, config_toml: str, base_dir: str, nodes: Optional[Tuple[int, in
 class DesignProblem(PygmoMethods, _native.DesignProblem):
     """A fixed-length re-entry design problem (host-sim ``design::ReentryProblem``).
 
-    ``problem``: a preset (``"horus-2b"`` default, ``"srm"``, ``"srm-altitude"``), TOML text or
+    ``problem``: a preset (``"horus-2b"`` default, ``"srm"``, ``"srm-altitude"``; on the
+    analytical simulator ``"srm-analytical"``, ``"srm-analytical-altitude"``), TOML text or
     a dict with the ``[problem]`` fields (``base``, ``encoding``, ``limits``, ``objectives``;
     or a whole ``host-sim optimize`` configuration with a ``problem`` table), or a TOML file.
     ``base_dir``: the folder a scenario-file ``base`` is relative to (default: the file's

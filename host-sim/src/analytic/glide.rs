@@ -71,7 +71,7 @@ pub fn glide_trajectory(
                     "must be finite, >= 0 and below the entry altitude",
                 ));
             }
-            u_at_radius(&glide, planet.radius_m + altitude_m).map_err(dom)?
+            u_at_radius(&glide, planet.radius_m + altitude_m, 3).map_err(dom)?
         }
     };
     let rows = (0..points)
@@ -95,7 +95,7 @@ pub fn glide_trajectory(
     };
     let ctx = Ctx {
         vehicle,
-        lift,
+        lifts: std::slice::from_ref(lift),
         atmosphere,
         planet,
         placement: *placement,
@@ -117,14 +117,20 @@ pub fn glide_trajectory(
 }
 
 /// `u` in `(0, u_E)` where the glide's second-order radius is `radius_m`: scan down from `u_E`
-/// (256 geometric steps to `1e-3 u_E`), then bisect (bounded).
-fn u_at_radius(glide: &GlideSolution<f64>, radius_m: f64) -> Result<f64, VinhError> {
+/// (`85 decades + 1` geometric steps to `10^-decades u_E`; 3 decades: 256 steps), then bisect
+/// (bounded).
+pub(super) fn u_at_radius(
+    glide: &GlideSolution<f64>,
+    radius_m: f64,
+    decades: u32,
+) -> Result<f64, VinhError> {
     let u_e = glide.u_entry();
     let below = |u: f64| glide.point_at_u(u).map(|p| p.radius_m < radius_m);
     let mut hi = u_e;
     let mut lo = None;
-    for k in 1..=256 {
-        let u = u_e * 10f64.powf(-3.0 * f64::from(k) / 256.0);
+    let steps = 85 * decades + 1;
+    for k in 1..=steps {
+        let u = u_e * 10f64.powf(-f64::from(decades) * f64::from(k) / f64::from(steps));
         if below(u)? {
             lo = Some(u);
             break;

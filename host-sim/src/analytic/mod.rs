@@ -58,6 +58,7 @@
 //! [`GlideSolution::peak_heat_flux`]: guidance_core::vinh::GlideSolution::peak_heat_flux
 
 mod glide;
+mod guided;
 mod placement;
 mod samples;
 mod skip;
@@ -70,6 +71,7 @@ use crate::env::{ExponentialAtmosphere, Planet, Us76, atmosphere::ExponentialAtm
 use crate::sim::SimResult;
 
 pub use glide::glide_trajectory;
+pub use guided::{GuidedGlide, SEGMENT_POINTS, guided_glide};
 pub use placement::Placement;
 pub use skip::skip_trajectory;
 pub use vehicle::{AnalyticVehicle, LiftSetting};
@@ -154,6 +156,14 @@ pub enum AnalyticError {
         phase: &'static str,
         /// The closed form's error.
         error: VinhError,
+    },
+    /// A node-guided glide needs a vehicle steered by bank only (trim coefficients).
+    #[error(
+        "vehicle `{vehicle}`: the node-guided glide flies bank-only vehicles (trim coefficients, e.g. the SRM capsule); this one is steered by the angle of attack"
+    )]
+    NotBankOnly {
+        /// Vehicle name.
+        vehicle: String,
     },
     /// The exponential atmosphere could not be built.
     #[error(transparent)]

@@ -23,6 +23,8 @@ pub(super) struct Planar {
     pub(super) drag_acc: f64,
     pub(super) lift_acc: f64,
     pub(super) g_load: f64,
+    /// Index of the lift setting flown here in [`Ctx::lifts`] (0 for a single glide or skip).
+    pub(super) segment: usize,
 }
 
 /// `From` for the skip's and the glide's point types, which carry the same fields.
@@ -39,6 +41,7 @@ macro_rules! planar_from {
                     drag_acc: p.drag_acc_m_s2,
                     lift_acc: p.lift_acc_m_s2,
                     g_load: p.g_load,
+                    segment: 0,
                 }
             }
         }
@@ -50,7 +53,9 @@ planar_from!(vinh::SkipPoint<f64>, vinh::GlidePoint<f64>);
 /// Shared conversion from planar closed-form points to simulator samples.
 pub(super) struct Ctx<'a> {
     pub(super) vehicle: &'a AnalyticVehicle,
-    pub(super) lift: &'a LiftSetting,
+    /// The lift settings flown, indexed by [`Planar::segment`] (one for a single closed form;
+    /// one per segment of a node-guided glide).
+    pub(super) lifts: &'a [LiftSetting],
     pub(super) atmosphere: &'a ExponentialAtmosphere,
     pub(super) planet: Planet,
     pub(super) placement: Placement,
@@ -69,7 +74,19 @@ impl Ctx<'_> {
         }
     }
 
+    fn lift(&self, p: &Planar) -> LiftSetting {
+        self.lifts
+            .get(p.segment)
+            .or_else(|| self.lifts.last())
+            .copied()
+            .unwrap_or(LiftSetting {
+                cl: 0.0,
+                bank_rad: 0.0,
+            })
+    }
+
     fn conditions(&self, p: &Planar) -> FlightConditions {
+        let lift = self.lift(p);
         let altitude_m = p.radius - self.planet.radius_m;
         let atm = self.atmosphere.state(altitude_m);
         let m = self.vehicle.mass_kg;
@@ -79,8 +96,8 @@ impl Ctx<'_> {
             airspeed_m_s: p.speed,
             mach: p.speed / atm.speed_of_sound_m_s,
             dynamic_pressure_pa: 0.5 * atm.density_kg_m3 * p.speed * p.speed,
-            cl: self.lift.cl,
-            cd: self.vehicle.polar.cd(self.lift.cl),
+            cl: lift.cl,
+            cd: self.vehicle.polar.cd(lift.cl),
             lift_n: m * p.lift_acc,
             drag_n: m * p.drag_acc,
             heat_flux_w_m2: p.heat_flux,
@@ -104,10 +121,6 @@ impl Ctx<'_> {
             first.speed,
         )
         .ok();
-        let attitude = Command {
-            alpha_rad: 0.0,
-            sigma_rad: self.lift.bank_rad,
-        };
         let pace = |p: &Planar| p.radius / (p.speed * p.gamma.cos());
         let mut samples: Vec<Sample> = Vec::with_capacity(rows.len());
         let (mut t, mut heat) = (0.0, 0.0);
@@ -138,7 +151,10 @@ impl Ctx<'_> {
             samples.push(Sample {
                 time_s: t,
                 state,
-                attitude,
+                attitude: Command {
+                    alpha_rad: 0.0,
+                    sigma_rad: self.lift(p).bank_rad,
+                },
                 conditions: self.conditions(p),
                 heat_load_j_m2: heat,
                 flown_range_rad: p.theta,

@@ -61,7 +61,7 @@ pub fn skip_trajectory(
     let deepest = skip.deepest_point().map_err(dom)?;
     let ctx = Ctx {
         vehicle,
-        lift,
+        lifts: std::slice::from_ref(lift),
         atmosphere,
         planet,
         placement: Placement::of(entry),

@@ -69,8 +69,9 @@ pub enum MhacoConstraintsArg {
 #[derive(Debug, clap::Args)]
 pub struct OptimizeArgs {
     /// Test problem (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5:
-    /// variable-length, SCEA only) or re-entry design preset (horus-2b, srm, srm-altitude:
-    /// thesis sec. 4.2 and 9.1 settings).
+    /// variable-length, SCEA only) or re-entry design preset (horus-2b, srm, srm-altitude,
+    /// srm-analytical, srm-analytical-altitude: thesis sec. 4.2, 9.1 and 9.2 settings; the
+    /// last two on the analytical simulator).
     #[arg(long, default_value = "zdt1")]
     pub problem: String,
     /// Algorithm.
@@ -111,6 +112,10 @@ pub struct OptimizeArgs {
     /// MHACO constraint handling (no effect on unconstrained problems).
     #[arg(long, value_enum, default_value = "feasibility-first")]
     pub mhaco_constraints: MhacoConstraintsArg,
+    /// SCEA: source of the genes of appended nodes: `random` (the thesis' SCEA) or
+    /// `population` (alias `history`: history-based, from a mating parent; the default).
+    #[arg(long, value_enum, default_value = "population")]
+    pub scea_genes: super::optimize_structured::SceaGenesArg,
     /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
     /// gains only with --batch-size > 1.
     #[arg(long, default_value_t = 1)]
@@ -216,6 +221,14 @@ pub enum OptimizeError {
         algorithm: &'static str,
         /// Problem asked for.
         problem: String,
+    },
+    /// `--scea-genes random` for another algorithm (it would be ignored).
+    #[error(
+        "command line: --scea-genes random applies to --algorithm scea only (given --algorithm {algorithm}); drop it or use --algorithm scea"
+    )]
+    SceaGenesWithoutScea {
+        /// Algorithm asked for.
+        algorithm: &'static str,
     },
     /// `--threads 0`.
     #[error("command line: --threads 0: use at least 1")]
@@ -335,6 +348,16 @@ pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, Opt
 /// # Errors
 /// [`OptimizeError`].
 pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
+    // A config file or a resumed run decides its own algorithm and gene source.
+    if a.scea_genes == super::optimize_structured::SceaGenesArg::Random
+        && a.algorithm != AlgorithmName::Scea
+        && a.config.is_none()
+        && a.resume.is_none()
+    {
+        return Err(OptimizeError::SceaGenesWithoutScea {
+            algorithm: a.algorithm_name(),
+        });
+    }
     if super::optimize_reentry::wants_reentry(a) {
         return Ok(super::optimize_reentry::run(a, out)?);
     }
@@ -503,6 +526,7 @@ mod tests {
             ker: None,
             n_gen_mark: 7,
             mhaco_constraints: MhacoConstraintsArg::FeasibilityFirst,
+            scea_genes: super::super::optimize_structured::SceaGenesArg::Population,
             threads: 1,
             reference: None,
             out,

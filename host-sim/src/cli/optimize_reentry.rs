@@ -18,8 +18,8 @@ use super::optimize_reentry_out::{Record, record_of, write_final, write_generati
 use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
 use crate::optim::chromosome::Chromosome;
 use crate::optim::{
-    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
-    Nsga2, Nsga2Config, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
+    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes,
+    NoObserver, Nsga2, Nsga2Config, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -50,10 +50,19 @@ pub struct ReentryRunConfig {
     /// MOEA/D per-variable mutation probability (thesis: 1 / population; default
     /// 1 / variables).
     pub mutation_probability: Option<f64>,
+    /// SCEA: source of the genes of appended nodes, `random` (the thesis) or `population`
+    /// (history-based, the thesis' recommendation sec. 10.2; the default, also for files
+    /// written before the field existed).
+    #[serde(default = "history_genes")]
+    pub scea_genes: NewGenes,
     /// Hypervolume reference point `[f_r, f_Q]` (objective units).
     pub reference: Vec<f64>,
     /// The design problem.
     pub problem: DesignConfig,
+}
+
+fn history_genes() -> NewGenes {
+    NewGenes::Population
 }
 
 impl ReentryRunConfig {
@@ -76,6 +85,7 @@ impl ReentryRunConfig {
             neighbours: 20,
             limit: 1,
             mutation_probability: Some(1.0 / 64.0),
+            scea_genes: history_genes(),
             reference,
             problem,
         })
@@ -196,6 +206,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     c.batch_size = a.batch_size;
     c.neighbours = a.neighbours;
     c.mutation_probability = a.mutation_probability;
+    c.scea_genes = a.scea_genes.new_genes();
     if let Some(r) = &a.reference {
         c.reference.clone_from(r);
     }
@@ -337,6 +348,7 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         };
         let cfg = SceaConfig {
             moead,
+            new_genes: c.scea_genes,
             ..SceaConfig::default()
         };
         return drive(&ctx, Scea::new(cfg, c.seed), out);
@@ -386,6 +398,8 @@ trait RunProblem: Problem {
     fn genes(d: &Self::Decision) -> Vec<f64>;
     /// The scenario the decision flies.
     fn scenario(&self, d: &Self::Decision) -> Option<Scenario>;
+    /// The fixed-length problem (its simulator flies the chosen front members).
+    fn reentry(&self) -> &ReentryProblem;
 }
 
 impl RunProblem for ReentryProblem {
@@ -394,6 +408,9 @@ impl RunProblem for ReentryProblem {
     }
     fn scenario(&self, d: &Vec<f64>) -> Option<Scenario> {
         self.scenario_of(d).ok()
+    }
+    fn reentry(&self) -> &ReentryProblem {
+        self
     }
 }
 
@@ -408,6 +425,9 @@ impl RunProblem for VariableReentry {
     fn scenario(&self, d: &Chromosome) -> Option<Scenario> {
         let (table, h) = self.table_of(d).ok()?;
         Some(self.inner().scenario_of_table(table, h))
+    }
+    fn reentry(&self) -> &ReentryProblem {
+        self.inner()
     }
 }
 
@@ -510,6 +530,7 @@ where
         &flat::<P>(alg.population()),
         &records,
         ctx.c,
+        ctx.problem.reentry().analytical(),
     )?;
     if let Some(r) = last {
         writeln!(

@@ -10,12 +10,14 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::optimize_reentry::ReentryRunConfig;
+use crate::design::AnalyticalModel;
 use crate::optim::Individual;
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::report::{ReportError, write_atomic};
 use crate::report::{Series, line_plot_svg};
 use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
+use crate::sim::SimResult;
 
 /// One generation's record.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -147,7 +149,40 @@ fn series(label: String, points: Vec<(f64, f64)>) -> Series {
     }
 }
 
-/// Write the final files: records, front, member scenarios, chosen trajectories, plots.
+/// Fly a chosen front member with the problem's simulator and write its run directory
+/// (trajectory, summary, plots); `None` if it fails (the member is left out of the plot).
+fn member_run(
+    sc: &Scenario,
+    analytical: Option<&AnalyticalModel>,
+    run_dir: &Path,
+) -> Option<SimResult> {
+    let Some(m) = analytical else {
+        return simulate_scenario(sc, "front member", run_dir, &mut |_| {})
+            .ok()
+            .map(|run| run.result);
+    };
+    let run = m.fly(sc).ok()?;
+    let summary = crate::report::summary_report(
+        &run.result,
+        &sc.name,
+        &m.vehicle().name,
+        &crate::analytic::environment_label(m.atmosphere()),
+        sc.environment.planet.radius_m,
+    );
+    let limits = m.vehicle().limits;
+    crate::report::write_run(
+        run_dir,
+        &run.result,
+        &summary,
+        limits.heat_flux_w_m2,
+        limits.g_load,
+    )
+    .ok()?;
+    Some(run.result)
+}
+
+/// Write the final files: records, front, member scenarios, chosen trajectories (flown by
+/// the problem's simulator: `analytical` for an analytical problem), plots.
 ///
 /// # Errors
 /// [`ReportError`].
@@ -157,6 +192,7 @@ pub fn write_final(
     pop: &[Individual<Vec<f64>>],
     records: &[Record],
     c: &ReentryRunConfig,
+    analytical: Option<&AnalyticalModel>,
 ) -> Result<(), ReportError> {
     let mut csv = String::from(
         "generation,evaluations,feasible_fraction,hypervolume,min_violation,best_f1,best_f2,mean_f1,mean_f2,front_size\n",
@@ -213,9 +249,8 @@ pub fn write_final(
     let mut traj = Vec::new();
     for (k, sc) in &chosen {
         let run_dir = fdir.join(format!("member_{k:02}"));
-        if let Ok(run) = simulate_scenario(sc, "front member", &run_dir, &mut |_| {}) {
-            let pts = run
-                .result
+        if let Some(result) = member_run(sc, analytical, &run_dir) {
+            let pts = result
                 .samples
                 .iter()
                 .map(|s| (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3))

@@ -18,13 +18,37 @@ use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::{
-    Algorithm, Individual, NoObserver, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
+    Algorithm, Individual, NewGenes, NoObserver, OptimError, Problem, Rayon, Scea, SceaConfig,
+    Serial, evolve,
 };
 use crate::report::write_atomic;
+
+/// Where SCEA takes the genes of a node it appends (`--scea-genes`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SceaGenesArg {
+    /// Uniformly random in the node bounds (the thesis' SCEA, sec. 4.1.5).
+    Random,
+    /// History-based: the same node of a mating parent from the population (the thesis'
+    /// recommendation, sec. 10.2); random when neither parent has it. The default.
+    #[value(alias = "history")]
+    Population,
+}
+
+impl SceaGenesArg {
+    /// The library's gene source.
+    #[must_use]
+    pub fn new_genes(self) -> NewGenes {
+        match self {
+            Self::Random => NewGenes::Random,
+            Self::Population => NewGenes::Population,
+        }
+    }
+}
 
 fn scea_config(a: &OptimizeArgs) -> SceaConfig {
     SceaConfig {
         moead: moead_config(a),
+        new_genes: a.scea_genes.new_genes(),
         ..SceaConfig::default()
     }
 }
@@ -209,6 +233,7 @@ mod tests {
             ker: None,
             n_gen_mark: 7,
             mhaco_constraints: super::super::optimize_cmd::MhacoConstraintsArg::FeasibilityFirst,
+            scea_genes: SceaGenesArg::Population,
             threads: 1,
             reference: None,
             out: None,

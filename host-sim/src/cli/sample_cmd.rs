@@ -10,6 +10,7 @@ use rayon::prelude::*;
 
 use super::optimize_reentry::ReentryError;
 use crate::design::{DesignConfig, latin_hypercube};
+use crate::optim::population::sanitize;
 use crate::optim::{Problem, RealProblem};
 use crate::report::write_atomic;
 
@@ -69,7 +70,13 @@ pub fn run(a: &SampleArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
     let mut feasible = 0usize;
     for (x, e) in pts.iter().zip(evals) {
         let e = e?;
-        let v: f64 = e.constraints.iter().map(|g| g.max(0.0)).sum();
+        // The optimisers' violation: a failed evaluation (NaN values) is infeasible, written
+        // as an infinite violation (`f64::max` would take NaN for 0: feasible).
+        let (mut f, mut g) = (e.objectives.clone(), e.constraints.clone());
+        let v = match sanitize(&mut f, &mut g) {
+            v if v == f64::MAX => f64::INFINITY,
+            v => v,
+        };
         feasible += usize::from(v == 0.0);
         let row: Vec<String> = x
             .iter()

@@ -5,20 +5,30 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::{DesignError, Encoding, FixedNode, Limits, Objectives, ReentryProblem};
+use super::{DesignError, Encoding, FixedNode, Limits, Objectives, ReentryProblem, Simulator};
 use crate::scenario::{Scenario, read_scenario};
 
 /// Names of the built-in base cases.
-pub const PRESETS: [&str; 3] = ["horus-2b", "srm", "srm-altitude"];
+pub const PRESETS: [&str; 5] = [
+    "horus-2b",
+    "srm",
+    "srm-altitude",
+    "srm-analytical",
+    "srm-analytical-altitude",
+];
 
 /// A design problem in file units.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DesignConfig {
-    /// Base case: a preset name (`horus-2b`, `srm`, `srm-altitude`) or a scenario file (its
-    /// vehicle, environment, entry state, guidance settings and termination; its nodes are
-    /// replaced).
+    /// Base case: a preset name (`horus-2b`, `srm`, `srm-altitude`, `srm-analytical`,
+    /// `srm-analytical-altitude`) or a scenario file (its vehicle, environment, entry state,
+    /// guidance settings and termination; its nodes are replaced).
     pub base: String,
+    /// The simulator that evaluates (`numerical`, the default, or `analytical`: the glide
+    /// closed form flown segment by segment, [`crate::analytic::guided_glide`]).
+    #[serde(default, skip_serializing_if = "Simulator::is_numerical")]
+    pub simulator: Simulator,
     /// Decision encoding.
     pub encoding: Encoding,
     /// Constraints.
@@ -34,7 +44,9 @@ impl DesignConfig {
     /// node the reference initial attitude 40 deg / 0 deg, last node 0 deg / 0 deg at E-hat
     /// = 0, the thesis' sea-level standstill terminal node of sec. 9.3.3),
     /// `srm` (8 nodes, bank only, 100 km entry of thesis sec. 9.2), `srm-altitude` (the same
-    /// with the entry altitude a variable in 50 to 110 km).
+    /// with the entry altitude a variable in 50 to 110 km), `srm-analytical` and
+    /// `srm-analytical-altitude` (the same two on the analytical simulator, thesis sec. 9.2:
+    /// the entry speed and flight-path angle imposed by the glide closed form).
     ///
     /// # Errors
     /// [`DesignError::UnknownPreset`].
@@ -56,8 +68,8 @@ impl DesignConfig {
         };
         let encoding = match name {
             "horus-2b" => thesis(node(1.0, 40.0, 0.0), node(0.0, 0.0, 0.0), true),
-            "srm" => thesis(node(1.0, 0.0, 0.0), node(0.0, 0.0, 0.0), false),
-            "srm-altitude" => Encoding {
+            "srm" | "srm-analytical" => thesis(node(1.0, 0.0, 0.0), node(0.0, 0.0, 0.0), false),
+            "srm-altitude" | "srm-analytical-altitude" => Encoding {
                 entry_altitude_km: Some([50.0, 110.0]),
                 ..thesis(node(1.0, 0.0, 0.0), node(0.0, 0.0, 0.0), false)
             },
@@ -67,8 +79,14 @@ impl DesignConfig {
                 });
             }
         };
+        let simulator = if name.starts_with("srm-analytical") {
+            Simulator::Analytical
+        } else {
+            Simulator::Numerical
+        };
         Ok(Self {
             base: name.to_string(),
+            simulator,
             encoding,
             limits: Limits::default(),
             objectives: Objectives::default(),
@@ -98,7 +116,7 @@ impl DesignConfig {
                 };
                 Ok(sc)
             }
-            "srm" | "srm-altitude" => {
+            "srm" | "srm-altitude" | "srm-analytical" | "srm-analytical-altitude" => {
                 let mut sc = Scenario::srm_glide();
                 sc.name = "srm-design".into();
                 Ok(sc)
@@ -119,6 +137,7 @@ impl DesignConfig {
             self.limits,
             self.objectives,
             &self.base,
-        )
+        )?
+        .with_simulator(self.simulator)
     }
 }

@@ -1,13 +1,19 @@
 //! Re-entry mission design (issue 11): the thesis' guidance problems (sec. 4.2) for the
 //! generic optimisers of [`crate::optim`], whose `Problem` trait they implement. An evaluation
 //! flies the closed loop (guidance-core's `Guidance` at its 2 s clock in the numerical
-//! simulator).
+//! simulator), or for an analytical problem the glide closed form along the node table
+//! ([`analytical`]).
 //!
 //! * [`encoding`]: decision vector <-> node table (fixed end nodes, free energy nodes, the
 //!   entry altitude as an optional variable);
 //! * [`problem`]: [`ReentryProblem`] (objectives, constraints with `g <= 0` feasible);
-//! * [`config`]: the problem as a file section and the thesis presets.
+//! * [`config`]: the problem as a file section and the thesis presets;
+//! * [`analytical`]: which simulator evaluates (numerical closed loop or the analytical
+//!   node-guided glide).
 
+pub mod analytical;
+#[cfg(test)]
+mod analytical_tests;
 pub mod config;
 pub mod encoding;
 pub mod problem;
@@ -16,12 +22,14 @@ pub mod sample;
 mod tests;
 pub mod variable;
 
+pub use analytical::{AnalyticalModel, Simulator};
 pub use config::{DesignConfig, PRESETS};
 pub use encoding::{Encoding, FixedNode};
 pub use problem::{Limits, Objectives, ReentryProblem};
 pub use sample::latin_hypercube;
 pub use variable::VariableReentry;
 
+use crate::analytic::AnalyticError;
 use crate::optim::BoundsError;
 use crate::scenario::ScenarioError;
 
@@ -40,7 +48,7 @@ pub enum DesignError {
     },
     /// Not a preset name or scenario file.
     #[error(
-        "problem: field `base` = {name:?}: unknown preset; use one of horus-2b, srm, srm-altitude, or a scenario file"
+        "problem: field `base` = {name:?}: unknown preset; use one of horus-2b, srm, srm-altitude, srm-analytical, srm-analytical-altitude, or a scenario file"
     )]
     UnknownPreset {
         /// The name given.
@@ -57,6 +65,9 @@ pub enum DesignError {
     /// Invalid decision bounds.
     #[error("problem: encoding bounds: {0}")]
     Bounds(#[from] BoundsError),
+    /// The analytical simulator cannot fly the base (e.g. no usable drag polar).
+    #[error("problem: analytical simulator: {0}")]
+    Analytic(#[from] AnalyticError),
     /// The base scenario could not be read or built.
     #[error("problem: base scenario: {0}")]
     Scenario(#[from] ScenarioError),

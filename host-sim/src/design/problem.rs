@@ -1,6 +1,8 @@
 //! The re-entry guidance problem (thesis sec. 4.2): a decision is a node table (see
 //! [`Encoding`]); its evaluation flies the closed loop (guidance-core's `Guidance` at its 2 s
-//! clock in the numerical simulator) and returns
+//! clock in the numerical simulator; or, after [`ReentryProblem::with_simulator`] with
+//! [`Simulator::Analytical`], the analytical simulator's node-guided glide) and returns, from
+//! the flight's [`Summary`] either way,
 //!
 //! * objectives (minimised): `f_r = -theta / pi` (eq. 9.1; `theta` the flown range angle, the
 //!   integrated angle travelled over the planet, which like the thesis' can exceed pi, whereas
@@ -21,6 +23,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::analytical::{AnalyticalModel, Simulator};
 use super::{DesignError, Encoding};
 use crate::optim::{Bounds, EvalError, Evaluation, Problem, RealProblem};
 use crate::scenario::{Scenario, ScenarioError, fly};
@@ -87,6 +90,9 @@ pub struct ReentryProblem {
     objectives: Objectives,
     bounds: Bounds,
     file: String,
+    /// The analytical simulator's model when the problem is analytical
+    /// ([`ReentryProblem::with_simulator`]); `None`: the numerical closed loop.
+    analytical: Option<AnalyticalModel>,
 }
 
 impl ReentryProblem {
@@ -148,7 +154,39 @@ impl ReentryProblem {
             objectives,
             bounds,
             file: file.to_string(),
+            analytical: None,
         })
+    }
+
+    /// The problem evaluated by `simulator` (default: numerical). The objectives and
+    /// constraints are the same functions of the flight's summary
+    /// ([`ReentryProblem::evaluation_of`]) for both.
+    ///
+    /// # Errors
+    /// [`DesignError`] when the base cannot be flown analytically (see
+    /// [`AnalyticalModel::of`]), naming the field.
+    pub fn with_simulator(mut self, simulator: Simulator) -> Result<Self, DesignError> {
+        self.analytical = match simulator {
+            Simulator::Numerical => None,
+            Simulator::Analytical => Some(AnalyticalModel::of(&self.base)?),
+        };
+        Ok(self)
+    }
+
+    /// Which simulator evaluates the problem.
+    #[must_use]
+    pub fn simulator(&self) -> Simulator {
+        if self.analytical.is_some() {
+            Simulator::Analytical
+        } else {
+            Simulator::Numerical
+        }
+    }
+
+    /// The analytical simulator's model, for an analytical problem.
+    #[must_use]
+    pub fn analytical(&self) -> Option<&AnalyticalModel> {
+        self.analytical.as_ref()
     }
 
     /// The encoding.
@@ -221,13 +259,20 @@ impl ReentryProblem {
         Evaluation::with_constraints(f, g)
     }
 
-    /// Fly a scenario of this problem and evaluate it (a failed flight is a failed
-    /// evaluation, not an error).
+    /// Fly a scenario of this problem with the problem's simulator and evaluate it (a failed
+    /// flight, or an analytical one outside the closed form's domain, is a failed evaluation,
+    /// not an error).
     #[must_use]
     pub fn evaluate_scenario(&self, sc: &Scenario) -> Evaluation {
-        match fly(sc, &self.file, &mut |_| {}) {
-            Ok(flight) => self.evaluation_of(&flight.result.summary),
-            Err(_) => Evaluation::failure(self.objectives(), self.constraints()),
+        let summary = match &self.analytical {
+            Some(model) => model.fly(sc).ok().map(|run| run.result.summary),
+            None => fly(sc, &self.file, &mut |_| {})
+                .ok()
+                .map(|flight| flight.result.summary),
+        };
+        match summary {
+            Some(s) => self.evaluation_of(&s),
+            None => Evaluation::failure(self.objectives(), self.constraints()),
         }
     }
 }
