@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
 use super::guidance_settings::CampaignGuidance;
+use super::imu::{ImuModel, ImuSource};
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;
 use super::{CampaignError, Mode};
@@ -137,6 +138,12 @@ pub fn fly_case(
         lift: 0.0,
         drag: 0.0,
         mass: 0.0,
+        imu_lift_bias_m_s2: 0.0,
+        imu_drag_bias_m_s2: 0.0,
+        imu_lift_scale: 0.0,
+        imu_drag_scale: 0.0,
+        imu_noise_m_s2: 0.0,
+        imu_noise_seed: 0,
     };
     let d = draw.copied().unwrap_or(zero);
     vehicle.mass_kg *= 1.0 + d.mass;
@@ -232,8 +239,9 @@ pub fn fly_case(
             if mode == Mode::ReplanEstimation {
                 g = g.with_estimator(AeroEstimator::new(setup.estimator).map_err(gerr)?);
             }
-            let s = LateralSource::new(g, Some(logic()?));
+            let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
+                let s = &s.source;
                 let fb = s
                     .inner
                     .reports
