@@ -241,7 +241,9 @@ pub fn predict_glide_with<S: Real>(
 }
 
 /// As [`predict_glide_with`], plus the range of the sink from the state to the glide start
-/// radius ([`sink_range_angle`]): a state above the equilibrium of the commanded lift (after a
+/// radius ([`sink_range_angle_within`], the deficit acting for at most the glide's time to go
+/// at the mean of the current and final speeds; on long glides the same as
+/// [`sink_range_angle`]): a state above the equilibrium of the commanded lift (after a
 /// bank change) sinks to it in a phugoid and flies farther than the glide started at its
 /// equilibrium. Against integration (glide range-error map, docs/VINH.md) every start of the
 /// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
@@ -249,8 +251,9 @@ pub fn predict_glide_with<S: Real>(
 /// [`GLIDE_MAX_START_OFFSET_M`] (without the sink: [`GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
 /// of total L/D).
 ///
-/// Not the re-planner's predictor: in the closed loop a state above the predicted glide start
-/// radius is mostly model error (a denser atmosphere than the predictor's raises the real
+/// The re-planner uses it only in [`PredictorMode::AutoSink`] (with the time-to-go cap), meant
+/// for a model corrected onboard: with an uncorrected model a state above the predicted glide
+/// start radius is mostly model error (a denser atmosphere than the predictor's raises the real
 /// equilibrium), not a sink to come, and the sink term then adds range that is never flown
 /// (SRM glide with density x 1.1: final range error -6.4 km against +2.8 km without it;
 /// docs/VINH.md).
