@@ -243,7 +243,7 @@ pub fn predict_glide_with<S: Real>(
 /// As [`predict_glide_with`], plus the range of the sink from the state to the glide start
 /// radius ([`sink_range_angle_within`], the deficit acting for at most the glide's time to go
 /// at the mean of the current and final speeds; on long glides the same as
-/// [`sink_range_angle`]): a state above the equilibrium of the commanded lift (after a
+/// [`sink_range_angle`]; nothing for a state below the glide start radius): a state above the equilibrium of the commanded lift (after a
 /// bank change) sinks to it in a phugoid and flies farther than the glide started at its
 /// equilibrium. Against integration (glide range-error map, docs/VINH.md) every start of the
 /// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
@@ -306,7 +306,11 @@ fn glide_prediction<S: Real>(
         // and final speeds along the glide's range.
         let v_mean = (state.speed_m_s + config.final_speed_m_s).half();
         let t_go = end.range_angle_rad * r_g / v_mean;
-        end.range_angle_rad + sink_range_angle_within(planet, atmosphere, state, r_g, t_go)
+        // Only a sink: a state below the glide start radius (a climb to come) adds nothing
+        // (the symmetric negative term is not validated, and it makes the range fall with `f`
+        // near the end, where a bracket could then close on a root at almost full lift).
+        let sink_rad = sink_range_angle_within(planet, atmosphere, state, r_g, t_go);
+        end.range_angle_rad + sink_rad.max(S::ZERO)
     } else {
         end.range_angle_rad
     };

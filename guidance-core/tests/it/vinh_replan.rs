@@ -1066,3 +1066,67 @@ fn replan_output_is_clamped_exactly_into_its_bounds() {
     );
     assert_eq!(r.vertical_fraction, f_max);
 }
+
+/// `PredictorMode::AutoSink`: for a state lofted above its equilibrium (as after a bank
+/// reversal) the sink adds range, so for the same target the solve commands less vertical lift
+/// than `Auto`, mid-glide and near the end (no fall-back, and no root at almost full lift: the
+/// sink term is never negative).
+#[test]
+fn auto_sink_commands_less_lift_when_lofted_and_never_falls_back_on_the_sink() {
+    use guidance_core::vinh::predict::glide_start_radius;
+    let solve = |v: f64, dh: f64, target_m: f64, mode| {
+        let lift = LiftControl {
+            lambda: 1.0,
+            vertical_fraction: 0.5,
+        };
+        let r_eq = glide_start_radius(&planet(), &atmosphere(), &srm(), &lift, v, R_EARTH + 150e3)
+            .unwrap();
+        let nav = NavState {
+            radius_m: r_eq + dh,
+            speed_m_s: v,
+            flight_path_angle_rad: 0.0,
+            ..glide_nav(0.0)
+        };
+        let cfg = ReplanConfig {
+            min_vertical_fraction: 0.05,
+            mode,
+            ..config()
+        };
+        replan(
+            &planet(),
+            &atmosphere(),
+            &srm(),
+            &nav,
+            target_m,
+            &ReplanLimits {
+                heat_flux_w_m2: 1e9,
+                g_load: 1e3,
+            },
+            &cfg,
+        )
+    };
+    // Mid-glide, 2 km above the equilibrium of cos(sigma) = 0.5.
+    let auto = solve(5000.0, 2000.0, 1.5e6, PredictorMode::Auto);
+    let sink = solve(5000.0, 2000.0, 1.5e6, PredictorMode::AutoSink);
+    println!("mid-glide: auto {auto:?}\nsink {sink:?}");
+    assert_eq!(auto.case, ReplanCase::Converged);
+    assert_eq!(sink.case, ReplanCase::Converged);
+    assert!(sink.vertical_fraction < auto.vertical_fraction);
+    // Near the end: no fall-back on the sink in any of these states.
+    for (v, dh, target) in [
+        (2600.0, 2000.0, 20e3),
+        (2560.0, 1000.0, 10e3),
+        (2700.0, 3000.0, 40e3),
+    ] {
+        let a = solve(v, dh, target, PredictorMode::Auto);
+        let s = solve(v, dh, target, PredictorMode::AutoSink);
+        assert!(!matches!(
+            s.case,
+            ReplanCase::FallBack(ReplanFallBack::NotMonotone)
+        ));
+        assert_eq!(a.case, ReplanCase::Converged);
+        assert_eq!(s.case, ReplanCase::Converged);
+        assert!(s.vertical_fraction < a.vertical_fraction);
+        assert!(s.predictor_calls <= MAX_PREDICTOR_CALLS);
+    }
+}
