@@ -7,7 +7,9 @@ use guidance_core::geo::along_cross_track;
 use guidance_core::guidance::HostGuidance;
 use guidance_core::interp::Interpolation;
 use guidance_core::lateral::BankReversalLogic;
-use guidance_core::replan::{HostReplanningGuidance, ReplanCase, ReplanningGuidance};
+use guidance_core::replan::{
+    HostReplanningGuidance, PredictorMode, ReplanCase, ReplanningConfig, ReplanningGuidance,
+};
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
@@ -233,7 +235,7 @@ pub fn fly_case(
                 Interpolation::Linear,
                 setup.energy,
                 sc.guidance.initial,
-                setup.replanning,
+                replanning_of(setup, mode),
             )
             .map_err(gerr)?;
             if mode == Mode::ReplanEstimation {
@@ -304,6 +306,18 @@ pub fn fly_case(
         final_latitude_rad: end.latitude_rad,
         final_longitude_rad: end.longitude_rad,
     })
+}
+
+/// The re-planner settings of `mode`: the sink to the equilibrium
+/// (`PredictorMode::AutoSink`, `glide_sink`) only with onboard estimation, whose density scale
+/// makes an offset from the equilibrium a transient rather than model error; without it the
+/// plain `Auto` predictor.
+fn replanning_of(setup: &CampaignSetup, mode: Mode) -> ReplanningConfig<f64> {
+    let mut r = setup.replanning;
+    if mode != Mode::ReplanEstimation && r.solver.mode == PredictorMode::AutoSink {
+        r.solver.mode = PredictorMode::Auto;
+    }
+    r
 }
 
 /// What a source kept: reversals, re-plans, fall-backs, final onboard estimate.

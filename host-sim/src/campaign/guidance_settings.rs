@@ -34,8 +34,9 @@ pub struct CampaignGuidance {
     pub min_vertical_fraction: f64,
     /// Largest vertical lift fraction \[-\] (default 1).
     pub max_vertical_fraction: f64,
-    /// The re-planner's glide predicts the sink from the current radius to the glide's
-    /// equilibrium (`PredictorMode::AutoSink`; `false`: `PredictorMode::Auto`) (default true).
+    /// In mode `replan-estimation` the re-planner's glide predicts the sink from the current
+    /// radius to the glide's equilibrium (`PredictorMode::AutoSink`; `false`:
+    /// `PredictorMode::Auto`, as the other re-planning mode always does) (default true).
     pub glide_sink: bool,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
