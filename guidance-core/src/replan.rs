@@ -44,9 +44,9 @@
 //! glide when the chain is out of domain ([`PredictorMode::Auto`]).
 //!
 //! # Worst-case cost
-//! `max_iterations + 5 + LIMIT_GRID` predictor calls (at most
-//! [`MAX_PREDICTOR_CALLS`]` = 40 + 5 + 16 = 61`; `+ 3` instead of `+ 5` outside
-//! [`PredictorMode::Auto`]); each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
+//! `max_iterations + 7 + LIMIT_GRID` predictor calls (at most
+//! [`MAX_PREDICTOR_CALLS`]` = 40 + 7 + 16 = 63`; `+ 5` in [`PredictorMode::Auto`], `+ 3`
+//! in [`PredictorMode::Chain`] and [`PredictorMode::Glide`]); each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
 //! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
 //! all but the last and the limit grid are range-only. In practice Brent's method converges in
 //! a handful of predictions and stops at the scalar type's working precision (the worst-case
@@ -83,10 +83,12 @@ pub const MAX_ITERATIONS: u8 = 40;
 /// Fractions scanned when a limit binds.
 pub const LIMIT_GRID: u8 = 16;
 
-/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 5 + LIMIT_GRID` (two end
+/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 7 + LIMIT_GRID` (two end
 /// points of a failed [`PredictorMode::Auto`] chain attempt, two end points of the glide
-/// attempt, the range search, one prediction with peaks at the result, the limit grid).
-pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 5 + LIMIT_GRID;
+/// attempt, in [`PredictorMode::AutoSink`] two more of the glide without the sink when the
+/// range with it is not monotone, the range search, one prediction with peaks at the result,
+/// the limit grid).
+pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 7 + LIMIT_GRID;
 
 /// How far above the current radius a glide-mode prediction may start \[m\]. A vehicle given
 /// more lift than its equilibrium glide needs climbs to a higher equilibrium: in an
@@ -112,6 +114,15 @@ pub enum PredictorMode {
     /// whole solve is redone in [`PredictorMode::Glide`] (never mixing the two in one solve,
     /// so the bracketing stays consistent).
     Auto,
+    /// [`PredictorMode::Auto`] whose glide adds the range of the sink from the current radius
+    /// to the glide start radius ([`predict_glide_with_sink`]): a vehicle above the
+    /// equilibrium of the commanded lift (after a bank reversal has lofted it, or a bank
+    /// decrease) flies farther than the glide started at its equilibrium. Meant for a
+    /// re-planner whose model is corrected onboard ([`crate::estimate`]): with the model's own
+    /// density error uncorrected, an offset from the equilibrium is mostly model error, not a
+    /// sink to come ([`predict_glide_with_sink`]). Measured in the dispersion campaigns
+    /// (docs/DISPERSIONS.md).
+    AutoSink,
 }
 
 /// Vehicle limits checked on the prediction (the predictor's [`crate::vinh::LoadLimits`]).
@@ -229,7 +240,9 @@ pub fn predict_glide_with<S: Real>(
 }
 
 /// As [`predict_glide_with`], plus the range of the sink from the state to the glide start
-/// radius ([`sink_range_angle`]): a state above the equilibrium of the commanded lift (after a
+/// radius ([`sink_range_angle_within`], the deficit acting for at most the glide's time to go
+/// at the mean of the current and final speeds; on long glides the same as
+/// [`sink_range_angle`]; nothing for a state below the glide start radius): a state above the equilibrium of the commanded lift (after a
 /// bank change) sinks to it in a phugoid and flies farther than the glide started at its
 /// equilibrium. Against integration (glide range-error map, docs/VINH.md) every start of the
 /// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
@@ -237,8 +250,9 @@ pub fn predict_glide_with<S: Real>(
 /// [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_M`] (without the sink: [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
 /// of total L/D).
 ///
-/// Not the re-planner's predictor: in the closed loop a state above the predicted glide start
-/// radius is mostly model error (a denser atmosphere than the predictor's raises the real
+/// The re-planner uses it only in [`PredictorMode::AutoSink`] (with the time-to-go cap), meant
+/// for a model corrected onboard: with an uncorrected model a state above the predicted glide
+/// start radius is mostly model error (a denser atmosphere than the predictor's raises the real
 /// equilibrium), not a sink to come, and the sink term then adds range that is never flown
 /// (SRM glide with density x 1.1: final range error -6.4 km against +2.8 km without it;
 /// docs/VINH.md).
@@ -287,7 +301,15 @@ fn glide_prediction<S: Real>(
     let glide = GlideSolution::new(planet, atmosphere, vehicle, lift, r_g)?;
     let end = glide.point_at_speed(config.final_speed_m_s)?;
     let theta = if sink {
-        end.range_angle_rad + sink_range_angle(planet, atmosphere, state, r_g)
+        // The sink cannot last longer than the flight: time to go at the mean of the current
+        // and final speeds along the glide's range.
+        let v_mean = (state.speed_m_s + config.final_speed_m_s).half();
+        let t_go = end.range_angle_rad * r_g / v_mean;
+        // Only a sink: a state below the glide start radius (a climb to come) adds nothing
+        // (the symmetric negative term is not validated, and it makes the range fall with `f`
+        // near the end, where a bracket could then close on a root at almost full lift).
+        let sink_rad = sink_range_angle_within(planet, atmosphere, state, r_g, t_go);
+        end.range_angle_rad + sink_rad.max(S::ZERO)
     } else {
         end.range_angle_rad
     };
@@ -374,6 +396,22 @@ pub fn sink_range_angle<S: Real>(
     state: &EntryState<S>,
     r_g: S,
 ) -> S {
+    sink_range_angle_within(planet, atmosphere, state, r_g, S::MAX)
+}
+
+/// [`sink_range_angle`] when only `time_to_go_s` \[s\] of flight is left: the drag deficit
+/// acts for `min(1/w, time_to_go_s)` instead of one radian of phugoid phase `1/w` (near the end
+/// of the flight there is no time for the sink to pay out; the same as
+/// [`sink_range_angle`] when `time_to_go_s >= 1/w`). A non-finite or negative time counts as
+/// unbounded.
+#[must_use]
+pub fn sink_range_angle_within<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    state: &EntryState<S>,
+    r_g: S,
+    time_to_go_s: S,
+) -> S {
     let r = state.radius_m;
     let v = state.speed_m_s;
     let h_s = atmosphere.scale_height_m;
@@ -383,7 +421,13 @@ pub fn sink_range_angle<S: Real>(
     }
     let deficit = S::ONE - (-(r - r_g) / h_s).exp();
     let w = (a / h_s).sqrt_raw();
-    let d = v / r * deficit / w;
+    let one_radian_s = S::ONE / w;
+    let acting_s = if time_to_go_s.is_finite() && time_to_go_s >= S::ZERO {
+        one_radian_s.min(time_to_go_s)
+    } else {
+        one_radian_s
+    };
+    let d = v / r * deficit * acting_s;
     if d.is_finite() { d } else { S::ZERO }
 }
 

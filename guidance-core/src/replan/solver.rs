@@ -26,7 +26,7 @@ use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
 
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
-    ReplanFallBack, ReplanLimits, ReplanResult, predict_glide_with,
+    ReplanFallBack, ReplanLimits, ReplanResult, predict_glide_with, predict_glide_with_sink,
 };
 
 /// Where the solver is.
@@ -68,6 +68,9 @@ pub struct ReplanSolver<S> {
     limits: ReplanLimits<S>,
     config: ReplanConfig<S>,
     glide: bool,
+    /// The glide predicts the sink ([`PredictorMode::AutoSink`], until a non-monotone range
+    /// turns it off for the rest of the solve).
+    sink: bool,
     calls: u8,
     phase: Phase<S>,
 }
@@ -122,6 +125,7 @@ impl<S: Real> ReplanSolver<S> {
             limits: *limits,
             config: *config,
             glide: config.mode == PredictorMode::Glide,
+            sink: config.mode == PredictorMode::AutoSink,
             calls: 0,
             phase: Phase::EndLo,
         };
@@ -195,7 +199,17 @@ impl<S: Real> ReplanSolver<S> {
             lambda: self.config.lambda,
             vertical_fraction: f,
         };
-        if self.glide {
+        if self.glide && self.sink {
+            predict_glide_with_sink(
+                &self.planet,
+                &self.atmosphere,
+                &self.vehicle,
+                &lift,
+                &self.state,
+                &self.config.predictor,
+                peaks,
+            )
+        } else if self.glide {
             predict_glide_with(
                 &self.planet,
                 &self.atmosphere,
@@ -288,6 +302,13 @@ impl<S: Real> ReplanSolver<S> {
                         Err(e) => return self.end_failed(e),
                     };
                     if range_hi < range_lo {
+                        if self.glide && self.sink {
+                            // PredictorMode::AutoSink: near the end the sink term (falling
+                            // with f) outweighs the glide's range; redo without it (once).
+                            self.sink = false;
+                            self.phase = Phase::EndLo;
+                            continue;
+                        }
                         return self.fail(ReplanFallBack::NotMonotone);
                     }
                     self.phase = if target <= range_lo {
@@ -400,10 +421,14 @@ impl<S: Real> ReplanSolver<S> {
         }
     }
 
-    /// A prediction at an end of the interval failed: in [`PredictorMode::Auto`] redo the ends
-    /// with the glide (once), else fall back.
+    /// A prediction at an end of the interval failed: in [`PredictorMode::Auto`] (or
+    /// [`PredictorMode::AutoSink`]) redo the ends with the glide (once), else fall back.
     fn end_failed(&mut self, e: VinhError) -> Option<ReplanResult<S>> {
-        if self.config.mode == PredictorMode::Auto && !self.glide {
+        let auto = matches!(
+            self.config.mode,
+            PredictorMode::Auto | PredictorMode::AutoSink
+        );
+        if auto && !self.glide {
             self.glide = true;
             self.phase = Phase::EndLo;
             None

@@ -98,6 +98,7 @@ impl ReplanItem {
                     PredictorMode::Chain => 0.0,
                     PredictorMode::Glide => 1.0,
                     PredictorMode::Auto => 2.0,
+                    PredictorMode::AutoSink => 3.0,
                 },
                 f64::from(max_iterations),
                 f64::from(max_skips),
@@ -173,10 +174,11 @@ impl ReplanItem {
                     .map_err(|_| SetupError::BadItem)?,
                 steps_per_tick: byte(b)?,
                 apply_out_of_reach: small_int(c, 1)? == 1,
-                mode: match small_int(d, 2)? {
+                mode: match small_int(d, 3)? {
                     0 => PredictorMode::Chain,
                     1 => PredictorMode::Glide,
-                    _ => PredictorMode::Auto,
+                    2 => PredictorMode::Auto,
+                    _ => PredictorMode::AutoSink,
                 },
                 max_iterations: byte(e)?,
                 max_skips: byte(f)?,
@@ -480,6 +482,7 @@ mod tests {
                 PredictorMode::Chain,
                 PredictorMode::Glide,
                 PredictorMode::Auto,
+                PredictorMode::AutoSink,
             ] {
                 let rc = config(target, mode);
                 for it in replan_items(&rc) {
@@ -505,7 +508,7 @@ mod tests {
             (1, 70_000.0),
             (2, 256.0),
             (3, 2.0),
-            (4, 3.0),
+            (4, 4.0),
             (5, -1.0),
         ] {
             let mut s = schedule;

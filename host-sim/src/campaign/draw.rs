@@ -8,7 +8,7 @@ use super::settings::{DispersionSettings, Distribution, distribution_of};
 use crate::optim::OptimRng;
 
 /// The dispersed values of one case (offsets in SI units and radians; scales as fractions).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct CaseDraw {
     /// Case index.
     pub index: u32,
@@ -38,7 +38,31 @@ pub struct CaseDraw {
     pub drag: f64,
     /// Mass scale offset (fraction).
     pub mass: f64,
+    /// IMU bias of the sensed lift acceleration \[m/s^2\] (absent in case files of earlier
+    /// versions: 0).
+    #[serde(default)]
+    pub imu_lift_bias_m_s2: f64,
+    /// IMU bias of the sensed drag acceleration \[m/s^2\].
+    #[serde(default)]
+    pub imu_drag_bias_m_s2: f64,
+    /// IMU scale-factor error of the sensed lift acceleration (fraction).
+    #[serde(default)]
+    pub imu_lift_scale: f64,
+    /// IMU scale-factor error of the sensed drag acceleration (fraction).
+    #[serde(default)]
+    pub imu_drag_scale: f64,
+    /// IMU white noise per sample, standard deviation \[m/s^2\] (from the settings, not
+    /// drawn).
+    #[serde(default)]
+    pub imu_noise_m_s2: f64,
+    /// Seed of the case's IMU noise generator (from the campaign seed and the case index).
+    #[serde(default)]
+    pub imu_noise_seed: u64,
 }
+
+/// Stream constant mixed into the campaign seed for the IMU noise generator of a case (a
+/// generator of its own, so the noise never shifts the other draws).
+pub const IMU_NOISE_STREAM: u64 = 0x494D_555F_4E4F_4953;
 
 /// The generator seed of case `index` (a SplitMix64 mix of seed and index).
 #[must_use]
@@ -51,7 +75,7 @@ pub fn case_seed(seed: u64, index: u32) -> u64 {
 
 /// A standard normal draw truncated at 3 (Box-Muller, rejection above 3; written here so the
 /// bit pattern never depends on a distribution crate).
-fn standard_normal_3(rng: &mut OptimRng) -> f64 {
+pub(crate) fn standard_normal_3(rng: &mut OptimRng) -> f64 {
     loop {
         let u1 = 1.0 - rng.uniform(); // (0, 1]
         let u2 = rng.uniform();
@@ -93,5 +117,12 @@ pub fn draw_case(s: &DispersionSettings, index: u32) -> CaseDraw {
         lift: d(&mut rng, &s.lift),
         drag: d(&mut rng, &s.drag),
         mass: d(&mut rng, &s.mass),
+        // Drawn after the others: the values above are those of earlier versions.
+        imu_lift_bias_m_s2: d(&mut rng, &s.imu_bias_m_s2),
+        imu_drag_bias_m_s2: d(&mut rng, &s.imu_bias_m_s2),
+        imu_lift_scale: d(&mut rng, &s.imu_scale_factor),
+        imu_drag_scale: d(&mut rng, &s.imu_scale_factor),
+        imu_noise_m_s2: s.imu_noise_m_s2,
+        imu_noise_seed: case_seed(s.seed ^ IMU_NOISE_STREAM, index),
     }
 }

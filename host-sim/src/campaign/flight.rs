@@ -7,11 +7,15 @@ use guidance_core::geo::along_cross_track;
 use guidance_core::guidance::HostGuidance;
 use guidance_core::interp::Interpolation;
 use guidance_core::lateral::BankReversalLogic;
-use guidance_core::replan::{HostReplanningGuidance, ReplanCase, ReplanReport, ReplanningGuidance};
+use guidance_core::replan::{
+    HostReplanningGuidance, PredictorMode, ReplanCase, ReplanReport, ReplanningConfig,
+    ReplanningGuidance,
+};
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
 use super::guidance_settings::CampaignGuidance;
+use super::imu::{ImuModel, ImuSource};
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;
 use super::{CampaignError, Mode};
@@ -154,6 +158,12 @@ pub fn fly_case_logged(
         lift: 0.0,
         drag: 0.0,
         mass: 0.0,
+        imu_lift_bias_m_s2: 0.0,
+        imu_drag_bias_m_s2: 0.0,
+        imu_lift_scale: 0.0,
+        imu_drag_scale: 0.0,
+        imu_noise_m_s2: 0.0,
+        imu_noise_seed: 0,
     };
     let d = draw.copied().unwrap_or(zero);
     vehicle.mass_kg *= 1.0 + d.mass;
@@ -243,14 +253,15 @@ pub fn fly_case_logged(
                 Interpolation::Linear,
                 setup.energy,
                 sc.guidance.initial,
-                setup.replanning,
+                replanning_of(setup, mode),
             )
             .map_err(gerr)?;
             if mode == Mode::ReplanEstimation {
                 g = g.with_estimator(AeroEstimator::new(setup.estimator).map_err(gerr)?);
             }
-            let s = LateralSource::new(g, Some(logic()?));
+            let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
+                let s = &s.source;
                 let fb = s
                     .inner
                     .reports
@@ -322,6 +333,18 @@ pub fn fly_case_logged(
         final_longitude_rad: end.longitude_rad,
     };
     Ok((case, log))
+}
+
+/// The re-planner settings of `mode`: the sink to the equilibrium
+/// (`PredictorMode::AutoSink`, `glide_sink`) only with onboard estimation, whose density scale
+/// makes an offset from the equilibrium a transient rather than model error; without it the
+/// plain `Auto` predictor.
+fn replanning_of(setup: &CampaignSetup, mode: Mode) -> ReplanningConfig<f64> {
+    let mut r = setup.replanning;
+    if mode != Mode::ReplanEstimation && r.solver.mode == PredictorMode::AutoSink {
+        r.solver.mode = PredictorMode::Auto;
+    }
+    r
 }
 
 /// What a source kept: reversals, re-plans, fall-backs, final onboard estimate, re-plan log.

@@ -34,6 +34,10 @@ pub struct CampaignGuidance {
     pub min_vertical_fraction: f64,
     /// Largest vertical lift fraction \[-\] (default 1).
     pub max_vertical_fraction: f64,
+    /// In mode `replan-estimation` the re-planner's glide predicts the sink from the current
+    /// radius to the glide's equilibrium (`PredictorMode::AutoSink`; `false`:
+    /// `PredictorMode::Auto`, as the other re-planning mode always does) (default true).
+    pub glide_sink: bool,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -60,6 +64,7 @@ impl Default for CampaignGuidance {
             replan_tolerance_km: 1.0,
             min_vertical_fraction: 0.05,
             max_vertical_fraction: 1.0,
+            glide_sink: true,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],

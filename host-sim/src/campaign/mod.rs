@@ -17,6 +17,7 @@
 pub mod draw;
 pub mod flight;
 pub mod guidance_settings;
+pub mod imu;
 pub mod models;
 pub mod output;
 pub mod plot;

@@ -64,6 +64,13 @@ pub struct DispersionSettings {
     pub drag: Dispersion,
     /// Mass scale (fraction).
     pub mass: Dispersion,
+    /// IMU bias of each sensed acceleration (lift, drag), constant over a flight \[m/s^2\].
+    pub imu_bias_m_s2: Dispersion,
+    /// IMU scale-factor error of each sensed acceleration, constant over a flight (fraction).
+    pub imu_scale_factor: Dispersion,
+    /// IMU white noise of each sensed acceleration per 2 s sample, standard deviation
+    /// \[m/s^2\], `>= 0`.
+    pub imu_noise_m_s2: f64,
     /// Terminal interface \[m/s\]: the energy where the nominal flight slows to this speed
     /// (e.g. the start of the terminal area); absent: the scenario's own end.
     pub interface_speed_m_s: Option<f64>,
@@ -89,6 +96,9 @@ impl Default for DispersionSettings {
             lift: Dispersion::normal(0.05),
             drag: Dispersion::normal(0.05),
             mass: Dispersion::normal(0.03),
+            imu_bias_m_s2: Dispersion::normal(0.01),
+            imu_scale_factor: Dispersion::normal(0.001),
+            imu_noise_m_s2: 0.005,
             interface_speed_m_s: None,
             guidance: CampaignGuidance::default(),
         }
@@ -113,7 +123,7 @@ pub enum Distribution {
 impl DispersionSettings {
     /// The dispersions by field name (for validation and drawing, in a fixed order).
     #[must_use]
-    pub fn fields(&self) -> [(&'static str, &Dispersion); 11] {
+    pub fn fields(&self) -> [(&'static str, &Dispersion); 13] {
         [
             ("altitude_km", &self.altitude_km),
             ("speed_m_s", &self.speed_m_s),
@@ -126,6 +136,8 @@ impl DispersionSettings {
             ("lift", &self.lift),
             ("drag", &self.drag),
             ("mass", &self.mass),
+            ("imu_bias_m_s2", &self.imu_bias_m_s2),
+            ("imu_scale_factor", &self.imu_scale_factor),
         ]
     }
 
@@ -183,6 +195,20 @@ impl DispersionSettings {
                 "interface_speed_m_s",
                 v.to_string(),
                 "must be finite and > 0",
+            ));
+        }
+        if !(self.imu_noise_m_s2.is_finite() && self.imu_noise_m_s2 >= 0.0) {
+            return Err(bad(
+                "imu_noise_m_s2",
+                self.imu_noise_m_s2.to_string(),
+                "must be finite and >= 0",
+            ));
+        }
+        if self.imu_scale_factor.three_sigma >= 0.3 {
+            return Err(bad(
+                "imu_scale_factor.three_sigma",
+                self.imu_scale_factor.three_sigma.to_string(),
+                "must be < 0.3 (30 %)",
             ));
         }
         if !(self.density_wavelength_km.is_finite() && self.density_wavelength_km > 0.0) {

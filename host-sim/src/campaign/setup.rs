@@ -276,7 +276,11 @@ impl CampaignSetup {
                     final_speed_m_s: v_f,
                     max_skips: 4,
                 },
-                mode: PredictorMode::Auto,
+                mode: if gs.glide_sink {
+                    PredictorMode::AutoSink
+                } else {
+                    PredictorMode::Auto
+                },
             },
             model,
             apply_out_of_reach: true,

@@ -248,6 +248,9 @@ pub enum PredictorFile {
     Glide,
     /// The chain, the glide when the chain is out of its domain.
     Auto,
+    /// As `auto`, the glide with the sink to its equilibrium (`"auto-sink"`).
+    #[serde(rename = "auto-sink")]
+    AutoSink,
 }
 
 /// `[replanning]`: `guidance_core::replan::ReplanningGuidance` on the scenario's (energy-indexed)
@@ -283,7 +286,7 @@ pub struct ReplanningFile {
     pub max_iterations: Option<Num>,
     /// Predictor skip budget.
     pub max_skips: Option<Num>,
-    /// `"chain"`, `"glide"` or `"auto"`.
+    /// `"chain"`, `"glide"`, `"auto"` or `"auto-sink"`.
     pub predictor: Option<PredictorFile>,
     /// Apply the nearest end when the target is out of reach.
     pub apply_out_of_reach: Option<bool>,

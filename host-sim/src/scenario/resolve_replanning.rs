@@ -181,6 +181,7 @@ pub(super) fn replanning(
             PredictorFile::Chain => PredictorMode::Chain,
             PredictorFile::Glide => PredictorMode::Glide,
             PredictorFile::Auto => PredictorMode::Auto,
+            PredictorFile::AutoSink => PredictorMode::AutoSink,
         },
         apply_out_of_reach: t.apply_out_of_reach.unwrap_or(true),
         polar_mach,

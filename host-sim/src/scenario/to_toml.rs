@@ -193,6 +193,7 @@ fn replanning(s: &mut String, rp: &ReplanningSpec, r: f64) {
             PredictorMode::Chain => "chain",
             PredictorMode::Glide => "glide",
             PredictorMode::Auto => "auto",
+            PredictorMode::AutoSink => "auto-sink",
         },
         rp.apply_out_of_reach,
         rp.polar_mach

@@ -164,7 +164,7 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
         let chain = match s.mode {
             PredictorMode::Chain => true,
             PredictorMode::Glide => false,
-            PredictorMode::Auto => {
+            PredictorMode::Auto | PredictorMode::AutoSink => {
                 chain_ok(s.min_vertical_fraction) && chain_ok(s.max_vertical_fraction)
             }
         };
