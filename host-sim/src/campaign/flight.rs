@@ -339,7 +339,8 @@ pub fn fly_case_logged(
 /// (`PredictorMode::AutoSink`, `glide_sink`) only with onboard estimation, whose density scale
 /// makes an offset from the equilibrium a transient rather than model error; without it the
 /// plain `Auto` predictor.
-fn replanning_of(setup: &CampaignSetup, mode: Mode) -> ReplanningConfig<f64> {
+#[must_use]
+pub fn replanning_of(setup: &CampaignSetup, mode: Mode) -> ReplanningConfig<f64> {
     let mut r = setup.replanning;
     if mode != Mode::ReplanEstimation && r.solver.mode == PredictorMode::AutoSink {
         r.solver.mode = PredictorMode::Auto;

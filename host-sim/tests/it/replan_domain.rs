@@ -305,7 +305,7 @@ pub fn campaign(name: &str, sc: &Scenario, interface: Option<f64>, cases: u32) -
             let (_, log) = fly_case_logged(&setup, Some(&draw), mode).unwrap();
             out.extend(recompute(
                 &format!("{name} campaign {mode:?}"),
-                &setup.replanning,
+                &host_sim::campaign::flight::replanning_of(&setup, mode),
                 &log,
             ));
         }
