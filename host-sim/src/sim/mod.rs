@@ -35,7 +35,6 @@ pub use results::{
 pub use run::{Progress, simulate};
 pub use source::{
     AttitudeSource, CoreGuidance, FixedAttitude, FlightGuidance, GuidanceSource, TickError,
-    ramp_kink,
 };
 pub(crate) use stop::ActiveRun;
 pub use stop::{hold_new_runs, request_stop, runs_active, stop_requested};
