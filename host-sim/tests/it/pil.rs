@@ -183,8 +183,10 @@ fn pil_reports_firmware_that_exits_without_opening_the_link() {
 /// firmware is started (not a firmware or link error), naming the vehicle file.
 #[test]
 fn pil_vehicle_load_failure_is_a_scenario_error() {
-    let mut sc = host_sim::scenario::Scenario::default();
-    sc.vehicle = host_sim::scenario::VehicleSpec::File(PathBuf::from("/nonexistent/vehicle.toml"));
+    let sc = host_sim::scenario::Scenario {
+        vehicle: host_sim::scenario::VehicleSpec::File(PathBuf::from("/nonexistent/vehicle.toml")),
+        ..Default::default()
+    };
     let dir = fresh("vehicle");
     let mut cfg = PilConfig::new(PathBuf::from("/nonexistent/pil-firmware.elf"));
     cfg.fifo_parent = dir.clone();
