@@ -1,6 +1,8 @@
 //! `guidance-fuzz`: a seeded fuzz harness on stable Rust over guidance-core's flight-code entry
 //! points (issue 8.11). Run it through `cargo xtask fuzz --seconds N` (a time budget, for
 //! exploring) or with a fixed `--cases N` (what CI does, with a fixed seed: deterministic).
+//! `cargo xtask fuzz` builds it with the workspace's `fuzz` profile (optimised, integer overflow
+//! checks and debug assertions on), so an overflow in the code under test is a finding.
 //!
 //! Every case draws its inputs from a ChaCha generator seeded by `(seed, target, case)`, so a
 //! finding is reproduced by `--seed S --target T --case I`. A case fails if the code under test
@@ -118,7 +120,7 @@ fn main() -> ExitCode {
             };
             failures += 1;
             println!(
-                "FINDING {} case {case}: {finding}\n  reproduce: cargo run -p guidance-fuzz --release -- --seed {} --target {} --case {case}",
+                "FINDING {} case {case}: {finding}\n  reproduce: cargo run -p guidance-fuzz --profile fuzz -- --seed {} --target {} --case {case}",
                 target.name(),
                 o.seed,
                 target.name()

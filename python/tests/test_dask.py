@@ -55,3 +55,25 @@ def test_worker_killed_mid_campaign_loses_and_duplicates_nothing(client, kill_a_
     assert list(df.index) == list(range(len(cases)))
     assert df["scenario"].is_unique
     assert local.equals(df)
+
+
+def test_command_line_optimize_on_its_own_local_cluster_equals_the_local_run(tmp_path):
+    """Issue 14 item 4: without ``--scheduler``, ``reentry-dask optimize`` starts its own
+    ``LocalCluster`` (``--workers 2``); its final population equals the ``--local`` run's, in
+    every printed digit."""
+    import json
+
+    from reentry.distributed import main
+
+    args = [
+        "optimize", "--problem", "constr", "--algorithm", "nsga2", "--population", "24",
+        "--generations", "3", "--seed", "9",
+    ]
+    assert main(args + ["--local", "--out", str(tmp_path / "local")]) == 0
+    assert main(args + ["--workers", "2", "--chunk-size", "6", "--out", str(tmp_path / "dask")]) == 0
+    local = (tmp_path / "local" / "population.csv").read_text()
+    assert len(local.splitlines()) == 25
+    assert (tmp_path / "dask" / "population.csv").read_text() == local
+    summary = json.loads((tmp_path / "dask" / "summary.json").read_text())
+    assert summary["where"] == "LocalCluster(2 processes)"
+    assert summary["evaluations"] == 24 * 4

@@ -140,3 +140,41 @@ def test_wrong_dimension_is_an_optim_error_naming_the_decision():
         p.evaluate([0.1, 0.2, 0.3])
     with pytest.raises(reentry.OptimError, match="decision 1: decision has 2 variables"):
         p.evaluate_batch([[0.5] * 30, [0.1, 0.2]])
+
+
+def test_rust_releases_the_gil_while_it_runs():
+    """Issue 14 item 1: the GIL is released while Rust runs, so other Python threads go on.
+    A Rust-side run (``evolve_in_rust``) sized to last at least 0.2 s runs in a thread while
+    this thread records a time stamp every millisecond or so: with the GIL held for the whole call, no
+    iteration could fall in the middle half of it."""
+    import threading
+    import time
+
+    p = reentry.TestProblem("zdt1")
+
+    def timed(generations):
+        algo = reentry.Nsga2(seed=1, population=32)
+        t0 = time.perf_counter()
+        algo.evolve_in_rust(p, generations)
+        return t0, time.perf_counter()
+
+    generations = 64
+    while True:
+        t0, t1 = timed(generations)
+        if t1 - t0 >= 0.2 or generations >= 1 << 20:
+            break
+        generations *= 2
+    assert t1 - t0 >= 0.2, f"{generations} generations took only {t1 - t0:.3f} s"
+
+    window = {}
+    worker = threading.Thread(target=lambda: window.update(span=timed(generations)))
+    stamps = []
+    worker.start()
+    while worker.is_alive():
+        stamps.append(time.perf_counter())
+        time.sleep(0.001)
+    worker.join()
+    t0, t1 = window["span"]
+    lo, hi = t0 + 0.25 * (t1 - t0), t1 - 0.25 * (t1 - t0)
+    inside = sum(lo < s < hi for s in stamps)
+    assert inside > 0, f"no Python ran during the middle of a {t1 - t0:.3f} s Rust call"

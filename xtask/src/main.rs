@@ -174,10 +174,19 @@ fn seed_property_tests(c: &mut Command) {
 /// Seed and per-target case budget of the fuzz step of `cargo xtask test` (deterministic).
 const FUZZ_CI_ARGS: [&str; 4] = ["--seed", "20261130", "--cases", "20000"];
 
-/// Run the fuzz harness (release build); no arguments: the CI budget.
+/// Run the fuzz harness (profile `fuzz`: optimised, with overflow checks and debug
+/// assertions); no arguments: the CI budget.
 fn fuzz(args: &[String]) -> Result<(), String> {
     let mut c = cargo();
-    c.args(["run", "--release", "--quiet", "-p", "guidance-fuzz", "--"]);
+    c.args([
+        "run",
+        "--profile",
+        "fuzz",
+        "--quiet",
+        "-p",
+        "guidance-fuzz",
+        "--",
+    ]);
     if args.is_empty() {
         c.args(FUZZ_CI_ARGS);
     } else {

@@ -118,7 +118,27 @@ pub enum ReentryError {
         /// Cause.
         source: std::io::Error,
     },
-    /// A TOML or JSON file is malformed.
+    /// A TOML file is not valid TOML.
+    #[error("{}: {source}", path.display())]
+    Toml {
+        /// The file.
+        path: PathBuf,
+        /// The parser's error (line, column, offending text).
+        source: crate::toml_input::TomlSyntax,
+    },
+    /// A field of a TOML file is unknown, missing or of the wrong type.
+    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
+    Field {
+        /// The file.
+        path: PathBuf,
+        /// Dotted path of the field.
+        field: String,
+        /// Its value as written, or `(missing)`.
+        value: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A JSON file is malformed, or a configuration cannot be printed as TOML.
     #[error("{path}: {message}")]
     Parse {
         /// The file.
@@ -163,11 +183,27 @@ fn read_text(path: &Path) -> Result<String, ReentryError> {
     })
 }
 
+/// A run configuration file, read through host-sim's one TOML reading path
+/// ([`crate::toml_input`]): errors name the file, the field and the value as written.
 fn parse_toml(path: &Path) -> Result<ReentryRunConfig, ReentryError> {
-    toml::from_str(&read_text(path)?).map_err(|e| ReentryError::Parse {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    use crate::toml_input::TomlInputError;
+    match crate::toml_input::parse(&read_text(path)?) {
+        Ok((c, _)) => Ok(c),
+        Err(TomlInputError::Syntax(source)) => Err(ReentryError::Toml {
+            path: path.to_path_buf(),
+            source,
+        }),
+        Err(TomlInputError::Field {
+            field,
+            value,
+            reason,
+        }) => Err(ReentryError::Field {
+            path: path.to_path_buf(),
+            field,
+            value,
+            reason,
+        }),
+    }
 }
 
 /// `--FLAG VALUE` given for a re-entry problem, which fixes it.

@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::cli::ReentryError;
 use crate::cli::run as cli_run;
 
 fn tmp(name: &str) -> PathBuf {
@@ -223,6 +224,55 @@ fn config_template_and_errors_name_the_field() {
     std::fs::write(&file, text.replace("[problem]", "[problem]\nspeed = 1")).unwrap();
     let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
     assert!(e.to_string().contains("speed"), "{e}");
+    // Issue 7 item 2: the file is read through the one TOML reading path, so a mistyped or
+    // unknown field is named with its dotted path and its value as written, and bad TOML
+    // gives the parser's line.
+    let bad_seed = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("seed = ") {
+                "seed = \"abc\""
+            } else {
+                l
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(bad_seed.contains("seed = \"abc\""), "{text}");
+    std::fs::write(&file, bad_seed).unwrap();
+    let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            crate::cli::CliError::Optimize(super::optimize_cmd::OptimizeError::Reentry(
+                ReentryError::Field { .. }
+            ))
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string().contains("run.toml: field `seed` = \"abc\": "),
+        "{e}"
+    );
+    std::fs::write(&file, text.replace("[problem]", "[problem]\nspeed = 1")).unwrap();
+    let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("field `problem.speed` = 1: unknown field"),
+        "{e}"
+    );
+    std::fs::write(&file, "algorithm = \"moead\"\nseed = = 3\n").unwrap();
+    let e = optimize(&["--config", file.to_str().unwrap()]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            crate::cli::CliError::Optimize(super::optimize_cmd::OptimizeError::Reentry(
+                ReentryError::Toml { .. }
+            ))
+        ),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("line 2"), "{e}");
     let e = optimize(&["--problem", "srm", "--ref", "1,2,3"]).unwrap_err();
     assert!(e.to_string().contains("field `reference`"), "{e}");
     // An unwritable run directory (a file stands where it should be).

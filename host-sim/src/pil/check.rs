@@ -203,3 +203,191 @@ impl FrameLimits {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! Issue 8 item 3: every rule of [`FrameLimits::check`] rejects a frame that breaks it
+    //! (the PIL reliability tests reproduce only the issue's three frames, which fail on the
+    //! bounds and the tick time) and accepts the firmware's legitimate frames.
+    use super::*;
+
+    const DEG: f64 = std::f64::consts::PI / 180.0;
+
+    fn cmd(alpha_deg: f64, sigma_deg: f64) -> Command<f64> {
+        Command {
+            alpha_rad: alpha_deg * DEG,
+            sigma_rad: sigma_deg * DEG,
+        }
+    }
+
+    /// HORUS-2B-like configuration: alpha 0..45 deg, sigma -90..90 deg, 5 and 15 deg/s, 2 s.
+    fn limits() -> FrameLimits {
+        FrameLimits {
+            bounds: AngleBounds {
+                alpha_min_rad: 0.0,
+                alpha_max_rad: 45.0 * DEG,
+                sigma_min_rad: -90.0 * DEG,
+                sigma_max_rad: 90.0 * DEG,
+            },
+            rates: RateLimits::thesis_default(),
+            initial: cmd(40.0, 0.0),
+            period_s: 2.0,
+        }
+    }
+
+    /// A legitimate first answer at `t`: from the initial attitude, one rate-limited step.
+    fn first(t: f64) -> CommandFrame {
+        CommandFrame {
+            seq: 0,
+            status: guidance_core::link::LinkStatus::Ok,
+            tick_time_s: t,
+            command: cmd(35.0, 30.0),
+            ramp_start: cmd(40.0, 0.0),
+            rates: RateLimits::thesis_default(),
+        }
+    }
+
+    #[test]
+    fn legitimate_frames_pass() {
+        let l = limits();
+        let a = first(0.0);
+        l.check(&a, 0.0, None).unwrap();
+        // The next tick starts where the previous ramp is (reached: 35, 30 deg) and steps again.
+        let b = CommandFrame {
+            seq: 1,
+            tick_time_s: 2.0,
+            ramp_start: a.attitude_at(2.0),
+            command: cmd(30.0, 60.0),
+            ..a
+        };
+        l.check(&b, 2.0, Some(&a)).unwrap();
+        // The firmware's f32 rounding is tolerated: bounds, rates and times within the slack.
+        let c = CommandFrame {
+            seq: 2,
+            tick_time_s: 4.0 * (1.0 + 0.5 * RELATIVE_SLACK),
+            ramp_start: b.attitude_at(4.0),
+            command: Command {
+                alpha_rad: 30.0 * DEG,
+                sigma_rad: 90.0 * DEG + 0.5 * ANGLE_SLACK_RAD,
+            },
+            rates: RateLimits {
+                alpha_rad_s: 5.0 * DEG * (1.0 + 0.5 * RELATIVE_SLACK),
+                sigma_rad_s: 15.0 * DEG,
+            },
+            ..b
+        };
+        l.check(&c, 4.0, Some(&b)).unwrap();
+    }
+
+    #[test]
+    fn every_angle_is_checked_against_the_bounds() {
+        let l = limits();
+        let cases = [
+            ("command alpha", Some(cmd(46.0, 0.0)), None),
+            ("command sigma", Some(cmd(40.0, -91.0)), None),
+            ("ramp-start alpha", None, Some(cmd(-1.0, 0.0))),
+            ("ramp-start sigma", None, Some(cmd(40.0, 180.0))),
+            ("command sigma", Some(cmd(40.0, f64::NAN)), None),
+        ];
+        for (what, command, ramp_start) in cases {
+            let mut f = first(0.0);
+            if let Some(c) = command {
+                f.command = c;
+            }
+            if let Some(r) = ramp_start {
+                f.ramp_start = r;
+            }
+            match l.check(&f, 0.0, None) {
+                Err(FrameViolation::OutOfBounds { what: w, .. }) => assert_eq!(w, what),
+                other => panic!("{what}: {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn rates_other_than_the_configured_ones_are_rejected() {
+        let l = limits();
+        for rates in [
+            RateLimits {
+                alpha_rad_s: 5.0 * DEG,
+                sigma_rad_s: 150.0 * DEG,
+            },
+            RateLimits {
+                alpha_rad_s: 5.0 * DEG + 2.0 * RELATIVE_SLACK,
+                sigma_rad_s: 15.0 * DEG,
+            },
+            RateLimits {
+                alpha_rad_s: f64::INFINITY,
+                sigma_rad_s: 15.0 * DEG,
+            },
+        ] {
+            let f = CommandFrame {
+                rates,
+                ..first(0.0)
+            };
+            assert!(
+                matches!(l.check(&f, 0.0, None), Err(FrameViolation::Rates { .. })),
+                "{rates:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_tick_time_other_than_the_nav_samples_is_rejected() {
+        let l = limits();
+        for (tick_s, nav_s) in [
+            (2.0, 0.0),
+            (-2.0, 0.0),
+            (1e300, 0.0),
+            (100.0 * (1.0 + 4.0 * RELATIVE_SLACK), 100.0),
+        ] {
+            let f = first(tick_s);
+            assert!(
+                matches!(
+                    l.check(&f, nav_s, None),
+                    Err(FrameViolation::TickTime { .. })
+                ),
+                "tick {tick_s} for nav {nav_s}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_ramp_that_jumps_or_a_step_beyond_rate_times_period_is_rejected() {
+        let l = limits();
+        // The first ramp must start at the initial attitude.
+        let jump = CommandFrame {
+            ramp_start: cmd(40.0, 5.0),
+            command: cmd(40.0, 5.0),
+            ..first(0.0)
+        };
+        assert!(matches!(
+            l.check(&jump, 0.0, None),
+            Err(FrameViolation::RampJump { what: "sigma", .. })
+        ));
+        // Later ramps start where the previous one is at the tick (35 deg alpha reached).
+        let a = first(0.0);
+        let b = CommandFrame {
+            seq: 1,
+            tick_time_s: 2.0,
+            ramp_start: cmd(40.0, 30.0),
+            command: cmd(40.0, 30.0),
+            ..a
+        };
+        assert!(matches!(
+            l.check(&b, 2.0, Some(&a)),
+            Err(FrameViolation::RampJump { what: "alpha", .. })
+        ));
+        // A held command more than rate x period (10 deg alpha, 30 deg sigma) away.
+        for (command, what) in [(cmd(29.0, 0.0), "alpha"), (cmd(40.0, -31.0), "sigma")] {
+            let f = CommandFrame {
+                command,
+                ..first(0.0)
+            };
+            match l.check(&f, 0.0, None) {
+                Err(FrameViolation::RateExceeded { what: w, .. }) => assert_eq!(w, what),
+                other => panic!("{command:?}: {other:?}"),
+            }
+        }
+    }
+}

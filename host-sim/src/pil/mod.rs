@@ -258,8 +258,9 @@ pub enum PilError {
     /// The simulation around the firmware failed.
     #[error("simulation: {0}")]
     Sim(#[from] sim::SimError),
-    /// The reference mission could not be set up (e.g. its vehicle did not load).
-    #[error("reference mission: {0}")]
+    /// The scenario flown (the reference mission or any other) could not be set up on the
+    /// host (e.g. its vehicle did not load): not a firmware error.
+    #[error("scenario: {0}")]
     Scenario(#[from] ScenarioError),
 }
 

@@ -35,7 +35,7 @@ pub use results::{
 pub use run::{Progress, simulate};
 pub use source::{
     AttitudeSource, CoreGuidance, FixedAttitude, FlightGuidance, GuidanceSource, ReportContext,
-    TickError, ramp_kink,
+    TickError,
 };
 pub(crate) use stop::ActiveRun;
 pub use stop::{hold_new_runs, request_stop, runs_active, stop_requested};

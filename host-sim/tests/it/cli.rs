@@ -468,6 +468,22 @@ fn compare_command_line_runs_a_small_grid() {
     let bad = |args: &[&str]| compare(args, &mut Vec::new()).unwrap_err().to_string();
     let e = bad(&["--fit-altitudes-km", "50", "--out", &out_dir]);
     assert!(e.contains("--fit-altitudes-km") && e.contains("50"), "{e}");
+    // Issue 8 item 9: equal altitudes named an internal parameter (`scale_height_m = NaN`).
+    let e = bad(&["--fit-altitudes-km", "50,50", "--out", &out_dir]);
+    assert!(
+        e.contains("--fit-altitudes-km") && e.contains("[50, 50]") && e.contains("different"),
+        "{e}"
+    );
+    assert!(!e.contains("scale_height") && !e.contains("NaN"), "{e}");
+    // Issue 8 item 8: a tiny output interval ran for minutes with memory growing; it is
+    // refused before the grid runs, naming the option, the value and the range.
+    for (v, shown) in [("1e-9", "1e-9"), ("0", "0"), ("1e308", "1e308")] {
+        let e = bad(&["--output-interval-s", v, "--out", &out_dir]);
+        assert!(
+            e.contains("--output-interval-s") && e.contains(shown) && e.contains("[0.01, 1e4] s"),
+            "{e}"
+        );
+    }
     let e = bad(&["--vehicle", "nope", "--out", &out_dir]);
     assert!(e.contains("nope"), "{e}");
     let e = bad(&["--points", "1", "--out", &out_dir]);

@@ -178,3 +178,28 @@ fn pil_reports_firmware_that_exits_without_opening_the_link() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 7 item 4: a vehicle that does not load is the scenario's error, reported before any
+/// firmware is started (not a firmware or link error), naming the vehicle file.
+#[test]
+fn pil_vehicle_load_failure_is_a_scenario_error() {
+    let sc = host_sim::scenario::Scenario {
+        vehicle: host_sim::scenario::VehicleSpec::File(PathBuf::from("/nonexistent/vehicle.toml")),
+        ..Default::default()
+    };
+    let dir = fresh("vehicle");
+    let mut cfg = PilConfig::new(PathBuf::from("/nonexistent/pil-firmware.elf"));
+    cfg.fifo_parent = dir.clone();
+    let (run, record) = host_sim::pil::fly_scenario_pil(&sc, "(test)", cfg);
+    match run {
+        Err(e @ PilError::Scenario(_)) => {
+            let text = e.to_string();
+            assert!(text.contains("/nonexistent/vehicle.toml"), "{text}");
+            assert!(!text.contains("firmware"), "{text}");
+        }
+        other => panic!("expected PilError::Scenario, got {other:?}"),
+    }
+    assert!(record.exchanges().is_empty());
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}

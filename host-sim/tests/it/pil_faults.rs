@@ -75,3 +75,58 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
     assert_eq!(a.state.speed_m_s.to_bits(), b.state.speed_m_s.to_bits());
     assert_eq!(res.summary.termination, res2.summary.termination);
 }
+
+/// The fault counts reach the user: `simulate --pil ELF --pil-fault-rate P --pil-fault-seed S`
+/// prints the injected counts and the firmware's own count in its run summary, the same as the
+/// library's `PilStats` for the same seed, and writes the run directory (the run finishes).
+#[test]
+fn pil_cli_prints_the_link_fault_counts() {
+    let elf = reference_pil_elf();
+    let faults = FaultConfig {
+        seed: 7,
+        p_drop: 0.05,
+        p_corrupt: 0.05,
+        p_delay: 0.05,
+    };
+    let mut cfg = PilConfig::new(elf.clone());
+    cfg.faults = Some(faults);
+    let stats = match fly_scenario_pil(&Scenario::default(), "(test)", cfg).0 {
+        Ok((_, stats)) => stats,
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
+            if std::env::var_os("PIL_REQUIRED").is_none() =>
+        {
+            println!("SKIPPED pil_cli_prints_the_link_fault_counts: {e}");
+            return;
+        }
+        Err(e) => panic!("PIL run under faults failed: {e}"),
+    };
+    let dir = std::env::temp_dir().join(format!("host-sim-pilfaults-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out_dir = dir.join("run");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["simulate", "--quiet", "--pil"])
+        .arg(&elf)
+        .args(["--pil-fault-rate", "0.05", "--pil-fault-seed", "7", "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let f = stats.faults;
+    let firmware = stats
+        .firmware_faults
+        .expect("the firmware reports its count");
+    let expected = format!(
+        "PIL link faults: {} dropped, {} corrupted, {} delayed past their tick; {} retries, {} ticks on the held command; firmware counted {firmware}",
+        f.dropped, f.corrupted, f.delayed, f.retries, f.missed_ticks
+    );
+    assert!(f.dropped > 0 && f.corrupted > 0 && f.delayed > 0, "{f:?}");
+    assert!(stdout.contains(&expected), "`{expected}` not in:\n{stdout}");
+    assert!(out_dir.join("summary.json").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -8,7 +8,7 @@ use guidance_core::guidance::Command;
 use guidance_core::nodes::Independent;
 use guidance_core::{GuidanceError, NavState};
 use host_sim::env::{Atmosphere, AtmosphereState, Gravity, Planet};
-use host_sim::sim::{AttitudeSource, ramp_kink};
+use host_sim::sim::AttitudeSource;
 use host_sim::vehicle::{AeroCoefficients, Aerodynamics, Vehicle, VehicleLimits};
 use nalgebra::Vector3;
 
@@ -261,4 +261,37 @@ impl AttitudeSource for HostSchedule {
             (self.alpha_rate, self.sigma_rate),
         )
     }
+}
+
+/// Next ramp end after `time_s` for ramps that started at `tick_time` from `at_tick`
+/// towards `command` at `rates` \[rad/s\]; `f64::INFINITY` if none. Part of the
+/// [`HostSchedule`] oracle, which re-derives the ramp independently of the core (the library
+/// asks the core: `Guidance::next_ramp_kink_s`, `CommandFrame::ramp_end`).
+pub fn ramp_kink(
+    time_s: f64,
+    tick_time: f64,
+    at_tick: Command<f64>,
+    command: Command<f64>,
+    rates: (f64, f64),
+) -> f64 {
+    let ta = tick_time + (command.alpha_rad - at_tick.alpha_rad).abs() / rates.0;
+    let ts = tick_time + (command.sigma_rad - at_tick.sigma_rad).abs() / rates.1;
+    [ta, ts]
+        .into_iter()
+        .filter(|k| *k > time_s && k.is_finite())
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn ramp_kinks() {
+    let a = |x: f64, y: f64| Command {
+        alpha_rad: x,
+        sigma_rad: y,
+    };
+    // alpha needs 0.1/0.5 = 0.2 s, sigma 0.3/1.0 = 0.3 s from the tick at t = 10.
+    let k = ramp_kink(10.0, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0));
+    assert!((k - 10.2).abs() < 1e-12);
+    let k = ramp_kink(10.25, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0));
+    assert!((k - 10.3).abs() < 1e-12);
+    assert!(ramp_kink(10.5, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0)).is_infinite());
 }
