@@ -16,7 +16,6 @@ use onboard_spec::machines::{
 };
 
 mod defmt_log;
-mod elf;
 mod golden;
 mod insn;
 mod stack;
@@ -517,23 +516,10 @@ fn insn_budget() -> Result<(), String> {
     insn::check(&counts, &budget, &file)
 }
 
-/// Parse `key = integer` lines of the budget file.
+/// The `key = integer` value of budget file `file` (text `text`), errors naming file and key.
 fn budget_value(text: &str, key: &str, file: &Path) -> Result<u64, String> {
-    for line in text.lines() {
-        let line = line.trim();
-        if let Some(rest) = line.strip_prefix(key)
-            && let Some(v) = rest.trim_start().strip_prefix('=')
-        {
-            let v = v.trim().replace('_', "");
-            return v.parse::<u64>().map_err(|e| {
-                format!(
-                    "{}: field `{key}` = {v:?}: not an integer ({e})",
-                    file.display()
-                )
-            });
-        }
-    }
-    Err(format!("{}: field `{key}` is missing", file.display()))
+    onboard_spec::footprint::budget_value(text, key)
+        .map_err(|e| format!("{}: field `{key}` {e}", file.display()))
 }
 
 /// Check the release footprint of each firmware image against onboard-demo/size-budget.toml.
@@ -546,7 +532,8 @@ fn size() -> Result<(), String> {
         let target = m.target;
         let elf = build_firmware(target)?;
         let bytes = std::fs::read(&elf).map_err(|e| format!("{}: {e}", elf.display()))?;
-        let fp = elf::footprint(&bytes).map_err(|e| format!("{}: {e}", elf.display()))?;
+        let fp = onboard_spec::footprint::footprint(&bytes)
+            .map_err(|e| format!("{}: {e}", elf.display()))?;
         let key = target.replace('-', "_");
         let flash_max = budget_value(&text, &format!("{key}_flash_bytes"), &budget_file)?;
         let ram_max = budget_value(&text, &format!("{key}_ram_bytes"), &budget_file)?;

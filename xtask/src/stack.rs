@@ -1,11 +1,14 @@
 //! `cargo xtask stack`: the measured maximum stack of the guidance tick, the navigation
 //! conversion and a re-plan on both machines (`onboard-demo`'s `stack-bench`, stack painting),
 //! and static RAM of the flight application (the `pil` firmware) plus the largest of them
-//! against `<target>_ram_plus_stack_bytes` in `onboard-demo/size-budget.toml`.
+//! against `<target>_ram_plus_stack_bytes` in `onboard-demo/size-budget.toml`. (The `pil`
+//! image's static RAM plus the deepest stack of a whole PIL run, which the firmware measures
+//! itself, is checked against `<target>_pil_ram_plus_stack_bytes` by host-sim's PIL tests,
+//! the `cargo xtask pil` step.)
 
 use onboard_spec::machines::MACHINES;
 
-use crate::{budget_value, build_firmware, elf, qemu, root};
+use crate::{budget_value, build_firmware, qemu, root};
 
 /// The `stack NAME: N bytes` lines of one run: (name, bytes).
 fn parse(out: &str) -> Result<Vec<(String, u64)>, String> {
@@ -53,7 +56,7 @@ pub fn stack() -> Result<(), String> {
         let rows = parse(&stdout)?;
         let pil = fw.with_file_name("pil");
         let bytes = std::fs::read(&pil).map_err(|e| format!("{}: {e}", pil.display()))?;
-        let ram = elf::footprint(&bytes)
+        let ram = onboard_spec::footprint::footprint(&bytes)
             .map_err(|e| format!("{}: {e}", pil.display()))?
             .ram;
         let key = format!("{}_ram_plus_stack_bytes", m.target.replace('-', "_"));

@@ -5,10 +5,10 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 use super::CliError;
-use crate::pil;
 use crate::scenario::{
     Flight, RunOutput, Scenario, read_scenario, scenario_to_toml, simulate_scenario, write_flight,
 };
+use crate::{pil, report};
 
 /// Arguments of `simulate`.
 #[derive(Debug, clap::Args)]
@@ -126,8 +126,31 @@ fn pil_run(
         sc,
         &format!("{} (PIL)", sc.name),
         flight,
+        Some(pil_summary(&stats, faults)),
         dir,
     )?)
+}
+
+/// The PIL part of summary.json: the link statistics of `stats`, with the fault counts when
+/// `faults` were injected.
+fn pil_summary(stats: &pil::PilStats, faults: Option<pil::FaultConfig>) -> report::PilOut {
+    let f = stats.faults;
+    report::PilOut {
+        frames: stats.frames,
+        firmware_stack_bytes: stats.firmware_stack_bytes,
+        link_faults: faults.map(|c| report::LinkFaultsOut {
+            p_drop: c.p_drop,
+            p_corrupt: c.p_corrupt,
+            p_delay: c.p_delay,
+            seed: c.seed,
+            dropped: f.dropped,
+            corrupted: f.corrupted,
+            delayed: f.delayed,
+            retries: f.retries,
+            missed_ticks: f.missed_ticks,
+            firmware_counted: stats.firmware_faults,
+        }),
+    }
 }
 
 /// Where a failed PIL run's frame record goes: `<dir>.failed-pil-record.csv`.
@@ -185,7 +208,7 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
             Some(p) => {
                 return Err(CliError::Argument {
                     field: "--pil-fault-rate",
-                    value: p.to_string(),
+                    value: crate::num_fmt::compact(p),
                     reason: "must be a probability in [0, 0.3]",
                 });
             }

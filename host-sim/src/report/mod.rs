@@ -17,7 +17,9 @@ pub use csv::trajectory_csv;
 pub(crate) use plot::ensure_font;
 pub use plot::{Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, clean_stale};
-pub use summary::{FinalState, PeakOut, SummaryReport, ViolationsOut, summary_report};
+pub use summary::{
+    FinalState, LinkFaultsOut, PeakOut, PilOut, SummaryReport, ViolationsOut, summary_report,
+};
 
 /// Output failures (always naming the path).
 #[derive(Debug, thiserror::Error)]

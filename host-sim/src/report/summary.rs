@@ -110,6 +110,48 @@ pub struct SummaryReport {
     pub rejected_steps: u64,
     /// Guidance ticks.
     pub guidance_ticks: u64,
+    /// Processor-in-the-loop counters: only in the summary of a PIL run (absent otherwise, so
+    /// a software-in-the-loop summary is unchanged).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pil: Option<PilOut>,
+}
+
+/// The processor-in-the-loop part of a PIL run's summary.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PilOut {
+    /// Nav/command round trips with the firmware.
+    pub frames: u64,
+    /// Deepest stack of the firmware's whole run, as it measured it \[bytes\] (`null`: not
+    /// reported).
+    pub firmware_stack_bytes: Option<u64>,
+    /// Link faults injected by the host and their outcomes (`null`: no fault injection).
+    pub link_faults: Option<LinkFaultsOut>,
+}
+
+/// Seeded link faults of a PIL run (`simulate --pil-fault-rate`) and their outcomes.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct LinkFaultsOut {
+    /// Probability of a drop per transmission [-].
+    pub p_drop: f64,
+    /// Probability of a corruption per transmission [-].
+    pub p_corrupt: f64,
+    /// Probability of a delay past the tick per frame [-].
+    pub p_delay: f64,
+    /// Seed of the fault injector.
+    pub seed: u64,
+    /// Transmissions dropped.
+    pub dropped: u64,
+    /// Transmissions corrupted.
+    pub corrupted: u64,
+    /// Frames delayed past their tick.
+    pub delayed: u64,
+    /// Retransmissions.
+    pub retries: u64,
+    /// Ticks flown on the held command.
+    pub missed_ticks: u64,
+    /// Faults the firmware counted (rejected frames), as it reported them (`null`: not
+    /// reported).
+    pub firmware_counted: Option<u64>,
 }
 
 /// Build the summary document.
@@ -167,5 +209,6 @@ pub fn summary_report(
         accepted_steps: s.accepted_steps,
         rejected_steps: s.rejected_steps,
         guidance_ticks: s.ticks,
+        pil: None,
     }
 }

@@ -81,10 +81,11 @@ pub fn simulate_scenario(
     progress: &mut dyn FnMut(sim::Progress),
 ) -> Result<RunOutput, ScenarioError> {
     let flight = fly(sc, file, progress)?;
-    write_flight(sc, &sc.name, flight, out_dir)
+    write_flight(sc, &sc.name, flight, None, out_dir)
 }
 
-/// Write the run directory of a flown scenario (`run_name` labels the summary).
+/// Write the run directory of a flown scenario (`run_name` labels the summary; `pil`, for a
+/// processor-in-the-loop run, goes into summary.json).
 ///
 /// # Errors
 /// [`ScenarioError::Report`] if the files cannot be written.
@@ -92,6 +93,7 @@ pub fn write_flight(
     sc: &Scenario,
     run_name: &str,
     flight: Flight,
+    pil: Option<report::PilOut>,
     out_dir: &Path,
 ) -> Result<RunOutput, ScenarioError> {
     let Flight {
@@ -99,13 +101,14 @@ pub fn write_flight(
         vehicle: veh,
         environment: env,
     } = flight;
-    let summary = report::summary_report(
+    let mut summary = report::summary_report(
         &result,
         run_name,
         &veh.name,
         &sc.environment.describe(),
         env.planet.radius_m,
     );
+    summary.pil = pil;
     let files = report::write_run(
         out_dir,
         &result,

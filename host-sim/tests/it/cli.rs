@@ -90,6 +90,8 @@ fn simulate_tiny_scenario_writes_csv_json_svg() {
     assert_eq!(json["termination"], "max_time");
     assert!(json["heat_load_mj_m2"].as_f64().unwrap() > 0.0);
     assert!(json["rhs_evals"].as_u64().unwrap() > 0);
+    // The PIL counters are written only for PIL runs.
+    assert!(json.get("pil").is_none(), "{json}");
     for svg in [
         "altitude_velocity.svg",
         "heat_flux.svg",
@@ -528,4 +530,26 @@ fn dispersions_writes_its_plots_in_a_fresh_process() {
         "{svg}"
     );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// An out-of-range `--pil-fault-rate` is rejected before any PIL run, naming the option and
+/// printing its value compactly (`1e300`, not a 301-digit integer).
+#[test]
+fn pil_fault_rate_out_of_range_is_named_compactly() {
+    let dir = temp_dir("pilrate");
+    let out = bin()
+        .args(["simulate", "--quiet", "--pil"])
+        .arg(dir.join("no-such.elf"))
+        .args(["--pil-fault-rate", "1e300", "--out"])
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--pil-fault-rate") && err.contains("1e300") && !err.contains("10000000"),
+        "{err}"
+    );
+    assert!(!dir.join("run").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -15,7 +15,7 @@ use host_sim::pil::{
 };
 use host_sim::sim::SimResult;
 
-use crate::pil_support::{Offset, reference_pil_elf};
+use crate::pil_support::{Offset, check_pil_memory_budget, reference_pil_elf};
 
 /// (range angle [rad], peak heat flux [W/m^2], final speed [m/s], final latitude [rad],
 /// final longitude [rad], flight time [s]).
@@ -73,6 +73,16 @@ fn pil_reference_mission_matches_sil() {
         stats.frames,
         stats.frames as f64 / wall,
         1e6 * stats.link_s / stats.frames as f64
+    );
+    // The firmware's whole-run stack, and the image's static RAM plus it, within their budgets.
+    let stack = stats
+        .firmware_stack_bytes
+        .expect("the firmware reports its stack");
+    check_pil_memory_budget(
+        "reference mission on thumbv7em-none-eabihf",
+        "thumbv7em-none-eabihf",
+        &reference_pil_elf(),
+        stack,
     );
     // The firmware timed every tick with its SysTick tick timer (lockstep: every nav frame is
     // a tick); the durations are QEMU wall time, so only their presence is checked.

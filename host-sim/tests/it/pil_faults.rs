@@ -78,9 +78,10 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
 
 /// The fault counts reach the user: `simulate --pil ELF --pil-fault-rate P --pil-fault-seed S`
 /// prints the injected counts and the firmware's own count in its run summary, the same as the
-/// library's `PilStats` for the same seed, and writes the run directory (the run finishes).
+/// library's `PilStats` for the same seed, and writes the run directory (the run finishes)
+/// with the same counts in its summary.json.
 #[test]
-fn pil_cli_prints_the_link_fault_counts() {
+fn pil_cli_prints_and_writes_the_link_fault_counts() {
     let elf = reference_pil_elf();
     let faults = FaultConfig {
         seed: 7,
@@ -95,7 +96,7 @@ fn pil_cli_prints_the_link_fault_counts() {
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
         {
-            println!("SKIPPED pil_cli_prints_the_link_fault_counts: {e}");
+            println!("SKIPPED pil_cli_prints_and_writes_the_link_fault_counts: {e}");
             return;
         }
         Err(e) => panic!("PIL run under faults failed: {e}"),
@@ -127,6 +128,31 @@ fn pil_cli_prints_the_link_fault_counts() {
     );
     assert!(f.dropped > 0 && f.corrupted > 0 && f.delayed > 0, "{f:?}");
     assert!(stdout.contains(&expected), "`{expected}` not in:\n{stdout}");
-    assert!(out_dir.join("summary.json").is_file());
+    // The same counts in the run directory's summary.json.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let pil = &json["pil"];
+    assert_eq!(pil["frames"].as_u64(), Some(stats.frames), "{pil}");
+    assert_eq!(
+        pil["firmware_stack_bytes"].as_u64(),
+        stats.firmware_stack_bytes,
+        "{pil}"
+    );
+    let lf = &pil["link_faults"];
+    for (key, p) in [("p_drop", 0.05), ("p_corrupt", 0.05), ("p_delay", 0.05)] {
+        assert_eq!(lf[key].as_f64(), Some(p), "{key}: {lf}");
+    }
+    assert_eq!(lf["seed"].as_u64(), Some(7), "{lf}");
+    for (key, n) in [
+        ("dropped", f.dropped),
+        ("corrupted", f.corrupted),
+        ("delayed", f.delayed),
+        ("retries", f.retries),
+        ("missed_ticks", f.missed_ticks),
+        ("firmware_counted", firmware),
+    ] {
+        assert_eq!(lf[key].as_u64(), Some(n), "{key}: {lf}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

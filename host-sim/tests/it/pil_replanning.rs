@@ -20,7 +20,7 @@
 //!    path's rounding bound of `pil_scenarios.rs`). Outcomes: flown range angle, range angle,
 //!    peak heat flux, final speed, latitude, longitude, flight time.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use guidance_core::guidance::Command;
 use guidance_core::link::CommandFrame;
@@ -32,7 +32,7 @@ use host_sim::pil::{PilConfig, PilError, fly_scenario_pil, scenario_setup};
 use host_sim::scenario::{Scenario, build_replanning_guidance, read_scenario};
 use host_sim::sim::{self, GuidanceSource, SimResult};
 
-use crate::pil_support::{Offset, pil_elf};
+use crate::pil_support::{Offset, check_pil_memory_budget, pil_elf};
 
 const CAPACITY: usize = guidance_core::nodes::DEFAULT_NODE_CAPACITY;
 
@@ -195,26 +195,12 @@ fn check(target: &str, fixed: bool) {
         exchanges.len()
     );
     assert!(replans > 0, "{name}: the firmware never re-planned");
-    // Stack of the whole run (re-planning included) within the firmware's budget.
-    let budget_file =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../onboard-demo/size-budget.toml");
-    let text = std::fs::read_to_string(&budget_file).unwrap();
-    let key = format!("{}_pil_run_stack_bytes", target.replace('-', "_"));
-    let budget: u64 = text
-        .lines()
-        .find_map(|l| {
-            l.trim()
-                .strip_prefix(key.as_str())?
-                .trim()
-                .strip_prefix('=')
-        })
-        .map(|v| v.trim().replace('_', "").parse().unwrap())
-        .unwrap();
+    // The firmware's whole-run stack (painted), and the image's static RAM plus it, within
+    // their budgets.
     let stack = stats
         .firmware_stack_bytes
         .expect("the firmware reports its stack");
-    println!("{name}: firmware whole-run stack {stack} bytes (budget {budget})");
-    assert!(stack <= budget, "{name}: stack {stack} > budget {budget}");
+    check_pil_memory_budget(&name, target, &pil_elf(target), stack);
     // 2. Against SIL with the derived bound.
     let (base, sil_replans) = sil(&sc, 0.0, 0.0);
     assert!(sil_replans > 0, "{name}: SIL never re-planned");

@@ -18,15 +18,13 @@
 //! the SIL change that a constant attitude offset of the bound causes, scaled to the observed
 //! attitude difference, plus 1e-9 relative (the integrator tolerance), as in `pil.rs`.
 
-use std::path::PathBuf;
-
 use guidance_core::nodes::Independent;
 use host_sim::dynamics::Dynamics;
 use host_sim::pil::{PilConfig, PilError, fly_scenario_pil};
 use host_sim::scenario::{Scenario, build_guidance};
 use host_sim::sim::{self, CoreGuidance, SimResult};
 
-use crate::pil_support::{Offset, pil_elf};
+use crate::pil_support::{Offset, check_pil_memory_budget, pil_elf};
 
 fn sil(sc: &Scenario, offset: f64) -> SimResult {
     let env = sc.environment.build();
@@ -97,7 +95,7 @@ fn attitude_bound(sc: &Scenario, fixed: bool) -> f64 {
 fn check(sc: &Scenario, target: &str, fixed: bool) {
     let name = format!("{} on {target}", sc.name);
     let elf = pil_elf(target);
-    let (pil, stats) = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf)).0 {
+    let (pil, stats) = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf.clone())).0 {
         Ok(r) => r,
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
@@ -107,26 +105,12 @@ fn check(sc: &Scenario, target: &str, fixed: bool) {
         }
         Err(e) => panic!("{name}: PIL run failed: {e}"),
     };
-    // The firmware's whole-run stack (painted) within its budget.
-    let budget_file =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../onboard-demo/size-budget.toml");
-    let text = std::fs::read_to_string(&budget_file).unwrap();
-    let key = format!("{}_pil_run_stack_bytes", target.replace('-', "_"));
-    let budget: u64 = text
-        .lines()
-        .find_map(|l| {
-            l.trim()
-                .strip_prefix(key.as_str())?
-                .trim()
-                .strip_prefix('=')
-        })
-        .map(|v| v.trim().replace('_', "").parse().unwrap())
-        .unwrap_or_else(|| panic!("{key} missing in {}", budget_file.display()));
+    // The firmware's whole-run stack (painted), and the image's static RAM plus it, within
+    // their budgets.
     let stack = stats
         .firmware_stack_bytes
         .expect("the firmware reports its stack");
-    println!("{name}: firmware whole-run stack {stack} bytes (budget {budget})");
-    assert!(stack <= budget, "{name}: stack {stack} > budget {budget}");
+    check_pil_memory_budget(&name, target, &elf, stack);
     let base = sil(sc, 0.0);
     assert_eq!(pil.summary.termination, base.summary.termination, "{name}");
     assert_eq!(pil.summary.ticks, base.summary.ticks, "{name}");

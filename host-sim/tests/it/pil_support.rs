@@ -1,7 +1,8 @@
-//! What the processor-in-the-loop tests share: where the `pil` firmware is, and SIL guidance
-//! with a constant attitude offset (the derived PIL-vs-SIL bounds use its sensitivity).
+//! What the processor-in-the-loop tests share: where the `pil` firmware is, its whole-run
+//! stack and RAM budget check, and SIL guidance with a constant attitude offset (the derived
+//! PIL-vs-SIL bounds use its sensitivity).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use guidance_core::NavState;
 use guidance_core::guidance::Command;
@@ -21,6 +22,40 @@ pub fn pil_elf(target: &str) -> PathBuf {
 /// The Cortex-M4F `pil` firmware: `$PIL_ELF`, else [`pil_elf`] of `thumbv7em-none-eabihf`.
 pub fn reference_pil_elf() -> PathBuf {
     std::env::var_os("PIL_ELF").map_or_else(|| pil_elf("thumbv7em-none-eabihf"), PathBuf::from)
+}
+
+/// Check a PIL run's firmware memory against `onboard-demo/size-budget.toml` (the file's
+/// comments give the measured figures): the deepest stack of the whole run, `stack` \[bytes\]
+/// as the firmware measured it, within `<target>_pil_run_stack_bytes`, and the `elf` image's
+/// static RAM (.data + .bss, read from the ELF as `cargo xtask size` does) plus that stack
+/// within `<target>_pil_ram_plus_stack_bytes`. `name` labels the messages.
+pub fn check_pil_memory_budget(name: &str, target: &str, elf: &Path, stack: u64) {
+    use onboard_spec::footprint::{budget_value, footprint};
+    let budget_file =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../onboard-demo/size-budget.toml");
+    let text = std::fs::read_to_string(&budget_file).unwrap();
+    let key = target.replace('-', "_");
+    let budget = |k: String| {
+        budget_value(&text, &k)
+            .unwrap_or_else(|e| panic!("{}: field `{k}` {e}", budget_file.display()))
+    };
+    let stack_max = budget(format!("{key}_pil_run_stack_bytes"));
+    let total_max = budget(format!("{key}_pil_ram_plus_stack_bytes"));
+    let ram = footprint(&std::fs::read(elf).unwrap())
+        .unwrap_or_else(|e| panic!("{}: {e}", elf.display()))
+        .ram;
+    println!(
+        "{name}: firmware whole-run stack {stack} bytes (budget {stack_max}); static RAM {ram} + stack = {} bytes (budget {total_max})",
+        ram + stack
+    );
+    assert!(
+        stack <= stack_max,
+        "{name}: stack {stack} > budget {stack_max}"
+    );
+    assert!(
+        ram + stack <= total_max,
+        "{name}: static RAM {ram} + stack {stack} > budget {total_max}"
+    );
 }
 
 /// Any attitude source with a constant offset [rad] added to both commanded angles.
