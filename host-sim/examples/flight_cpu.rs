@@ -2,10 +2,13 @@
 //! 9): wall-clock benchmarks (criterion) inflate with the machine's load, the thread's own CPU
 //! time much less. Flies the HORUS-2B reference mission and the SRM glide `N` times each
 //! (default 200) on one thread and prints the median CPU time per flight over 5 rounds, read
-//! from `/proc/thread-self/schedstat` (Linux).
+//! from `/proc/thread-self/schedstat` (Linux). A second argument flies only the built-in
+//! scenario of that name (`horus-2b-reference` or `srm-glide`), e.g. to count one scenario's
+//! instructions under `valgrind --tool=callgrind`.
 //!
 //! ```sh
 //! cargo run --release -p host-sim --example flight_cpu -- 200
+//! cargo run --release -p host-sim --example flight_cpu -- 10 horus-2b-reference
 //! ```
 
 use host_sim::scenario::{Scenario, fly};
@@ -25,7 +28,11 @@ fn main() -> Result<(), String> {
         Some(a) => a.parse().map_err(|e| format!("flight count {a:?}: {e}"))?,
         None => 200,
     };
-    for sc in [Scenario::default(), Scenario::srm_glide()] {
+    let scenarios = match std::env::args().nth(2) {
+        Some(name) => vec![Scenario::try_builtin(&name).map_err(|e| e.to_string())?],
+        None => vec![Scenario::default(), Scenario::srm_glide()],
+    };
+    for sc in scenarios {
         let once = fly(&sc, "cpu", &mut |_| {}).map_err(|e| e.to_string())?;
         let mut rounds = Vec::new();
         for _ in 0..5 {

@@ -49,7 +49,7 @@ impl<A: AttitudeSource> Loop<'_, A> {
         // The right-hand side's heat flux (within a few ulp of the core's) and the g-load.
         let (q, g_load) =
             self.dynm
-                .heat_flux_and_g_load(y, self.source.attitude_at(t), &self.rhs_cache);
+                .heat_flux_and_g_load(y, self.source.attitude_at(t), &mut self.rhs_cache);
         self.peak_q.update(q, t);
         self.peak_g.update(g_load, t);
         // g-load rate from successive samples at least one window apart (core monitor).
@@ -64,14 +64,16 @@ impl<A: AttitudeSource> Loop<'_, A> {
         }
     }
 
-    fn sample(&self, t: f64, y: &[f64; STATE_LEN], kind: SampleKind) -> Sample {
+    fn sample(&mut self, t: f64, y: &[f64; STATE_LEN], kind: SampleKind) -> Sample {
         let state = self.dynm.spherical_of(y, t);
         let attitude = self.source.attitude_at(t);
         Sample {
             time_s: t,
             state,
             attitude,
-            conditions: self.dynm.conditions_at(y, attitude),
+            conditions: self
+                .dynm
+                .conditions_at_cached(y, attitude, &mut self.rhs_cache),
             heat_load_j_m2: y[HEAT_LOAD_SLOT],
             flown_range_rad: y[FLOWN_RANGE_SLOT],
             normalized_energy: self
@@ -99,7 +101,8 @@ impl<A: AttitudeSource> OdeProblem<STATE_LEN> for Loop<'_, A> {
             normalized_energy: None,
         };
         if Event::needs_conditions(&self.term) {
-            let fc = self.dynm.conditions_at(y, self.source.attitude_at(t));
+            let att = self.source.attitude_at(t);
+            let fc = self.dynm.conditions_at_cached(y, att, &mut self.rhs_cache);
             state.mach = fc.mach;
             state.normalized_energy = self.energy.normalized(r, fc.airspeed_m_s).ok();
         }

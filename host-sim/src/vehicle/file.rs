@@ -374,12 +374,12 @@ fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFil
             }
             let alpha_rad: Vec<f64> = alpha_deg.iter().map(|a| a.to_radians()).collect();
             let table_err = |e: super::table::TableError| ctx.err("aero", "(table)", e.to_string());
-            Ok(Box::new(TableAerodynamics {
-                cl: CoefficientTable::new("cl", mach.clone(), alpha_rad.clone(), cl)
+            Ok(Box::new(TableAerodynamics::new(
+                CoefficientTable::new("cl", mach.clone(), alpha_rad.clone(), cl)
                     .map_err(table_err)?,
-                cd: CoefficientTable::new("cd", mach, alpha_rad, cd).map_err(table_err)?,
-                polar: None,
-            }))
+                CoefficientTable::new("cd", mach, alpha_rad, cd).map_err(table_err)?,
+                None,
+            )))
         }
         AeroKind::Polynomial => {
             ctx.only(

@@ -20,6 +20,8 @@
 //!   (`data/horus2b/drag_polar.csv`), linear in Mach between the tabulated Mach numbers and
 //!   clamped outside, available through [`Aerodynamics::drag_polar`](super::Aerodynamics::drag_polar).
 
+use std::sync::OnceLock;
+
 use super::models::{DragPolar, DragPolarTable, TableAerodynamics};
 use super::table::{CoefficientTable, GapFill};
 use super::{Vehicle, VehicleFileError, VehicleLimits};
@@ -142,11 +144,7 @@ pub fn aerodynamics(fill: GapFill) -> Result<TableAerodynamics, VehicleFileError
     let cl = CoefficientTable::with_gaps("cl", machs.clone(), alpha_rad.clone(), cl, fill)
         .map_err(table_err)?;
     let cd = CoefficientTable::with_gaps("cd", machs, alpha_rad, cd, fill).map_err(table_err)?;
-    Ok(TableAerodynamics {
-        cl,
-        cd,
-        polar: Some(drag_polar_table()?),
-    })
+    Ok(TableAerodynamics::new(cl, cd, Some(drag_polar_table()?)))
 }
 
 /// The per-Mach drag polar of thesis table 8.1.
@@ -187,8 +185,21 @@ pub fn vehicle() -> Result<Vehicle, VehicleFileError> {
         reference_area_m2: REFERENCE_AREA_M2,
         nose_radius_m: NOSE_RADIUS_M,
         limits: limits(),
-        aero: Box::new(aerodynamics(GapFill::default())?),
+        aero: Box::new(default_aerodynamics()?),
     })
+}
+
+/// [`aerodynamics`] with the default gap treatment, parsed once per process (every closed-loop
+/// flight of an optimisation or campaign builds its vehicle) and cloned.
+///
+/// # Errors
+/// As [`aerodynamics`] (then nothing is kept and the error is that of a fresh parse).
+fn default_aerodynamics() -> Result<TableAerodynamics, VehicleFileError> {
+    static PARSED: OnceLock<Option<TableAerodynamics>> = OnceLock::new();
+    match PARSED.get_or_init(|| aerodynamics(GapFill::default()).ok()) {
+        Some(a) => Ok(a.clone()),
+        None => aerodynamics(GapFill::default()),
+    }
 }
 
 #[cfg(test)]
@@ -199,8 +210,8 @@ mod tests {
     #[test]
     fn embedded_data_parse() {
         let a = aerodynamics(GapFill::default()).unwrap();
-        assert_eq!(a.cl.mach(), &[1.2, 1.5, 2.0, 3.0, 5.0, 10.0, 20.0]);
-        assert_eq!(a.cl.alpha_rad().len(), 10);
+        assert_eq!(a.cl().mach(), &[1.2, 1.5, 2.0, 3.0, 5.0, 10.0, 20.0]);
+        assert_eq!(a.cl().alpha_rad().len(), 10);
         assert_eq!(drag_polar_table().unwrap().points().len(), 7);
         assert!(vehicle().is_ok());
     }

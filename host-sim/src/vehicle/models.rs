@@ -97,12 +97,45 @@ impl DragPolarTable {
 /// edges), with an optional per-Mach drag polar for the analytical methods.
 #[derive(Clone, Debug)]
 pub struct TableAerodynamics {
-    /// C_L table.
-    pub cl: CoefficientTable,
-    /// C_D table.
-    pub cd: CoefficientTable,
-    /// Drag polar per Mach (for analytical use), if known.
-    pub polar: Option<DragPolarTable>,
+    cl: CoefficientTable,
+    cd: CoefficientTable,
+    polar: Option<DragPolarTable>,
+    /// Whether `cl` and `cd` share their axes (decided once: the right-hand side looks the
+    /// coefficients up thousands of times per flight).
+    shared_axes: bool,
+}
+
+impl TableAerodynamics {
+    /// Tabulated aerodynamics from a C_L table `cl`, a C_D table `cd` and, if known, the
+    /// per-Mach drag polar `polar`.
+    #[must_use]
+    pub fn new(cl: CoefficientTable, cd: CoefficientTable, polar: Option<DragPolarTable>) -> Self {
+        let shared_axes = cl.same_axes(&cd);
+        Self {
+            cl,
+            cd,
+            polar,
+            shared_axes,
+        }
+    }
+
+    /// The C_L table.
+    #[must_use]
+    pub fn cl(&self) -> &CoefficientTable {
+        &self.cl
+    }
+
+    /// The C_D table.
+    #[must_use]
+    pub fn cd(&self) -> &CoefficientTable {
+        &self.cd
+    }
+
+    /// The per-Mach drag polar, if known.
+    #[must_use]
+    pub fn polar(&self) -> Option<&DragPolarTable> {
+        self.polar.as_ref()
+    }
 }
 
 impl Aerodynamics for TableAerodynamics {
@@ -110,7 +143,7 @@ impl Aerodynamics for TableAerodynamics {
         // One grid lookup for both coefficients when the tables share their axes (the
         // built-in and file tables do); the values are those of two separate lookups.
         let cell = self.cl.cell(mach, alpha_rad);
-        let cd = if self.cl.same_axes(&self.cd) {
+        let cd = if self.shared_axes {
             self.cd.value_in(&cell)
         } else {
             self.cd.value(mach, alpha_rad)

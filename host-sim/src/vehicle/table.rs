@@ -68,8 +68,9 @@ pub struct Cell {
 pub struct CoefficientTable {
     mach: Vec<f64>,
     alpha_rad: Vec<f64>,
-    /// values[i][j] at mach[i], alpha[j].
-    values: Vec<Vec<f64>>,
+    /// Row-major values: `values[i * alpha_rad.len() + j]` at mach\[i\], alpha\[j\] (one
+    /// allocation, one indirection per lookup).
+    values: Vec<f64>,
 }
 
 fn check_axis(axis: &'static str, v: &[f64]) -> Result<(), TableError> {
@@ -95,14 +96,22 @@ fn locate(axis: &[f64], x: f64) -> (usize, f64) {
     if x.is_nan() {
         return (0, f64::NAN);
     }
-    let x = x.clamp(first, last);
-    // Last index i with axis[i] <= x, limited to len - 2.
-    let i = axis
-        .partition_point(|&a| a <= x)
-        .saturating_sub(1)
-        .min(axis.len() - 2);
-    let (a, b) = (axis[i], axis[i + 1]);
-    (i, ((x - a) / (b - a)).clamp(0.0, 1.0))
+    // At or beyond an end (the common case of Mach above the table's last point): the
+    // values the search below gives there, without it.
+    if x >= last {
+        return (axis.len() - 2, 1.0);
+    }
+    if x <= first {
+        return (0, 0.0);
+    }
+    // Last index i with axis[i] <= x (first < x < last, so 0 <= i <= len - 2): a linear
+    // scan, cheaper than a binary search on the few points of an aerodynamic table.
+    let inner = axis.get(1..axis.len() - 1).unwrap_or(&[]);
+    let i = inner.iter().take_while(|&&a| a <= x).count();
+    match (axis.get(i), axis.get(i + 1)) {
+        (Some(&a), Some(&b)) => (i, ((x - a) / (b - a)).clamp(0.0, 1.0)),
+        _ => (0, f64::NAN),
+    }
 }
 
 impl CoefficientTable {
@@ -137,7 +146,7 @@ impl CoefficientTable {
         Ok(Self {
             mach,
             alpha_rad,
-            values,
+            values: values.into_iter().flatten().collect(),
         })
     }
 
@@ -202,17 +211,22 @@ impl CoefficientTable {
     #[must_use]
     pub fn value_in(&self, cell: &Cell) -> f64 {
         let Cell { i, fm, j, fa } = *cell;
-        let at = |i: usize, j: usize| -> f64 {
-            self.values
-                .get(i)
-                .and_then(|r| r.get(j))
-                .copied()
-                .unwrap_or(f64::NAN)
-        };
+        let na = self.alpha_rad.len();
         let i1 = (i + 1).min(self.mach.len() - 1);
-        let j1 = (j + 1).min(self.alpha_rad.len() - 1);
-        let lo = at(i, j) + fa * (at(i, j1) - at(i, j));
-        let hi = at(i1, j) + fa * (at(i1, j1) - at(i1, j));
+        let j1 = (j + 1).min(na - 1);
+        // Rows i and i1; a cell of a table with other axes gives NaN, never another row's
+        // value.
+        let row = |i: usize| self.values.get(i * na..(i + 1) * na);
+        let (Some(r0), Some(r1)) = (row(i), row(i1)) else {
+            return f64::NAN;
+        };
+        let (Some(&c00), Some(&c01), Some(&c10), Some(&c11)) =
+            (r0.get(j), r0.get(j1), r1.get(j), r1.get(j1))
+        else {
+            return f64::NAN;
+        };
+        let lo = c00 + fa * (c01 - c00);
+        let hi = c10 + fa * (c11 - c10);
         if i1 == i { lo } else { lo + fm * (hi - lo) }
     }
 
@@ -319,6 +333,34 @@ mod tests {
         assert_eq!(tab.value(0.0, -1.0), 1.0);
         assert_eq!(tab.value(9.0, 9.0), 11.0);
         assert!(tab.value(f64::NAN, 0.1).is_nan());
+    }
+
+    /// `locate` as it was before its end fast paths and linear scan: clamp, then a binary
+    /// search.
+    fn locate_by_search(axis: &[f64], x: f64) -> (usize, f64) {
+        let x = x.clamp(axis[0], axis[axis.len() - 1]);
+        let i = axis
+            .partition_point(|&a| a <= x)
+            .saturating_sub(1)
+            .min(axis.len() - 2);
+        (i, ((x - axis[i]) / (axis[i + 1] - axis[i])).clamp(0.0, 1.0))
+    }
+
+    #[test]
+    fn locate_is_the_clamped_binary_search_bit_for_bit() {
+        let axis = [1.2, 1.5, 2.0, 3.0, 5.0, 10.0, 20.0];
+        let mut xs = vec![
+            -1.0, 0.0, 1.2, 1.2000001, 1.3, 1.5, 4.999, 5.0, 19.99, 20.0, 20.0000001, 27.3, 1e300,
+        ];
+        xs.extend((0..=2300).map(|k| 0.01 * f64::from(k)));
+        for x in xs {
+            let (i, f) = locate(&axis, x);
+            let (i_ref, f_ref) = locate_by_search(&axis, x);
+            assert_eq!((i, f.to_bits()), (i_ref, f_ref.to_bits()), "x = {x}");
+        }
+        assert!(locate(&axis, f64::NAN).1.is_nan());
+        assert_eq!(locate(&axis, f64::INFINITY), (5, 1.0));
+        assert_eq!(locate(&axis, f64::NEG_INFINITY), (0, 0.0));
     }
 
     #[test]

@@ -27,6 +27,13 @@ use nalgebra::Vector3;
 use crate::env::{Atmosphere, ChapmanHeatFlux, Environment, Gravity, NoseHeatFlux, Planet};
 use crate::vehicle::Vehicle;
 
+mod frames;
+
+use frames::local_axes;
+pub use frames::{
+    CartesianState, SphericalState, cartesian_of, cartesian_to_spherical, spherical_to_cartesian,
+};
+
 /// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1); `guidance-core`'s value.
 pub const G0_M_S2: f64 = guidance_core::monitor::G0_M_S2;
 
@@ -36,122 +43,6 @@ pub const STATE_LEN: usize = 8;
 pub const HEAT_LOAD_SLOT: usize = 6;
 /// Slot of the flown range angle `theta` \[rad\] in the integrated state.
 pub const FLOWN_RANGE_SLOT: usize = 7;
-
-/// Inertial Cartesian state.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CartesianState {
-    /// Position in the inertial frame \[m\].
-    pub position_m: Vector3<f64>,
-    /// Inertial velocity [m/s].
-    pub velocity_m_s: Vector3<f64>,
-}
-
-/// Planet-relative spherical state (thesis eq. 3.4).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SphericalState {
-    /// Distance from the planet centre r \[m\].
-    pub radius_m: f64,
-    /// Longitude tau \[rad\], positive east.
-    pub longitude_rad: f64,
-    /// Geocentric latitude delta \[rad\].
-    pub latitude_rad: f64,
-    /// Planet-relative speed V [m/s].
-    pub speed_m_s: f64,
-    /// Planet-relative flight-path angle gamma \[rad\].
-    pub flight_path_angle_rad: f64,
-    /// Planet-relative heading chi \[rad\], clockwise from north.
-    pub heading_rad: f64,
-}
-
-impl SphericalState {
-    /// As an array `[r, tau, delta, V, gamma, chi]`.
-    #[must_use]
-    pub fn to_array(&self) -> [f64; 6] {
-        [
-            self.radius_m,
-            self.longitude_rad,
-            self.latitude_rad,
-            self.speed_m_s,
-            self.flight_path_angle_rad,
-            self.heading_rad,
-        ]
-    }
-
-    /// From an array `[r, tau, delta, V, gamma, chi]`.
-    #[must_use]
-    pub fn from_array(a: &[f64; 6]) -> Self {
-        Self {
-            radius_m: a[0],
-            longitude_rad: a[1],
-            latitude_rad: a[2],
-            speed_m_s: a[3],
-            flight_path_angle_rad: a[4],
-            heading_rad: a[5],
-        }
-    }
-}
-
-fn rot_z(angle: f64, v: &Vector3<f64>) -> Vector3<f64> {
-    let (s, c) = angle.sin_cos();
-    Vector3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
-}
-
-/// Local unit vectors (up, east, north) in the planet-fixed frame at longitude `tau`,
-/// latitude `delta`.
-fn local_axes(tau: f64, delta: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-    let (st, ct) = tau.sin_cos();
-    let (sd, cd) = delta.sin_cos();
-    (
-        Vector3::new(cd * ct, cd * st, sd),
-        Vector3::new(-st, ct, 0.0),
-        Vector3::new(-sd * ct, -sd * st, cd),
-    )
-}
-
-/// Planet-relative spherical state -> inertial Cartesian state at time `t_s` \[s\].
-#[must_use]
-pub fn spherical_to_cartesian(s: &SphericalState, planet: &Planet, t_s: f64) -> CartesianState {
-    let (up, east, north) = local_axes(s.longitude_rad, s.latitude_rad);
-    let r_r = up * s.radius_m;
-    let (sg, cg) = s.flight_path_angle_rad.sin_cos();
-    let (sc, cc) = s.heading_rad.sin_cos();
-    let v_r = (north * (cg * cc) + east * (cg * sc) + up * sg) * s.speed_m_s;
-    let omega = Vector3::new(0.0, 0.0, planet.rotation_rate_rad_s);
-    let theta = planet.rotation_rate_rad_s * t_s;
-    CartesianState {
-        position_m: rot_z(theta, &r_r),
-        velocity_m_s: rot_z(theta, &(v_r + omega.cross(&r_r))),
-    }
-}
-
-/// Inertial Cartesian state at time `t_s` \[s\] -> planet-relative spherical state.
-/// Longitude is wrapped to (-pi, pi], heading to [0, 2 pi).
-#[must_use]
-pub fn cartesian_to_spherical(c: &CartesianState, planet: &Planet, t_s: f64) -> SphericalState {
-    let theta = planet.rotation_rate_rad_s * t_s;
-    let r_r = rot_z(-theta, &c.position_m);
-    let omega = Vector3::new(0.0, 0.0, planet.rotation_rate_rad_s);
-    let v_r = rot_z(-theta, &c.velocity_m_s) - omega.cross(&r_r);
-    let r = r_r.norm();
-    let tau = r_r.y.atan2(r_r.x);
-    let delta = r_r.z.atan2(r_r.x.hypot(r_r.y));
-    let (up, east, north) = local_axes(tau, delta);
-    let (vu, ve, vn) = (v_r.dot(&up), v_r.dot(&east), v_r.dot(&north));
-    let v = v_r.norm();
-    let gamma = vu.atan2(ve.hypot(vn));
-    let mut chi = ve.atan2(vn);
-    if chi < 0.0 {
-        chi += std::f64::consts::TAU;
-    }
-    SphericalState {
-        radius_m: r,
-        longitude_rad: tau,
-        latitude_rad: delta,
-        speed_m_s: v,
-        flight_path_angle_rad: gamma,
-        heading_rad: chi,
-    }
-}
 
 /// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -244,13 +135,23 @@ fn lift_direction_sc(
 }
 
 /// What the simulator's right-hand side ([`Dynamics::cartesian_derivative`]) keeps between
-/// calls: the heat-flux relation at the vehicle's nose radius and the sine and cosine of the
-/// last bank angle. Made by [`Dynamics::rhs_cache`] for one `Dynamics`.
+/// calls: the heat-flux relation at the vehicle's nose radius, the sine and cosine of the
+/// last bank angle, and the air data, forces and heat flux of the last point evaluated. Made
+/// by [`Dynamics::rhs_cache`] for one `Dynamics`.
+///
+/// The last point is what makes an accepted step's end cheap: the loop's peak monitors
+/// ([`Dynamics::heat_flux_and_g_load`]), an output sample ([`Dynamics::conditions_at_cached`])
+/// and the next step's first stage all evaluate the same state under the same angle of
+/// attack; only the first computes the atmosphere, the aerodynamic coefficients and the heat
+/// flux, the others reuse them (the same values, bit for bit).
 #[derive(Clone, Copy, Debug)]
 pub struct RhsCache {
     heat_flux: NoseHeatFlux,
     sigma_rad: f64,
     sin_cos: (f64, f64),
+    /// Which point `last` is ([`point_key`]); `None` before the first evaluation.
+    last_key: Option<[u64; 7]>,
+    last: PointAero,
 }
 
 /// Air data and aerodynamic forces at one instant (what the right-hand side needs).
@@ -263,6 +164,29 @@ struct Aero {
     cd: f64,
     lift: f64,
     drag: f64,
+}
+
+/// [`Aero`], the airspeed and the heat flux at one point (position, velocity and angle of
+/// attack).
+#[derive(Clone, Copy, Debug)]
+struct PointAero {
+    airspeed_m_s: f64,
+    aero: Aero,
+    heat_flux_w_m2: f64,
+}
+
+/// The bits that determine [`PointAero`]: position and velocity of `y`, and `alpha_rad`
+/// (the bank angle, time, heat load and range do not enter the air data).
+fn point_key(y: &[f64; STATE_LEN], alpha_rad: f64) -> [u64; 7] {
+    [
+        y[0].to_bits(),
+        y[1].to_bits(),
+        y[2].to_bits(),
+        y[3].to_bits(),
+        y[4].to_bits(),
+        y[5].to_bits(),
+        alpha_rad.to_bits(),
+    ]
 }
 
 impl<'a> Dynamics<'a> {
@@ -370,34 +294,103 @@ impl<'a> Dynamics<'a> {
         (self.cartesian_derivative(y, att, &mut self.rhs_cache()), fc)
     }
 
+    /// Air data, forces and heat flux at an integrated state `y` under angle of attack
+    /// `alpha_rad`: the cache's last point if it is this one, else computed (as
+    /// [`Dynamics::conditions_at`] computes them) and kept as the last point.
+    #[inline]
+    fn point<'c>(
+        &self,
+        y: &[f64; STATE_LEN],
+        alpha_rad: f64,
+        cache: &'c mut RhsCache,
+    ) -> &'c PointAero {
+        let key = point_key(y, alpha_rad);
+        // Branch-free word comparison (an array comparison calls `memcmp`).
+        let hit = cache
+            .last_key
+            .is_some_and(|k| k.iter().zip(&key).fold(0, |d, (a, b)| d | (a ^ b)) == 0);
+        if !hit {
+            let r = Vector3::new(y[0], y[1], y[2]);
+            let v = Vector3::new(y[3], y[4], y[5]);
+            let vr = (v - self.omega().cross(&r)).norm();
+            let aero = self.aero(r.norm() - self.planet.radius_m, vr, alpha_rad);
+            cache.last = PointAero {
+                airspeed_m_s: vr,
+                aero,
+                heat_flux_w_m2: cache.heat_flux.heat_flux_w_m2(aero.rho, vr),
+            };
+            cache.last_key = Some(key);
+        }
+        &cache.last
+    }
+
     /// Stagnation heat flux \[W/m^2\] (as the right-hand side computes it,
     /// [`crate::env::NoseHeatFlux`]) and g-load \[-\] at an integrated state `y` under `att`:
     /// what the loop's peak monitors need after every step, without the rest of
     /// [`Dynamics::conditions_at`]. The g-load is that of `conditions_at`, bit for bit.
+    /// `cache` must come from [`Dynamics::rhs_cache`] of this `Dynamics`.
     #[must_use]
     pub fn heat_flux_and_g_load(
         &self,
         y: &[f64; STATE_LEN],
         att: Command<f64>,
-        cache: &RhsCache,
+        cache: &mut RhsCache,
     ) -> (f64, f64) {
-        let r = Vector3::new(y[0], y[1], y[2]);
-        let v = Vector3::new(y[3], y[4], y[5]);
-        let vr = (v - self.omega().cross(&r)).norm();
-        let a = self.aero(r.norm() - self.planet.radius_m, vr, att.alpha_rad);
+        let p = self.point(y, att.alpha_rad, cache);
         (
-            cache.heat_flux.heat_flux_w_m2(a.rho, vr),
-            guidance_core::monitor::g_load(a.lift, a.drag, self.vehicle.mass_kg),
+            p.heat_flux_w_m2,
+            guidance_core::monitor::g_load(p.aero.lift, p.aero.drag, self.vehicle.mass_kg),
         )
     }
 
-    /// The constants and the bank-angle cache of [`Dynamics::cartesian_derivative`].
+    /// [`Dynamics::conditions_at`] through the right-hand side's cache (the same values, bit
+    /// for bit; computed only if the cache's last point is another one). `cache` must come
+    /// from [`Dynamics::rhs_cache`] of this `Dynamics`.
+    #[must_use]
+    pub fn conditions_at_cached(
+        &self,
+        y: &[f64; STATE_LEN],
+        att: Command<f64>,
+        cache: &mut RhsCache,
+    ) -> FlightConditions {
+        let p = *self.point(y, att.alpha_rad, cache);
+        let a = p.aero;
+        FlightConditions {
+            altitude_m: Vector3::new(y[0], y[1], y[2]).norm() - self.planet.radius_m,
+            density_kg_m3: a.rho,
+            airspeed_m_s: p.airspeed_m_s,
+            mach: a.mach,
+            dynamic_pressure_pa: a.q_dyn,
+            cl: a.cl,
+            cd: a.cd,
+            lift_n: a.lift,
+            drag_n: a.drag,
+            heat_flux_w_m2: p.heat_flux_w_m2,
+            g_load: guidance_core::monitor::g_load(a.lift, a.drag, self.vehicle.mass_kg),
+        }
+    }
+
+    /// The constants and the caches of [`Dynamics::cartesian_derivative`].
     #[must_use]
     pub fn rhs_cache(&self) -> RhsCache {
         RhsCache {
             heat_flux: self.heat_flux.at_nose(self.vehicle.nose_radius_m),
             sigma_rad: 0.0,
             sin_cos: (0.0, 1.0),
+            last_key: None,
+            last: PointAero {
+                airspeed_m_s: f64::NAN,
+                aero: Aero {
+                    rho: f64::NAN,
+                    mach: f64::NAN,
+                    q_dyn: f64::NAN,
+                    cl: f64::NAN,
+                    cd: f64::NAN,
+                    lift: f64::NAN,
+                    drag: f64::NAN,
+                },
+                heat_flux_w_m2: f64::NAN,
+            },
         }
     }
 
@@ -413,30 +406,32 @@ impl<'a> Dynamics<'a> {
         att: Command<f64>,
         cache: &mut RhsCache,
     ) -> [f64; STATE_LEN] {
+        let (vr, q_dyn, lift, drag, q) = {
+            let p = self.point(y, att.alpha_rad, cache);
+            let a = &p.aero;
+            (p.airspeed_m_s, a.q_dyn, a.lift, a.drag, p.heat_flux_w_m2)
+        };
         let r = Vector3::new(y[0], y[1], y[2]);
         let v = Vector3::new(y[3], y[4], y[5]);
         let rn = r.norm();
         let rhat = r / rn;
         let v_rel = v - self.omega().cross(&r);
-        let vr = v_rel.norm();
-        let aero = self.aero(rn - self.planet.radius_m, vr, att.alpha_rad);
         let mut a = self.gravity.acceleration(&r);
         let mut theta_dot = 0.0;
         if vr > 0.0 {
             let vhat = v_rel / vr;
             let m = self.vehicle.mass_kg;
-            if aero.q_dyn > 0.0 {
+            if q_dyn > 0.0 {
                 if att.sigma_rad.to_bits() != cache.sigma_rad.to_bits() {
                     cache.sigma_rad = att.sigma_rad;
                     cache.sin_cos = att.sigma_rad.sin_cos();
                 }
-                a += lift_direction_sc(&rhat, &vhat, cache.sin_cos) * (aero.lift / m)
-                    - vhat * (aero.drag / m);
+                a +=
+                    lift_direction_sc(&rhat, &vhat, cache.sin_cos) * (lift / m) - vhat * (drag / m);
             }
             // Horizontal planet-relative speed over r.
             theta_dot = (v_rel - rhat * v_rel.dot(&rhat)).norm() / rn;
         }
-        let q = cache.heat_flux.heat_flux_w_m2(aero.rho, vr);
         [v.x, v.y, v.z, a.x, a.y, a.z, q, theta_dot]
     }
 
@@ -498,11 +493,5 @@ impl<'a> Dynamics<'a> {
     }
 }
 
-/// The Cartesian part of an integrated state.
-#[must_use]
-pub fn cartesian_of(y: &[f64; STATE_LEN]) -> CartesianState {
-    CartesianState {
-        position_m: Vector3::new(y[0], y[1], y[2]),
-        velocity_m_s: Vector3::new(y[3], y[4], y[5]),
-    }
-}
+#[cfg(test)]
+mod tests;
