@@ -118,6 +118,10 @@ impl Qemu {
     pub(super) fn spawn(cfg: &PilConfig, dir: &Path) -> Result<Self, PilError> {
         let elf =
             std::fs::canonicalize(&cfg.elf).map_err(|_| PilError::ElfMissing(cfg.elf.clone()))?;
+        // The registry stays locked from the spawn until QEMU is in it: a Ctrl-C in between
+        // ([`interrupt_cleanup`], which then exits the process) waits for it and kills it,
+        // instead of missing a QEMU that outlives the host in its own process group.
+        let mut registry = live();
         let mut child = std::process::Command::new("timeout")
             .arg("-k")
             .arg(KILL_AFTER_S.to_string())
@@ -142,7 +146,8 @@ impl Qemu {
                 source,
             })?;
         let pgid = child.id();
-        live().push((pgid, dir.to_path_buf()));
+        registry.push((pgid, dir.to_path_buf()));
+        drop(registry);
         let stdout = child
             .stdout
             .take()
