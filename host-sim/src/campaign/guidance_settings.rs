@@ -17,7 +17,8 @@ pub struct CampaignGuidance {
     /// (default 3).
     pub corridor_width_final_deg: f64,
     /// Where the corridor reaches its final width, as a fraction of the speed span from the
-    /// interface speed `V_f` to the entry speed `V_e` \[-\], in `[0, 1)` (default 0.1).
+    /// interface speed `V_f` to the entry speed `V_e` \[-\], in `[0, 1)` (default 0.05, tuned on
+    /// seeds 1 and 2, docs/DISPERSIONS.md).
     pub corridor_low_speed_fraction: f64,
     /// Corridor hysteresis \[deg\] (default 1).
     pub hysteresis_deg: f64,
@@ -56,7 +57,7 @@ impl Default for CampaignGuidance {
         Self {
             corridor_width_entry_deg: 15.0,
             corridor_width_final_deg: 3.0,
-            corridor_low_speed_fraction: 0.1,
+            corridor_low_speed_fraction: 0.05,
             hysteresis_deg: 1.0,
             max_reversals: 12,
             freeze_km: 30.0,
