@@ -273,8 +273,10 @@ pub fn predict_glide_with_sink<S: Real>(
     )
 }
 
+/// The glide prediction of [`predict_glide_with`] (`sink` false) and
+/// [`predict_glide_with_sink`] (`sink` true).
 #[allow(clippy::too_many_arguments)]
-fn glide_prediction<S: Real>(
+pub(crate) fn glide_prediction<S: Real>(
     planet: &Planet<S>,
     atmosphere: &ExpAtmosphere<S>,
     vehicle: &VehicleParams<S>,

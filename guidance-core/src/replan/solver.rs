@@ -26,7 +26,7 @@ use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
 
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
-    ReplanFallBack, ReplanLimits, ReplanResult, predict_glide_with, predict_glide_with_sink,
+    ReplanFallBack, ReplanLimits, ReplanResult, glide_prediction,
 };
 
 /// Where the solver is.
@@ -199,8 +199,8 @@ impl<S: Real> ReplanSolver<S> {
             lambda: self.config.lambda,
             vertical_fraction: f,
         };
-        if self.glide && self.sink {
-            predict_glide_with_sink(
+        if self.glide {
+            glide_prediction(
                 &self.planet,
                 &self.atmosphere,
                 &self.vehicle,
@@ -208,16 +208,7 @@ impl<S: Real> ReplanSolver<S> {
                 &self.state,
                 &self.config.predictor,
                 peaks,
-            )
-        } else if self.glide {
-            predict_glide_with(
-                &self.planet,
-                &self.atmosphere,
-                &self.vehicle,
-                &lift,
-                &self.state,
-                &self.config.predictor,
-                peaks,
+                self.sink,
             )
         } else {
             predict_with(
