@@ -103,16 +103,7 @@ impl std::fmt::Debug for Dynamics<'_> {
 /// `z x vhat` (or `x x vhat`), a documented arbitrary choice.
 #[must_use]
 pub fn lift_direction(rhat: &Vector3<f64>, vhat: &Vector3<f64>, sigma_rad: f64) -> Vector3<f64> {
-    let mut e_up = rhat - vhat * rhat.dot(vhat);
-    if e_up.norm() < 1e-12 {
-        e_up = Vector3::z().cross(vhat);
-        if e_up.norm() < 1e-12 {
-            e_up = Vector3::x().cross(vhat);
-        }
-    }
-    let e_up = e_up.normalize();
-    let (s, c) = sigma_rad.sin_cos();
-    e_up * c + vhat.cross(&e_up) * s
+    lift_direction_sc(rhat, vhat, sigma_rad.sin_cos())
 }
 
 /// [`lift_direction`] with the sine and cosine of the bank angle given (the right-hand side
@@ -206,6 +197,17 @@ impl<'a> Dynamics<'a> {
         Vector3::new(0.0, 0.0, self.planet.rotation_rate_rad_s)
     }
 
+    /// Altitude \[m\] and airspeed (relative to the co-rotating air) \[m/s\] at an
+    /// integrated state `y`.
+    fn altitude_airspeed(&self, y: &[f64; STATE_LEN]) -> (f64, f64) {
+        let r = Vector3::new(y[0], y[1], y[2]);
+        let v = Vector3::new(y[3], y[4], y[5]);
+        (
+            r.norm() - self.planet.radius_m,
+            (v - self.omega().cross(&r)).norm(),
+        )
+    }
+
     /// Air data and forces at altitude `altitude_m` and airspeed `v_m_s` (one atmosphere call,
     /// one aerodynamic lookup).
     fn aero(&self, altitude_m: f64, v_m_s: f64, alpha_rad: f64) -> Aero {
@@ -261,10 +263,8 @@ impl<'a> Dynamics<'a> {
     /// Conditions at an integrated Cartesian state `y` (see [`STATE_LEN`]).
     #[must_use]
     pub fn conditions_at(&self, y: &[f64; STATE_LEN], att: Command<f64>) -> FlightConditions {
-        let r = Vector3::new(y[0], y[1], y[2]);
-        let v = Vector3::new(y[3], y[4], y[5]);
-        let v_rel = v - self.omega().cross(&r);
-        self.conditions(r.norm() - self.planet.radius_m, v_rel.norm(), att)
+        let (altitude_m, airspeed_m_s) = self.altitude_airspeed(y);
+        self.conditions(altitude_m, airspeed_m_s, att)
     }
 
     /// Magnitudes of the lift and drag accelerations \[m/s^2\] at an integrated state `y`
@@ -272,10 +272,8 @@ impl<'a> Dynamics<'a> {
     /// [`Dynamics::conditions_at`], bit for bit, without its heat flux and g-load.
     #[must_use]
     pub fn aero_accelerations_at(&self, y: &[f64; STATE_LEN], att: Command<f64>) -> (f64, f64) {
-        let r = Vector3::new(y[0], y[1], y[2]);
-        let v = Vector3::new(y[3], y[4], y[5]);
-        let vr = (v - self.omega().cross(&r)).norm();
-        let a = self.aero(r.norm() - self.planet.radius_m, vr, att.alpha_rad);
+        let (altitude_m, airspeed_m_s) = self.altitude_airspeed(y);
+        let a = self.aero(altitude_m, airspeed_m_s, att.alpha_rad);
         let m = self.vehicle.mass_kg;
         (a.lift.abs() / m, a.drag.abs() / m)
     }
@@ -288,9 +286,7 @@ impl<'a> Dynamics<'a> {
         y: &[f64; STATE_LEN],
         att: Command<f64>,
     ) -> ([f64; STATE_LEN], FlightConditions) {
-        let r = Vector3::new(y[0], y[1], y[2]);
-        let v_rel = Vector3::new(y[3], y[4], y[5]) - self.omega().cross(&r);
-        let fc = self.conditions(r.norm() - self.planet.radius_m, v_rel.norm(), att);
+        let fc = self.conditions_at(y, att);
         (self.cartesian_derivative(y, att, &mut self.rhs_cache()), fc)
     }
 
@@ -310,10 +306,8 @@ impl<'a> Dynamics<'a> {
             .last_key
             .is_some_and(|k| k.iter().zip(&key).fold(0, |d, (a, b)| d | (a ^ b)) == 0);
         if !hit {
-            let r = Vector3::new(y[0], y[1], y[2]);
-            let v = Vector3::new(y[3], y[4], y[5]);
-            let vr = (v - self.omega().cross(&r)).norm();
-            let aero = self.aero(r.norm() - self.planet.radius_m, vr, alpha_rad);
+            let (altitude_m, vr) = self.altitude_airspeed(y);
+            let aero = self.aero(altitude_m, vr, alpha_rad);
             cache.last = PointAero {
                 airspeed_m_s: vr,
                 aero,
