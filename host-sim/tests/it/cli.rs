@@ -532,6 +532,65 @@ fn dispersions_writes_its_plots_in_a_fresh_process() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// `host-sim dispersions --out DIR` again with another `--interface-speed` is refused, naming
+/// the directory, the field and both values, and leaves the directory as it was; with the same
+/// arguments it reuses both cases and rewrites byte-identical files.
+#[test]
+fn dispersions_resume_refuses_other_inputs() {
+    let d = temp_dir("dispersions-resume");
+    let run = |speed: &str| {
+        bin()
+            .args([
+                "dispersions",
+                "--builtin",
+                "srm-glide",
+                "-n",
+                "2",
+                "--interface-speed",
+                speed,
+                "--modes",
+                "stored",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&d)
+            .output()
+            .unwrap()
+    };
+    let first = run("2500");
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let read = |f: &str| std::fs::read(d.join(f)).unwrap();
+    let (summary, fingerprint) = (read("summary.json"), read("fingerprint.json"));
+    let other = run("2400");
+    assert!(!other.status.success());
+    let err = String::from_utf8_lossy(&other.stderr);
+    assert!(
+        err.contains(&d.display().to_string())
+            && err.contains("dispersions.interface_speed_m_s was 2500.0, now 2400.0")
+            && err.contains("--out"),
+        "{err}"
+    );
+    assert_eq!(read("fingerprint.json"), fingerprint);
+    let again = run("2500");
+    assert!(
+        again.status.success(),
+        "{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
+    assert!(
+        String::from_utf8_lossy(&again.stdout).contains("(2 resumed)"),
+        "{}",
+        String::from_utf8_lossy(&again.stdout)
+    );
+    assert_eq!(read("summary.json"), summary);
+    assert_eq!(read("fingerprint.json"), fingerprint);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 /// An out-of-range `--pil-fault-rate` is rejected before any PIL run, naming the option and
 /// printing its value compactly (`1e300`, not a 301-digit integer).
 #[test]
