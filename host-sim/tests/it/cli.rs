@@ -493,13 +493,10 @@ fn compare_command_line_runs_a_small_grid() {
     assert!(!dir.exists(), "nothing written on bad input");
 }
 
-/// `host-sim dispersions --out` in a fresh process writes its SVG plots: the campaign plots
-/// register the embedded font themselves (without it the first caption failed with
-/// "Font loading error: FontUnavailable" and the command exited 1).
-#[test]
-fn dispersions_writes_its_plots_in_a_fresh_process() {
-    let d = temp_dir("dispersions-plots");
-    let o = bin()
+/// `host-sim dispersions` of 2 SRM cases in mode `stored` with the interface at `speed` m/s
+/// into `out`.
+fn srm_dispersions(speed: &str, out: &std::path::Path) -> std::process::Output {
+    bin()
         .args([
             "dispersions",
             "--builtin",
@@ -507,15 +504,24 @@ fn dispersions_writes_its_plots_in_a_fresh_process() {
             "-n",
             "2",
             "--interface-speed",
-            "2500",
+            speed,
             "--modes",
             "stored",
             "--quiet",
             "--out",
         ])
-        .arg(&d)
+        .arg(out)
         .output()
-        .unwrap();
+        .unwrap()
+}
+
+/// `host-sim dispersions --out` in a fresh process writes its SVG plots: the campaign plots
+/// register the embedded font themselves (without it the first caption failed with
+/// "Font loading error: FontUnavailable" and the command exited 1).
+#[test]
+fn dispersions_writes_its_plots_in_a_fresh_process() {
+    let d = temp_dir("dispersions-plots");
+    let o = srm_dispersions("2500", &d);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in [
         "summary.json",
@@ -538,25 +544,7 @@ fn dispersions_writes_its_plots_in_a_fresh_process() {
 #[test]
 fn dispersions_resume_refuses_other_inputs() {
     let d = temp_dir("dispersions-resume");
-    let run = |speed: &str| {
-        bin()
-            .args([
-                "dispersions",
-                "--builtin",
-                "srm-glide",
-                "-n",
-                "2",
-                "--interface-speed",
-                speed,
-                "--modes",
-                "stored",
-                "--quiet",
-                "--out",
-            ])
-            .arg(&d)
-            .output()
-            .unwrap()
-    };
+    let run = |speed: &str| srm_dispersions(speed, &d);
     let first = run("2500");
     assert!(
         first.status.success(),
