@@ -56,9 +56,11 @@
 //! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
 //! 115 k instructions.
 
+pub mod numerical;
 mod replanning;
 mod solver;
 
+pub use numerical::{NumericalRun, predict_numerical};
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
     ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,
