@@ -82,6 +82,10 @@ pub const VERTICAL_STEP_FRACTION: f64 = 0.5;
 pub const SPEED_STEP_FRACTION: f64 = 0.05;
 /// Largest phugoid phase per step \[rad\].
 pub const PHUGOID_STEP_RAD: f64 = 0.5;
+/// Integration steps per [`super::ReplanSolver::step`] of a numerical prediction: a converged
+/// SRM glide re-plan then stays within the per-tick instruction budget of the Cortex-M4F with
+/// one solver step per tick (docs/PERFORMANCE.md).
+pub const STEPS_PER_SOLVER_STEP: u16 = 64;
 /// Drag acceleration below which an ascending state above escape energy is taken as escaping
 /// \[m/s^2\].
 const ESCAPE_DRAG_M_S2: f64 = 1e-6;
