@@ -141,6 +141,8 @@ struct Model<S> {
     vehicle: VehicleParams<S>,
     sqrt_cd0_k: S,
     lambda: S,
+    /// `1 + lambda^2`.
+    one_l2: S,
     f: S,
 }
 
@@ -148,8 +150,14 @@ impl<S: Real> Model<S> {
     fn rates(&self, y: &Y<S>) -> Rates<S> {
         let r = self.radius_m + y.h;
         let rho = self.atmosphere_h.density_unchecked(y.h);
-        let (drag, lift) =
-            aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, self.lambda, rho, y.v);
+        let (drag, lift) = aero_accelerations_m_s2(
+            &self.vehicle,
+            self.sqrt_cd0_k,
+            self.lambda,
+            self.one_l2,
+            rho,
+            y.v,
+        );
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
         let v_r = y.v / r;
@@ -307,6 +315,7 @@ impl<S: Real> NumericalRun<S> {
                 vehicle: *vehicle,
                 sqrt_cd0_k,
                 lambda: lift.lambda,
+                one_l2: S::ONE + lift.lambda * lift.lambda,
                 f: lift.vertical_fraction,
             },
             final_speed_m_s: config.final_speed_m_s,

@@ -246,13 +246,28 @@ impl<S: Real> ReplanSolver<S> {
             vertical_fraction: f,
         };
         if self.numerical {
+            return self.eval_numerical(&lift, peaks);
+        }
+        self.calls = self.calls.saturating_add(1);
+        Some(self.eval_closed_form(&lift, peaks))
+    }
+
+    /// Advance (or start) the numerical prediction with `lift`: `None` while in progress.
+    /// Not inlined: keeps the closed-form path of [`ReplanSolver::step`] as lean as before.
+    #[inline(never)]
+    fn eval_numerical(
+        &mut self,
+        lift: &LiftControl<S>,
+        peaks: PeakMode<S>,
+    ) -> Option<Result<Prediction<S>, VinhError>> {
+        {
             let mut run = match self.run.take() {
                 Some(r) => r,
                 None => match NumericalRun::new(
                     &self.planet,
                     &self.atmosphere,
                     &self.vehicle,
-                    &lift,
+                    lift,
                     &self.state,
                     &self.config.predictor,
                     peaks,
@@ -274,10 +289,8 @@ impl<S: Real> ReplanSolver<S> {
             } else {
                 self.calls = self.calls.saturating_add(1);
             }
-            return out;
+            out
         }
-        self.calls = self.calls.saturating_add(1);
-        Some(self.eval_closed_form(&lift, peaks))
     }
 
     /// One closed-form prediction with `lift`.

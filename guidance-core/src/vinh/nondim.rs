@@ -193,6 +193,7 @@ impl<S: Real> VehicleParams<S> {
     /// # Errors
     /// As for validation: [`VinhError::NonFiniteInput`], [`VinhError::NonPositiveZeroLiftDrag`],
     /// [`VinhError::InvalidVehicle`].
+    #[inline]
     pub fn cl_max_ld(&self) -> Result<S, VinhError> {
         self.validate()?;
         finite((self.cd0 / self.k_polar).sqrt_fast())
@@ -274,6 +275,7 @@ pub struct EntryState<S> {
 }
 
 impl<S: Real> EntryState<S> {
+    #[inline]
     pub(crate) fn validate(&self, planet: &Planet<S>) -> Result<(), VinhError> {
         if !(self.radius_m.is_finite()
             && self.speed_m_s.is_finite()
@@ -358,21 +360,24 @@ pub(crate) fn chapman_heat_flux_w_m2<S: Real>(nose_radius_m: S, rho: S, v: S) ->
 }
 
 /// Drag and total-lift accelerations `(D/m, L/m)` \[m/s^2\] of `vehicle` at lift parameter
-/// `lambda` (`sqrt_cd0_k = sqrt(C_D0/K)`), density `rho` \[kg/m^3\] and speed `v` \[m/s\]:
-/// `D/m = rho V^2 S/(2m) C_D0 (1 + lambda^2)`, `L/m = rho V^2 S/(2m) sqrt(C_D0/K) lambda`. The
-/// one definition of the predictor model's aerodynamics (closed forms and numerical predictor).
+/// `lambda` (`sqrt_cd0_k = sqrt(C_D0/K)`, `one_l2 = 1 + lambda^2`, passed in so callers that
+/// have them do not recompute them: soft float on the Cortex-M3), density `rho` \[kg/m^3\] and
+/// speed `v` \[m/s\]: `D/m = rho V^2 S/(2m) C_D0 (1 + lambda^2)`,
+/// `L/m = rho V^2 S/(2m) sqrt(C_D0/K) lambda`. The one definition of the predictor model's
+/// aerodynamics (closed forms and numerical predictor).
 #[inline]
 #[must_use]
 pub(crate) fn aero_accelerations_m_s2<S: Real>(
     vehicle: &VehicleParams<S>,
     sqrt_cd0_k: S,
     lambda: S,
+    one_l2: S,
     rho: S,
     v: S,
 ) -> (S, S) {
     let qdyn_s_m = rho * v * v * vehicle.reference_area_m2 / (k::<S>(2.0) * vehicle.mass_kg);
     (
-        qdyn_s_m * vehicle.cd0 * (S::ONE + lambda * lambda),
+        qdyn_s_m * vehicle.cd0 * one_l2,
         qdyn_s_m * sqrt_cd0_k * lambda,
     )
 }
@@ -435,7 +440,8 @@ impl<S: Real> NonDim<S> {
         let one_l2 = S::ONE + lambda * lambda;
         let e_vertical = finite(two * e_star * lambda * lift.vertical_fraction / one_l2)?;
         let q_e = finite(chapman_heat_flux_w_m2(vehicle.nose_radius_m, rho_e, v_e))?;
-        let (drag_e, lift_e) = aero_accelerations_m_s2(vehicle, sqrt_cd0_k, lambda, rho_e, v_e);
+        let (drag_e, lift_e) =
+            aero_accelerations_m_s2(vehicle, sqrt_cd0_k, lambda, one_l2, rho_e, v_e);
         let drag_e = finite(drag_e)?;
         let lift_e = finite(lift_e)?;
         let g_load_e = finite(g_load_of(drag_e, lift_e))?;
