@@ -535,7 +535,10 @@ fn numerical_replanning_flies_the_srm_glide() {
                 lp.guidance.counts()
             );
             assert_eq!(re.summary.termination, TerminationReason::Mach);
-            assert!(e.abs() < 0.25 * e_stored.abs(), "{mode:?}: {e} m vs {e_stored} m");
+            assert!(
+                e.abs() < 0.25 * e_stored.abs(),
+                "{mode:?}: {e} m vs {e_stored} m"
+            );
             check_rate(&lp, &re, EVERY);
             let c = lp.guidance.counts();
             assert!(c.applied > c.replans / 2, "{c:?}");
