@@ -17,9 +17,10 @@ use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ReplanItem {
-    /// Code 8: schedule and counts. Slots: every N ticks, predictor calls per tick (0: whole
+    /// Code 8: schedule and counts. Slots: every N ticks, solver steps per tick (0: whole
     /// solve in its tick), apply out of reach (0 or 1), predictor mode (0 chain, 1 glide,
-    /// 2 auto), corrector iterations, predictor skips.
+    /// 2 auto, 3 auto-sink, 4 numerical, 5 hybrid, 6 hybrid-sink), corrector iterations,
+    /// predictor skips.
     Schedule {
         /// [`ReplanningConfig::every_n_ticks`] \[ticks\].
         every_n_ticks: u16,
@@ -99,6 +100,9 @@ impl ReplanItem {
                     PredictorMode::Glide => 1.0,
                     PredictorMode::Auto => 2.0,
                     PredictorMode::AutoSink => 3.0,
+                    PredictorMode::Numerical => 4.0,
+                    PredictorMode::Hybrid => 5.0,
+                    PredictorMode::HybridSink => 6.0,
                 },
                 f64::from(max_iterations),
                 f64::from(max_skips),
@@ -174,11 +178,14 @@ impl ReplanItem {
                     .map_err(|_| SetupError::BadItem)?,
                 steps_per_tick: byte(b)?,
                 apply_out_of_reach: small_int(c, 1)? == 1,
-                mode: match small_int(d, 3)? {
+                mode: match small_int(d, 6)? {
                     0 => PredictorMode::Chain,
                     1 => PredictorMode::Glide,
                     2 => PredictorMode::Auto,
-                    _ => PredictorMode::AutoSink,
+                    3 => PredictorMode::AutoSink,
+                    4 => PredictorMode::Numerical,
+                    5 => PredictorMode::Hybrid,
+                    _ => PredictorMode::HybridSink,
                 },
                 max_iterations: byte(e)?,
                 max_skips: byte(f)?,
@@ -483,6 +490,9 @@ mod tests {
                 PredictorMode::Glide,
                 PredictorMode::Auto,
                 PredictorMode::AutoSink,
+                PredictorMode::Numerical,
+                PredictorMode::Hybrid,
+                PredictorMode::HybridSink,
             ] {
                 let rc = config(target, mode);
                 for it in replan_items(&rc) {
@@ -508,7 +518,7 @@ mod tests {
             (1, 70_000.0),
             (2, 256.0),
             (3, 2.0),
-            (4, 4.0),
+            (4, 7.0),
             (5, -1.0),
         ] {
             let mut s = schedule;

@@ -164,7 +164,12 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
         let chain = match s.mode {
             PredictorMode::Chain => true,
             PredictorMode::Glide => false,
-            PredictorMode::Auto | PredictorMode::AutoSink => {
+            // The numerical modes are not sampled here; their closed-form part is Auto's.
+            PredictorMode::Auto
+            | PredictorMode::AutoSink
+            | PredictorMode::Numerical
+            | PredictorMode::Hybrid
+            | PredictorMode::HybridSink => {
                 chain_ok(s.min_vertical_fraction) && chain_ok(s.max_vertical_fraction)
             }
         };
