@@ -4,10 +4,10 @@
 //! 1 s: far finer than the predictor's RK4 steps of up to 10 s), against the closed-form glide
 //! in its validated domain, resumable against one-shot, bad input, f32 against f64.
 
-use crate::vinh_replan::{atmosphere, planet, srm};
 use crate::vinh_support::dynamics::{Lift, chapman, density, eom_dim};
+use crate::vinh_support::inputs::{atmosphere, horus, planet, srm};
 use crate::vinh_support::ode::{Settings, integrate, sampled_max};
-use crate::vinh_support::vehicles::{self, R_EARTH, Vehicle};
+use crate::vinh_support::vehicles::{R_EARTH, Vehicle};
 use guidance_core::replan::numerical::{MAX_STEPS, NumericalRun};
 use guidance_core::replan::{predict_glide_with, predict_numerical};
 use guidance_core::vinh::{
@@ -20,20 +20,6 @@ const RANGE_TOL_REL: f64 = 1e-3;
 const RANGE_TOL_M: f64 = 1000.0;
 /// Peak heat-flux and g-load tolerance (relative).
 const PEAK_TOL_REL: f64 = 5e-3;
-
-pub(crate) fn horus() -> VehicleParams<f64> {
-    params(&vehicles::horus(20.0))
-}
-
-fn params(v: &Vehicle) -> VehicleParams<f64> {
-    VehicleParams {
-        mass_kg: v.mass_kg,
-        reference_area_m2: v.area_m2,
-        cd0: v.cd0,
-        k_polar: v.k,
-        nose_radius_m: v.nose_radius_m,
-    }
-}
 
 fn vehicle_of(p: &VehicleParams<f64>) -> Vehicle {
     Vehicle {

@@ -4,8 +4,8 @@
 //! and the hybrid modes take the closed forms in their validated domain and the numerical
 //! predictor elsewhere.
 
-use crate::numerical_predictor::horus;
-use crate::vinh_replan::{NO_LIMITS, atmosphere, glide_nav, planet, rcfg, replanning, srm};
+use crate::vinh_replan::{NO_LIMITS, glide_nav, rcfg, replanning, srm_equilibrium_glide_nav};
+use crate::vinh_support::inputs::{atmosphere, horus, planet, srm};
 use crate::vinh_support::vehicles::R_EARTH;
 use guidance_core::NavState;
 use guidance_core::replan::numerical::{MAX_STEPS, STEPS_PER_SOLVER_STEP};
@@ -302,24 +302,7 @@ fn hybrid_uses_closed_forms_in_domain_and_numerical_elsewhere() {
     // In domain: the SRM on its equilibrium glide of f = 1 at 90 km, f in [0.7, 1] (glide
     // starts at 87-90 km, the chain at f_min and the glide at both ends in domain). Out of
     // domain: the SRM's last 500 km (glide below 70 km) and HORUS-2B's near-circular entry.
-    let eq = guidance_core::vinh::GlideSolution::new(
-        &planet(),
-        &atmosphere(),
-        &srm(),
-        &LiftControl {
-            lambda: 1.0,
-            vertical_fraction: 1.0,
-        },
-        R_EARTH + 90e3,
-    )
-    .unwrap()
-    .imposed_entry();
-    let in_domain = NavState {
-        radius_m: eq.radius_m,
-        speed_m_s: eq.speed_m_s,
-        flight_path_angle_rad: eq.flight_path_angle_rad,
-        ..glide_nav(0.0)
-    };
+    let in_domain = srm_equilibrium_glide_nav(1.0, 90e3);
     let cases: Vec<(VehicleParams<f64>, NavState<f64>, f64, bool)> = vec![
         (srm(), in_domain, 0.7, false),
         (srm(), state_nav(66.0, 3800.0, -0.2), 0.1, true),

@@ -9,14 +9,12 @@
 //! honest: every prediction classified `InDomain` is within the documented 3.2 %.
 //! `print_glide_range_error_map` (ignored) prints the map of docs/VINH.md.
 
-use crate::vinh_replan::{atmosphere, planet};
 use crate::vinh_support::dynamics::{Lift, eom_dim};
+use crate::vinh_support::inputs::{atmosphere, params, planet};
 use crate::vinh_support::ode::{Settings, integrate};
-use crate::vinh_support::vehicles::{R_EARTH, Vehicle, srm};
+use crate::vinh_support::vehicles::{R_EARTH, srm_with_max_ld as vehicle};
 use guidance_core::replan::{predict_glide, predict_glide_with_sink};
-use guidance_core::vinh::{
-    GlideSolution, LiftControl, PeakMode, PredictorConfig, Validity, VehicleParams,
-};
+use guidance_core::vinh::{GlideSolution, LiftControl, PeakMode, PredictorConfig, Validity};
 
 /// One map point: L/D, altitude [km], vertical fraction, then for `predict_glide` and for
 /// `predict_glide_with_sink`: validity and range error (`None` when the predictor is out of
@@ -28,22 +26,6 @@ type Point = (
     (Validity, Option<f64>),
     (Validity, Option<f64>),
 );
-
-fn vehicle(ld: f64) -> Vehicle {
-    let mut v = srm();
-    v.k = 1.0 / (4.0 * ld * ld * v.cd0);
-    v
-}
-
-fn params(v: &Vehicle) -> VehicleParams<f64> {
-    VehicleParams {
-        mass_kg: v.mass_kg,
-        reference_area_m2: v.area_m2,
-        cd0: v.cd0,
-        k_polar: v.k,
-        nose_radius_m: v.nose_radius_m,
-    }
-}
 
 fn map() -> Vec<Point> {
     let mut out = Vec::new();

@@ -4,8 +4,9 @@
 //! agree to a stated tolerance over the validation grids, in `f64` and `f32`.
 
 use crate::vinh_support::dynamics::Lift;
+use crate::vinh_support::inputs::{atmosphere, params, planet};
 use crate::vinh_support::vehicles::{self, R_EARTH, Vehicle};
-use crate::vinh_validation::{atmosphere, lift_control, nondim, params, planet};
+use crate::vinh_validation::{lift_control, nondim};
 use guidance_core::vinh::{GlideSolution, SkipSolution};
 
 const H_ENTRY: f64 = 122e3;

@@ -1,5 +1,6 @@
 //! Tests of the onboard re-planner (`guidance_core::replan`) built on the Vinh predictor.
 
+use crate::vinh_support::inputs::{atmosphere, planet, srm};
 use crate::vinh_support::vehicles::{self, H_S, MU, R_EARTH, RHO0};
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
@@ -17,29 +18,6 @@ use guidance_core::vinh::{
 };
 use proptest::prelude::*;
 
-pub(crate) fn planet() -> Planet<f64> {
-    Planet {
-        mu_m3_s2: MU,
-        radius_m: R_EARTH,
-    }
-}
-pub(crate) fn atmosphere() -> ExpAtmosphere<f64> {
-    ExpAtmosphere {
-        rho0_kg_m3: RHO0,
-        scale_height_m: H_S,
-        ref_radius_m: R_EARTH,
-    }
-}
-pub(crate) fn srm() -> VehicleParams<f64> {
-    let v = vehicles::srm();
-    VehicleParams {
-        mass_kg: v.mass_kg,
-        reference_area_m2: v.area_m2,
-        cd0: v.cd0,
-        k_polar: v.k,
-        nose_radius_m: v.nose_radius_m,
-    }
-}
 pub(crate) fn nav(v: f64, g_deg: f64) -> NavState<f64> {
     NavState {
         time_s: 0.0,
@@ -271,6 +249,30 @@ pub(crate) fn glide_nav(t: f64) -> NavState<f64> {
         heading_rad: 90.0 * DEG,
         latitude_rad: 0.0,
         longitude_rad: 0.0,
+    }
+}
+
+/// The SRM on the equilibrium glide (the glide's imposed state, eq. 3.78-3.79) at `alt_m` above
+/// `R_EARTH` for lambda = 1 and vertical lift fraction `f`: `glide_nav(0.0)` with that radius,
+/// speed and flight-path angle.
+pub(crate) fn srm_equilibrium_glide_nav(f: f64, alt_m: f64) -> NavState<f64> {
+    let eq = guidance_core::vinh::GlideSolution::new(
+        &planet(),
+        &atmosphere(),
+        &srm(),
+        &LiftControl {
+            lambda: 1.0,
+            vertical_fraction: f,
+        },
+        R_EARTH + alt_m,
+    )
+    .unwrap()
+    .imposed_entry();
+    NavState {
+        radius_m: eq.radius_m,
+        speed_m_s: eq.speed_m_s,
+        flight_path_angle_rad: eq.flight_path_angle_rad,
+        ..glide_nav(0.0)
     }
 }
 
@@ -520,24 +522,7 @@ fn replanning_falls_back_to_the_stored_profile() {
 /// glide prediction and converges.
 #[test]
 fn auto_mode_switches_to_the_glide_when_the_chain_is_out_of_domain() {
-    let eq = guidance_core::vinh::GlideSolution::new(
-        &planet(),
-        &atmosphere(),
-        &srm(),
-        &LiftControl {
-            lambda: 1.0,
-            vertical_fraction: 0.3,
-        },
-        R_EARTH + 70e3,
-    )
-    .unwrap()
-    .imposed_entry();
-    let n = NavState {
-        radius_m: eq.radius_m,
-        speed_m_s: eq.speed_m_s,
-        flight_path_angle_rad: eq.flight_path_angle_rad,
-        ..glide_nav(0.0)
-    };
+    let n = srm_equilibrium_glide_nav(0.3, 70e3);
     let s = EntryState {
         radius_m: n.radius_m,
         speed_m_s: n.speed_m_s,

@@ -10,29 +10,15 @@ use crate::vinh_replan::{
     DEG, NO_LIMITS, config, energy_table, glide_nav, glide_range_m, glide_solver, nav, range_at,
     rcfg, replanning,
 };
-use crate::vinh_support::vehicles::{H_S, MU, R_EARTH, RHO0};
+use crate::vinh_support::inputs::{atmosphere, planet, srm};
+use crate::vinh_support::vehicles::{MU, R_EARTH};
 use guidance_core::guidance::{Command, Guidance, GuidanceConfig};
 use guidance_core::interp::Interpolation;
 use guidance_core::replan::{
     MAX_PREDICTOR_CALLS, PredictorMode, RangeTarget, ReplanCase, ReplanConfig, ReplanLimits,
     ReplanSolver, replan,
 };
-use guidance_core::vinh::{ExpAtmosphere, Planet};
 use guidance_core::{NavState, energy::EnergyNormalizer};
-
-fn planet() -> Planet<f64> {
-    Planet {
-        mu_m3_s2: MU,
-        radius_m: R_EARTH,
-    }
-}
-fn atmosphere() -> ExpAtmosphere<f64> {
-    ExpAtmosphere {
-        rho0_kg_m3: RHO0,
-        scale_height_m: H_S,
-        ref_radius_m: R_EARTH,
-    }
-}
 
 /// Cases covering every path of the solver: converged (chain and glide), out of reach at
 /// both ends, limits binding, limits infeasible with a tolerance never met (the worst case),
@@ -89,24 +75,8 @@ fn cases() -> Vec<Case> {
 fn resumable_solver_gives_the_one_shot_answer() {
     let mut seen = std::collections::BTreeSet::new();
     for (n, target, limits, cfg) in cases() {
-        let one_shot = replan(
-            &planet(),
-            &atmosphere(),
-            &crate::vinh_replan::srm(),
-            &n,
-            target,
-            &limits,
-            &cfg,
-        );
-        let mut s = ReplanSolver::new(
-            &planet(),
-            &atmosphere(),
-            &crate::vinh_replan::srm(),
-            &n,
-            target,
-            &limits,
-            &cfg,
-        );
+        let one_shot = replan(&planet(), &atmosphere(), &srm(), &n, target, &limits, &cfg);
+        let mut s = ReplanSolver::new(&planet(), &atmosphere(), &srm(), &n, target, &limits, &cfg);
         let mut steps = 0_u32;
         let r = loop {
             let before = s.predictor_calls();

@@ -13,6 +13,7 @@
 //! docs/VINH.md.
 
 use crate::vinh_support::dynamics::{self, Lift, NdSystem, RefConsts, SkipSummary};
+use crate::vinh_support::inputs::{atmosphere, params, planet};
 use crate::vinh_support::ode::{Settings, integrate, sampled_max};
 use crate::vinh_support::vehicles::{self, H_S, MU, R_EARTH, RHO0, Vehicle};
 use guidance_core::vinh::{
@@ -20,28 +21,6 @@ use guidance_core::vinh::{
     PredictorConfig, SkipSolution, VehicleParams, VinhError, predict,
 };
 
-pub fn planet() -> Planet<f64> {
-    Planet {
-        mu_m3_s2: MU,
-        radius_m: R_EARTH,
-    }
-}
-pub fn atmosphere() -> ExpAtmosphere<f64> {
-    ExpAtmosphere {
-        rho0_kg_m3: RHO0,
-        scale_height_m: H_S,
-        ref_radius_m: R_EARTH,
-    }
-}
-pub fn params(v: &Vehicle) -> VehicleParams<f64> {
-    VehicleParams {
-        mass_kg: v.mass_kg,
-        reference_area_m2: v.area_m2,
-        cd0: v.cd0,
-        k_polar: v.k,
-        nose_radius_m: v.nose_radius_m,
-    }
-}
 pub fn lift_control(l: Lift) -> LiftControl<f64> {
     LiftControl {
         lambda: l.lambda,

@@ -1,27 +1,15 @@
 //! Typed validity of predictor outputs (issue 10 item 6): in domain inside the validated grids
 //! of docs/VINH.md, extrapolated (with the reason) outside them, out of domain with the error.
 
-use crate::vinh_replan::{glide_nav, srm};
-use crate::vinh_support::vehicles::{H_S, MU, R_EARTH, RHO0};
+use crate::vinh_replan::glide_nav;
+use crate::vinh_support::inputs::{atmosphere, planet, srm};
+use crate::vinh_support::vehicles::{MU, R_EARTH};
 use guidance_core::replan::predict_glide;
 use guidance_core::vinh::{
-    EntryState, ExpAtmosphere, Extrapolation, LiftControl, Planet, PredictorConfig, Validity,
-    VehicleParams, predict, validity_of,
+    EntryState, Extrapolation, LiftControl, Planet, PredictorConfig, Validity, VehicleParams,
+    predict, validity_of,
 };
 
-fn planet() -> Planet<f64> {
-    Planet {
-        mu_m3_s2: MU,
-        radius_m: R_EARTH,
-    }
-}
-fn atmosphere() -> ExpAtmosphere<f64> {
-    ExpAtmosphere {
-        rho0_kg_m3: RHO0,
-        scale_height_m: H_S,
-        ref_radius_m: R_EARTH,
-    }
-}
 fn lift(f: f64) -> LiftControl<f64> {
     LiftControl {
         lambda: 1.0,

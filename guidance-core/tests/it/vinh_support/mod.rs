@@ -3,5 +3,6 @@
 //! governing equations (independent of `guidance_core::vinh`).
 
 pub mod dynamics;
+pub mod inputs;
 pub mod ode;
 pub mod vehicles;

@@ -84,6 +84,14 @@ pub fn srm() -> Vehicle {
     }
 }
 
+/// The SRM capsule with its polar factor K set for a maximum lift-to-drag ratio `ld`
+/// (E* = 1/(2 sqrt(K C_D0))): mass, area, C_D0 and nose radius unchanged.
+pub fn srm_with_max_ld(ld: f64) -> Vehicle {
+    let mut v = srm();
+    v.k = 1.0 / (4.0 * ld * ld * v.cd0);
+    v
+}
+
 /// `(C_D0, K)` of the SRM capsule from the thesis' sec. 9.2 glide entry at 100 km.
 pub fn srm_polar_from_thesis_glide_entry() -> (f64, f64) {
     let (m, s_ref) = (38.77, 0.441);
