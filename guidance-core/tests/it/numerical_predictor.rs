@@ -362,165 +362,131 @@ fn numerical_predictor_stops_at_an_exceeded_limit() {
     assert_eq!(p.range_m, full.range_m);
 }
 
+/// The predictor's inputs, one field each, for the bad-input table.
+#[derive(Clone, Copy)]
+struct Inputs {
+    planet: Planet<f64>,
+    atmosphere: ExpAtmosphere<f64>,
+    vehicle: VehicleParams<f64>,
+    lift: LiftControl<f64>,
+    state: EntryState<f64>,
+    config: PredictorConfig<f64>,
+}
+
+/// A bad-input case: what is wrong, how it spoils good inputs, the error expected.
+type BadInput = (&'static str, fn(&mut Inputs), VinhError);
+
 /// Bad input gives a typed error; nothing is NaN.
 #[test]
 fn numerical_predictor_rejects_bad_input_with_typed_errors() {
     let c = cases()[0];
-    let run = |p: &Planet<f64>,
-               a: &ExpAtmosphere<f64>,
-               v: &VehicleParams<f64>,
-               l: &LiftControl<f64>,
-               s: &EntryState<f64>,
-               cfg: &PredictorConfig<f64>| {
-        predict_numerical(p, a, v, l, s, cfg, PeakMode::Full)
+    let good = Inputs {
+        planet: planet(),
+        atmosphere: atmosphere(),
+        vehicle: c.vehicle,
+        lift: c.lift,
+        state: c.state(),
+        config: c.config(),
     };
-    let (p, a, v, l, s, cfg) = (
-        planet(),
-        atmosphere(),
-        c.vehicle,
-        c.lift,
-        c.state(),
-        c.config(),
-    );
-    let nan = f64::NAN;
-    assert_eq!(
-        run(
-            &p,
-            &a,
-            &v,
-            &l,
-            &EntryState {
-                speed_m_s: nan,
-                ..s
+    let bad: [BadInput; 11] = [
+        (
+            "NaN speed",
+            |i| i.state.speed_m_s = f64::NAN,
+            VinhError::NonFiniteInput,
+        ),
+        (
+            "NaN final speed",
+            |i| i.config.final_speed_m_s = f64::NAN,
+            VinhError::NonFiniteInput,
+        ),
+        (
+            "zero final speed",
+            |i| i.config.final_speed_m_s = 0.0,
+            VinhError::InvalidConfig,
+        ),
+        (
+            "final speed above the state's",
+            |i| i.config.final_speed_m_s = 9000.0,
+            VinhError::BelowFinalSpeed,
+        ),
+        (
+            "zero C_D0",
+            |i| i.vehicle.cd0 = 0.0,
+            VinhError::NonPositiveZeroLiftDrag,
+        ),
+        (
+            "vertical fraction 1.5",
+            |i| i.lift.vertical_fraction = 1.5,
+            VinhError::InvalidLiftControl,
+        ),
+        (
+            "below the surface",
+            |i| i.state.radius_m = R_EARTH - 1.0,
+            VinhError::UnphysicalState,
+        ),
+        (
+            "negative scale height",
+            |i| i.atmosphere.scale_height_m = -1.0,
+            VinhError::InvalidAtmosphere,
+        ),
+        (
+            // Lift down, steep and slow in dense air: into the ground before the final speed
+            // (the HORUS-2B's terminal speed at sea level is about 200 m/s).
+            "dive",
+            |i| {
+                i.vehicle = horus();
+                i.lift = LiftControl {
+                    lambda: 1.0,
+                    vertical_fraction: -1.0,
+                };
+                i.state = EntryState {
+                    radius_m: R_EARTH + 20e3,
+                    speed_m_s: 3000.0,
+                    flight_path_angle_rad: -60f64.to_radians(),
+                };
+                i.config.final_speed_m_s = 100.0;
             },
-            &cfg
+            VinhError::GroundImpact,
         ),
-        Err(VinhError::NonFiniteInput)
-    );
-    assert_eq!(
-        run(
-            &p,
-            &a,
-            &v,
-            &l,
-            &s,
-            &PredictorConfig {
-                final_speed_m_s: nan,
-                ..cfg
-            }
-        ),
-        Err(VinhError::NonFiniteInput)
-    );
-    assert_eq!(
-        run(
-            &p,
-            &a,
-            &v,
-            &l,
-            &s,
-            &PredictorConfig {
-                final_speed_m_s: 0.0,
-                ..cfg
-            }
-        ),
-        Err(VinhError::InvalidConfig)
-    );
-    assert_eq!(
-        run(
-            &p,
-            &a,
-            &v,
-            &l,
-            &s,
-            &PredictorConfig {
-                final_speed_m_s: 9000.0,
-                ..cfg
-            }
-        ),
-        Err(VinhError::BelowFinalSpeed)
-    );
-    assert_eq!(
-        run(&p, &a, &VehicleParams { cd0: 0.0, ..v }, &l, &s, &cfg),
-        Err(VinhError::NonPositiveZeroLiftDrag)
-    );
-    assert_eq!(
-        run(
-            &p,
-            &a,
-            &v,
-            &LiftControl {
-                vertical_fraction: 1.5,
-                ..l
+        (
+            // Climbing above escape speed out of the atmosphere.
+            "escape",
+            |i| {
+                i.state = EntryState {
+                    radius_m: R_EARTH + 200e3,
+                    speed_m_s: 11_500.0,
+                    flight_path_angle_rad: 10f64.to_radians(),
+                };
             },
-            &s,
-            &cfg
+            VinhError::EscapeTrajectory,
         ),
-        Err(VinhError::InvalidLiftControl)
-    );
-    assert_eq!(
-        run(
-            &p,
-            &a,
-            &v,
-            &l,
-            &EntryState {
-                radius_m: R_EARTH - 1.0,
-                ..s
+        (
+            // A long elliptic arc runs out of steps.
+            "long arc",
+            |i| {
+                i.state = EntryState {
+                    radius_m: R_EARTH + 200e3,
+                    speed_m_s: 10_500.0,
+                    flight_path_angle_rad: 20f64.to_radians(),
+                };
             },
-            &cfg
+            VinhError::StepLimit,
         ),
-        Err(VinhError::UnphysicalState)
-    );
-    assert_eq!(
-        run(
-            &p,
-            &ExpAtmosphere {
-                scale_height_m: -1.0,
-                ..a
-            },
-            &v,
-            &l,
-            &s,
-            &cfg
-        ),
-        Err(VinhError::InvalidAtmosphere)
-    );
-    // Lift down, steep and slow in dense air: into the ground before the final speed (the
-    // HORUS-2B's terminal speed at sea level is about 200 m/s).
-    let dive = EntryState {
-        radius_m: R_EARTH + 20e3,
-        speed_m_s: 3000.0,
-        flight_path_angle_rad: -60f64.to_radians(),
-    };
-    let down = LiftControl {
-        lambda: 1.0,
-        vertical_fraction: -1.0,
-    };
-    let slow = PredictorConfig {
-        final_speed_m_s: 100.0,
-        ..cfg
-    };
-    assert_eq!(
-        run(&p, &a, &horus(), &down, &dive, &slow),
-        Err(VinhError::GroundImpact)
-    );
-    // Escape: climbing above escape speed out of the atmosphere.
-    let out = EntryState {
-        radius_m: R_EARTH + 200e3,
-        speed_m_s: 11_500.0,
-        flight_path_angle_rad: 10f64.to_radians(),
-    };
-    assert_eq!(
-        run(&p, &a, &v, &l, &out, &cfg),
-        Err(VinhError::EscapeTrajectory)
-    );
-    // A long elliptic arc runs out of steps.
-    let arc = EntryState {
-        radius_m: R_EARTH + 200e3,
-        speed_m_s: 10_500.0,
-        flight_path_angle_rad: 20f64.to_radians(),
-    };
-    assert_eq!(run(&p, &a, &v, &l, &arc, &cfg), Err(VinhError::StepLimit));
+    ];
+    for (what, spoil, want) in bad {
+        let mut i = good;
+        spoil(&mut i);
+        let got = predict_numerical(
+            &i.planet,
+            &i.atmosphere,
+            &i.vehicle,
+            &i.lift,
+            &i.state,
+            &i.config,
+            PeakMode::Full,
+        );
+        assert_eq!(got, Err(want), "{what}");
+    }
 }
 
 /// f32 against f64: range within 0.2 %, peaks within 0.5 %.
