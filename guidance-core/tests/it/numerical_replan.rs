@@ -110,54 +110,28 @@ fn cases() -> Vec<Case> {
         .peak_heat_flux_w_m2,
         g_load: 1e3,
     };
+    // A case whose target is the numerical range at fraction `f`.
+    let at = |v: VehicleParams<f64>, n: NavState<f64>, f, limits, cfg| {
+        (v, n, numerical_range(&v, &n, f), limits, cfg)
+    };
     vec![
-        (
-            srm(),
-            srm_glide,
-            numerical_range(&srm(), &srm_glide, 0.6),
-            NO_LIMITS,
-            num(0.05),
-        ),
-        (
-            srm(),
-            last,
-            numerical_range(&srm(), &last, 0.5),
-            NO_LIMITS,
-            num(0.1),
-        ),
-        (
-            srm(),
-            skip,
-            numerical_range(&srm(), &skip, 0.7),
-            NO_LIMITS,
-            num(0.3),
-        ),
-        (
-            srm(),
-            skip,
-            numerical_range(&srm(), &skip, 0.5),
-            some,
-            num(0.3),
-        ),
-        (
-            horus(),
-            horus_entry,
-            numerical_range(&horus(), &horus_entry, 0.5),
-            NO_LIMITS,
-            num(0.1),
-        ),
+        at(srm(), srm_glide, 0.6, NO_LIMITS, num(0.05)),
+        at(srm(), last, 0.5, NO_LIMITS, num(0.1)),
+        at(srm(), skip, 0.7, NO_LIMITS, num(0.3)),
+        at(srm(), skip, 0.5, some, num(0.3)),
+        at(horus(), horus_entry, 0.5, NO_LIMITS, num(0.1)),
         (srm(), last, 1e9, NO_LIMITS, num(0.1)),
-        (
+        at(
             srm(),
             last,
-            numerical_range(&srm(), &last, 0.5),
+            0.5,
             NO_LIMITS,
             solver_cfg(PredictorMode::Hybrid, 0.1),
         ),
-        (
+        at(
             srm(),
             srm_glide,
-            numerical_range(&srm(), &srm_glide, 0.6),
+            0.6,
             NO_LIMITS,
             solver_cfg(PredictorMode::HybridSink, 0.05),
         ),
@@ -359,37 +333,27 @@ fn hybrid_uses_closed_forms_in_domain_and_numerical_elsewhere() {
                     };
                     let cfg = solver_cfg(auto, f_min).predictor;
                     let state = n.entry_state();
-                    let p = match predict_with(
-                        &planet(),
-                        &atmosphere(),
-                        &v,
-                        &lift,
-                        &state,
-                        &cfg,
-                        PeakMode::RangeOnly,
-                    ) {
-                        Ok(p) => p,
-                        Err(_) if auto == PredictorMode::Auto => predict_glide_with(
-                            &planet(),
-                            &atmosphere(),
-                            &v,
-                            &lift,
-                            &state,
-                            &cfg,
-                            PeakMode::RangeOnly,
-                        )
-                        .unwrap(),
-                        Err(_) => predict_glide_with_sink(
-                            &planet(),
-                            &atmosphere(),
-                            &v,
-                            &lift,
-                            &state,
-                            &cfg,
-                            PeakMode::RangeOnly,
-                        )
-                        .unwrap(),
+                    // The chain, else the mode's glide (as `Auto`/`AutoSink` predict).
+                    let glide = if auto == PredictorMode::Auto {
+                        predict_glide_with::<f64>
+                    } else {
+                        predict_glide_with_sink::<f64>
                     };
+                    let p = [predict_with::<f64>, glide]
+                        .into_iter()
+                        .find_map(|predictor| {
+                            predictor(
+                                &planet(),
+                                &atmosphere(),
+                                &v,
+                                &lift,
+                                &state,
+                                &cfg,
+                                PeakMode::RangeOnly,
+                            )
+                            .ok()
+                        })
+                        .unwrap();
                     assert_eq!(p.validity, Validity::InDomain, "{auto:?} f {f}");
                 }
             }
