@@ -35,12 +35,20 @@ fn entry(n: &NavState<f32>) -> EntryState<f32> {
     }
 }
 
-fn predictor() -> PredictorConfig<f32> {
-    PredictorConfig {
+/// The solver of both numerical re-plan benchmarks: `PredictorMode::Numerical`, `f` in
+/// `[0.05, 1]`, 1 km, to 2.5 km/s. A constant, so every use is the literal it was.
+const NUMERICAL_SOLVER: ReplanConfig<f32> = ReplanConfig {
+    lambda: 1.0,
+    min_vertical_fraction: 0.05,
+    max_vertical_fraction: 1.0,
+    tolerance_m: 1_000.0,
+    max_iterations: 40,
+    predictor: PredictorConfig {
         final_speed_m_s: 2_500.0,
         max_skips: 4,
-    }
-}
+    },
+    mode: PredictorMode::Numerical,
+};
 
 /// Numerical range \[m\] and integration steps from `n` at vertical fraction `f`.
 fn range(n: &NavState<f32>, f: f32, peaks: PeakMode<f32>) -> Option<(f32, u16)> {
@@ -54,7 +62,7 @@ fn range(n: &NavState<f32>, f: f32, peaks: PeakMode<f32>) -> Option<(f32, u16)> 
         &srm(),
         &lift,
         &entry(n),
-        &predictor(),
+        &NUMERICAL_SOLVER.predictor,
         peaks,
     )
     .ok()?;
@@ -81,15 +89,7 @@ pub(crate) fn bench_numerical(c: &mut InsnCounter) -> bool {
     let Some((target, _)) = range(&n, 0.6, PeakMode::RangeOnly) else {
         return false;
     };
-    let solver = ReplanConfig {
-        lambda: 1.0,
-        min_vertical_fraction: 0.05,
-        max_vertical_fraction: 1.0,
-        tolerance_m: 1_000.0,
-        max_iterations: 40,
-        predictor: predictor(),
-        mode: PredictorMode::Numerical,
-    };
+    let solver = NUMERICAL_SOLVER;
     let limits = ReplanLimits {
         heat_flux_w_m2: 1e9,
         g_load: 1e3,
@@ -125,15 +125,7 @@ pub(crate) fn bench_numerical_tick(c: &mut InsnCounter) -> bool {
     let Some((target, _)) = range(&n0, 0.6, PeakMode::RangeOnly) else {
         return false;
     };
-    let solver = ReplanConfig {
-        lambda: 1.0,
-        min_vertical_fraction: 0.05,
-        max_vertical_fraction: 1.0,
-        tolerance_m: 1_000.0,
-        max_iterations: 40,
-        predictor: predictor(),
-        mode: PredictorMode::Numerical,
-    };
+    let solver = NUMERICAL_SOLVER;
     let Some(mut g) = srm_replanning_guidance(solver, 1e9, target / 6_378_137.0) else {
         return false;
     };
