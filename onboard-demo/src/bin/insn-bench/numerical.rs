@@ -11,7 +11,7 @@ use guidance_core::vinh::predict::{PeakMode, PredictorConfig};
 use onboard_demo::insn::InsnCounter;
 
 use crate::firmware::{INSN_PER_TICK, srm};
-use crate::replanning::srm_replanning_guidance;
+use crate::replanning::{max_tick_until_solved, srm_replanning_guidance};
 
 /// The SRM glide entry of thesis sec. 9.2 (100 km, 7658.34 m/s, -0.056 deg): the longest
 /// numerical prediction of the re-planning set-ups (about 16 000 km to 2.5 km/s).
@@ -129,32 +129,15 @@ pub(crate) fn bench_numerical_tick(c: &mut InsnCounter) -> bool {
     let Some(mut g) = srm_replanning_guidance(solver, 1e9, target / 6_378_137.0) else {
         return false;
     };
-    let mut ok = true;
-    let mut max = 0_u32;
-    let mut done = None;
-    let mut k = 0_u16;
-    while k < 1000 && done.is_none() {
-        let n = NavState {
-            time_s: 2.0 * f32::from(k),
-            ..n0
-        };
-        let mut out = None;
-        let t = c.ticks(|| out = Some(g.update(&core::hint::black_box(n))));
-        max = max.max(t * INSN_PER_TICK);
-        match out {
-            Some(Ok(o)) => done = o.replan.map(|r| (k, r.predictor_calls)),
-            _ => ok = false,
-        }
-        k += 1;
-    }
-    let Some((k_done, calls)) = done else {
+    let nav = |time_s| NavState { time_s, ..n0 };
+    let Some(m) = max_tick_until_solved(c, &mut g, 1000, nav) else {
         return false;
     };
     hprintln!(
         "bench replanning_tick_max_numerical_f32: {} insn/call ({} ticks, {} predictor calls)",
-        max,
-        k_done + 1,
-        calls
+        m.max_insn,
+        m.ticks,
+        m.predictor_calls
     );
-    ok
+    m.every_tick_ok
 }

@@ -258,34 +258,66 @@ pub(crate) fn bench_replanning_tick(c: &mut InsnCounter) -> bool {
         let Some(mut g) = srm_replanning_guidance(solver, heat, target / 6_378_137.0) else {
             return false;
         };
-        let mut max = 0_u32;
-        let mut done = None;
-        let mut k = 0_u16;
-        while k < 100 && done.is_none() {
-            let n = srm_nav(2.0 * f32::from(k));
-            let mut out = None;
-            let t = c.ticks(|| out = Some(g.update(&core::hint::black_box(n))));
-            max = max.max(t * INSN_PER_TICK);
-            match out {
-                Some(Ok(o)) => done = o.replan.map(|r| (k, r.predictor_calls)),
-                _ => ok = false,
-            }
-            k += 1;
-        }
-        let Some((k_done, calls)) = done else {
+        let Some(m) = max_tick_until_solved(c, &mut g, 100, srm_nav) else {
             return false;
         };
+        ok &= m.every_tick_ok;
         hprintln!(
             "bench replanning_tick_max_{}_f32: {} insn/call ({} ticks, {} predictor calls)",
             name,
-            max,
-            k_done + 1,
-            calls
+            m.max_insn,
+            m.ticks,
+            m.predictor_calls
         );
-        worst = worst.max(max);
+        worst = worst.max(m.max_insn);
     }
     hprintln!("bench replanning_tick_max_f32: {} insn/call", worst);
     ok
+}
+
+/// The largest tick of a solve spread over ticks: see [`max_tick_until_solved`].
+pub(crate) struct TickMax {
+    /// Instructions of the largest `ReplanningGuidance::update`.
+    pub max_insn: u32,
+    /// Ticks until the solve completed (the completing tick included).
+    pub ticks: u16,
+    /// Predictor calls of the completed solve.
+    pub predictor_calls: u8,
+    /// Every tick returned `Ok`.
+    pub every_tick_ok: bool,
+}
+
+/// Runs `g` on the navigation states `nav(2 k)` (a 2 s guidance period, `k = 0, 1, ...`), each
+/// `update` measured, until a re-plan completes or `max_ticks` ticks have run; `None` when no
+/// solve completed.
+pub(crate) fn max_tick_until_solved(
+    c: &mut InsnCounter,
+    g: &mut ReplanningGuidance<f32>,
+    max_ticks: u16,
+    nav: impl Fn(f32) -> NavState<f32>,
+) -> Option<TickMax> {
+    let mut every_tick_ok = true;
+    let mut max = 0_u32;
+    let mut done = None;
+    let mut k = 0_u16;
+    while k < max_ticks && done.is_none() {
+        let n = nav(2.0 * f32::from(k));
+        let mut out = None;
+        let t = c.ticks(|| out = Some(g.update(&core::hint::black_box(n))));
+        max = max.max(t * INSN_PER_TICK);
+        match out {
+            Some(Ok(o)) => done = o.replan.map(|r| (k, r.predictor_calls)),
+            _ => every_tick_ok = false,
+        }
+        k += 1;
+    }
+    let (k_done, predictor_calls) = done?;
+    Some(TickMax {
+        max_insn: max,
+        ticks: k_done + 1,
+        predictor_calls,
+        every_tick_ok,
+    })
 }
 
 /// Onboard aerodynamic estimation (f32): one `ReplanningGuidance::sense`, what a guidance tick
