@@ -7,11 +7,11 @@ use guidance_core::NavState;
 use guidance_core::replan::numerical::NumericalRun;
 use guidance_core::replan::{PredictorMode, ReplanConfig, ReplanLimits, replan};
 use guidance_core::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet};
-use guidance_core::vinh::predict::{PeakMode, PredictorConfig};
+use guidance_core::vinh::predict::PeakMode;
 use onboard_demo::insn::InsnCounter;
 
 use crate::firmware::{INSN_PER_TICK, srm};
-use crate::replanning::{max_tick_until_solved, srm_replanning_guidance};
+use crate::replanning::{max_tick_until_solved, srm_replanning_guidance, srm_solver};
 
 /// The SRM glide entry of thesis sec. 9.2 (100 km, 7658.34 m/s, -0.056 deg): the longest
 /// numerical prediction of the re-planning set-ups (about 16 000 km to 2.5 km/s).
@@ -36,19 +36,8 @@ fn entry(n: &NavState<f32>) -> EntryState<f32> {
 }
 
 /// The solver of both numerical re-plan benchmarks: `PredictorMode::Numerical`, `f` in
-/// `[0.05, 1]`, 1 km, to 2.5 km/s. A constant, so every use is the literal it was.
-const NUMERICAL_SOLVER: ReplanConfig<f32> = ReplanConfig {
-    lambda: 1.0,
-    min_vertical_fraction: 0.05,
-    max_vertical_fraction: 1.0,
-    tolerance_m: 1_000.0,
-    max_iterations: 40,
-    predictor: PredictorConfig {
-        final_speed_m_s: 2_500.0,
-        max_skips: 4,
-    },
-    mode: PredictorMode::Numerical,
-};
+/// `[0.05, 1]`, 1 km, to 2.5 km/s.
+const NUMERICAL_SOLVER: ReplanConfig<f32> = srm_solver(PredictorMode::Numerical, 0.05);
 
 /// Numerical range \[m\] and integration steps from `n` at vertical fraction `f`.
 fn range(n: &NavState<f32>, f: f32, peaks: PeakMode<f32>) -> Option<(f32, u16)> {

@@ -152,9 +152,19 @@ fn srm_nav(t_s: f32) -> NavState<f32> {
 
 /// The chain-mode solver of the tick benchmarks (converging to 1 km).
 fn tick_solver() -> ReplanConfig<f32> {
+    srm_solver(PredictorMode::Chain, 0.3)
+}
+
+/// The re-plan settings of the SRM tick benchmarks in `mode`: lambda 1, vertical fraction in
+/// `[min_vertical_fraction, 1]`, 1 km in at most 40 iterations, to 2.5 km/s with at most 4
+/// skips. `const`, so a constant built from it is the literal it replaces.
+pub(crate) const fn srm_solver(
+    mode: PredictorMode,
+    min_vertical_fraction: f32,
+) -> ReplanConfig<f32> {
     ReplanConfig {
         lambda: 1.0,
-        min_vertical_fraction: 0.3,
+        min_vertical_fraction,
         max_vertical_fraction: 1.0,
         tolerance_m: 1_000.0,
         max_iterations: 40,
@@ -162,7 +172,7 @@ fn tick_solver() -> ReplanConfig<f32> {
             final_speed_m_s: 2_500.0,
             max_skips: 4,
         },
-        mode: PredictorMode::Chain,
+        mode,
     }
 }
 
