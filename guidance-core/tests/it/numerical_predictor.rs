@@ -5,7 +5,7 @@
 //! in its validated domain, resumable against one-shot, bad input, f32 against f64.
 
 use crate::vinh_support::dynamics::{Lift, chapman, density, eom_dim};
-use crate::vinh_support::inputs::{atmosphere, horus, planet, srm};
+use crate::vinh_support::inputs::{atmosphere, horus, lift, planet, srm};
 use crate::vinh_support::ode::{Settings, integrate, sampled_max};
 use crate::vinh_support::vehicles::{R_EARTH, Vehicle};
 use guidance_core::replan::numerical::{MAX_STEPS, NumericalRun};
@@ -61,13 +61,6 @@ impl Case {
     }
 }
 
-fn lift(lambda: f64, f: f64) -> LiftControl<f64> {
-    LiftControl {
-        lambda,
-        vertical_fraction: f,
-    }
-}
-
 /// SRM-like and HORUS-2B-like states (issue 10 and 12 domains).
 pub(crate) fn cases() -> Vec<Case> {
     // Vertical L/D 0.3 of the SRM at lambda 1: f = 0.3 / E*.
@@ -76,7 +69,7 @@ pub(crate) fn cases() -> Vec<Case> {
         Case {
             name: "SRM glide 100 km (thesis sec. 9.2 entry, -0.256 deg)",
             vehicle: srm(),
-            lift: lift(1.0, 40f64.to_radians().cos()),
+            lift: lift(40f64.to_radians().cos()),
             alt_km: 100.0,
             speed: 7658.34,
             fpa_deg: -0.256,
@@ -85,7 +78,7 @@ pub(crate) fn cases() -> Vec<Case> {
         Case {
             name: "SRM last 500 km (glide below 70 km)",
             vehicle: srm(),
-            lift: lift(1.0, 0.6),
+            lift: lift(0.6),
             alt_km: 66.0,
             speed: 3800.0,
             fpa_deg: -0.2,
@@ -94,7 +87,7 @@ pub(crate) fn cases() -> Vec<Case> {
         Case {
             name: "SRM skip from a steep state",
             vehicle: srm(),
-            lift: lift(1.0, 1.0),
+            lift: lift(1.0),
             alt_km: 122.0,
             speed: 7400.0,
             fpa_deg: -4.0,
@@ -103,7 +96,7 @@ pub(crate) fn cases() -> Vec<Case> {
         Case {
             name: "SRM low vertical L/D 0.3",
             vehicle: srm(),
-            lift: lift(1.0, 0.3 / e_star),
+            lift: lift(0.3 / e_star),
             alt_km: 100.0,
             speed: 7000.0,
             fpa_deg: -1.0,
@@ -112,7 +105,7 @@ pub(crate) fn cases() -> Vec<Case> {
         Case {
             name: "HORUS-2B near-circular entry 122 km",
             vehicle: horus(),
-            lift: lift(1.0, 1.0),
+            lift: lift(1.0),
             alt_km: 122.0,
             speed: 7600.0,
             fpa_deg: -1.2,
@@ -121,7 +114,7 @@ pub(crate) fn cases() -> Vec<Case> {
         Case {
             name: "HORUS-2B banked glide 70 km",
             vehicle: horus(),
-            lift: lift(1.0, 0.5),
+            lift: lift(0.5),
             alt_km: 70.0,
             speed: 6000.0,
             fpa_deg: -0.3,
@@ -253,7 +246,7 @@ fn numerical_predictor_agrees_with_the_glide_closed_form_in_its_domain() {
         (100.0, 1.0),
         (72.0, 0.4),
     ] {
-        let l = lift(1.0, f);
+        let l = lift(f);
         let cfg = PredictorConfig {
             final_speed_m_s: 2500.0,
             max_skips: 4,

@@ -5,7 +5,7 @@
 //! predictor elsewhere.
 
 use crate::vinh_replan::{NO_LIMITS, glide_nav, rcfg, replanning, srm_equilibrium_glide_nav};
-use crate::vinh_support::inputs::{atmosphere, horus, planet, srm};
+use crate::vinh_support::inputs::{atmosphere, horus, lift, planet, srm};
 use crate::vinh_support::vehicles::R_EARTH;
 use guidance_core::NavState;
 use guidance_core::replan::numerical::{MAX_STEPS, STEPS_PER_SOLVER_STEP};
@@ -14,9 +14,7 @@ use guidance_core::replan::{
     ReplanResult, ReplanSolver, predict_glide_with, predict_glide_with_sink, predict_numerical,
     replan,
 };
-use guidance_core::vinh::{
-    LiftControl, PeakMode, PredictorConfig, Validity, VehicleParams, predict_with,
-};
+use guidance_core::vinh::{PeakMode, PredictorConfig, Validity, VehicleParams, predict_with};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
@@ -53,10 +51,7 @@ fn numerical_range(v: &VehicleParams<f64>, n: &NavState<f64>, f: f64) -> f64 {
         &planet(),
         &atmosphere(),
         v,
-        &LiftControl {
-            lambda: 1.0,
-            vertical_fraction: f,
-        },
+        &lift(f),
         &n.entry_state(),
         &solver_cfg(PredictorMode::Numerical, 0.1).predictor,
         PeakMode::RangeOnly,
@@ -98,10 +93,7 @@ fn cases() -> Vec<Case> {
             &planet(),
             &atmosphere(),
             &srm(),
-            &LiftControl {
-                lambda: 1.0,
-                vertical_fraction: 0.5,
-            },
+            &lift(0.5),
             &skip.entry_state(),
             &num(0.1).predictor,
             PeakMode::Full,
@@ -327,10 +319,7 @@ fn hybrid_uses_closed_forms_in_domain_and_numerical_elsewhere() {
                 assert_eq!(r, ro);
                 // Both ends of the closed form in domain.
                 for f in [f_min, 1.0] {
-                    let lift = LiftControl {
-                        lambda: 1.0,
-                        vertical_fraction: f,
-                    };
+                    let lift = lift(f);
                     let cfg = solver_cfg(auto, f_min).predictor;
                     let state = n.entry_state();
                     // The chain, else the mode's glide (as `Auto`/`AutoSink` predict).

@@ -1,6 +1,6 @@
 //! Tests of the onboard re-planner (`guidance_core::replan`) built on the Vinh predictor.
 
-use crate::vinh_support::inputs::{atmosphere, planet, srm};
+use crate::vinh_support::inputs::{atmosphere, lift, planet, srm};
 use crate::vinh_support::vehicles::{self, H_S, MU, R_EARTH, RHO0};
 use guidance_core::NavState;
 use guidance_core::energy::EnergyNormalizer;
@@ -260,10 +260,7 @@ pub(crate) fn srm_equilibrium_glide_nav(f: f64, alt_m: f64) -> NavState<f64> {
         &planet(),
         &atmosphere(),
         &srm(),
-        &LiftControl {
-            lambda: 1.0,
-            vertical_fraction: f,
-        },
+        &lift(f),
         R_EARTH + alt_m,
     )
     .unwrap()

@@ -15,12 +15,12 @@
 //! `print_chain_error_map` (ignored) print the maps of docs/VINH.md.
 
 use crate::vinh_support::dynamics::{Lift, eom_dim, skip_dim};
-use crate::vinh_support::inputs::{atmosphere, params, planet};
+use crate::vinh_support::inputs::{atmosphere, lift, params, planet};
 use crate::vinh_support::ode::{Settings, integrate};
 use crate::vinh_support::vehicles::{R_EARTH, srm_with_max_ld as vehicle};
 use guidance_core::vinh::{
-    EntryState, LiftControl, NonDim, PredictorConfig, SkipSolution, Validity, predict,
-    skip_validity, validity_of,
+    EntryState, NonDim, PredictorConfig, SkipSolution, Validity, predict, skip_validity,
+    validity_of,
 };
 
 const H_ENTRY: f64 = 122e3;
@@ -28,13 +28,6 @@ const LDS: [f64; 5] = [0.3, 0.72, 1.0, 1.5, 2.5];
 const SPEEDS: [f64; 4] = [6_500.0, 7_400.0, 9_000.0, 10_500.0];
 const FPAS_DEG: [f64; 4] = [-1.0, -2.0, -4.0, -7.0];
 const FRACTIONS: [f64; 2] = [0.5, 1.0];
-
-fn lift(f: f64) -> LiftControl<f64> {
-    LiftControl {
-        lambda: 1.0,
-        vertical_fraction: f,
-    }
-}
 
 fn entry(v_e: f64, g_deg: f64) -> EntryState<f64> {
     EntryState {

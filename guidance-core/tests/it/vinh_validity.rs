@@ -2,20 +2,14 @@
 //! of docs/VINH.md, extrapolated (with the reason) outside them, out of domain with the error.
 
 use crate::vinh_replan::glide_nav;
-use crate::vinh_support::inputs::{atmosphere, planet, srm};
+use crate::vinh_support::inputs::{atmosphere, lift, planet, srm};
 use crate::vinh_support::vehicles::{MU, R_EARTH};
 use guidance_core::replan::predict_glide;
 use guidance_core::vinh::{
-    EntryState, Extrapolation, LiftControl, Planet, PredictorConfig, Validity, VehicleParams,
-    predict, validity_of,
+    EntryState, Extrapolation, Planet, PredictorConfig, Validity, VehicleParams, predict,
+    validity_of,
 };
 
-fn lift(f: f64) -> LiftControl<f64> {
-    LiftControl {
-        lambda: 1.0,
-        vertical_fraction: f,
-    }
-}
 const TO_2500: PredictorConfig<f64> = PredictorConfig {
     final_speed_m_s: 2500.0,
     max_skips: 4,

@@ -1,8 +1,8 @@
 //! The reference environment and vehicles of `vehicles` as guidance-core inputs: the one home of
-//! the `Planet`, `ExpAtmosphere` and `VehicleParams` every integration test hands to the core.
+//! the `Planet`, `ExpAtmosphere`, `VehicleParams` and lambda = 1 `LiftControl` every integration test hands to the core.
 
 use super::vehicles::{self, H_S, MU, R_EARTH, RHO0, Vehicle};
-use guidance_core::vinh::{ExpAtmosphere, Planet, VehicleParams};
+use guidance_core::vinh::{ExpAtmosphere, LiftControl, Planet, VehicleParams};
 
 /// The thesis' spherical Earth (`MU`, `R_EARTH`).
 pub fn planet() -> Planet<f64> {
@@ -18,6 +18,15 @@ pub fn atmosphere() -> ExpAtmosphere<f64> {
         rho0_kg_m3: RHO0,
         scale_height_m: H_S,
         ref_radius_m: R_EARTH,
+    }
+}
+
+/// Constant lift at the maximum-L/D lift coefficient (lambda = 1) with vertical fraction `f`
+/// (cos(bank)).
+pub fn lift(f: f64) -> LiftControl<f64> {
+    LiftControl {
+        lambda: 1.0,
+        vertical_fraction: f,
     }
 }
 
