@@ -123,6 +123,17 @@ pub enum PredictorMode {
     /// sink to come ([`predict_glide_with_sink`]). Measured in the dispersion campaigns
     /// (docs/DISPERSIONS.md).
     AutoSink,
+    /// Numerical integration of the predictor model's planar equations of motion from the
+    /// navigated state (its flight-path angle included) with constant lift, to the final speed:
+    /// valid wherever the model is, at the cost of many right-hand sides per prediction (spread
+    /// over several solver steps). See docs/VINH.md, "Numerical predictor".
+    Numerical,
+    /// The closed forms as in `Auto` when both ends of the interval are in their validated
+    /// domain (validity `InDomain`); otherwise the whole solve is redone with `Numerical`
+    /// (never mixing the two in one solve).
+    Hybrid,
+    /// `Hybrid` whose closed-form part is `AutoSink`.
+    HybridSink,
 }
 
 /// Vehicle limits checked on the prediction (the predictor's [`crate::vinh::LoadLimits`]).

@@ -99,6 +99,9 @@ impl ReplanItem {
                     PredictorMode::Glide => 1.0,
                     PredictorMode::Auto => 2.0,
                     PredictorMode::AutoSink => 3.0,
+                    PredictorMode::Numerical => 4.0,
+                    PredictorMode::Hybrid => 5.0,
+                    PredictorMode::HybridSink => 6.0,
                 },
                 f64::from(max_iterations),
                 f64::from(max_skips),
@@ -174,11 +177,14 @@ impl ReplanItem {
                     .map_err(|_| SetupError::BadItem)?,
                 steps_per_tick: byte(b)?,
                 apply_out_of_reach: small_int(c, 1)? == 1,
-                mode: match small_int(d, 3)? {
+                mode: match small_int(d, 6)? {
                     0 => PredictorMode::Chain,
                     1 => PredictorMode::Glide,
                     2 => PredictorMode::Auto,
-                    _ => PredictorMode::AutoSink,
+                    3 => PredictorMode::AutoSink,
+                    4 => PredictorMode::Numerical,
+                    5 => PredictorMode::Hybrid,
+                    _ => PredictorMode::HybridSink,
                 },
                 max_iterations: byte(e)?,
                 max_skips: byte(f)?,
@@ -483,6 +489,9 @@ mod tests {
                 PredictorMode::Glide,
                 PredictorMode::Auto,
                 PredictorMode::AutoSink,
+                PredictorMode::Numerical,
+                PredictorMode::Hybrid,
+                PredictorMode::HybridSink,
             ] {
                 let rc = config(target, mode);
                 for it in replan_items(&rc) {

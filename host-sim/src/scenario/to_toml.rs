@@ -194,6 +194,9 @@ fn replanning(s: &mut String, rp: &ReplanningSpec, r: f64) {
             PredictorMode::Glide => "glide",
             PredictorMode::Auto => "auto",
             PredictorMode::AutoSink => "auto-sink",
+            PredictorMode::Numerical => "numerical",
+            PredictorMode::Hybrid => "hybrid",
+            PredictorMode::HybridSink => "hybrid-sink",
         },
         rp.apply_out_of_reach,
         rp.polar_mach

@@ -163,8 +163,11 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
         };
         let chain = match s.mode {
             PredictorMode::Chain => true,
-            PredictorMode::Glide => false,
-            PredictorMode::Auto | PredictorMode::AutoSink => {
+            PredictorMode::Glide | PredictorMode::Numerical => false,
+            PredictorMode::Auto
+            | PredictorMode::AutoSink
+            | PredictorMode::Hybrid
+            | PredictorMode::HybridSink => {
                 chain_ok(s.min_vertical_fraction) && chain_ok(s.max_vertical_fraction)
             }
         };
