@@ -41,12 +41,18 @@
 //! [`ReplanConfig::mode`] selects the full chain ([`crate::vinh::predict()`]), a glide-only
 //! prediction from the current speed ([`predict_glide`], for a vehicle already in its glide,
 //! where the skip closed form is out of domain), or the chain with an automatic switch to the
-//! glide when the chain is out of domain ([`PredictorMode::Auto`]).
+//! glide when the chain is out of domain ([`PredictorMode::Auto`]), or the numerical
+//! integration of the model from the navigated state ([`numerical`],
+//! [`PredictorMode::Numerical`]), or the closed forms where both ends of the interval are in
+//! their validated domain and the integration elsewhere ([`PredictorMode::Hybrid`]). A
+//! numerical prediction spans several solver steps of at most
+//! [`numerical::STEPS_PER_SOLVER_STEP`] integration steps each.
 //!
 //! # Worst-case cost
-//! `max_iterations + 7 + LIMIT_GRID` predictor calls (at most
-//! [`MAX_PREDICTOR_CALLS`]` = 40 + 7 + 16 = 63`; `+ 5` in [`PredictorMode::Auto`], `+ 3`
-//! in [`PredictorMode::Chain`] and [`PredictorMode::Glide`]); each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
+//! `max_iterations + 9 + LIMIT_GRID` predictor calls (at most
+//! [`MAX_PREDICTOR_CALLS`]` = 40 + 9 + 16 = 65`; `+ 5` in [`PredictorMode::Auto`], `+ 3`
+//! in [`PredictorMode::Chain`], [`PredictorMode::Glide`] and [`PredictorMode::Numerical`]);
+//! each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
 //! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
 //! all but the last and the limit grid are range-only. In practice Brent's method converges in
 //! a handful of predictions and stops at the scalar type's working precision (the worst-case
@@ -56,9 +62,11 @@
 //! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
 //! 115 k instructions.
 
+pub mod numerical;
 mod replanning;
 mod solver;
 
+pub use numerical::{NumericalRun, predict_numerical};
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
     ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,
@@ -83,12 +91,14 @@ pub const MAX_ITERATIONS: u8 = 40;
 /// Fractions scanned when a limit binds.
 pub const LIMIT_GRID: u8 = 16;
 
-/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 7 + LIMIT_GRID` (two end
+/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 9 + LIMIT_GRID` (two end
 /// points of a failed [`PredictorMode::Auto`] chain attempt, two end points of the glide
 /// attempt, in [`PredictorMode::AutoSink`] two more of the glide without the sink when the
-/// range with it is not monotone, the range search, one prediction with peaks at the result,
-/// the limit grid).
-pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 7 + LIMIT_GRID;
+/// range with it is not monotone, in [`PredictorMode::Hybrid`] and
+/// [`PredictorMode::HybridSink`] two more of the numerical predictor when the closed forms are
+/// out of their validated domain, the range search, one prediction with peaks at the result,
+/// the limit grid). A numerical prediction counts once, however many solver steps it spans.
+pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 9 + LIMIT_GRID;
 
 /// How far above the current radius a glide-mode prediction may start \[m\]. A vehicle given
 /// more lift than its equilibrium glide needs climbs to a higher equilibrium: in an
@@ -466,7 +476,8 @@ pub fn replan<S: Real>(
         limits,
         config,
     );
-    // Each step makes at most one predictor call and the solver stops at
+    // Each step makes at most one predictor call (a numerical one spans at most
+    // numerical::MAX_STEPS / STEPS_PER_SOLVER_STEP + 1 steps) and the solver stops at
     // MAX_PREDICTOR_CALLS, so this loop ends.
     loop {
         if let Some(r) = solver.step() {

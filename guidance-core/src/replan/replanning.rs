@@ -57,6 +57,12 @@
 //! re-planning tick (multiple of `every_n_ticks`) after the previous one completed. The answer
 //! is bit for bit that of [`super::replan`] from the start state (tested).
 //!
+//! With the numerical predictor ([`super::PredictorMode::Numerical`], or a hybrid solve out of
+//! the closed forms' domain) `k` counts solver steps: each advances the prediction in progress
+//! by at most [`super::numerical::STEPS_PER_SOLVER_STEP`] integration steps (or completes a
+//! closed-form call), so a numerical prediction spans several ticks and a solve many more
+//! (a converged SRM glide re-plan: about 30 steps; docs/VINH.md, "Numerical predictor").
+//!
 //! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
 //! below 200 k instructions with `k = 1` (measured maximum 115 k: the tick that runs the chain
 //! prediction with peaks; docs/PERFORMANCE.md); a worst-case solve then takes at most
@@ -66,7 +72,7 @@
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
 //! angle (the odometer). An update with re-planning work adds: one E-hat evaluation, at the
 //! start one range to go (a great-circle angle and a bearing: about 10 trig functions), the
-//! predictor calls (all of a solve, at most [`super::MAX_PREDICTOR_CALLS`]` = 63`, or at most
+//! predictor calls (all of a solve, at most [`super::MAX_PREDICTOR_CALLS`]` = 65`, or at most
 //! `steps_per_tick`; each chain call at most [`crate::vinh::predict::MAX_SKIPS`] skips and
 //! arcs plus one glide), and at completion a copy of the table (at most
 //! `N` nodes, the table's capacity) and one interpolator rebuild. No allocation, no
@@ -187,10 +193,12 @@ pub struct ReplanningConfig<S> {
     /// Also apply the nearest end of the vertical-fraction interval when the target is out of
     /// reach (a saturated corrector). `false`: out of reach keeps the current table.
     pub apply_out_of_reach: bool,
-    /// Work budget per guidance tick \[predictor calls\]: 0 runs a whole re-plan inside its
+    /// Work budget per guidance tick \[solver steps\]: 0 runs a whole re-plan inside its
     /// tick (at most [`super::MAX_PREDICTOR_CALLS`] calls); `k >= 1` spreads it over ticks, at
-    /// most `k` predictor calls per tick ([`super::ReplanSolver`]), the table in use flying
-    /// until the solve completes (module docs, "Bounded work per tick").
+    /// most `k` solver steps per tick ([`super::ReplanSolver::step`]: one closed-form predictor
+    /// call, or at most [`super::numerical::STEPS_PER_SOLVER_STEP`] integration steps of a
+    /// numerical prediction), the table in use flying until the solve completes (module docs,
+    /// "Bounded work per tick").
     pub steps_per_tick: u8,
 }
 
@@ -274,6 +282,10 @@ pub struct ReplanningOutput<S, P = S> {
     /// Predictor calls made during this sample (0 without re-planning work; at most
     /// [`ReplanningConfig::steps_per_tick`] when that is not 0).
     pub predictor_calls: u8,
+    /// Integration steps of numerical predictions made during this sample (0 with the closed
+    /// forms; at most `steps_per_tick` times
+    /// [`super::numerical::STEPS_PER_SOLVER_STEP`] when `steps_per_tick` is not 0).
+    pub integration_steps: u32,
 }
 
 /// A re-plan in progress ([`ReplanningConfig::steps_per_tick`] `> 0`).
@@ -507,6 +519,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         let mut previous = None;
         let pending_before = self.pending;
         let mut calls = 0_u8;
+        let mut steps = 0_u32;
         if will_tick && (self.pending.is_some() || self.ticks.is_multiple_of(n)) {
             let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
             let mut p = match self.pending {
@@ -514,11 +527,13 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
                 None => self.start_solve(&navp, flown),
             };
             let before = p.solver.predictor_calls();
+            let steps_before = p.solver.integration_steps();
             let done = match self.config.steps_per_tick {
                 0 => p.solver.run(u8::MAX),
                 k => p.solver.run(k),
             };
             calls = p.solver.predictor_calls().saturating_sub(before);
+            steps = p.solver.integration_steps().saturating_sub(steps_before);
             match done {
                 Some(res) => {
                     self.pending = None;
@@ -553,6 +568,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             guidance: out,
             replan: report,
             predictor_calls: calls,
+            integration_steps: steps,
         })
     }
 

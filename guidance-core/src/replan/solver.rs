@@ -16,6 +16,22 @@
 //!
 //! Every fraction evaluated or returned is clamped into `[f_min, f_max]` (no rounding can put
 //! the output an ulp outside its bounds).
+//!
+//! # Numerical predictions
+//! In [`PredictorMode::Numerical`] (and [`PredictorMode::Hybrid`] /
+//! [`PredictorMode::HybridSink`] once switched) a prediction is a [`NumericalRun`] held in the
+//! solver and advanced by at most [`STEPS_PER_SOLVER_STEP`] integration steps per
+//! [`ReplanSolver::step`]: a step either advances the prediction in progress (and returns
+//! `None` with the phase unchanged) or completes it and acts on it as for a closed-form
+//! prediction. [`ReplanSolver::predictor_calls`] counts completed predictions,
+//! [`ReplanSolver::integration_steps`] the integration steps.
+//!
+//! # Hybrid
+//! [`PredictorMode::Hybrid`] runs the ends as [`PredictorMode::Auto`] ([`PredictorMode::AutoSink`]
+//! for [`PredictorMode::HybridSink`]); if the predictions used at both ends are
+//! [`Validity::InDomain`] the solve goes on with the closed forms, otherwise (an end out of the
+//! validated domain, or both closed forms failing) the whole solve restarts with the numerical
+//! predictor.
 
 use crate::nav::NavState;
 use crate::scalar::Real;
@@ -23,7 +39,9 @@ use crate::vinh::VinhError;
 use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
 use crate::vinh::num::{Zeroin, ZeroinStep};
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
+use crate::vinh::validity::Validity;
 
+use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
     ReplanFallBack, ReplanLimits, ReplanResult, glide_prediction,
@@ -71,6 +89,12 @@ pub struct ReplanSolver<S> {
     /// The glide predicts the sink ([`PredictorMode::AutoSink`], until a non-monotone range
     /// turns it off for the rest of the solve).
     sink: bool,
+    /// Predictions are numerical ([`PredictorMode::Numerical`], or a switched hybrid).
+    numerical: bool,
+    /// The numerical prediction in progress.
+    run: Option<NumericalRun<S>>,
+    /// Integration steps taken by numerical predictions.
+    integration_steps: u32,
     calls: u8,
     phase: Phase<S>,
 }
@@ -125,7 +149,13 @@ impl<S: Real> ReplanSolver<S> {
             limits: *limits,
             config: *config,
             glide: config.mode == PredictorMode::Glide,
-            sink: config.mode == PredictorMode::AutoSink,
+            sink: matches!(
+                config.mode,
+                PredictorMode::AutoSink | PredictorMode::HybridSink
+            ),
+            numerical: config.mode == PredictorMode::Numerical,
+            run: None,
+            integration_steps: 0,
             calls: 0,
             phase: Phase::EndLo,
         };
@@ -168,10 +198,25 @@ impl<S: Real> ReplanSolver<S> {
         }
     }
 
-    /// Predictor calls made so far (at most [`MAX_PREDICTOR_CALLS`]).
+    /// Predictor calls made so far (at most [`MAX_PREDICTOR_CALLS`]; a numerical prediction
+    /// counts once, when it completes).
     #[must_use]
     pub fn predictor_calls(&self) -> u8 {
         self.calls
+    }
+
+    /// Integration steps taken so far by numerical predictions (0 with the closed forms).
+    #[must_use]
+    pub fn integration_steps(&self) -> u32 {
+        self.integration_steps
+    }
+
+    /// Whether the solve uses the numerical predictor ([`PredictorMode::Numerical`], or a
+    /// [`PredictorMode::Hybrid`] / [`PredictorMode::HybridSink`] solve out of the closed forms'
+    /// validated domain).
+    #[must_use]
+    pub fn uses_numerical(&self) -> bool {
+        self.numerical
     }
 
     /// Advance by at most `max_steps` predictor calls; the result if the solve is done.
@@ -193,18 +238,73 @@ impl<S: Real> ReplanSolver<S> {
         )
     }
 
-    fn eval(&mut self, f: S, peaks: PeakMode<S>) -> Result<Prediction<S>, VinhError> {
-        self.calls = self.calls.saturating_add(1);
+    /// The prediction at `f`: `None` while a numerical prediction is in progress (call again
+    /// with the same `f` and `peaks` at the next step).
+    fn eval(&mut self, f: S, peaks: PeakMode<S>) -> Option<Result<Prediction<S>, VinhError>> {
         let lift = LiftControl {
             lambda: self.config.lambda,
             vertical_fraction: f,
         };
+        if self.numerical {
+            return self.eval_numerical(&lift, peaks);
+        }
+        self.calls = self.calls.saturating_add(1);
+        Some(self.eval_closed_form(&lift, peaks))
+    }
+
+    /// Advance (or start) the numerical prediction with `lift`: `None` while in progress.
+    /// Not inlined: keeps the closed-form path of [`ReplanSolver::step`] as lean as before.
+    #[inline(never)]
+    fn eval_numerical(
+        &mut self,
+        lift: &LiftControl<S>,
+        peaks: PeakMode<S>,
+    ) -> Option<Result<Prediction<S>, VinhError>> {
+        {
+            let mut run = match self.run.take() {
+                Some(r) => r,
+                None => match NumericalRun::new(
+                    &self.planet,
+                    &self.atmosphere,
+                    &self.vehicle,
+                    lift,
+                    &self.state,
+                    &self.config.predictor,
+                    peaks,
+                ) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        self.calls = self.calls.saturating_add(1);
+                        return Some(Err(e));
+                    }
+                },
+            };
+            let before = run.steps();
+            let out = run.advance(STEPS_PER_SOLVER_STEP);
+            self.integration_steps = self
+                .integration_steps
+                .saturating_add(u32::from(run.steps().saturating_sub(before)));
+            if out.is_none() {
+                self.run = Some(run);
+            } else {
+                self.calls = self.calls.saturating_add(1);
+            }
+            out
+        }
+    }
+
+    /// One closed-form prediction with `lift`.
+    fn eval_closed_form(
+        &self,
+        lift: &LiftControl<S>,
+        peaks: PeakMode<S>,
+    ) -> Result<Prediction<S>, VinhError> {
         if self.glide {
             glide_prediction(
                 &self.planet,
                 &self.atmosphere,
                 &self.vehicle,
-                &lift,
+                lift,
                 &self.state,
                 &self.config.predictor,
                 peaks,
@@ -215,7 +315,7 @@ impl<S: Real> ReplanSolver<S> {
                 &self.planet,
                 &self.atmosphere,
                 &self.vehicle,
-                &lift,
+                lift,
                 &self.state,
                 &self.config.predictor,
                 peaks,
@@ -277,7 +377,10 @@ impl<S: Real> ReplanSolver<S> {
             match self.phase {
                 Phase::Done(r) => return Some(r),
                 Phase::EndLo => {
-                    return match self.eval(f_lo, PeakMode::RangeOnly) {
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(f_lo, PeakMode::RangeOnly)?;
+                    return match r {
+                        Ok(p) if self.leaves_domain(&p) => self.switch_to_numerical(),
                         Ok(p) => {
                             self.phase = Phase::EndHi {
                                 range_lo: p.range_m,
@@ -288,7 +391,10 @@ impl<S: Real> ReplanSolver<S> {
                     };
                 }
                 Phase::EndHi { range_lo } => {
-                    let range_hi = match self.eval(f_hi, PeakMode::RangeOnly) {
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(f_hi, PeakMode::RangeOnly)?;
+                    let range_hi = match r {
+                        Ok(p) if self.leaves_domain(&p) => return self.switch_to_numerical(),
                         Ok(p) => p.range_m,
                         Err(e) => return self.end_failed(e),
                     };
@@ -348,7 +454,9 @@ impl<S: Real> ReplanSolver<S> {
                         }
                         ZeroinStep::Eval(f) => self.clamp_f(f),
                     };
-                    let miss = match self.eval(f, PeakMode::RangeOnly) {
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(f, PeakMode::RangeOnly)?;
+                    let miss = match r {
                         Ok(p) => p.range_m - target,
                         Err(e) => return self.fail(ReplanFallBack::OutOfDomain(e)),
                     };
@@ -374,7 +482,9 @@ impl<S: Real> ReplanSolver<S> {
                 }
                 Phase::Final { f, case } => {
                     let limits = self.limits;
-                    return match self.eval(f, PeakMode::Limits(limits)) {
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(f, PeakMode::Limits(limits))?;
+                    return match r {
                         Ok(p) if p.peak_status == PeakStatus::Computed => self.success(case, f, p),
                         Ok(_) => {
                             self.phase = Phase::Grid { i: 0, best: None };
@@ -394,7 +504,9 @@ impl<S: Real> ReplanSolver<S> {
                     let fi = self.clamp_f(f_lo + (f_hi - f_lo) * S::from_f64(f64::from(i)) / n);
                     let limits = self.limits;
                     let mut best = best;
-                    if let Ok(p) = self.eval(fi, PeakMode::Limits(limits))
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(fi, PeakMode::Limits(limits))?;
+                    if let Ok(p) = r
                         && p.peak_status == PeakStatus::Computed
                     {
                         let miss = (p.range_m - target).abs();
@@ -412,17 +524,47 @@ impl<S: Real> ReplanSolver<S> {
         }
     }
 
+    /// Whether the solve is hybrid and still on the closed forms.
+    fn hybrid_closed_form(&self) -> bool {
+        matches!(
+            self.config.mode,
+            PredictorMode::Hybrid | PredictorMode::HybridSink
+        ) && !self.numerical
+    }
+
+    /// Whether an end prediction `p` sends a hybrid solve to the numerical predictor (out of
+    /// the closed forms' validated domain).
+    fn leaves_domain(&self, p: &Prediction<S>) -> bool {
+        self.hybrid_closed_form() && p.validity != Validity::InDomain
+    }
+
+    /// Restart the solve with the numerical predictor (hybrid modes).
+    fn switch_to_numerical(&mut self) -> Option<ReplanResult<S>> {
+        self.numerical = true;
+        self.glide = false;
+        self.sink = false;
+        self.run = None;
+        self.phase = Phase::EndLo;
+        None
+    }
+
     /// A prediction at an end of the interval failed: in [`PredictorMode::Auto`] (or
-    /// [`PredictorMode::AutoSink`]) redo the ends with the glide (once), else fall back.
+    /// [`PredictorMode::AutoSink`], and the hybrid modes) redo the ends with the glide (once);
+    /// in the hybrid modes then with the numerical predictor; else fall back.
     fn end_failed(&mut self, e: VinhError) -> Option<ReplanResult<S>> {
         let auto = matches!(
             self.config.mode,
-            PredictorMode::Auto | PredictorMode::AutoSink
+            PredictorMode::Auto
+                | PredictorMode::AutoSink
+                | PredictorMode::Hybrid
+                | PredictorMode::HybridSink
         );
-        if auto && !self.glide {
+        if auto && !self.glide && !self.numerical {
             self.glide = true;
             self.phase = Phase::EndLo;
             None
+        } else if self.hybrid_closed_form() {
+            self.switch_to_numerical()
         } else {
             self.fail(ReplanFallBack::OutOfDomain(e))
         }

@@ -17,9 +17,10 @@ use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ReplanItem {
-    /// Code 8: schedule and counts. Slots: every N ticks, predictor calls per tick (0: whole
+    /// Code 8: schedule and counts. Slots: every N ticks, solver steps per tick (0: whole
     /// solve in its tick), apply out of reach (0 or 1), predictor mode (0 chain, 1 glide,
-    /// 2 auto), corrector iterations, predictor skips.
+    /// 2 auto, 3 auto-sink, 4 numerical, 5 hybrid, 6 hybrid-sink), corrector iterations,
+    /// predictor skips.
     Schedule {
         /// [`ReplanningConfig::every_n_ticks`] \[ticks\].
         every_n_ticks: u16,
@@ -517,7 +518,7 @@ mod tests {
             (1, 70_000.0),
             (2, 256.0),
             (3, 2.0),
-            (4, 4.0),
+            (4, 7.0),
             (5, -1.0),
         ] {
             let mut s = schedule;

@@ -82,6 +82,13 @@ pub enum VinhError {
     NoConvergence,
     /// A computed output was not finite (defensive check; should not happen for validated input).
     NonFiniteResult,
+    /// Numerical predictor: the trajectory reaches the planet surface before the final speed.
+    GroundImpact,
+    /// Numerical predictor: the step budget ([`crate::replan::numerical::MAX_STEPS`]) is used
+    /// up before the final speed (a very long skip arc).
+    StepLimit,
+    /// Numerical predictor: the state's speed is not above the final speed.
+    BelowFinalSpeed,
 }
 
 impl core::fmt::Display for VinhError {
@@ -115,6 +122,9 @@ impl core::fmt::Display for VinhError {
             VinhError::PhaseLimit => "predictor phase budget used up",
             VinhError::NoConvergence => "bounded iteration did not converge",
             VinhError::NonFiniteResult => "non-finite result",
+            VinhError::GroundImpact => "trajectory reaches the surface before the final speed",
+            VinhError::StepLimit => "numerical predictor step budget used up",
+            VinhError::BelowFinalSpeed => "state speed not above the final speed",
         };
         f.write_str(s)
     }

@@ -121,6 +121,13 @@ impl<S: Real> ExpAtmosphere<S> {
         Ok(())
     }
 
+    /// Density \[kg/m^3\] at radius `radius_m` \[m\] without validation (the one definition of
+    /// the model's density; [`ExpAtmosphere::density_kg_m3`] checks it).
+    #[inline]
+    pub(crate) fn density_unchecked(&self, radius_m: S) -> S {
+        self.rho0_kg_m3 * (-(radius_m - self.ref_radius_m) / self.scale_height_m).exp()
+    }
+
     /// Density \[kg/m^3\] at radius `radius_m` \[m\].
     ///
     /// # Errors
@@ -131,7 +138,7 @@ impl<S: Real> ExpAtmosphere<S> {
         if !radius_m.is_finite() {
             return Err(VinhError::NonFiniteInput);
         }
-        let rho = self.rho0_kg_m3 * (-(radius_m - self.ref_radius_m) / self.scale_height_m).exp();
+        let rho = self.density_unchecked(radius_m);
         if rho > S::ZERO {
             finite(rho)
         } else {
@@ -186,6 +193,7 @@ impl<S: Real> VehicleParams<S> {
     /// # Errors
     /// As for validation: [`VinhError::NonFiniteInput`], [`VinhError::NonPositiveZeroLiftDrag`],
     /// [`VinhError::InvalidVehicle`].
+    #[inline]
     pub fn cl_max_ld(&self) -> Result<S, VinhError> {
         self.validate()?;
         finite((self.cd0 / self.k_polar).sqrt_fast())
@@ -267,6 +275,7 @@ pub struct EntryState<S> {
 }
 
 impl<S: Real> EntryState<S> {
+    #[inline]
     pub(crate) fn validate(&self, planet: &Planet<S>) -> Result<(), VinhError> {
         if !(self.radius_m.is_finite()
             && self.speed_m_s.is_finite()
@@ -339,6 +348,48 @@ pub struct NonDim<S> {
     pub(crate) g_load_e: S,
 }
 
+/// Chapman heat flux \[W/m^2\] (thesis eq. 2.2) for nose radius `nose_radius_m` \[m\], density
+/// `rho` \[kg/m^3\] and speed `v` \[m/s\]: `c*/sqrt(R_N) sqrt(rho/rho_0) (V/V_c)^3.15`. The one
+/// definition of the predictor model's heat flux (closed forms and numerical predictor).
+#[inline]
+#[must_use]
+pub(crate) fn chapman_heat_flux_w_m2<S: Real>(nose_radius_m: S, rho: S, v: S) -> S {
+    k::<S>(CHAPMAN_C_STAR) / nose_radius_m.sqrt_fast()
+        * (rho / k(CHAPMAN_RHO0_KG_M3)).sqrt_fast()
+        * (v / k(CHAPMAN_VC_M_S)).powf(k(CHAPMAN_SPEED_EXPONENT))
+}
+
+/// Drag and total-lift accelerations `(D/m, L/m)` \[m/s^2\] of `vehicle` at lift parameter
+/// `lambda` (`sqrt_cd0_k = sqrt(C_D0/K)`, `one_l2 = 1 + lambda^2`, passed in so callers that
+/// have them do not recompute them: soft float on the Cortex-M3), density `rho` \[kg/m^3\] and
+/// speed `v` \[m/s\]: `D/m = rho V^2 S/(2m) C_D0 (1 + lambda^2)`,
+/// `L/m = rho V^2 S/(2m) sqrt(C_D0/K) lambda`. The one definition of the predictor model's
+/// aerodynamics (closed forms and numerical predictor).
+#[inline]
+#[must_use]
+pub(crate) fn aero_accelerations_m_s2<S: Real>(
+    vehicle: &VehicleParams<S>,
+    sqrt_cd0_k: S,
+    lambda: S,
+    one_l2: S,
+    rho: S,
+    v: S,
+) -> (S, S) {
+    let qdyn_s_m = rho * v * v * vehicle.reference_area_m2 / (k::<S>(2.0) * vehicle.mass_kg);
+    (
+        qdyn_s_m * vehicle.cd0 * one_l2,
+        qdyn_s_m * sqrt_cd0_k * lambda,
+    )
+}
+
+/// g-load `sqrt(D^2 + L^2)/(m g0)` \[-\] (eq. 2.1) from the drag and lift accelerations
+/// \[m/s^2\].
+#[inline]
+#[must_use]
+pub(crate) fn g_load_of<S: Real>(drag_m_s2: S, lift_m_s2: S) -> S {
+    (drag_m_s2 * drag_m_s2 + lift_m_s2 * lift_m_s2).sqrt_fast() / k(G0_M_S2)
+}
+
 /// Smallest accepted `|k1|` for float type `S`: `64 * EPSILON` (1.4e-14 in `f64`, 7.6e-6 in
 /// `f32`). The closed forms divide by `k1`; below this the cancellations in `(c - phi)/k1` lose
 /// all significant digits.
@@ -388,15 +439,12 @@ impl<S: Real> NonDim<S> {
         let c = finite(-sqrt_s * sin_cos(entry.flight_path_angle_rad).0)?;
         let one_l2 = S::ONE + lambda * lambda;
         let e_vertical = finite(two * e_star * lambda * lift.vertical_fraction / one_l2)?;
-        let q_e = finite(
-            k::<S>(CHAPMAN_C_STAR) / vehicle.nose_radius_m.sqrt_fast()
-                * (rho_e / k(CHAPMAN_RHO0_KG_M3)).sqrt_fast()
-                * (v_e / k(CHAPMAN_VC_M_S)).powf(k(CHAPMAN_SPEED_EXPONENT)),
-        )?;
-        let qdyn_s_m = rho_e * v_e * v_e * vehicle.reference_area_m2 / (two * vehicle.mass_kg);
-        let drag_e = finite(qdyn_s_m * vehicle.cd0 * one_l2)?;
-        let lift_e = finite(qdyn_s_m * sqrt_cd0_k * lambda)?;
-        let g_load_e = finite((drag_e * drag_e + lift_e * lift_e).sqrt_fast() / k(G0_M_S2))?;
+        let q_e = finite(chapman_heat_flux_w_m2(vehicle.nose_radius_m, rho_e, v_e))?;
+        let (drag_e, lift_e) =
+            aero_accelerations_m_s2(vehicle, sqrt_cd0_k, lambda, one_l2, rho_e, v_e);
+        let drag_e = finite(drag_e)?;
+        let lift_e = finite(lift_e)?;
+        let g_load_e = finite(g_load_of(drag_e, lift_e))?;
         Ok(Self {
             c: Constants {
                 e_star,

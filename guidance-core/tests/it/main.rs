@@ -5,6 +5,8 @@ mod guidance_props;
 mod lateral;
 mod navconv;
 mod node_capacity;
+mod numerical_predictor;
+mod numerical_replan;
 mod vinh_error_map;
 mod vinh_peaks;
 mod vinh_props;

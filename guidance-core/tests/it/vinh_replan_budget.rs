@@ -2,7 +2,9 @@
 //! predictor call per step) gives exactly the one-shot `replan` answer, and
 //! `ReplanningGuidance` with a per-tick step budget never makes more predictor calls in one
 //! tick than the budget, flies the table in use until the solve completes, then applies the
-//! same bank as the one-shot re-plan from the same start state.
+//! same bank as the one-shot re-plan from the same start state. The same for the numerical
+//! modes (`Numerical`, `Hybrid`, `HybridSink`: a bounded chunk of integration per step) in
+//! `numerical_replan.rs`.
 
 use crate::vinh_replan::{
     DEG, NO_LIMITS, config, energy_table, glide_nav, glide_range_m, glide_solver, nav, range_at,

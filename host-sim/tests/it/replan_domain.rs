@@ -163,9 +163,11 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
         };
         let chain = match s.mode {
             PredictorMode::Chain => true,
-            PredictorMode::Glide | PredictorMode::Numerical => false,
+            PredictorMode::Glide => false,
+            // The numerical modes are not sampled here; their closed-form part is Auto's.
             PredictorMode::Auto
             | PredictorMode::AutoSink
+            | PredictorMode::Numerical
             | PredictorMode::Hybrid
             | PredictorMode::HybridSink => {
                 chain_ok(s.min_vertical_fraction) && chain_ok(s.max_vertical_fraction)

@@ -24,6 +24,10 @@ fn main() {
 #[cfg(target_os = "none")]
 mod replanning;
 
+/// The numerical-predictor benchmarks (firmware only).
+#[cfg(target_os = "none")]
+mod numerical;
+
 /// The firmware (built for `target_os = "none"` only).
 #[cfg(target_os = "none")]
 mod firmware {
@@ -42,6 +46,7 @@ mod firmware {
     use guidance_core::{NavState, Scalar};
     use onboard_demo::insn::InsnCounter;
 
+    use crate::numerical::{bench_numerical, bench_numerical_tick};
     use crate::replanning::{bench_estimator, bench_replan, bench_replanning_tick};
 
     #[cfg(target_abi = "eabihf")]
@@ -239,6 +244,8 @@ mod firmware {
         ok &= bench_replan(&mut c);
         ok &= bench_replanning_tick(&mut c);
         ok &= bench_estimator(&mut c);
+        ok &= bench_numerical(&mut c);
+        ok &= bench_numerical_tick(&mut c);
         onboard_demo::exit(ok)
     }
 

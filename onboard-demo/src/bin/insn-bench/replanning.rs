@@ -170,7 +170,7 @@ fn tick_solver() -> ReplanConfig<f32> {
 /// first tick (one predictor call per tick) with `solver` towards the flown range angle
 /// `target_rad` \[rad\] under the heat-flux limit `heat_flux_w_m2` \[W/m^2\]; `None` if a
 /// setting is rejected.
-fn srm_replanning_guidance(
+pub(crate) fn srm_replanning_guidance(
     solver: ReplanConfig<f32>,
     heat_flux_w_m2: f32,
     target_rad: f32,

@@ -1,0 +1,540 @@
+//! Numerical predictor (FNPEG-style): the predictor model's planar equations of motion
+//! integrated from the navigated state, flight-path angle included, with constant lift, to the
+//! final speed. The re-planner's [`super::PredictorMode::Numerical`] (and the fall-back of
+//! [`super::PredictorMode::Hybrid`] outside the closed forms' validated domain).
+//!
+//! # Model (the same as the closed forms')
+//! Central gravity `g = mu/r^2` ([`Planet`]; its `mu` may be the rotation-corrected effective
+//! one of [`super::PredictorModel::effective_planet`]), exponential atmosphere
+//! ([`ExpAtmosphere`]), parabolic polar ([`VehicleParams`]) at lift parameter `lambda` with the
+//! vertical lift fraction `f = cos(sigma)` ([`LiftControl`]), non-rotating planar flight:
+//!
+//! ```text
+//! dh/dt     = V sin(gamma)                              (h = r - R)
+//! dV/dt     = -D/m - g sin(gamma)
+//! dgamma/dt = f L/(m V) - (g/V - V/r) cos(gamma)
+//! dtheta/dt = V cos(gamma)/r
+//! ```
+//!
+//! `D/m`, `L/m`, the Chapman heat flux and the g-load are the closed forms' own definitions
+//! (`crate::vinh::nondim`'s `aero_accelerations_m_s2`, `chapman_heat_flux_w_m2`, `g_load_of`;
+//! the density is [`ExpAtmosphere`]'s). The altitude `h = r - R` is the integrated variable so
+//! that `f32` keeps centimetre resolution on it (a radius of 6.5e6 m has a 0.5 m ulp).
+//!
+//! # Step rule (classic RK4, step chosen from the state at the start of each step)
+//! `dt = min(MAX_STEP_S, VERTICAL_STEP_FRACTION H_s/|V sin gamma|,
+//! SPEED_STEP_FRACTION V/(D/m), PHUGOID_STEP_RAD sqrt(H_s/|f L/m|))`:
+//! the density changes by at most a factor `exp(0.5)` per step (a skip's pull-up is resolved),
+//! the speed by at most 5 % (drag grows as `V^2`), and the phugoid (angular frequency
+//! `sqrt(|f L/m|/H_s)`: the lift's restoring force per metre of altitude) turns by at most
+//! 0.5 rad per step (about 12 steps per period). The 20 s cap bounds the step on a long glide
+//! near circular speed, where all three are loose. Measured accuracy against the same equations
+//! integrated with 1/16 of this step: `validate_integration_numerical_predictor_*`
+//! (docs/VINH.md, "Numerical predictor").
+//!
+//! The last step, which takes the speed below the final speed, is redone from its start with
+//! the step interpolated linearly in speed, and the small remainder is closed with the rates at
+//! its end (first order in a residual of a few mm/s), so the prediction ends at the final speed.
+//!
+//! # Peaks
+//! Heat flux and g-load are evaluated at every integration node (from the first stage of the
+//! step: no extra right-hand side); an interior maximum is refined by the parabola through it
+//! and its two neighbours. [`PeakMode::Limits`] stops as soon as a node value exceeds a limit
+//! ([`PeakStatus::LimitExceeded`], range so far); the final status compares the refined peaks.
+//! [`PeakMode::RangeOnly`] computes no loads.
+//!
+//! # Other outputs
+//! `skips`: upward crossings of the starting radius, `arcs`: downward crossings after being
+//! above it (counted at the nodes); `glide_start_radius_m` and `glide_range_angle_rad` are 0 (no
+//! glide phase); `validity` is always [`Validity::InDomain`] (the model is integrated, not
+//! approximated).
+//!
+//! # Cost and resumability
+//! One step is one RK4 step (4 right-hand sides: one `exp`, one `sin_cos`, a few divisions),
+//! plus a Chapman heat flux (`powf`) and a square root with peaks; the last step about twice
+//! that. At most [`MAX_STEPS`] steps. [`NumericalRun`] (`Copy`, a few hundred bytes) holds the
+//! integration and is advanced a bounded number of steps at a time
+//! ([`NumericalRun::advance`]); [`predict_numerical`] is that run to completion (bit-identical).
+//!
+//! # Errors (typed, outputs never NaN)
+//! Input validation as the closed forms ([`VinhError::NonFiniteInput`], ...),
+//! [`VinhError::BelowFinalSpeed`], [`VinhError::GroundImpact`], [`VinhError::StepLimit`],
+//! [`VinhError::EscapeTrajectory`] (ascending above escape speed out of the atmosphere),
+//! [`VinhError::NonFiniteResult`] (defensive).
+
+use crate::scalar::Real;
+use crate::vinh::VinhError;
+use crate::vinh::nondim::{
+    EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams, aero_accelerations_m_s2,
+    chapman_heat_flux_w_m2, g_load_of,
+};
+use crate::vinh::num::{k, sin_cos};
+use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, PredictorConfig};
+use crate::vinh::validity::Validity;
+
+/// Largest number of integration steps of one prediction.
+pub const MAX_STEPS: u16 = 4096;
+/// Largest time step \[s\].
+pub const MAX_STEP_S: f64 = 20.0;
+/// Largest altitude change per step, in density scale heights \[-\].
+pub const VERTICAL_STEP_FRACTION: f64 = 0.5;
+/// Largest relative speed change per step by drag \[-\].
+pub const SPEED_STEP_FRACTION: f64 = 0.05;
+/// Largest phugoid phase per step \[rad\].
+pub const PHUGOID_STEP_RAD: f64 = 0.5;
+/// Integration steps per [`super::ReplanSolver::step`] of a numerical prediction: a converged
+/// SRM glide re-plan then stays within the per-tick instruction budget of the Cortex-M4F with
+/// one solver step per tick (docs/PERFORMANCE.md).
+pub const STEPS_PER_SOLVER_STEP: u16 = 64;
+/// Drag acceleration below which an ascending state above escape energy is taken as escaping
+/// \[m/s^2\].
+const ESCAPE_DRAG_M_S2: f64 = 1e-6;
+
+/// Integrated state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Y<S> {
+    /// Altitude above the planet radius \[m\].
+    h: S,
+    /// Speed \[m/s\].
+    v: S,
+    /// Flight-path angle \[rad\].
+    gamma: S,
+    /// Range angle flown \[rad\].
+    theta: S,
+}
+
+impl<S: Real> Y<S> {
+    /// `self + a d`.
+    fn axpy(&self, d: &Y<S>, a: S) -> Y<S> {
+        Y {
+            h: self.h + a * d.h,
+            v: self.v + a * d.v,
+            gamma: self.gamma + a * d.gamma,
+            theta: self.theta + a * d.theta,
+        }
+    }
+
+    fn is_finite(&self) -> bool {
+        self.h.is_finite() && self.v.is_finite() && self.gamma.is_finite() && self.theta.is_finite()
+    }
+}
+
+/// Rates and the aerodynamic quantities they were computed from.
+#[derive(Clone, Copy, Debug)]
+struct Rates<S> {
+    dy: Y<S>,
+    rho: S,
+    drag: S,
+    lift: S,
+}
+
+/// The predictor model with the constant lift setting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Model<S> {
+    mu: S,
+    radius_m: S,
+    /// The atmosphere with its reference radius taken from the planet radius (density as a
+    /// function of the altitude `h`).
+    atmosphere_h: ExpAtmosphere<S>,
+    vehicle: VehicleParams<S>,
+    sqrt_cd0_k: S,
+    lambda: S,
+    /// `1 + lambda^2`.
+    one_l2: S,
+    f: S,
+}
+
+impl<S: Real> Model<S> {
+    fn rates(&self, y: &Y<S>) -> Rates<S> {
+        let r = self.radius_m + y.h;
+        let rho = self.atmosphere_h.density_unchecked(y.h);
+        let (drag, lift) = aero_accelerations_m_s2(
+            &self.vehicle,
+            self.sqrt_cd0_k,
+            self.lambda,
+            self.one_l2,
+            rho,
+            y.v,
+        );
+        let g = self.mu / (r * r);
+        let (sg, cg) = sin_cos(y.gamma);
+        let v_r = y.v / r;
+        Rates {
+            dy: Y {
+                h: y.v * sg,
+                v: -drag - g * sg,
+                gamma: self.f * lift / y.v - (g / y.v - v_r) * cg,
+                theta: v_r * cg,
+            },
+            rho,
+            drag,
+            lift,
+        }
+    }
+
+    /// One classic RK4 step of `dt` from `y` with first stage `k1`.
+    fn rk4(&self, y: &Y<S>, k1: &Y<S>, dt: S) -> Y<S> {
+        let half = dt.half();
+        let k2 = self.rates(&y.axpy(k1, half)).dy;
+        let k3 = self.rates(&y.axpy(&k2, half)).dy;
+        let k4 = self.rates(&y.axpy(&k3, dt)).dy;
+        let two: S = k(2.0);
+        let sum = Y {
+            h: k1.h + two * (k2.h + k3.h) + k4.h,
+            v: k1.v + two * (k2.v + k3.v) + k4.v,
+            gamma: k1.gamma + two * (k2.gamma + k3.gamma) + k4.gamma,
+            theta: k1.theta + two * (k2.theta + k3.theta) + k4.theta,
+        };
+        y.axpy(&sum, dt / k(6.0))
+    }
+
+    /// The step rule (module docs) at a state with rates `rt`.
+    fn step_size(&self, y: &Y<S>, rt: &Rates<S>) -> S {
+        let h_s = self.atmosphere_h.scale_height_m;
+        let mut dt: S = k(MAX_STEP_S);
+        let vz = rt.dy.h.abs();
+        let dh_max = k::<S>(VERTICAL_STEP_FRACTION) * h_s;
+        if vz * dt > dh_max {
+            dt = dh_max / vz;
+        }
+        let dv_max = k::<S>(SPEED_STEP_FRACTION) * y.v;
+        if rt.drag * dt > dv_max {
+            dt = dv_max / rt.drag;
+        }
+        let fl = (self.f * rt.lift).abs();
+        let phase: S = k(PHUGOID_STEP_RAD);
+        if fl * dt * dt > phase * phase * h_s {
+            dt = phase * (h_s / fl).sqrt_fast();
+        }
+        dt
+    }
+}
+
+/// A node of the peak history: time \[s\], heat flux \[W/m^2\], g-load \[-\].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Node<S> {
+    t: S,
+    q: S,
+    n: S,
+}
+
+/// Value at the vertex of the parabola through `(t0, y0)`, `(t1, y1)`, `(t2, y2)` when `y1` is
+/// an interior maximum and the vertex lies between `t0` and `t2`; else `y1`.
+fn vertex<S: Real>(t0: S, y0: S, t1: S, y1: S, t2: S, y2: S) -> S {
+    let (h1, h2) = (t1 - t0, t2 - t1);
+    if !(y1 >= y0 && y1 >= y2 && h1 > S::ZERO && h2 > S::ZERO) {
+        return y1;
+    }
+    let d1 = (y1 - y0) / h1;
+    let d2 = (y2 - y1) / h2;
+    let a = (d2 - d1) / (h1 + h2);
+    if !(a < S::ZERO) {
+        return y1;
+    }
+    let s = d1 + a * h1;
+    let off = -s / (k::<S>(2.0) * a);
+    let peak = y1 - s * s / (k::<S>(4.0) * a);
+    if off >= -h1 && off <= h2 && peak.is_finite() {
+        peak
+    } else {
+        y1
+    }
+}
+
+/// A numerical prediction in progress (module docs): `Copy`, advanced a bounded number of steps
+/// at a time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct NumericalRun<S> {
+    model: Model<S>,
+    final_speed_m_s: S,
+    peaks: PeakMode<S>,
+    y: Y<S>,
+    h0: S,
+    t: S,
+    steps: u16,
+    q_max: S,
+    n_max: S,
+    /// The two previous nodes (older first) and how many are valid.
+    hist: [Node<S>; 2],
+    nodes: u8,
+    skips: u8,
+    arcs: u8,
+    above: bool,
+    outcome: Option<Result<Prediction<S>, VinhError>>,
+}
+
+impl<S: Real> NumericalRun<S> {
+    /// Set up a prediction from `state` with constant `lift` to `config.final_speed_m_s`
+    /// (`config.max_skips` is not used), peaks as `peaks` asks.
+    ///
+    /// # Errors
+    /// The input validation errors of the closed forms ([`VinhError::NonFiniteInput`],
+    /// [`VinhError::InvalidPlanet`], [`VinhError::InvalidAtmosphere`],
+    /// [`VinhError::InvalidVehicle`], [`VinhError::NonPositiveZeroLiftDrag`],
+    /// [`VinhError::InvalidLiftControl`], [`VinhError::UnphysicalState`],
+    /// [`VinhError::EntrySpeedTooHigh`], [`VinhError::FlightPathAngleOutOfDomain`]),
+    /// [`VinhError::InvalidConfig`] for a final speed that is not positive,
+    /// [`VinhError::BelowFinalSpeed`] if the state is not faster than the final speed.
+    pub fn new(
+        planet: &Planet<S>,
+        atmosphere: &ExpAtmosphere<S>,
+        vehicle: &VehicleParams<S>,
+        lift: &LiftControl<S>,
+        state: &EntryState<S>,
+        config: &PredictorConfig<S>,
+        peaks: PeakMode<S>,
+    ) -> Result<Self, VinhError> {
+        if !config.final_speed_m_s.is_finite() {
+            return Err(VinhError::NonFiniteInput);
+        }
+        if !(config.final_speed_m_s > S::ZERO) {
+            return Err(VinhError::InvalidConfig);
+        }
+        planet.validate()?;
+        atmosphere.validate()?;
+        vehicle.validate()?;
+        lift.validate()?;
+        state.validate(planet)?;
+        if !(state.speed_m_s > config.final_speed_m_s) {
+            return Err(VinhError::BelowFinalSpeed);
+        }
+        let sqrt_cd0_k = vehicle.cl_max_ld()?;
+        let h0 = state.radius_m - planet.radius_m;
+        Ok(Self {
+            model: Model {
+                mu: planet.mu_m3_s2,
+                radius_m: planet.radius_m,
+                atmosphere_h: ExpAtmosphere {
+                    ref_radius_m: atmosphere.ref_radius_m - planet.radius_m,
+                    ..*atmosphere
+                },
+                vehicle: *vehicle,
+                sqrt_cd0_k,
+                lambda: lift.lambda,
+                one_l2: S::ONE + lift.lambda * lift.lambda,
+                f: lift.vertical_fraction,
+            },
+            final_speed_m_s: config.final_speed_m_s,
+            peaks,
+            y: Y {
+                h: h0,
+                v: state.speed_m_s,
+                gamma: state.flight_path_angle_rad,
+                theta: S::ZERO,
+            },
+            h0,
+            t: S::ZERO,
+            steps: 0,
+            q_max: S::ZERO,
+            n_max: S::ZERO,
+            hist: [Node {
+                t: S::ZERO,
+                q: S::ZERO,
+                n: S::ZERO,
+            }; 2],
+            nodes: 0,
+            skips: 0,
+            arcs: 0,
+            above: state.flight_path_angle_rad > S::ZERO,
+            outcome: None,
+        })
+    }
+
+    /// Integration steps taken so far (at most [`MAX_STEPS`]).
+    #[must_use]
+    pub fn steps(&self) -> u16 {
+        self.steps
+    }
+
+    /// The outcome, once the prediction is finished.
+    #[must_use]
+    pub fn outcome(&self) -> Option<Result<Prediction<S>, VinhError>> {
+        self.outcome
+    }
+
+    /// Take at most `max_steps` integration steps; the outcome once finished (then further
+    /// calls take no step and return it again).
+    pub fn advance(&mut self, max_steps: u16) -> Option<Result<Prediction<S>, VinhError>> {
+        let mut n = 0_u16;
+        while n < max_steps && self.outcome.is_none() {
+            self.outcome = self.step_once();
+            n += 1;
+        }
+        self.outcome
+    }
+
+    /// Heat flux and g-load at a node (not computed in [`PeakMode::RangeOnly`]); whether a
+    /// node value exceeds a limit of [`PeakMode::Limits`].
+    fn record_node(&mut self, t: S, rho: S, v: S, drag: S, lift: S) -> bool {
+        if self.peaks == PeakMode::RangeOnly {
+            return false;
+        }
+        let q = chapman_heat_flux_w_m2(self.model.vehicle.nose_radius_m, rho, v);
+        let n = g_load_of(drag, lift);
+        let [a, b] = self.hist;
+        if self.nodes >= 2 {
+            self.q_max = self.q_max.max(vertex(a.t, a.q, b.t, b.q, t, q));
+            self.n_max = self.n_max.max(vertex(a.t, a.n, b.t, b.n, t, n));
+        }
+        self.q_max = self.q_max.max(q);
+        self.n_max = self.n_max.max(n);
+        self.hist = [b, Node { t, q, n }];
+        self.nodes = self.nodes.saturating_add(1);
+        match self.peaks {
+            PeakMode::Limits(l) => q > l.heat_flux_w_m2 || n > l.g_load,
+            _ => false,
+        }
+    }
+
+    /// The prediction with range angle `theta` \[rad\] and peak status `status`.
+    fn prediction(&self, theta: S, status: PeakStatus) -> Result<Prediction<S>, VinhError> {
+        let range = theta * self.model.radius_m;
+        let (q, n) = if status == PeakStatus::NotComputed {
+            (S::ZERO, S::ZERO)
+        } else {
+            (self.q_max, self.n_max)
+        };
+        if !(theta.is_finite() && range.is_finite() && q.is_finite() && n.is_finite()) {
+            return Err(VinhError::NonFiniteResult);
+        }
+        Ok(Prediction {
+            range_angle_rad: theta,
+            range_m: range,
+            peak_heat_flux_w_m2: q,
+            peak_g_load: n,
+            skips: self.skips,
+            arcs: self.arcs,
+            glide_start_radius_m: S::ZERO,
+            glide_range_angle_rad: S::ZERO,
+            peak_status: status,
+            validity: Validity::InDomain,
+        })
+    }
+
+    /// One integration step; the outcome if the prediction ends.
+    fn step_once(&mut self) -> Option<Result<Prediction<S>, VinhError>> {
+        if self.steps >= MAX_STEPS {
+            return Some(Err(VinhError::StepLimit));
+        }
+        self.steps += 1;
+        let m = self.model;
+        let y0 = self.y;
+        let rt = m.rates(&y0);
+        if !(rt.dy.is_finite() && rt.rho.is_finite() && rt.drag.is_finite()) {
+            return Some(Err(VinhError::NonFiniteResult));
+        }
+        if !(y0.h > S::ZERO) {
+            return Some(Err(VinhError::GroundImpact));
+        }
+        if self.record_node(self.t, rt.rho, y0.v, rt.drag, rt.lift) {
+            return Some(self.prediction(y0.theta, PeakStatus::LimitExceeded));
+        }
+        // Skips and arcs: crossings of the starting radius.
+        let above = y0.h > self.h0;
+        if above && !self.above {
+            self.skips = self.skips.saturating_add(1);
+        } else if !above && self.above {
+            self.arcs = self.arcs.saturating_add(1);
+        }
+        self.above = above;
+        // Escape: ascending with positive energy out of the atmosphere.
+        let r0 = m.radius_m + y0.h;
+        if y0.gamma > S::ZERO
+            && y0.v * y0.v > k::<S>(2.0) * m.mu / r0
+            && rt.drag < k(ESCAPE_DRAG_M_S2)
+        {
+            return Some(Err(VinhError::EscapeTrajectory));
+        }
+        let dt = m.step_size(&y0, &rt);
+        let y1 = m.rk4(&y0, &rt.dy, dt);
+        if !y1.is_finite() {
+            return Some(Err(VinhError::NonFiniteResult));
+        }
+        let vf = self.final_speed_m_s;
+        if y1.v <= vf {
+            return Some(self.finish(&y0, &rt, dt, &y1));
+        }
+        if !(y1.h > S::ZERO) {
+            return Some(Err(VinhError::GroundImpact));
+        }
+        self.y = y1;
+        self.t = self.t + dt;
+        None
+    }
+
+    /// The step `dt` from `y0` (rates `rt`) to `y1` crossed the final speed: redo it to the
+    /// interpolated crossing, close the remainder to first order, record the last node.
+    fn finish(
+        &mut self,
+        y0: &Y<S>,
+        rt: &Rates<S>,
+        dt: S,
+        y1: &Y<S>,
+    ) -> Result<Prediction<S>, VinhError> {
+        let m = self.model;
+        let vf = self.final_speed_m_s;
+        // y0.v > vf >= y1.v, so the fraction is in (0, 1].
+        let frac = ((y0.v - vf) / (y0.v - y1.v)).clamp(S::ZERO, S::ONE);
+        let dt1 = dt * frac;
+        let y2 = m.rk4(y0, &rt.dy, dt1);
+        let r2 = m.rates(&y2);
+        let mut dtc = (vf - y2.v) / r2.dy.v;
+        if !(dtc.is_finite() && dtc.abs() <= dt1) {
+            dtc = S::ZERO;
+        }
+        let yf = Y {
+            h: y2.h + r2.dy.h * dtc,
+            v: vf,
+            gamma: y2.gamma + r2.dy.gamma * dtc,
+            theta: y2.theta + r2.dy.theta * dtc,
+        };
+        if !(yf.is_finite() && r2.dy.is_finite()) {
+            return Err(VinhError::NonFiniteResult);
+        }
+        if !(yf.h > S::ZERO) {
+            return Err(VinhError::GroundImpact);
+        }
+        self.y = yf;
+        self.t = self.t + dt1 + dtc;
+        if self.peaks == PeakMode::RangeOnly {
+            return self.prediction(yf.theta, PeakStatus::NotComputed);
+        }
+        let rf = m.rates(&yf);
+        if self.record_node(self.t, rf.rho, yf.v, rf.drag, rf.lift) {
+            return self.prediction(yf.theta, PeakStatus::LimitExceeded);
+        }
+        let status = match self.peaks {
+            PeakMode::Limits(l) if self.q_max > l.heat_flux_w_m2 || self.n_max > l.g_load => {
+                PeakStatus::LimitExceeded
+            }
+            _ => PeakStatus::Computed,
+        };
+        self.prediction(yf.theta, status)
+    }
+}
+
+/// Numerical prediction ([`NumericalRun`] run to completion; module docs).
+///
+/// # Errors
+/// As [`NumericalRun::new`], and [`VinhError::GroundImpact`], [`VinhError::StepLimit`],
+/// [`VinhError::EscapeTrajectory`], [`VinhError::NonFiniteResult`].
+pub fn predict_numerical<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    vehicle: &VehicleParams<S>,
+    lift: &LiftControl<S>,
+    state: &EntryState<S>,
+    config: &PredictorConfig<S>,
+    peaks: PeakMode<S>,
+) -> Result<Prediction<S>, VinhError> {
+    let mut run = NumericalRun::new(planet, atmosphere, vehicle, lift, state, config, peaks)?;
+    // MAX_STEPS steps and one more that reports the step limit.
+    match run.advance(MAX_STEPS.saturating_add(1)) {
+        Some(r) => r,
+        None => Err(VinhError::StepLimit),
+    }
+}
