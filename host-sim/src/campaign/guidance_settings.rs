@@ -77,6 +77,12 @@ pub struct CampaignGuidance {
     /// The re-planner's predictor in both re-planning modes: `"closed-form"` (default),
     /// `"numerical"` or `"hybrid"` ([`CampaignPredictor`]).
     pub predictor: CampaignPredictor,
+    /// Added to the interface speed to give the re-planner's predictor final speed \[m/s\], in
+    /// `[-100, 100]` (default 0). The flights end at the interface *energy*, the predictors at a
+    /// *speed*: a flight ending below the nominal end altitude (a larger bank than the stored
+    /// profile's at the end) is still faster than the interface speed when it ends
+    /// (docs/DISPERSIONS.md, "Numerical and hybrid predictors").
+    pub predictor_final_speed_offset_m_s: f64,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -105,6 +111,7 @@ impl Default for CampaignGuidance {
             max_vertical_fraction: 1.0,
             glide_sink: true,
             predictor: CampaignPredictor::ClosedForm,
+            predictor_final_speed_offset_m_s: 0.0,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -158,6 +165,14 @@ impl CampaignGuidance {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(bad(name, v.to_string(), "must be finite and >= 0"));
             }
+        }
+        let dv = self.predictor_final_speed_offset_m_s;
+        if !(dv.is_finite() && (-100.0..=100.0).contains(&dv)) {
+            return Err(bad(
+                "predictor_final_speed_offset_m_s",
+                dv.to_string(),
+                "must be in [-100, 100]",
+            ));
         }
         let f = self.corridor_low_speed_fraction;
         if !(f.is_finite() && (0.0..1.0).contains(&f)) {

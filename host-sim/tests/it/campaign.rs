@@ -373,7 +373,7 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
         assert_eq!(g.predictor.mode(false), reversals, "{text}");
     }
     // The setting reaches the flights' re-planner (one set-up: nominal flights are not cheap).
-    let g = parse("predictor = \"hybrid\"");
+    let g = parse("predictor = \"hybrid\"\npredictor_final_speed_offset_m_s = 5.0");
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
@@ -389,11 +389,36 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
         replanning_of(&setup, Mode::ReplanReversals).solver.mode,
         P::Hybrid
     );
+    assert_eq!(
+        replanning_of(&setup, Mode::ReplanReversals)
+            .solver
+            .predictor
+            .final_speed_m_s,
+        setup.interface_speed_m_s + 5.0
+    );
     assert_eq!(setup.guidance_key(), Some(g));
-    let e = parse_settings("[dispersions.guidance]\npredictor = \"fast\"\n", "p.toml").unwrap_err();
-    let text = e.to_string();
-    assert_eq!(field_of(e), "dispersions.guidance.predictor");
-    for w in ["p.toml", "fast"] {
-        assert!(text.contains(w), "`{text}` lacks `{w}`");
+    for (text, field, value) in [
+        ("predictor = \"fast\"", "predictor", "fast"),
+        (
+            "predictor_final_speed_offset_m_s = 150.0",
+            "predictor_final_speed_offset_m_s",
+            "150",
+        ),
+        (
+            "predictor_final_speed_offset_m_s = nan",
+            "predictor_final_speed_offset_m_s",
+            "NaN",
+        ),
+    ] {
+        let e = parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml").unwrap_err();
+        let msg = e.to_string();
+        assert_eq!(
+            field_of(e),
+            format!("dispersions.guidance.{field}"),
+            "{text}"
+        );
+        for w in ["p.toml", value] {
+            assert!(msg.contains(w), "`{msg}` lacks `{w}`");
+        }
     }
 }
