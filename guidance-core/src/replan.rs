@@ -43,15 +43,16 @@
 //! where the skip closed form is out of domain), or the chain with an automatic switch to the
 //! glide when the chain is out of domain ([`PredictorMode::Auto`]), or the numerical
 //! integration of the model from the navigated state ([`numerical`],
-//! [`PredictorMode::Numerical`]), or the closed forms where both ends of the interval are in
+//! [`PredictorMode::Numerical`]), or the closed forms where the prediction they would fly is in
 //! their validated domain and the integration elsewhere ([`PredictorMode::Hybrid`]). A
 //! numerical prediction spans several solver steps of at most
 //! [`numerical::STEPS_PER_SOLVER_STEP`] integration steps each.
 //!
 //! # Worst-case cost
-//! `max_iterations + 9 + LIMIT_GRID` predictor calls (at most
-//! [`MAX_PREDICTOR_CALLS`]` = 40 + 9 + 16 = 65`; `+ 5` in [`PredictorMode::Auto`], `+ 3`
-//! in [`PredictorMode::Chain`], [`PredictorMode::Glide`] and [`PredictorMode::Numerical`]);
+//! `max_iterations + 7 + LIMIT_GRID` predictor calls in [`PredictorMode::AutoSink`], `+ 5` in
+//! [`PredictorMode::Auto`], `+ 3` in [`PredictorMode::Chain`], [`PredictorMode::Glide`] and
+//! [`PredictorMode::Numerical`]; a hybrid solve that leaves the closed forms adds a numerical
+//! solve to its closed-form one (at most [`MAX_PREDICTOR_CALLS`]`= 2 (40 + 16) + 10 = 122`);
 //! each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
 //! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
 //! all but the last and the limit grid are range-only. In practice Brent's method converges in
@@ -91,14 +92,15 @@ pub const MAX_ITERATIONS: u8 = 40;
 /// Fractions scanned when a limit binds.
 pub const LIMIT_GRID: u8 = 16;
 
-/// Worst-case predictor calls of one [`replan`]: `MAX_ITERATIONS + 9 + LIMIT_GRID` (two end
-/// points of a failed [`PredictorMode::Auto`] chain attempt, two end points of the glide
-/// attempt, in [`PredictorMode::AutoSink`] two more of the glide without the sink when the
-/// range with it is not monotone, in [`PredictorMode::Hybrid`] and
-/// [`PredictorMode::HybridSink`] two more of the numerical predictor when the closed forms are
-/// out of their validated domain, the range search, one prediction with peaks at the result,
-/// the limit grid). A numerical prediction counts once, however many solver steps it spans.
-pub const MAX_PREDICTOR_CALLS: u8 = MAX_ITERATIONS + 9 + LIMIT_GRID;
+/// Worst-case predictor calls of one [`replan`]: `2 (MAX_ITERATIONS + LIMIT_GRID) + 10`, the
+/// hybrid modes' worst case: a closed-form solve ([`PredictorMode::HybridSink`]: two end points
+/// of a failed chain attempt, two of the glide attempt, two more of the glide without the sink
+/// when the range with it is not monotone, the range search, one prediction with peaks at the
+/// result, the limit grid: `MAX_ITERATIONS + 7 + LIMIT_GRID`) whose result is out of the
+/// validated domain, then the numerical solve (`MAX_ITERATIONS + 3 + LIMIT_GRID`). Every other
+/// mode needs at most `MAX_ITERATIONS + 7 + LIMIT_GRID`. A numerical prediction counts once,
+/// however many solver steps it spans.
+pub const MAX_PREDICTOR_CALLS: u8 = 2 * (MAX_ITERATIONS + LIMIT_GRID) + 10;
 
 /// How far above the current radius a glide-mode prediction may start \[m\]. A vehicle given
 /// more lift than its equilibrium glide needs climbs to a higher equilibrium: in an

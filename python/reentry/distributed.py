@@ -18,7 +18,8 @@ distribution layer.
 Command line: ``python -m reentry.distributed {optimize,dispersions,campaign,bench,
 bench-dispersions} --help`` (or
 ``reentry-dask``), with ``--scheduler tcp://HOST:8786`` or a ``LocalCluster`` of
-``--workers N`` processes. See docs/PYTHON.md.
+``--workers N`` processes (no dashboard and no fixed port; ``--dashboard :0`` for one on a free
+port). See docs/PYTHON.md.
 """
 
 from __future__ import annotations
@@ -264,22 +265,41 @@ def gamma_sweep_cases(
 # --------------------------------------------------------------------------- command line
 
 
+def local_cluster(workers: int, threads_per_worker: int = 1, dashboard_address: Optional[str] = None):
+    """A ``LocalCluster`` of ``workers`` worker processes that binds no fixed port, so it
+    coexists with other runs and with a user's own Dask on the machine.
+
+    ``dashboard_address=None`` (default): no dashboard, and the scheduler's HTTP server (health
+    and metrics routes, which ``distributed`` starts even without a dashboard, by default on
+    port 8787) on a free port of the loopback interface. An address turns the dashboard on
+    there: ``":0"`` (a free port, see ``client.dashboard_link``), ``":8787"`` (Dask's usual
+    port, with its fall-back to a free one and a warning when taken), ``"127.0.0.1:8790"``."""
+    from dask.distributed import LocalCluster
+
+    kwargs: Dict[str, Any] = dict(n_workers=workers, threads_per_worker=threads_per_worker, processes=True)
+    if dashboard_address is None:
+        # dashboard_address=None alone turns the dashboard off but still binds the HTTP server
+        # to distributed's default port 8787; the scheduler's own address sets where it binds.
+        return LocalCluster(dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"}, **kwargs)
+    return LocalCluster(dashboard_address=dashboard_address, **kwargs)
+
+
 @contextlib.contextmanager
-def client_for(scheduler: Optional[str], workers: int, threads_per_worker: int = 1) -> Iterator[Any]:
+def client_for(
+    scheduler: Optional[str], workers: int, threads_per_worker: int = 1, dashboard_address: Optional[str] = None
+) -> Iterator[Any]:
     """A Dask client: connected to ``scheduler`` (``tcp://host:port``) or to a new
-    ``LocalCluster`` of ``workers`` worker processes."""
-    from dask.distributed import Client, LocalCluster
+    ``LocalCluster`` of ``workers`` worker processes (:func:`local_cluster`: no dashboard and
+    no fixed port unless ``dashboard_address`` is given)."""
+    from dask.distributed import Client
 
     if scheduler:
         with Client(scheduler) as client:
             yield client
         return
-    with LocalCluster(
-        n_workers=workers,
-        threads_per_worker=threads_per_worker,
-        processes=True,
-        dashboard_address=None,
-    ) as cluster, Client(cluster) as client:
+    with local_cluster(workers, threads_per_worker, dashboard_address) as cluster, Client(cluster) as client:
+        if dashboard_address is not None:
+            print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
         yield client
 
 
@@ -334,7 +354,7 @@ def _cmd_optimize(a) -> int:
     if a.local:
         evolve(algo, problem, a.generations)
     else:
-        with client_for(a.scheduler, a.workers) as client:
+        with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
             evolve_on_dask(algo, problem, a.generations, client, a.chunk_size)
     wall = time.perf_counter() - t0
     pop = algo.population
@@ -380,7 +400,7 @@ def _cmd_dispersions(a) -> int:
     if a.local:
         df = run_dispersions(campaign, out=a.out, threads=a.threads)
     else:
-        with client_for(a.scheduler, a.workers) as client:
+        with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
             df = run_dispersions(campaign, client, a.chunk_size, out=a.out)
     wall = time.perf_counter() - t0
     print(
@@ -403,7 +423,7 @@ def _cmd_campaign(a) -> int:
     if a.local:
         df = fly_campaign(cases)
     else:
-        with client_for(a.scheduler, a.workers) as client:
+        with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
             df = fly_campaign(cases, client, a.chunk_size)
     wall = time.perf_counter() - t0
     print(f"{len(df)} cases in {wall:.2f} s ({len(df) / wall:.1f} flights/s)", file=sys.stderr)
@@ -452,7 +472,7 @@ def _cmd_bench(a) -> int:
         print(f"| {n} | serial, in process | - | {serial[n][0]:.3f} | {n / serial[n][0]:.1f} | - |")
     for w in a.workers_list:
         t0 = time.perf_counter()
-        with client_for(None, w) as client:
+        with client_for(None, w, dashboard_address=a.dashboard) as client:
             client.wait_for_workers(w)
             startup = time.perf_counter() - t0
             client.gather(client.map(_fly_chunk, range(2 * w), [all_cases[:1]] * (2 * w), pure=False))
@@ -527,7 +547,7 @@ def _cmd_bench_dispersions(a) -> int:
         print(f"| {flights} | in process, host-sim rayon ({os.cpu_count()} threads) | - | {wall:.3f} | {flights / wall:.1f} | - | - |")
     for w in a.workers_list:
         t0 = time.perf_counter()
-        with client_for(None, w) as client:
+        with client_for(None, w, dashboard_address=a.dashboard) as client:
             client.wait_for_workers(w)
             startup = time.perf_counter() - t0
             t1 = time.perf_counter()
@@ -587,12 +607,22 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     p = argparse.ArgumentParser(prog="reentry-dask", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
 
+    def dashboard(sp):
+        sp.add_argument(
+            "--dashboard",
+            metavar="ADDRESS",
+            default=None,
+            help="with a LocalCluster: its Dask dashboard at ADDRESS (':0' a free port, ':8787'); "
+            "default: no dashboard and no fixed port",
+        )
+
     def where(sp):
         g = sp.add_mutually_exclusive_group()
         g.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://10.0.0.1:8786")
         g.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default 2)")
         g.add_argument("--local", action="store_true", help="no Dask: evaluate in this process")
         sp.add_argument("--chunk-size", type=int, default=None, help="items per Dask task (default: about 2 tasks per worker)")
+        dashboard(sp)
 
     o = sub.add_parser(
         "optimize", help="a test or design problem with MOEA/D or NSGA-II, batches evaluated on Dask"
@@ -641,6 +671,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     bd.add_argument("--sizes", type=lambda s: [int(x) for x in s.split(",")], default=[4, 16, 64], help="cases per mode")
     bd.add_argument("--rounds", type=int, default=2, help="keep the best of this many runs")
     bd.add_argument("--chunk-size", type=int, default=None)
+    dashboard(bd)
     bd.set_defaults(run=_cmd_bench_dispersions)
 
     for name, helptext, run in (
@@ -663,6 +694,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             c.add_argument("--sizes", type=ints, default=[10, 30, 100, 300], help="campaign sizes")
             c.add_argument("--rounds", type=int, default=3, help="keep the best of this many runs")
             c.add_argument("--chunk-size", type=int, default=None)
+            dashboard(c)
         c.set_defaults(run=run)
 
     a = p.parse_args(argv)

@@ -17,7 +17,7 @@ use host_sim::campaign::flight::fly_case;
 use host_sim::campaign::output::write_campaign;
 use host_sim::campaign::run::{CaseFailure, RunOptions};
 use host_sim::campaign::{
-    CampaignOutput, CampaignSetup, CaseResult, DispersionSettings, Mode, ModeStats, parse_settings,
+    CampaignOutput, CampaignSetup, CaseResult, DispersionSettings, Mode, parse_settings,
     run_campaign,
 };
 use pyo3::exceptions::PyValueError;
@@ -77,7 +77,8 @@ fn mode_of(name: &str) -> PyResult<Mode> {
         .find(|m| m.name() == name)
         .ok_or_else(|| {
             errors::CampaignError::new_err(format!(
-                "modes: {name:?}: unknown mode (stored, stored-reversals, replan-reversals)"
+                "modes: {name:?}: unknown mode ({})",
+                campaign_modes().join(", ")
             ))
         })
 }
@@ -115,8 +116,14 @@ impl PyCampaign {
         if modes.is_empty() {
             modes = Mode::ALL.to_vec();
         }
-        let setup = CampaignSetup::new(&sc, &file, spec.settings.interface_speed_m_s)
-            .map_err(|e| errors::campaign(&e))?;
+        // As the CLI: the corridor, re-planner and estimator of `[dispersions.guidance]`.
+        let setup = CampaignSetup::with_guidance(
+            &sc,
+            &file,
+            spec.settings.interface_speed_m_s,
+            &spec.settings.guidance,
+        )
+        .map_err(|e| errors::campaign(&e))?;
         Ok((spec, setup, modes))
     }
 
@@ -377,17 +384,7 @@ impl PyCampaign {
                 .iter()
                 .map(|&m| fly_case(&self.setup, None, m))
                 .collect::<Result<Vec<_>, _>>()?;
-            let stats = cases
-                .iter()
-                .map(|(m, v)| ModeStats::of(*m, v, failed.iter().filter(|f| f.mode == *m).count()))
-                .collect();
-            let out = CampaignOutput {
-                nominal,
-                cases,
-                stats,
-                failed,
-                resumed: 0,
-            };
+            let out = CampaignOutput::new(nominal, cases, failed, 0);
             std::fs::create_dir_all(&dir).map_err(|source| host_sim::report::ReportError::Io {
                 path: dir.clone(),
                 source,

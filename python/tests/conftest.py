@@ -44,11 +44,12 @@ def host_sim():
 
 @pytest.fixture(scope="module")
 def client():
-    """A Dask LocalCluster with 2 worker processes, one thread each."""
+    """A Dask LocalCluster with 2 worker processes, one thread each (no dashboard, no fixed
+    port)."""
     distributed = pytest.importorskip("dask.distributed")
-    with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-    ) as cluster, distributed.Client(cluster) as c:
+    from reentry.distributed import local_cluster
+
+    with local_cluster(2) as cluster, distributed.Client(cluster) as c:
         c.wait_for_workers(2)
         yield c
 

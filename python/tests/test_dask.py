@@ -77,3 +77,46 @@ def test_command_line_optimize_on_its_own_local_cluster_equals_the_local_run(tmp
     summary = json.loads((tmp_path / "dask" / "summary.json").read_text())
     assert summary["where"] == "LocalCluster(2 processes)"
     assert summary["evaluations"] == 24 * 4
+
+
+def _http_status(port: int, path: str):
+    import urllib.error
+    import urllib.request
+
+    try:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}{path}", timeout=10) as r:
+            return r.status
+    except urllib.error.HTTPError as e:
+        return e.code
+
+
+def test_local_cluster_binds_no_fixed_port():
+    """With port 8787 taken (by this test, or by whoever holds it), the package's LocalCluster
+    starts without Dask's 'Port 8787 is already in use' fall-back: by default it has no
+    dashboard and its scheduler's HTTP server is on a free port; ``dashboard_address=":0"``
+    serves the dashboard on a free port. (With ``dashboard_address=None`` alone, as before,
+    the HTTP server tried 8787 first.)"""
+    import socket
+    import warnings
+
+    from reentry.distributed import local_cluster
+
+    held = socket.socket()
+    try:
+        held.bind(("127.0.0.1", 8787))
+        held.listen()
+    except OSError:
+        pass  # taken already: the same situation
+    try:
+        for address, dashboard in ((None, False), (":0", True)):
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                with local_cluster(1, dashboard_address=address) as cluster:
+                    port = cluster.scheduler.http_server.port
+                    assert port != 8787
+                    assert _http_status(port, "/health") == 200
+                    assert (_http_status(port, "/status") == 200) == dashboard, address
+            in_use = [str(w.message) for w in caught if "already in use" in str(w.message)]
+            assert not in_use, in_use
+    finally:
+        held.close()

@@ -89,6 +89,23 @@ def test_errors_carry_host_sim_messages(host_sim, tmp_path):
     assert (d.cases, d.settings["seed"]) == (2, 3)
 
 
+def test_guidance_settings_reach_the_flights_as_in_the_cli(host_sim, tmp_path):
+    """``[dispersions.guidance]`` of the settings sets the campaign's guidance, as in
+    ``host-sim dispersions`` (the bindings built the set-up with the default guidance)."""
+    settings = tmp_path / "disp.toml"
+    settings.write_text("[dispersions.guidance]\nmax_reversals = 1\n")
+    cli_dir = tmp_path / "cli"
+    host_sim(
+        "dispersions", "--builtin", "srm-glide", "-n", "2", "--interface-speed", "2500",
+        "--settings", settings, "--modes", "stored-reversals", "--quiet", "--out", cli_dir,
+    )
+    c = reentry.DispersionCampaign(settings=settings, cases=2, modes=["stored-reversals"], **SRM)
+    for (mode, index), text in zip(c.jobs(), c.run_local(threads=1)):
+        case = json.loads(text)
+        assert case["guidance"]["max_reversals"] == 1 and case["reversals"] <= 1
+        assert json.loads((cli_dir / "cases" / mode / f"{index:06d}.json").read_text()) == case
+
+
 def test_dispersions_on_dask_equal_local_table(client, small, tmp_path):
     c, results = small
     dist = dispersion_results(c, client, chunk_size=2)

@@ -1,6 +1,6 @@
 //! The Vinh closed forms through the predictor chain (skip, ballistic arc, glide), the
-//! glide-mode prediction with the sink modelled (`predict_glide_with_sink`) and the
-//! re-planning solver, in `f64` and `f32`, from mostly plausible and sometimes hostile vehicles,
+//! glide-mode prediction with the sink modelled (`predict_glide_with_sink`), the numerical
+//! predictor (`predict_numerical`) and the re-planning solver (every predictor mode), in `f64` and `f32`, from mostly plausible and sometimes hostile vehicles,
 //! lift settings and entry states. Checks: no panic; a prediction is finite (range, peaks, glide
 //! start) with non-negative peaks; a re-plan that commands a vertical fraction (any case but a
 //! fall-back) keeps it exactly in its configured bounds, its bank angle is finite, and its
@@ -8,7 +8,8 @@
 
 use guidance_core::NavState;
 use guidance_core::replan::{
-    PredictorMode, ReplanCase, ReplanConfig, ReplanLimits, predict_glide_with_sink, replan,
+    PredictorMode, ReplanCase, ReplanConfig, ReplanLimits, predict_glide_with_sink,
+    predict_numerical, replan,
 };
 use guidance_core::scalar::Real;
 use guidance_core::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
@@ -70,7 +71,7 @@ pub fn run<R: Rng>(rng: &mut R) -> Result<(), String> {
             pick(rng, (2e5, 5e6), (1e5, 1e7)),
             pick(rng, (2.0, 15.0), (1.0, 20.0)),
         ],
-        mode: rng.random_range(0..3),
+        mode: rng.random_range(0..7),
     };
     check::<f64>(&inputs)?;
     check::<f32>(&inputs)
@@ -135,6 +136,18 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
             "{ty}: predict_glide_with_sink gave {p:?} for {i:?}"
         ));
     }
+    if let Ok(p) = predict_numerical(
+        &planet,
+        &atmosphere,
+        &vehicle,
+        &lift,
+        &entry,
+        &predictor,
+        PeakMode::Full,
+    ) && !finite_prediction(&p)
+    {
+        return Err(format!("{ty}: predict_numerical gave {p:?} for {i:?}"));
+    }
     let config = ReplanConfig {
         lambda: s(i.lift[0]),
         min_vertical_fraction: s(i.fractions[0]),
@@ -145,7 +158,11 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
         mode: match i.mode {
             0 => PredictorMode::Chain,
             1 => PredictorMode::Glide,
-            _ => PredictorMode::Auto,
+            2 => PredictorMode::Auto,
+            3 => PredictorMode::AutoSink,
+            4 => PredictorMode::Numerical,
+            5 => PredictorMode::Hybrid,
+            _ => PredictorMode::HybridSink,
         },
     };
     let limits = ReplanLimits {

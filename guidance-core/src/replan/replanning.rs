@@ -72,7 +72,7 @@
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
 //! angle (the odometer). An update with re-planning work adds: one E-hat evaluation, at the
 //! start one range to go (a great-circle angle and a bearing: about 10 trig functions), the
-//! predictor calls (all of a solve, at most [`super::MAX_PREDICTOR_CALLS`]` = 65`, or at most
+//! predictor calls (all of a solve, at most [`super::MAX_PREDICTOR_CALLS`]` = 122`, or at most
 //! `steps_per_tick`; each chain call at most [`crate::vinh::predict::MAX_SKIPS`] skips and
 //! arcs plus one glide), and at completion a copy of the table (at most
 //! `N` nodes, the table's capacity) and one interpolator rebuild. No allocation, no

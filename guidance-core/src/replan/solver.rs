@@ -27,11 +27,14 @@
 //! [`ReplanSolver::integration_steps`] the integration steps.
 //!
 //! # Hybrid
-//! [`PredictorMode::Hybrid`] runs the ends as [`PredictorMode::Auto`] ([`PredictorMode::AutoSink`]
-//! for [`PredictorMode::HybridSink`]); if the predictions used at both ends are
-//! [`Validity::InDomain`] the solve goes on with the closed forms, otherwise (an end out of the
-//! validated domain, or both closed forms failing) the whole solve restarts with the numerical
-//! predictor.
+//! [`PredictorMode::Hybrid`] solves as [`PredictorMode::Auto`] ([`PredictorMode::AutoSink`]
+//! for [`PredictorMode::HybridSink`]) and trusts the result only if the prediction it would fly,
+//! the one with peaks at the chosen fraction, is [`Validity::InDomain`]. Otherwise (that
+//! prediction extrapolated, a closed form failing at a search point, or both closed forms
+//! failing at an end) the whole solve restarts with the numerical predictor. The ends' own
+//! validity does not decide: the bracketing predictions are far from the solution (at
+//! `f_min = 0.05` the glide is nearly always extrapolated) and only their position relative to
+//! the target is used.
 
 use crate::nav::NavState;
 use crate::scalar::Real;
@@ -380,7 +383,6 @@ impl<S: Real> ReplanSolver<S> {
                     // None: a numerical prediction in progress (this step ends).
                     let r = self.eval(f_lo, PeakMode::RangeOnly)?;
                     return match r {
-                        Ok(p) if self.leaves_domain(&p) => self.switch_to_numerical(),
                         Ok(p) => {
                             self.phase = Phase::EndHi {
                                 range_lo: p.range_m,
@@ -394,7 +396,6 @@ impl<S: Real> ReplanSolver<S> {
                     // None: a numerical prediction in progress (this step ends).
                     let r = self.eval(f_hi, PeakMode::RangeOnly)?;
                     let range_hi = match r {
-                        Ok(p) if self.leaves_domain(&p) => return self.switch_to_numerical(),
                         Ok(p) => p.range_m,
                         Err(e) => return self.end_failed(e),
                     };
@@ -458,6 +459,7 @@ impl<S: Real> ReplanSolver<S> {
                     let r = self.eval(f, PeakMode::RangeOnly)?;
                     let miss = match r {
                         Ok(p) => p.range_m - target,
+                        Err(_) if self.hybrid_closed_form() => return self.switch_to_numerical(),
                         Err(e) => return self.fail(ReplanFallBack::OutOfDomain(e)),
                     };
                     if miss.abs() < best_miss.abs() {
@@ -485,17 +487,21 @@ impl<S: Real> ReplanSolver<S> {
                     // None: a numerical prediction in progress (this step ends).
                     let r = self.eval(f, PeakMode::Limits(limits))?;
                     return match r {
+                        Ok(p) if self.leaves_domain(&p) => self.switch_to_numerical(),
                         Ok(p) if p.peak_status == PeakStatus::Computed => self.success(case, f, p),
                         Ok(_) => {
                             self.phase = Phase::Grid { i: 0, best: None };
                             None
                         }
+                        Err(_) if self.hybrid_closed_form() => self.switch_to_numerical(),
                         Err(e) => self.fail(ReplanFallBack::OutOfDomain(e)),
                     };
                 }
                 Phase::Grid { i, best } => {
                     if i >= LIMIT_GRID {
                         return match best {
+                            Some((_, p)) if self.leaves_domain(&p) => self.switch_to_numerical(),
+                            None if self.hybrid_closed_form() => self.switch_to_numerical(),
                             None => self.fail(ReplanFallBack::LimitsInfeasible),
                             Some((f, p)) => self.success(ReplanCase::LimitsBind, f, p),
                         };
@@ -532,8 +538,8 @@ impl<S: Real> ReplanSolver<S> {
         ) && !self.numerical
     }
 
-    /// Whether an end prediction `p` sends a hybrid solve to the numerical predictor (out of
-    /// the closed forms' validated domain).
+    /// Whether the prediction `p` to be flown sends a hybrid solve to the numerical predictor
+    /// (out of the closed forms' validated domain).
     fn leaves_domain(&self, p: &Prediction<S>) -> bool {
         self.hybrid_closed_form() && p.validity != Validity::InDomain
     }

@@ -197,11 +197,14 @@ fn numerical_replan_converges_on_the_numerical_range() {
 
 /// Stepping the solver gives bit for bit the one-shot result; each step completes at most one
 /// prediction and takes at most `STEPS_PER_SOLVER_STEP` integration steps; a numerical
-/// prediction spans several steps.
+/// prediction spans several steps; a hybrid solve switches to the numerical predictor when
+/// the prediction it would fly is extrapolated (the SRM's last 500 km) and integrates nothing
+/// when it is in domain.
 #[test]
 fn resumable_numerical_solver_gives_the_one_shot_answer() {
     let mut seen = std::collections::BTreeSet::new();
     let mut spanned = false;
+    let mut hybrid_switched = false;
     for c in cases() {
         let want = one_shot(&c);
         let mut s = solver(&c);
@@ -219,13 +222,21 @@ fn resumable_numerical_solver_gives_the_one_shot_answer() {
             assert!(steps <= u32::from(MAX_PREDICTOR_CALLS) * max_steps_per_prediction);
         };
         assert_eq!(r, want, "{:?}", c.4.mode);
-        assert!(s.uses_numerical());
+        if c.4.mode == PredictorMode::Numerical {
+            assert!(s.uses_numerical());
+        } else {
+            hybrid_switched |= s.uses_numerical();
+        }
         assert!(steps >= u32::from(r.predictor_calls));
         spanned |= steps > u32::from(r.predictor_calls);
-        assert!(s.integration_steps() > 0);
+        assert_eq!(s.integration_steps() > 0, s.uses_numerical());
         seen.insert(format!("{:?}", r.case));
     }
     assert!(spanned, "no numerical prediction spanned several steps");
+    assert!(
+        hybrid_switched,
+        "no hybrid solve switched to the numerical predictor"
+    );
     for c in ["Converged", "TargetOutOfReach", "LimitsBind"] {
         assert!(seen.contains(c), "{c} not exercised: {seen:?}");
     }

@@ -12,9 +12,12 @@
 //! * [`flight`]: one flight in one mode -> [`flight::CaseResult`];
 //! * [`run`]: the campaign (rayon, bit-identical whatever the thread count, resumable per case
 //!   with atomic writes, progress bar);
+//! * [`fingerprint`]: the resolved inputs of a campaign, stored with its cases, so a run
+//!   resumes only into a directory of the same inputs;
 //! * [`stats`] and [`plot`]: statistics and SVG plots.
 
 pub mod draw;
+pub mod fingerprint;
 pub mod flight;
 pub mod guidance_settings;
 pub mod imu;
@@ -136,6 +139,44 @@ pub enum CampaignError {
     /// A stored case result could not be read.
     #[error("{path}: cannot read case result: {source}")]
     CaseFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: serde_json::Error,
+    },
+    /// The output directory holds case results of a campaign with other inputs: resuming
+    /// would mix them.
+    #[error(
+        "{dir}: holds the case results of a campaign with other inputs ({file}: {field} was {old}, \
+         now {new}); resuming would mix them: choose another output directory (--out) or remove \
+         this one",
+        file = fingerprint::FINGERPRINT_FILE
+    )]
+    ResumeMismatch {
+        /// The output directory.
+        dir: std::path::PathBuf,
+        /// The first input that differs (dotted, as in `fingerprint.json`).
+        field: String,
+        /// Its value in the stored fingerprint (cut around the difference).
+        old: String,
+        /// Its value in this campaign.
+        new: String,
+    },
+    /// The output directory holds case results but no fingerprint (a run of an earlier
+    /// version): they cannot be checked against this campaign's inputs.
+    #[error(
+        "{dir}: holds case results but no {file} (an earlier version's run), so they cannot be \
+         checked against this campaign's inputs: choose another output directory (--out) or \
+         remove this one",
+        file = fingerprint::FINGERPRINT_FILE
+    )]
+    ResumeUnverified {
+        /// The output directory.
+        dir: std::path::PathBuf,
+    },
+    /// A stored fingerprint could not be read.
+    #[error("{path}: cannot read the campaign fingerprint: {source}")]
+    FingerprintFile {
         /// The file.
         path: std::path::PathBuf,
         /// The cause.

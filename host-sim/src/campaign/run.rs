@@ -2,7 +2,9 @@
 //! a pure function of (setup, settings, index, mode) so the results are bit-identical whatever
 //! the thread count; resumable: each case's result is written atomically to
 //! `<out>/cases/<mode>/<index>.json` as soon as it is done and reused by a later run with the
-//! same settings (a stored case whose draw or guidance settings differ is recomputed).
+//! same inputs: the run directory holds the fingerprint of the campaign's resolved inputs
+//! ([`super::fingerprint`]), and a run whose inputs differ is refused before it writes anything
+//! (but the number of cases and the modes, which a run may extend).
 
 use std::path::{Path, PathBuf};
 
@@ -11,6 +13,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::draw::{CaseDraw, draw_case};
+use super::fingerprint::{Fingerprint, check_and_record};
 use super::flight::{CaseResult, fly_case};
 use super::settings::DispersionSettings;
 use super::setup::CampaignSetup;
@@ -23,7 +26,8 @@ use crate::report::write_atomic;
 pub struct RunOptions {
     /// Modes to fly, in report order.
     pub modes: Vec<Mode>,
-    /// Output directory (case results, summary, plots); `None`: nothing written, no resume.
+    /// Output directory (fingerprint of the inputs, case results, summary, plots); `None`:
+    /// nothing written, no resume.
     pub out_dir: Option<PathBuf>,
     /// Rayon threads (`None`: rayon's default).
     pub threads: Option<usize>,
@@ -89,6 +93,30 @@ pub struct CampaignOutput {
     pub resumed: usize,
 }
 
+impl CampaignOutput {
+    /// The output of the nominal flights, the flown cases of each mode, the failed ones and
+    /// the count of reused ones, with the statistics of each mode.
+    #[must_use]
+    pub fn new(
+        nominal: Vec<CaseResult>,
+        cases: Vec<(Mode, Vec<CaseResult>)>,
+        failed: Vec<CaseFailure>,
+        resumed: usize,
+    ) -> Self {
+        let stats = cases
+            .iter()
+            .map(|(m, v)| ModeStats::of(*m, v, failed.iter().filter(|f| f.mode == *m).count()))
+            .collect();
+        Self {
+            nominal,
+            cases,
+            stats,
+            failed,
+            resumed,
+        }
+    }
+}
+
 fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
     dir.join("cases")
         .join(mode.name())
@@ -98,8 +126,9 @@ fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
 /// Run the campaign.
 ///
 /// # Errors
-/// [`CampaignError`] for bad settings, a bad stored case file, a write failure or a failed
-/// nominal flight. A failed dispersed flight is not an error: it is recorded in
+/// [`CampaignError`] for bad settings, an output directory holding the cases of other inputs
+/// ([`CampaignError::ResumeMismatch`], [`CampaignError::ResumeUnverified`]), a bad stored case
+/// file, a write failure or a failed nominal flight. A failed dispersed flight is not an error: it is recorded in
 /// [`CampaignOutput::failed`] with its error and the other cases go on.
 pub fn run_campaign(
     setup: &CampaignSetup,
@@ -112,7 +141,14 @@ pub fn run_campaign(
         pool = pool.num_threads(t);
     }
     let pool = pool.build()?;
+    let nominal = pool.install(|| {
+        opts.modes
+            .par_iter()
+            .map(|&m| fly_case(setup, None, m))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
     if let Some(dir) = &opts.out_dir {
+        check_and_record(dir, &Fingerprint::of(setup, settings, &nominal)?)?;
         for m in &opts.modes {
             let d = dir.join("cases").join(m.name());
             std::fs::create_dir_all(&d).map_err(|source| crate::report::ReportError::Io {
@@ -196,21 +232,5 @@ pub fn run_campaign(
             v.push(c);
         }
     }
-    let nominal = pool.install(|| {
-        opts.modes
-            .par_iter()
-            .map(|&m| fly_case(setup, None, m))
-            .collect::<Result<Vec<_>, _>>()
-    })?;
-    let stats = by_mode
-        .iter()
-        .map(|(m, v)| ModeStats::of(*m, v, failed.iter().filter(|f| f.mode == *m).count()))
-        .collect();
-    Ok(CampaignOutput {
-        nominal,
-        cases: by_mode,
-        stats,
-        failed,
-        resumed,
-    })
+    Ok(CampaignOutput::new(nominal, by_mode, failed, resumed))
 }

@@ -315,8 +315,25 @@ fn guidance_settings_are_configurable_and_checked() {
         progress: false,
     };
     let a = run_campaign(&default, &small(3), &opts).unwrap();
-    let b = run_campaign(&other, &s, &opts).unwrap();
-    assert_eq!(b.resumed, 0, "cases of other settings were reused");
+    // Into the same directory: refused (its cases are of other settings), naming the field.
+    match run_campaign(&other, &s, &opts) {
+        Err(CampaignError::ResumeMismatch {
+            field, old, new, ..
+        }) => assert_eq!(
+            (field.as_str(), old.as_str(), new.as_str()),
+            ("dispersions.guidance.max_reversals", "12", "2")
+        ),
+        r => panic!("resumed into a directory of other settings: {r:?}"),
+    }
+    let b = run_campaign(
+        &other,
+        &s,
+        &RunOptions {
+            out_dir: None,
+            ..opts
+        },
+    )
+    .unwrap();
     assert!(b.cases[0].1.iter().all(|c| c.reversals <= 2));
     assert_ne!(a.cases[0].1, b.cases[0].1);
     let _ = std::fs::remove_dir_all(&dir);
@@ -421,4 +438,121 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
             assert!(msg.contains(w), "`{msg}` lacks `{w}`");
         }
     }
+}
+
+/// Resume is safe: a run into a directory whose fingerprint differs in any input that changes
+/// a flight and is not in a case's draw (interface speed, the scenario's integrator and
+/// environment, the seed) is refused before anything is written, naming the field with its
+/// old and new value; removing the fingerprint of a directory holding cases makes it
+/// unverifiable (refused); identical inputs reuse every case with identical results and
+/// files, more cases and another mode extend the directory.
+#[test]
+fn resume_refuses_other_inputs_and_reuses_identical_ones() {
+    use host_sim::campaign::output::write_campaign;
+    let setup = srm_setup();
+    let dir = std::env::temp_dir().join(format!("host-sim-campaign-r-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let opts = |modes: Vec<Mode>| RunOptions {
+        modes,
+        out_dir: Some(dir.clone()),
+        threads: Some(2),
+        progress: false,
+    };
+    let stored = || opts(vec![Mode::Stored]);
+    let s = small(2);
+    let first = run_campaign(&setup, &s, &stored()).unwrap();
+    write_campaign(&dir, &setup, &s, &first).unwrap();
+    let files = |d: &std::path::Path| -> Vec<(String, Vec<u8>)> {
+        let mut v: Vec<_> = std::fs::read_dir(d)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.path().is_file())
+            .map(|e| {
+                (
+                    e.file_name().to_string_lossy().into_owned(),
+                    std::fs::read(e.path()).unwrap(),
+                )
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let before = files(&dir);
+    let case_file = dir.join("cases/stored/000000.json");
+    let case_bytes = std::fs::read(&case_file).unwrap();
+    let refused = |setup: &CampaignSetup, s: &DispersionSettings| -> (String, String, String) {
+        match run_campaign(setup, s, &stored()) {
+            Err(e @ CampaignError::ResumeMismatch { .. }) => {
+                let msg = e.to_string();
+                assert!(
+                    msg.contains(&dir.display().to_string()) && msg.contains("--out"),
+                    "{msg}"
+                );
+                let CampaignError::ResumeMismatch {
+                    field, old, new, ..
+                } = e
+                else {
+                    unreachable!()
+                };
+                (field, old, new)
+            }
+            r => panic!("resumed into a directory of other inputs: {r:?}"),
+        }
+    };
+    let other_speed = DispersionSettings {
+        interface_speed_m_s: Some(2400.0),
+        ..s.clone()
+    };
+    assert_eq!(
+        refused(&setup, &other_speed),
+        (
+            "dispersions.interface_speed_m_s".into(),
+            "2500.0".into(),
+            "2400.0".into()
+        )
+    );
+    let other_seed = DispersionSettings {
+        seed: 8,
+        ..s.clone()
+    };
+    assert_eq!(
+        refused(&setup, &other_seed),
+        ("dispersions.seed".into(), "7".into(), "8".into())
+    );
+    // The integrator's step settings and the environment are in no draw.
+    let mut steps = setup.clone();
+    steps.scenario.tolerances.h_max *= 0.5;
+    let (field, old, new) = refused(&steps, &s);
+    assert_eq!(field, "scenario.tolerances");
+    assert!(old.contains("h_max") && old != new, "{old} / {new}");
+    let mut env = setup.clone();
+    env.scenario.environment.rotating = !env.scenario.environment.rotating;
+    assert_eq!(refused(&env, &s).0, "scenario.environment.rotating");
+    // Refused runs wrote nothing.
+    assert_eq!(files(&dir), before);
+    assert_eq!(std::fs::read(&case_file).unwrap(), case_bytes);
+    // Identical inputs: every case reused, identical results and files.
+    let again = run_campaign(&setup, &s, &stored()).unwrap();
+    assert_eq!(again.resumed, 2);
+    assert_eq!(again.cases, first.cases);
+    assert_eq!(again.nominal, first.nominal);
+    write_campaign(&dir, &setup, &s, &again).unwrap();
+    assert_eq!(files(&dir), before);
+    // More cases and another mode extend the campaign; the first mode still resumes.
+    let both = run_campaign(
+        &setup,
+        &small(3),
+        &opts(vec![Mode::Stored, Mode::StoredReversals]),
+    )
+    .unwrap();
+    assert_eq!(both.resumed, 2);
+    assert_eq!(both.cases[0].1[..2], first.cases[0].1[..]);
+    assert_eq!(run_campaign(&setup, &s, &stored()).unwrap().resumed, 2);
+    // Case results without a fingerprint (an earlier version's run) cannot be checked.
+    std::fs::remove_file(dir.join("fingerprint.json")).unwrap();
+    match run_campaign(&setup, &s, &stored()) {
+        Err(CampaignError::ResumeUnverified { dir: d }) => assert_eq!(d, dir),
+        r => panic!("resumed into an unverifiable directory: {r:?}"),
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

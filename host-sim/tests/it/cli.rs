@@ -493,13 +493,10 @@ fn compare_command_line_runs_a_small_grid() {
     assert!(!dir.exists(), "nothing written on bad input");
 }
 
-/// `host-sim dispersions --out` in a fresh process writes its SVG plots: the campaign plots
-/// register the embedded font themselves (without it the first caption failed with
-/// "Font loading error: FontUnavailable" and the command exited 1).
-#[test]
-fn dispersions_writes_its_plots_in_a_fresh_process() {
-    let d = temp_dir("dispersions-plots");
-    let o = bin()
+/// `host-sim dispersions` of 2 SRM cases in mode `stored` with the interface at `speed` m/s
+/// into `out`.
+fn srm_dispersions(speed: &str, out: &std::path::Path) -> std::process::Output {
+    bin()
         .args([
             "dispersions",
             "--builtin",
@@ -507,15 +504,24 @@ fn dispersions_writes_its_plots_in_a_fresh_process() {
             "-n",
             "2",
             "--interface-speed",
-            "2500",
+            speed,
             "--modes",
             "stored",
             "--quiet",
             "--out",
         ])
-        .arg(&d)
+        .arg(out)
         .output()
-        .unwrap();
+        .unwrap()
+}
+
+/// `host-sim dispersions --out` in a fresh process writes its SVG plots: the campaign plots
+/// register the embedded font themselves (without it the first caption failed with
+/// "Font loading error: FontUnavailable" and the command exited 1).
+#[test]
+fn dispersions_writes_its_plots_in_a_fresh_process() {
+    let d = temp_dir("dispersions-plots");
+    let o = srm_dispersions("2500", &d);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in [
         "summary.json",
@@ -529,6 +535,47 @@ fn dispersions_writes_its_plots_in_a_fresh_process() {
         svg.contains("<text") && svg.contains("downrange error"),
         "{svg}"
     );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `host-sim dispersions --out DIR` again with another `--interface-speed` is refused, naming
+/// the directory, the field and both values, and leaves the directory as it was; with the same
+/// arguments it reuses both cases and rewrites byte-identical files.
+#[test]
+fn dispersions_resume_refuses_other_inputs() {
+    let d = temp_dir("dispersions-resume");
+    let run = |speed: &str| srm_dispersions(speed, &d);
+    let first = run("2500");
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let read = |f: &str| std::fs::read(d.join(f)).unwrap();
+    let (summary, fingerprint) = (read("summary.json"), read("fingerprint.json"));
+    let other = run("2400");
+    assert!(!other.status.success());
+    let err = String::from_utf8_lossy(&other.stderr);
+    assert!(
+        err.contains(&d.display().to_string())
+            && err.contains("dispersions.interface_speed_m_s was 2500.0, now 2400.0")
+            && err.contains("--out"),
+        "{err}"
+    );
+    assert_eq!(read("fingerprint.json"), fingerprint);
+    let again = run("2500");
+    assert!(
+        again.status.success(),
+        "{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
+    assert!(
+        String::from_utf8_lossy(&again.stdout).contains("(2 resumed)"),
+        "{}",
+        String::from_utf8_lossy(&again.stdout)
+    );
+    assert_eq!(read("summary.json"), summary);
+    assert_eq!(read("fingerprint.json"), fingerprint);
     let _ = std::fs::remove_dir_all(&d);
 }
 

@@ -65,12 +65,15 @@
 use crate::scalar::Real;
 use crate::vinh::VinhError;
 use crate::vinh::nondim::{
-    EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams, aero_accelerations_m_s2,
-    chapman_heat_flux_w_m2, g_load_of,
+    EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams, chapman_heat_flux_w_m2,
+    g_load_of,
 };
-use crate::vinh::num::{k, sin_cos};
+use crate::vinh::num::k;
+
+mod dynamics;
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, PredictorConfig};
 use crate::vinh::validity::Validity;
+use dynamics::{Model, Node, Rates, Y, vertex};
 
 /// Largest number of integration steps of one prediction.
 pub const MAX_STEPS: u16 = 4096;
@@ -89,160 +92,6 @@ pub const STEPS_PER_SOLVER_STEP: u16 = 64;
 /// Drag acceleration below which an ascending state above escape energy is taken as escaping
 /// \[m/s^2\].
 const ESCAPE_DRAG_M_S2: f64 = 1e-6;
-
-/// Integrated state.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-struct Y<S> {
-    /// Altitude above the planet radius \[m\].
-    h: S,
-    /// Speed \[m/s\].
-    v: S,
-    /// Flight-path angle \[rad\].
-    gamma: S,
-    /// Range angle flown \[rad\].
-    theta: S,
-}
-
-impl<S: Real> Y<S> {
-    /// `self + a d`.
-    fn axpy(&self, d: &Y<S>, a: S) -> Y<S> {
-        Y {
-            h: self.h + a * d.h,
-            v: self.v + a * d.v,
-            gamma: self.gamma + a * d.gamma,
-            theta: self.theta + a * d.theta,
-        }
-    }
-
-    fn is_finite(&self) -> bool {
-        self.h.is_finite() && self.v.is_finite() && self.gamma.is_finite() && self.theta.is_finite()
-    }
-}
-
-/// Rates and the aerodynamic quantities they were computed from.
-#[derive(Clone, Copy, Debug)]
-struct Rates<S> {
-    dy: Y<S>,
-    rho: S,
-    drag: S,
-    lift: S,
-}
-
-/// The predictor model with the constant lift setting.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-struct Model<S> {
-    mu: S,
-    radius_m: S,
-    /// The atmosphere with its reference radius taken from the planet radius (density as a
-    /// function of the altitude `h`).
-    atmosphere_h: ExpAtmosphere<S>,
-    vehicle: VehicleParams<S>,
-    sqrt_cd0_k: S,
-    lambda: S,
-    /// `1 + lambda^2`.
-    one_l2: S,
-    f: S,
-}
-
-impl<S: Real> Model<S> {
-    fn rates(&self, y: &Y<S>) -> Rates<S> {
-        let r = self.radius_m + y.h;
-        let rho = self.atmosphere_h.density_unchecked(y.h);
-        let (drag, lift) = aero_accelerations_m_s2(
-            &self.vehicle,
-            self.sqrt_cd0_k,
-            self.lambda,
-            self.one_l2,
-            rho,
-            y.v,
-        );
-        let g = self.mu / (r * r);
-        let (sg, cg) = sin_cos(y.gamma);
-        let v_r = y.v / r;
-        Rates {
-            dy: Y {
-                h: y.v * sg,
-                v: -drag - g * sg,
-                gamma: self.f * lift / y.v - (g / y.v - v_r) * cg,
-                theta: v_r * cg,
-            },
-            rho,
-            drag,
-            lift,
-        }
-    }
-
-    /// One classic RK4 step of `dt` from `y` with first stage `k1`.
-    fn rk4(&self, y: &Y<S>, k1: &Y<S>, dt: S) -> Y<S> {
-        let half = dt.half();
-        let k2 = self.rates(&y.axpy(k1, half)).dy;
-        let k3 = self.rates(&y.axpy(&k2, half)).dy;
-        let k4 = self.rates(&y.axpy(&k3, dt)).dy;
-        let two: S = k(2.0);
-        let sum = Y {
-            h: k1.h + two * (k2.h + k3.h) + k4.h,
-            v: k1.v + two * (k2.v + k3.v) + k4.v,
-            gamma: k1.gamma + two * (k2.gamma + k3.gamma) + k4.gamma,
-            theta: k1.theta + two * (k2.theta + k3.theta) + k4.theta,
-        };
-        y.axpy(&sum, dt / k(6.0))
-    }
-
-    /// The step rule (module docs) at a state with rates `rt`.
-    fn step_size(&self, y: &Y<S>, rt: &Rates<S>) -> S {
-        let h_s = self.atmosphere_h.scale_height_m;
-        let mut dt: S = k(MAX_STEP_S);
-        let vz = rt.dy.h.abs();
-        let dh_max = k::<S>(VERTICAL_STEP_FRACTION) * h_s;
-        if vz * dt > dh_max {
-            dt = dh_max / vz;
-        }
-        let dv_max = k::<S>(SPEED_STEP_FRACTION) * y.v;
-        if rt.drag * dt > dv_max {
-            dt = dv_max / rt.drag;
-        }
-        let fl = (self.f * rt.lift).abs();
-        let phase: S = k(PHUGOID_STEP_RAD);
-        if fl * dt * dt > phase * phase * h_s {
-            dt = phase * (h_s / fl).sqrt_fast();
-        }
-        dt
-    }
-}
-
-/// A node of the peak history: time \[s\], heat flux \[W/m^2\], g-load \[-\].
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-struct Node<S> {
-    t: S,
-    q: S,
-    n: S,
-}
-
-/// Value at the vertex of the parabola through `(t0, y0)`, `(t1, y1)`, `(t2, y2)` when `y1` is
-/// an interior maximum and the vertex lies between `t0` and `t2`; else `y1`.
-fn vertex<S: Real>(t0: S, y0: S, t1: S, y1: S, t2: S, y2: S) -> S {
-    let (h1, h2) = (t1 - t0, t2 - t1);
-    if !(y1 >= y0 && y1 >= y2 && h1 > S::ZERO && h2 > S::ZERO) {
-        return y1;
-    }
-    let d1 = (y1 - y0) / h1;
-    let d2 = (y2 - y1) / h2;
-    let a = (d2 - d1) / (h1 + h2);
-    if !(a < S::ZERO) {
-        return y1;
-    }
-    let s = d1 + a * h1;
-    let off = -s / (k::<S>(2.0) * a);
-    let peak = y1 - s * s / (k::<S>(4.0) * a);
-    if off >= -h1 && off <= h2 && peak.is_finite() {
-        peak
-    } else {
-        y1
-    }
-}
 
 /// A numerical prediction in progress (module docs): `Copy`, advanced a bounded number of steps
 /// at a time.
