@@ -273,7 +273,7 @@ impl CampaignSetup {
                 tolerance_m: gs.replan_tolerance_km * 1e3,
                 max_iterations: 20,
                 predictor: PredictorConfig {
-                    final_speed_m_s: v_f + gs.predictor_final_speed_offset_m_s,
+                    final_speed_m_s: v_f + gs.final_speed_offset_m_s(),
                     max_skips: 4,
                 },
                 // The mode of `replan-estimation`; `flight::replanning_of` drops the sink for

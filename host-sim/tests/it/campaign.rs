@@ -340,8 +340,9 @@ fn guidance_settings_are_configurable_and_checked() {
 }
 
 /// `[dispersions.guidance] predictor`: each name picks the re-planner's predictor of both
-/// re-planning modes (the sink only with onboard estimation and `glide_sink`); the default
-/// keeps the closed forms; a bad name is an error naming the file, field and value.
+/// re-planning modes (the sink only with onboard estimation and `glide_sink`) and its default
+/// final-speed offset (closed forms 0, numerical 5, hybrid 6 m/s; the default predictor is
+/// the hybrid); a bad name or offset is an error naming the file, field and value.
 #[test]
 fn campaign_predictor_setting_picks_the_replanner_mode() {
     use guidance_core::replan::PredictorMode as P;
@@ -352,40 +353,48 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
             .unwrap()
             .guidance
     };
-    assert_eq!(
-        parse("").predictor,
-        CampaignPredictor::ClosedForm,
-        "default"
-    );
-    for (text, predictor, estimation, reversals) in [
-        ("", CampaignPredictor::ClosedForm, P::AutoSink, P::Auto),
+    assert_eq!(parse("").predictor, CampaignPredictor::Hybrid, "default");
+    for (text, predictor, estimation, reversals, offset) in [
+        ("", CampaignPredictor::Hybrid, P::HybridSink, P::Hybrid, 6.0),
+        (
+            "predictor = \"closed-form\"",
+            CampaignPredictor::ClosedForm,
+            P::AutoSink,
+            P::Auto,
+            0.0,
+        ),
         (
             "predictor = \"closed-form\"\nglide_sink = false",
             CampaignPredictor::ClosedForm,
             P::Auto,
             P::Auto,
+            0.0,
         ),
         (
             "predictor = \"numerical\"",
             CampaignPredictor::Numerical,
             P::Numerical,
             P::Numerical,
+            5.0,
         ),
         (
             "predictor = \"hybrid\"",
             CampaignPredictor::Hybrid,
             P::HybridSink,
             P::Hybrid,
+            6.0,
         ),
         (
-            "predictor = \"hybrid\"\nglide_sink = false",
+            "predictor = \"hybrid\"\nglide_sink = false\npredictor_final_speed_offset_m_s = -2.0",
             CampaignPredictor::Hybrid,
             P::Hybrid,
             P::Hybrid,
+            -2.0,
         ),
     ] {
         let g = parse(text);
         assert_eq!(g.predictor, predictor, "{text}");
+        assert_eq!(g.final_speed_offset_m_s(), offset, "{text}");
         assert_eq!(g.predictor.mode(g.glide_sink), estimation, "{text}");
         assert_eq!(g.predictor.mode(false), reversals, "{text}");
     }
