@@ -3,9 +3,57 @@
 //! defaults, validated with errors that name the field.
 
 use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
+use guidance_core::replan::PredictorMode;
 use serde::{Deserialize, Serialize};
 
 use super::CampaignError;
+
+/// The re-planner's predictor family in the re-planning campaign modes
+/// (`[dispersions.guidance] predictor`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CampaignPredictor {
+    /// The closed forms: `PredictorMode::Auto`, or `AutoSink` with onboard estimation and
+    /// `glide_sink` (`"closed-form"`).
+    ClosedForm,
+    /// Numerical integration of the predictor model from the navigated state:
+    /// `PredictorMode::Numerical` in both re-planning modes (`"numerical"`).
+    Numerical,
+    /// The closed forms when the prediction to be flown is in their validated domain, else the
+    /// numerical predictor: `PredictorMode::Hybrid`, or `HybridSink` with onboard estimation and
+    /// `glide_sink` (`"hybrid"`, the default: docs/DISPERSIONS.md, "Numerical and hybrid
+    /// predictors in the campaigns").
+    #[default]
+    Hybrid,
+}
+
+impl CampaignPredictor {
+    /// The re-planner's predictor mode, with (`sink = true`) or without the glide's sink to
+    /// its equilibrium in its closed-form part (the numerical predictor has no such term).
+    #[must_use]
+    pub fn mode(self, sink: bool) -> PredictorMode {
+        match (self, sink) {
+            (Self::ClosedForm, false) => PredictorMode::Auto,
+            (Self::ClosedForm, true) => PredictorMode::AutoSink,
+            (Self::Numerical, _) => PredictorMode::Numerical,
+            (Self::Hybrid, false) => PredictorMode::Hybrid,
+            (Self::Hybrid, true) => PredictorMode::HybridSink,
+        }
+    }
+
+    /// The default `predictor_final_speed_offset_m_s` of this predictor \[m/s\]: each tuned on
+    /// the SRM campaign's seeds 1 and 2 (800 flights, `replan-estimation`; docs/DISPERSIONS.md):
+    /// closed forms 0 (their behaviour before the setting existed; 3 was best on the tuning
+    /// seeds but not on the reporting seed), numerical 5, hybrid 6.
+    #[must_use]
+    pub fn default_final_speed_offset_m_s(self) -> f64 {
+        match self {
+            Self::ClosedForm => 0.0,
+            Self::Numerical => 5.0,
+            Self::Hybrid => 6.0,
+        }
+    }
+}
 
 /// `[dispersions.guidance]`. Units are those of the field name (deg, km, m/s^2, ticks).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -38,7 +86,21 @@ pub struct CampaignGuidance {
     /// In mode `replan-estimation` the re-planner's glide predicts the sink from the current
     /// radius to the glide's equilibrium (`PredictorMode::AutoSink`; `false`:
     /// `PredictorMode::Auto`, as the other re-planning mode always does) (default true).
+    /// With `predictor = "hybrid"` the same choice between `HybridSink` and `Hybrid`.
     pub glide_sink: bool,
+    /// The re-planner's predictor in both re-planning modes: `"closed-form"`, `"numerical"` or
+    /// `"hybrid"` (default) ([`CampaignPredictor`]).
+    pub predictor: CampaignPredictor,
+    /// Added to the interface speed to give the re-planner's predictor final speed \[m/s\], in
+    /// `[-100, 100]` (default: the predictor's,
+    /// [`CampaignPredictor::default_final_speed_offset_m_s`]; read it with
+    /// [`CampaignGuidance::final_speed_offset_m_s`]). The flights end at the interface
+    /// *energy*, the predictors at a *speed*: a flight ending below the nominal end altitude (a
+    /// larger bank than the stored profile's at the end) is still faster than the interface
+    /// speed when it ends (docs/DISPERSIONS.md, "Numerical and hybrid predictors in the
+    /// campaigns").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub predictor_final_speed_offset_m_s: Option<f64>,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -66,6 +128,8 @@ impl Default for CampaignGuidance {
             min_vertical_fraction: 0.05,
             max_vertical_fraction: 1.0,
             glide_sink: true,
+            predictor: CampaignPredictor::Hybrid,
+            predictor_final_speed_offset_m_s: None,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -76,6 +140,13 @@ impl Default for CampaignGuidance {
 }
 
 impl CampaignGuidance {
+    /// The predictor final-speed offset in use \[m/s\]: the setting, or the predictor's default.
+    #[must_use]
+    pub fn final_speed_offset_m_s(&self) -> f64 {
+        self.predictor_final_speed_offset_m_s
+            .unwrap_or_else(|| self.predictor.default_final_speed_offset_m_s())
+    }
+
     /// The onboard estimator's settings.
     #[must_use]
     pub fn estimator(&self) -> EstimatorConfig<f64> {
@@ -119,6 +190,14 @@ impl CampaignGuidance {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(bad(name, v.to_string(), "must be finite and >= 0"));
             }
+        }
+        let dv = self.final_speed_offset_m_s();
+        if !(dv.is_finite() && (-100.0..=100.0).contains(&dv)) {
+            return Err(bad(
+                "predictor_final_speed_offset_m_s",
+                dv.to_string(),
+                "must be in [-100, 100]",
+            ));
         }
         let f = self.corridor_low_speed_fraction;
         if !(f.is_finite() && (0.0..1.0).contains(&f)) {

@@ -339,6 +339,116 @@ fn guidance_settings_are_configurable_and_checked() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `[dispersions.guidance] predictor`: each name picks the re-planner's predictor of both
+/// re-planning modes (the sink only with onboard estimation and `glide_sink`) and its default
+/// final-speed offset (closed forms 0, numerical 5, hybrid 6 m/s; the default predictor is
+/// the hybrid); a bad name or offset is an error naming the file, field and value.
+#[test]
+fn campaign_predictor_setting_picks_the_replanner_mode() {
+    use guidance_core::replan::PredictorMode as P;
+    use host_sim::campaign::CampaignPredictor;
+    use host_sim::campaign::flight::replanning_of;
+    let parse = |text: &str| {
+        parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml")
+            .unwrap()
+            .guidance
+    };
+    assert_eq!(parse("").predictor, CampaignPredictor::Hybrid, "default");
+    for (text, predictor, estimation, reversals, offset) in [
+        ("", CampaignPredictor::Hybrid, P::HybridSink, P::Hybrid, 6.0),
+        (
+            "predictor = \"closed-form\"",
+            CampaignPredictor::ClosedForm,
+            P::AutoSink,
+            P::Auto,
+            0.0,
+        ),
+        (
+            "predictor = \"closed-form\"\nglide_sink = false",
+            CampaignPredictor::ClosedForm,
+            P::Auto,
+            P::Auto,
+            0.0,
+        ),
+        (
+            "predictor = \"numerical\"",
+            CampaignPredictor::Numerical,
+            P::Numerical,
+            P::Numerical,
+            5.0,
+        ),
+        (
+            "predictor = \"hybrid\"",
+            CampaignPredictor::Hybrid,
+            P::HybridSink,
+            P::Hybrid,
+            6.0,
+        ),
+        (
+            "predictor = \"hybrid\"\nglide_sink = false\npredictor_final_speed_offset_m_s = -2.0",
+            CampaignPredictor::Hybrid,
+            P::Hybrid,
+            P::Hybrid,
+            -2.0,
+        ),
+    ] {
+        let g = parse(text);
+        assert_eq!(g.predictor, predictor, "{text}");
+        assert_eq!(g.final_speed_offset_m_s(), offset, "{text}");
+        assert_eq!(g.predictor.mode(g.glide_sink), estimation, "{text}");
+        assert_eq!(g.predictor.mode(false), reversals, "{text}");
+    }
+    // The setting reaches the flights' re-planner (one set-up: nominal flights are not cheap).
+    let g = parse("predictor = \"hybrid\"\npredictor_final_speed_offset_m_s = 5.0");
+    let setup = CampaignSetup::with_guidance(
+        &Scenario::srm_glide(),
+        "builtin:srm-glide",
+        Some(2500.0),
+        &g,
+    )
+    .unwrap();
+    assert_eq!(
+        replanning_of(&setup, Mode::ReplanEstimation).solver.mode,
+        P::HybridSink
+    );
+    assert_eq!(
+        replanning_of(&setup, Mode::ReplanReversals).solver.mode,
+        P::Hybrid
+    );
+    assert_eq!(
+        replanning_of(&setup, Mode::ReplanReversals)
+            .solver
+            .predictor
+            .final_speed_m_s,
+        setup.interface_speed_m_s + 5.0
+    );
+    assert_eq!(setup.guidance_key(), Some(g));
+    for (text, field, value) in [
+        ("predictor = \"fast\"", "predictor", "fast"),
+        (
+            "predictor_final_speed_offset_m_s = 150.0",
+            "predictor_final_speed_offset_m_s",
+            "150",
+        ),
+        (
+            "predictor_final_speed_offset_m_s = nan",
+            "predictor_final_speed_offset_m_s",
+            "NaN",
+        ),
+    ] {
+        let e = parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml").unwrap_err();
+        let msg = e.to_string();
+        assert_eq!(
+            field_of(e),
+            format!("dispersions.guidance.{field}"),
+            "{text}"
+        );
+        for w in ["p.toml", value] {
+            assert!(msg.contains(w), "`{msg}` lacks `{w}`");
+        }
+    }
+}
+
 /// Resume is safe: a run into a directory whose fingerprint differs in any input that changes
 /// a flight and is not in a case's draw (interface speed, the scenario's integrator and
 /// environment, the seed) is refused before anything is written, naming the field with its

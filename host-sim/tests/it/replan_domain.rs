@@ -7,7 +7,7 @@
 //! radius, speed and flight-path angle to the predictor's final speed).
 
 use guidance_core::replan::{
-    PredictorMode, ReplanCase, ReplanReport, ReplanResult, ReplanningConfig, replan,
+    PredictorMode, ReplanCase, ReplanReport, ReplanResult, ReplanSolver, ReplanningConfig, replan,
 };
 use guidance_core::vinh::{
     ExpAtmosphere, LiftControl, PeakMode, Planet, Prediction, VehicleParams, predict_with,
@@ -90,8 +90,11 @@ pub struct Point {
     pub lift_to_drag: f64,
     pub fraction: f64,
     pub case: ReplanCase,
-    /// true: the chain (skip first) was used; false: the glide.
+    /// true: the chain (skip first) was used; false: the glide (or the numerical predictor).
     pub chain: bool,
+    /// true: the solve used the numerical predictor (`Numerical`, or a `Hybrid` solve out of
+    /// the closed forms' validated domain).
+    pub numerical: bool,
     pub prediction: Prediction<f64>,
     /// Numerical range angle [rad] (None: no end at the final speed).
     pub reference_rad: Option<f64>,
@@ -119,7 +122,7 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
         if !rep.applied {
             continue;
         }
-        let (res, model) = rerun(config, rep, ctx);
+        let (res, model, numerical) = rerun(config, rep, ctx);
         assert_eq!(
             res.case, rep.case,
             "{scenario}: re-plan at {} s",
@@ -161,18 +164,18 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
             )
             .is_ok()
         };
-        let chain = match s.mode {
-            PredictorMode::Chain => true,
-            PredictorMode::Glide => false,
-            // The numerical modes are not sampled here; their closed-form part is Auto's.
-            PredictorMode::Auto
-            | PredictorMode::AutoSink
-            | PredictorMode::Numerical
-            | PredictorMode::Hybrid
-            | PredictorMode::HybridSink => {
-                chain_ok(s.min_vertical_fraction) && chain_ok(s.max_vertical_fraction)
-            }
-        };
+        let chain = !numerical
+            && match s.mode {
+                PredictorMode::Chain => true,
+                PredictorMode::Glide | PredictorMode::Numerical => false,
+                // A hybrid solve on the closed forms is Auto's (AutoSink's).
+                PredictorMode::Auto
+                | PredictorMode::AutoSink
+                | PredictorMode::Hybrid
+                | PredictorMode::HybridSink => {
+                    chain_ok(s.min_vertical_fraction) && chain_ok(s.max_vertical_fraction)
+                }
+            };
         let reference = integrated_range_angle(
             &planet,
             &atm,
@@ -183,7 +186,7 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
             0.25,
         );
         let cl = (veh.cd0 / veh.k_polar).sqrt() * s.lambda;
-        let with_sink = (!chain)
+        let with_sink = (!chain && !numerical)
             .then(|| {
                 guidance_core::replan::predict_glide_with_sink(
                     &planet,
@@ -217,6 +220,7 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
             fraction: f,
             case: res.case,
             chain,
+            numerical,
             prediction,
             reference_rad: reference,
             start_offset_km: (prediction.glide_start_radius_m - nav.radius_m) / 1e3,
@@ -227,12 +231,14 @@ pub fn recompute(scenario: &str, config: &ReplanningConfig<f64>, log: &ReplanLog
 
 type Model = (Planet<f64>, ExpAtmosphere<f64>, VehicleParams<f64>);
 
-/// The solve of a logged re-plan, redone from its tick's state and model.
+/// The solve of a logged re-plan, redone from its tick's state and model, and whether it used
+/// the numerical predictor (the resumable solver run to its end gives `replan`'s answer bit for
+/// bit, checked).
 fn rerun(
     config: &ReplanningConfig<f64>,
     rep: &ReplanReport<f64>,
     ctx: &ReportContext,
-) -> (ReplanResult<f64>, Model) {
+) -> (ReplanResult<f64>, Model, bool) {
     let m = &config.model;
     let planet = m.effective_planet(&ctx.nav, config.solver.predictor.final_speed_m_s);
     let (atm, veh) = ctx
@@ -248,7 +254,22 @@ fn rerun(
         &config.limits,
         &config.solver,
     );
-    (res, (planet, atm, veh))
+    let mut solver = ReplanSolver::new(
+        &planet,
+        &atm,
+        &veh,
+        &ctx.nav,
+        rep.range_to_go_m,
+        &config.limits,
+        &config.solver,
+    );
+    let stepped = loop {
+        if let Some(r) = solver.run(u8::MAX) {
+            break r;
+        }
+    };
+    assert_eq!(stepped, res, "resumable solver against replan");
+    (res, (planet, atm, veh), solver.uses_numerical())
 }
 
 fn log_of(lp: &ReplanLoop) -> ReplanLog {
@@ -298,18 +319,34 @@ pub fn srm_full() -> Vec<Point> {
     out
 }
 
-/// `cases` dispersed flights (default campaign settings, seed of the defaults) of the built-in
-/// scenario `sc` in both re-planning modes.
-pub fn campaign(name: &str, sc: &Scenario, interface: Option<f64>, cases: u32) -> Vec<Point> {
-    let settings = parse_settings("", "defaults").unwrap();
-    let setup = CampaignSetup::new(sc, name, interface).unwrap();
+/// `cases` dispersed flights (default dispersions, seed of the defaults) of the built-in
+/// scenario `sc` in both re-planning modes, with the campaign's `[dispersions.guidance]`
+/// predictor `predictor` (`"closed-form"`, `"numerical"`, `"hybrid"`).
+pub fn campaign(
+    name: &str,
+    sc: &Scenario,
+    interface: Option<f64>,
+    cases: u32,
+    predictor: &str,
+) -> Vec<Point> {
+    let settings = parse_settings(
+        &format!("[dispersions.guidance]\npredictor = \"{predictor}\"\n"),
+        "(harness)",
+    )
+    .unwrap();
+    let setup = CampaignSetup::with_guidance(sc, name, interface, &settings.guidance).unwrap();
+    let label = if predictor == "closed-form" {
+        String::new()
+    } else {
+        format!(", {predictor}")
+    };
     let mut out = Vec::new();
     for mode in [Mode::ReplanReversals, Mode::ReplanEstimation] {
         for i in 0..cases {
             let draw = host_sim::campaign::draw::draw_case(&settings, i);
             let (_, log) = fly_case_logged(&setup, Some(&draw), mode).unwrap();
             out.extend(recompute(
-                &format!("{name} campaign {mode:?}"),
+                &format!("{name} campaign {mode:?}{label}"),
                 &host_sim::campaign::flight::replanning_of(&setup, mode),
                 &log,
             ));
@@ -388,6 +425,39 @@ fn summarise(points: &[Point]) {
     }
 }
 
+/// Per scenario: how many applied re-plans used the closed forms and how many the numerical
+/// predictor (a `Hybrid` solve falls back to it when an end of the interval is not
+/// `InDomain`), with the range error of each group against the reference integration.
+fn summarise_hybrid(points: &[Point]) {
+    let mut names: Vec<&str> = points.iter().map(|p| p.scenario.as_str()).collect();
+    names.dedup();
+    println!(
+        "\n| scenario | re-plans | closed forms | of which InDomain | closed forms: |err| max [%], > 3 % | numerical | numerical: |err| median / max [%] |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let abs_err = |p: &&Point| p.error_pct().map_or(f64::INFINITY, f64::abs);
+    for name in names {
+        let ps: Vec<&Point> = points.iter().filter(|p| p.scenario == name).collect();
+        let (num, closed): (Vec<&Point>, Vec<&Point>) = ps.iter().partition(|p| p.numerical);
+        let in_domain = closed
+            .iter()
+            .filter(|p| p.prediction.validity == guidance_core::vinh::Validity::InDomain)
+            .count();
+        let closed_max = closed.iter().map(abs_err).fold(0.0_f64, f64::max);
+        let closed_bad = closed.iter().filter(|p| abs_err(p) > 3.0).count();
+        let mut num_err: Vec<f64> = num.iter().map(abs_err).collect();
+        num_err.sort_by(f64::total_cmp);
+        let median = num_err.get(num_err.len() / 2).copied().unwrap_or(f64::NAN);
+        let num_max = num_err.last().copied().unwrap_or(f64::NAN);
+        println!(
+            "| {name} | {} | {} | {in_domain} | {closed_max:.2}, {closed_bad} | {} | {median:.4} / {num_max:.4} |",
+            ps.len(),
+            closed.len(),
+            num.len(),
+        );
+    }
+}
+
 fn dump(points: &[Point]) {
     println!(
         "scenario,h_km,v,gamma_deg,ld,f,case,chain,skips,offset_km,pred_deg,ref_deg,err_pct,validity,sink_err_pct"
@@ -429,19 +499,24 @@ fn print_replanning_domain() {
         .unwrap_or(10);
     let mut all = srm_simplified();
     all.extend(srm_full());
-    all.extend(campaign(
-        "srm-glide",
-        &Scenario::srm_glide(),
-        Some(2500.0),
-        cases,
-    ));
-    all.extend(campaign(
-        "horus-2b-reference",
-        &Scenario::default(),
-        None,
-        cases,
-    ));
+    for predictor in ["closed-form", "hybrid"] {
+        all.extend(campaign(
+            "srm-glide",
+            &Scenario::srm_glide(),
+            Some(2500.0),
+            cases,
+            predictor,
+        ));
+        all.extend(campaign(
+            "horus-2b-reference",
+            &Scenario::default(),
+            None,
+            cases,
+            predictor,
+        ));
+    }
     summarise(&all);
+    summarise_hybrid(&all);
     if std::env::var("DOMAIN_DUMP").is_ok() {
         dump(&all);
     }
