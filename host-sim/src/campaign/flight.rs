@@ -336,14 +336,18 @@ pub fn fly_case_logged(
 }
 
 /// The re-planner settings of `mode`: the sink to the equilibrium
-/// (`PredictorMode::AutoSink`, `glide_sink`) only with onboard estimation, whose density scale
-/// makes an offset from the equilibrium a transient rather than model error; without it the
-/// plain `Auto` predictor.
+/// (`PredictorMode::AutoSink` or `HybridSink`, `glide_sink`) only with onboard estimation, whose
+/// density scale makes an offset from the equilibrium a transient rather than model error;
+/// without it the same predictor without the sink (`Auto`, `Hybrid`; `Numerical` unchanged).
 #[must_use]
 pub fn replanning_of(setup: &CampaignSetup, mode: Mode) -> ReplanningConfig<f64> {
     let mut r = setup.replanning;
-    if mode != Mode::ReplanEstimation && r.solver.mode == PredictorMode::AutoSink {
-        r.solver.mode = PredictorMode::Auto;
+    if mode != Mode::ReplanEstimation {
+        r.solver.mode = match r.solver.mode {
+            PredictorMode::AutoSink => PredictorMode::Auto,
+            PredictorMode::HybridSink => PredictorMode::Hybrid,
+            m => m,
+        };
     }
     r
 }

@@ -3,9 +3,43 @@
 //! defaults, validated with errors that name the field.
 
 use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
+use guidance_core::replan::PredictorMode;
 use serde::{Deserialize, Serialize};
 
 use super::CampaignError;
+
+/// The re-planner's predictor family in the re-planning campaign modes
+/// (`[dispersions.guidance] predictor`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CampaignPredictor {
+    /// The closed forms: `PredictorMode::Auto`, or `AutoSink` with onboard estimation and
+    /// `glide_sink` (`"closed-form"`, the default).
+    #[default]
+    ClosedForm,
+    /// Numerical integration of the predictor model from the navigated state:
+    /// `PredictorMode::Numerical` in both re-planning modes (`"numerical"`).
+    Numerical,
+    /// The closed forms where both ends of the interval are in their validated domain, else the
+    /// numerical predictor: `PredictorMode::Hybrid`, or `HybridSink` with onboard estimation and
+    /// `glide_sink` (`"hybrid"`).
+    Hybrid,
+}
+
+impl CampaignPredictor {
+    /// The re-planner's predictor mode, with (`sink = true`) or without the glide's sink to
+    /// its equilibrium in its closed-form part (the numerical predictor has no such term).
+    #[must_use]
+    pub fn mode(self, sink: bool) -> PredictorMode {
+        match (self, sink) {
+            (Self::ClosedForm, false) => PredictorMode::Auto,
+            (Self::ClosedForm, true) => PredictorMode::AutoSink,
+            (Self::Numerical, _) => PredictorMode::Numerical,
+            (Self::Hybrid, false) => PredictorMode::Hybrid,
+            (Self::Hybrid, true) => PredictorMode::HybridSink,
+        }
+    }
+}
 
 /// `[dispersions.guidance]`. Units are those of the field name (deg, km, m/s^2, ticks).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -38,7 +72,11 @@ pub struct CampaignGuidance {
     /// In mode `replan-estimation` the re-planner's glide predicts the sink from the current
     /// radius to the glide's equilibrium (`PredictorMode::AutoSink`; `false`:
     /// `PredictorMode::Auto`, as the other re-planning mode always does) (default true).
+    /// With `predictor = "hybrid"` the same choice between `HybridSink` and `Hybrid`.
     pub glide_sink: bool,
+    /// The re-planner's predictor in both re-planning modes: `"closed-form"` (default),
+    /// `"numerical"` or `"hybrid"` ([`CampaignPredictor`]).
+    pub predictor: CampaignPredictor,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -66,6 +104,7 @@ impl Default for CampaignGuidance {
             min_vertical_fraction: 0.05,
             max_vertical_fraction: 1.0,
             glide_sink: true,
+            predictor: CampaignPredictor::ClosedForm,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],

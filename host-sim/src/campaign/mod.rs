@@ -32,7 +32,7 @@ pub mod stats;
 use serde::{Deserialize, Serialize};
 
 pub use flight::CaseResult;
-pub use guidance_settings::CampaignGuidance;
+pub use guidance_settings::{CampaignGuidance, CampaignPredictor};
 pub use run::{CampaignOutput, run_campaign};
 pub use settings::{Dispersion, DispersionSettings, parse_settings};
 pub use setup::CampaignSetup;

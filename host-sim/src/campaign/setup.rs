@@ -10,7 +10,7 @@ use guidance_core::interp::Interpolation;
 use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    PredictorMode, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
+    RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
 };
 use guidance_core::vinh::PredictorConfig;
 
@@ -276,11 +276,9 @@ impl CampaignSetup {
                     final_speed_m_s: v_f,
                     max_skips: 4,
                 },
-                mode: if gs.glide_sink {
-                    PredictorMode::AutoSink
-                } else {
-                    PredictorMode::Auto
-                },
+                // The mode of `replan-estimation`; `flight::replanning_of` drops the sink for
+                // the other re-planning mode.
+                mode: gs.predictor.mode(gs.glide_sink),
             },
             model,
             apply_out_of_reach: true,

@@ -251,6 +251,14 @@ pub enum PredictorFile {
     /// As `auto`, the glide with the sink to its equilibrium (`"auto-sink"`).
     #[serde(rename = "auto-sink")]
     AutoSink,
+    /// Numerical integration of the predictor model from the navigated state (`"numerical"`).
+    Numerical,
+    /// The closed forms as `auto` where both ends are in their validated domain, else
+    /// `numerical` for the whole solve (`"hybrid"`).
+    Hybrid,
+    /// As `hybrid`, with `auto-sink` as its closed-form part (`"hybrid-sink"`).
+    #[serde(rename = "hybrid-sink")]
+    HybridSink,
 }
 
 /// `[replanning]`: `guidance_core::replan::ReplanningGuidance` on the scenario's (energy-indexed)
@@ -286,7 +294,8 @@ pub struct ReplanningFile {
     pub max_iterations: Option<Num>,
     /// Predictor skip budget.
     pub max_skips: Option<Num>,
-    /// `"chain"`, `"glide"`, `"auto"` or `"auto-sink"`.
+    /// `"chain"`, `"glide"`, `"auto"`, `"auto-sink"`, `"numerical"`, `"hybrid"` or
+    /// `"hybrid-sink"`.
     pub predictor: Option<PredictorFile>,
     /// Apply the nearest end when the target is out of reach.
     pub apply_out_of_reach: Option<bool>,

@@ -454,4 +454,78 @@ fn resume_refuses_other_inputs_and_reuses_identical_ones() {
         r => panic!("resumed into an unverifiable directory: {r:?}"),
     }
     let _ = std::fs::remove_dir_all(&dir);
+/// `[dispersions.guidance] predictor`: each name picks the re-planner's predictor of both
+/// re-planning modes (the sink only with onboard estimation and `glide_sink`); the default
+/// keeps the closed forms; a bad name is an error naming the file, field and value.
+#[test]
+fn campaign_predictor_setting_picks_the_replanner_mode() {
+    use guidance_core::replan::PredictorMode as P;
+    use host_sim::campaign::CampaignPredictor;
+    use host_sim::campaign::flight::replanning_of;
+    let parse = |text: &str| {
+        parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml")
+            .unwrap()
+            .guidance
+    };
+    assert_eq!(
+        parse("").predictor,
+        CampaignPredictor::ClosedForm,
+        "default"
+    );
+    for (text, predictor, estimation, reversals) in [
+        ("", CampaignPredictor::ClosedForm, P::AutoSink, P::Auto),
+        (
+            "predictor = \"closed-form\"\nglide_sink = false",
+            CampaignPredictor::ClosedForm,
+            P::Auto,
+            P::Auto,
+        ),
+        (
+            "predictor = \"numerical\"",
+            CampaignPredictor::Numerical,
+            P::Numerical,
+            P::Numerical,
+        ),
+        (
+            "predictor = \"hybrid\"",
+            CampaignPredictor::Hybrid,
+            P::HybridSink,
+            P::Hybrid,
+        ),
+        (
+            "predictor = \"hybrid\"\nglide_sink = false",
+            CampaignPredictor::Hybrid,
+            P::Hybrid,
+            P::Hybrid,
+        ),
+    ] {
+        let g = parse(text);
+        assert_eq!(g.predictor, predictor, "{text}");
+        assert_eq!(g.predictor.mode(g.glide_sink), estimation, "{text}");
+        assert_eq!(g.predictor.mode(false), reversals, "{text}");
+    }
+    // The setting reaches the flights' re-planner (one set-up: nominal flights are not cheap).
+    let g = parse("predictor = \"hybrid\"");
+    let setup = CampaignSetup::with_guidance(
+        &Scenario::srm_glide(),
+        "builtin:srm-glide",
+        Some(2500.0),
+        &g,
+    )
+    .unwrap();
+    assert_eq!(
+        replanning_of(&setup, Mode::ReplanEstimation).solver.mode,
+        P::HybridSink
+    );
+    assert_eq!(
+        replanning_of(&setup, Mode::ReplanReversals).solver.mode,
+        P::Hybrid
+    );
+    assert_eq!(setup.guidance_key(), Some(g));
+    let e = parse_settings("[dispersions.guidance]\npredictor = \"fast\"\n", "p.toml").unwrap_err();
+    let text = e.to_string();
+    assert_eq!(field_of(e), "dispersions.guidance.predictor");
+    for w in ["p.toml", "fast"] {
+        assert!(text.contains(w), "`{text}` lacks `{w}`");
+    }
 }

@@ -364,3 +364,56 @@ fn bad_replanning_settings_are_named() {
         }
     }
 }
+
+/// Every `[replanning] predictor` name reaches its `PredictorMode` and prints back to itself;
+/// an unknown name is an error naming the file, the field and the value.
+#[test]
+fn replanning_predictor_names_parse_and_round_trip() {
+    use guidance_core::replan::PredictorMode;
+    let base = std::fs::read_to_string(examples().join("srm-glide-replanning.toml")).unwrap();
+    let line = "predictor = \"auto\"";
+    assert!(base.contains(line), "the example sets the predictor");
+    let with = |name: &str| {
+        base.lines()
+            .map(|l| {
+                if l.trim_start().starts_with("predictor =") {
+                    format!("predictor = \"{name}\"")
+                } else {
+                    l.to_owned()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    for (name, mode) in [
+        ("chain", PredictorMode::Chain),
+        ("glide", PredictorMode::Glide),
+        ("auto", PredictorMode::Auto),
+        ("auto-sink", PredictorMode::AutoSink),
+        ("numerical", PredictorMode::Numerical),
+        ("hybrid", PredictorMode::Hybrid),
+        ("hybrid-sink", PredictorMode::HybridSink),
+    ] {
+        let sc = parse_scenario(&with(name), "p.toml", &examples()).unwrap();
+        let rp = sc.replanning.as_ref().expect("a [replanning] section");
+        assert_eq!(rp.mode, mode, "{name}");
+        let text = host_sim::scenario::scenario_to_toml(&sc);
+        assert!(
+            text.contains(&format!("predictor = \"{name}\"")),
+            "{name} printed as: {text}"
+        );
+        let back = parse_scenario(&text, "printed.toml", &examples()).unwrap();
+        assert_eq!(back.replanning, sc.replanning, "{name}");
+    }
+    let e = parse_scenario(&with("numeric"), "p.toml", &examples())
+        .unwrap_err()
+        .to_string();
+    for w in [
+        "p.toml",
+        "replanning.predictor",
+        "numeric",
+        "unknown variant",
+    ] {
+        assert!(e.contains(w), "`{e}` lacks `{w}`");
+    }
+}
