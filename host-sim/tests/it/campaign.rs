@@ -454,6 +454,8 @@ fn resume_refuses_other_inputs_and_reuses_identical_ones() {
         r => panic!("resumed into an unverifiable directory: {r:?}"),
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `[dispersions.guidance] predictor`: each name picks the re-planner's predictor of both
 /// re-planning modes (the sink only with onboard estimation and `glide_sink`); the default
 /// keeps the closed forms; a bad name is an error naming the file, field and value.
