@@ -77,6 +77,12 @@ pub struct CampaignGuidance {
     /// The re-planner's predictor in both re-planning modes: `"closed-form"` (default),
     /// `"numerical"` or `"hybrid"` ([`CampaignPredictor`]).
     pub predictor: CampaignPredictor,
+    /// Lift parameter `lambda = C_L / C_L*` of the re-planner's predictor \[-\] (constant over
+    /// a prediction), in `(0, 20]`. Default (absent): 1, the polar's maximum L/D (the trim
+    /// point of a trim vehicle such as the SRM capsule). The value of a vehicle flying an
+    /// angle-of-attack profile: [`super::setup::profile_lift_parameter`] (HORUS-2B: 3.58).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub predictor_lift_parameter: Option<f64>,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -105,6 +111,7 @@ impl Default for CampaignGuidance {
             max_vertical_fraction: 1.0,
             glide_sink: true,
             predictor: CampaignPredictor::ClosedForm,
+            predictor_lift_parameter: None,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -210,6 +217,15 @@ impl CampaignGuidance {
                     "must be [min, max] with 0 < min <= 1 <= max, finite",
                 ));
             }
+        }
+        if let Some(l) = self.predictor_lift_parameter
+            && !(l.is_finite() && l > 0.0 && l <= 20.0)
+        {
+            return Err(bad(
+                "predictor_lift_parameter",
+                l.to_string(),
+                "must be in (0, 20]",
+            ));
         }
         let m = self.estimator_min_drag_m_s2;
         if !(m.is_finite() && m >= 0.0) {

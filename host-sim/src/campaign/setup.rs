@@ -141,6 +141,52 @@ fn energy_table(
     })
 }
 
+/// The predictor's lift parameter `lambda = C_L / C_L*` of the stored profile (a value for
+/// `[dispersions.guidance] predictor_lift_parameter`, docs/DISPERSIONS.md): the mean over
+/// the nominal flight `nominal`, weighted by the range flown, of `C_L(alpha)` at
+/// [`PREDICTOR_POLAR_MACH`] and the flown angle of attack, over the model polar's `C_L* =
+/// sqrt(C_D0/K)` (the lift coefficient of maximum L/D). A vehicle without angle-of-attack
+/// control (trim only, as the SRM capsule) gives 1: its model polar has the trim point at
+/// maximum L/D. With `lambda = 1` the predictor of HORUS-2B (alpha 40 deg for 85 % of the
+/// range: `C_L` 0.77 against `C_L*` 0.21, L/D 1.1 against 2.1) flew a vehicle that needs 3.7
+/// times the density to hold its glide (heat flux ~1.9x) and has twice the L/D.
+///
+/// # Errors
+/// [`CampaignError::Setting`] (`dispersions.guidance.predictor_lift_parameter`) if the result
+/// is not finite and positive (a nominal flight without range, a polar without lift).
+pub fn profile_lift_parameter(
+    vehicle: &crate::vehicle::Vehicle,
+    model: &guidance_core::replan::PredictorModel<f64>,
+    nominal: &SimResult,
+    file: &str,
+) -> Result<f64, CampaignError> {
+    if !vehicle.aero.controls_alpha() {
+        return Ok(1.0);
+    }
+    let cl_star = (model.vehicle.cd0 / model.vehicle.k_polar).sqrt();
+    let lambda_at =
+        |alpha: f64| vehicle.aero.coefficients(PREDICTOR_POLAR_MACH, alpha).cl / cl_star;
+    let (mut sum, mut range) = (0.0, 0.0);
+    for w in nominal.samples.windows(2) {
+        if let [a, b] = w {
+            let d = b.flown_range_rad - a.flown_range_rad;
+            sum += d * 0.5 * (lambda_at(a.attitude.alpha_rad) + lambda_at(b.attitude.alpha_rad));
+            range += d;
+        }
+    }
+    let l = sum / range;
+    if l.is_finite() && l > 0.0 {
+        Ok(l)
+    } else {
+        Err(CampaignError::Setting {
+            file: file.into(),
+            field: "dispersions.guidance.predictor_lift_parameter".into(),
+            value: l.to_string(),
+            reason: "the stored profile gives no finite positive lift parameter (set it)".into(),
+        })
+    }
+}
+
 impl CampaignSetup {
     /// Build from `sc`: fly it nominally with its own guidance (the stored profile), take the
     /// end as the terminal interface, build the energy-indexed two-sided table, then place the
@@ -267,7 +313,8 @@ impl CampaignSetup {
                 g_load: vehicle.limits.g_load,
             },
             solver: ReplanConfig {
-                lambda: 1.0,
+                // 1: the polar's maximum L/D (the trim point of a trim vehicle).
+                lambda: gs.predictor_lift_parameter.unwrap_or(1.0),
                 min_vertical_fraction: gs.min_vertical_fraction,
                 max_vertical_fraction: gs.max_vertical_fraction,
                 tolerance_m: gs.replan_tolerance_km * 1e3,
