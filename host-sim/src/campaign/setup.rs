@@ -10,7 +10,7 @@ use guidance_core::interp::Interpolation;
 use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
+    LiftSchedule, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
 };
 use guidance_core::vinh::PredictorConfig;
 
@@ -63,6 +63,10 @@ pub struct CampaignSetup {
     pub estimator: EstimatorConfig<f64>,
     /// The guidance settings these were built from.
     pub guidance: CampaignGuidance,
+    /// The numerical predictor's lift parameter against speed (`predictor_lift_profile`).
+    pub lift_schedule: Option<LiftSchedule<f64>>,
+    /// No re-plan above this E-hat (`replan_start_normalized_energy`).
+    pub replan_start_normalized_energy: Option<f64>,
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -187,6 +191,49 @@ pub fn profile_lift_parameter(
     }
 }
 
+/// The stored profile's lift parameter against speed, for a profile that holds one angle of
+/// attack and then ramps to another (HORUS-2B: 40 deg, then from E-hat 0.31 a ramp to 11.5
+/// deg): `lambda = C_L(alpha)/C_L*` at [`PREDICTOR_POLAR_MACH`] at the first and last sample
+/// of the nominal flight `nominal` (up to the interface speed `interface_speed_m_s` \[m/s\]),
+/// `speed_high_m_s` the speed where it first departs from the entry value by more than 1 %,
+/// `speed_low_m_s` where it first comes within 1 % of the final value. `None` for a trim vehicle
+/// or a profile whose lift parameter does not change by more than 1 %.
+#[must_use]
+pub fn profile_lift_schedule(
+    vehicle: &crate::vehicle::Vehicle,
+    model: &guidance_core::replan::PredictorModel<f64>,
+    nominal: &SimResult,
+    interface_speed_m_s: f64,
+) -> Option<LiftSchedule<f64>> {
+    if !vehicle.aero.controls_alpha() {
+        return None;
+    }
+    let cl_star = (model.vehicle.cd0 / model.vehicle.k_polar).sqrt();
+    let lambda_at =
+        |alpha: f64| vehicle.aero.coefficients(PREDICTOR_POLAR_MACH, alpha).cl / cl_star;
+    let flown: Vec<(f64, f64)> = nominal
+        .samples
+        .iter()
+        .take_while(|s| s.state.speed_m_s >= interface_speed_m_s)
+        .map(|s| (s.state.speed_m_s, lambda_at(s.attitude.alpha_rad)))
+        .collect();
+    let (&(_, high), &(_, low)) = (flown.first()?, flown.last()?);
+    let near = |a: f64, b: f64| (a - b).abs() <= 0.01 * b.abs();
+    if near(low, high) {
+        return None;
+    }
+    let i = flown.iter().position(|&(_, l)| !near(l, high))?;
+    let speed_high_m_s = flown.get(i.checked_sub(1)?)?.0;
+    let speed_low_m_s = flown.iter().skip(i).find(|&&(_, l)| near(l, low))?.0;
+    let s = LiftSchedule {
+        speed_high_m_s,
+        lambda_high: high,
+        speed_low_m_s,
+        lambda_low: low,
+    };
+    s.is_valid().then_some(s)
+}
+
 impl CampaignSetup {
     /// Build from `sc`: fly it nominally with its own guidance (the stored profile), take the
     /// end as the terminal interface, build the energy-indexed two-sided table, then place the
@@ -309,12 +356,16 @@ impl CampaignSetup {
             every_n_ticks: gs.replan_every_n_ticks,
             target: RangeTarget::Point(lateral.target),
             limits: ReplanLimits {
-                heat_flux_w_m2: vehicle.limits.heat_flux_w_m2,
-                g_load: vehicle.limits.g_load,
+                heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * gs.replan_limit_scale[0],
+                g_load: vehicle.limits.g_load * gs.replan_limit_scale[1],
             },
             solver: ReplanConfig {
                 // 1: the polar's maximum L/D (the trim point of a trim vehicle).
-                lambda: gs.predictor_lift_parameter.unwrap_or(1.0),
+                lambda: match (gs.predictor_lift_parameter, gs.predictor_lift_profile) {
+                    (Some(l), _) => l,
+                    (None, true) => profile_lift_parameter(&vehicle, &model, &nominal, file)?,
+                    (None, false) => 1.0,
+                },
                 min_vertical_fraction: gs.min_vertical_fraction,
                 max_vertical_fraction: gs.max_vertical_fraction,
                 tolerance_m: gs.replan_tolerance_km * 1e3,
@@ -348,6 +399,12 @@ impl CampaignSetup {
             replanning,
             estimator: gs.estimator(),
             guidance: gs.clone(),
+            lift_schedule: if gs.predictor_lift_profile {
+                profile_lift_schedule(&vehicle, &model, &nominal, v_f)
+            } else {
+                None
+            },
+            replan_start_normalized_energy: gs.replan_start_normalized_energy,
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).

@@ -541,7 +541,9 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
 #[test]
 fn predictor_lift_parameter_of_the_stored_profile() {
     use host_sim::campaign::flight::fly_plain;
-    use host_sim::campaign::setup::{PREDICTOR_POLAR_MACH, profile_lift_parameter};
+    use host_sim::campaign::setup::{
+        PREDICTOR_POLAR_MACH, profile_lift_parameter, profile_lift_schedule,
+    };
     use host_sim::replan_loop::predictor_model;
     use host_sim::scenario::build_guidance;
     let lambda_of = |sc: &Scenario| {
@@ -553,11 +555,21 @@ fn predictor_lift_parameter_of_the_stored_profile() {
             host_sim::env::ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3)
                 .unwrap();
         let model = predictor_model(&vehicle, &fit, &env.planet, PREDICTOR_POLAR_MACH).unwrap();
-        profile_lift_parameter(&vehicle, &model, &nominal, "t").unwrap()
+        let end = nominal.samples.last().unwrap().state.speed_m_s;
+        (
+            profile_lift_parameter(&vehicle, &model, &nominal, "t").unwrap(),
+            profile_lift_schedule(&vehicle, &model, &nominal, end),
+        )
     };
-    assert_eq!(lambda_of(&Scenario::srm_glide()), 1.0);
-    let horus = lambda_of(&Scenario::default());
+    assert_eq!(lambda_of(&Scenario::srm_glide()), (1.0, None));
+    let (horus, schedule) = lambda_of(&Scenario::default());
     assert!((3.4..3.73).contains(&horus), "HORUS-2B lambda {horus}");
+    // 40 deg (lambda 3.73) until the ramp starts near 4 km/s, 11.5 deg (0.55) at the end.
+    let s = schedule.unwrap();
+    assert!((s.lambda_high - 3.733).abs() < 0.01, "{s:?}");
+    assert!((s.lambda_low - 0.552).abs() < 0.01, "{s:?}");
+    assert!((3500.0..4500.0).contains(&s.speed_high_m_s), "{s:?}");
+    assert!((700.0..900.0).contains(&s.speed_low_m_s), "{s:?}");
     let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "l.toml");
     assert_eq!(parse("").unwrap().guidance.predictor_lift_parameter, None);
     let g = parse("predictor_lift_parameter = 3.5").unwrap().guidance;
