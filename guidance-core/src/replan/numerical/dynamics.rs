@@ -67,16 +67,22 @@ pub(super) struct Model<S> {
     pub(super) schedule: Option<LiftSchedule<S>>,
 }
 
+/// `(lambda, 1 + lambda^2)` of `schedule` at speed `v` (out of line: the constant-lambda path
+/// of [`Model::rates`] keeps its code).
+#[inline(never)]
+fn scheduled<S: Real>(schedule: &LiftSchedule<S>, v: S) -> (S, S) {
+    let l = schedule.lambda_at(v);
+    (l, S::ONE + l * l)
+}
+
 impl<S: Real> Model<S> {
+    #[inline(always)]
     pub(super) fn rates(&self, y: &Y<S>) -> Rates<S> {
         let r = self.radius_m + y.h;
         let rho = self.atmosphere_h.density_unchecked(y.h);
         let (lambda, one_l2) = match &self.schedule {
             None => (self.lambda, self.one_l2),
-            Some(s) => {
-                let l = s.lambda_at(y.v);
-                (l, S::ONE + l * l)
-            }
+            Some(s) => scheduled(s, y.v),
         };
         let (drag, lift) =
             aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, lambda, one_l2, rho, y.v);
