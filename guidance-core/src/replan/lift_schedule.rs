@@ -51,6 +51,8 @@ impl<S: Real> LiftSchedule<S> {
         } else {
             S::ZERO
         };
-        self.lambda_low + w * (self.lambda_high - self.lambda_low)
+        let (lo, hi) = (self.lambda_low, self.lambda_high);
+        // Clamped: rounding must not carry the interpolation past an end.
+        (lo + w * (hi - lo)).clamp(lo.min(hi), lo.max(hi))
     }
 }
