@@ -63,10 +63,12 @@
 //! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
 //! 115 k instructions.
 
+mod lift_schedule;
 pub mod numerical;
 mod replanning;
 mod solver;
 
+pub use lift_schedule::LiftSchedule;
 pub use numerical::{NumericalRun, predict_numerical};
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,

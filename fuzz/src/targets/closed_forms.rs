@@ -1,6 +1,7 @@
 //! The Vinh closed forms through the predictor chain (skip, ballistic arc, glide), the
 //! glide-mode prediction with the sink modelled (`predict_glide_with_sink`), the numerical
-//! predictor (`predict_numerical`) and the re-planning solver (every predictor mode), in `f64` and `f32`, from mostly plausible and sometimes hostile vehicles,
+//! predictor (`predict_numerical`, also with a `LiftSchedule`) and the re-planning solver
+//! (every predictor mode, half the cases with a lift schedule), in `f64` and `f32`, from mostly plausible and sometimes hostile vehicles,
 //! lift settings and entry states. Checks: no panic; a prediction is finite (range, peaks, glide
 //! start) with non-negative peaks; a re-plan that commands a vertical fraction (any case but a
 //! fall-back) keeps it exactly in its configured bounds, its bank angle is finite, and its
@@ -8,8 +9,8 @@
 
 use guidance_core::NavState;
 use guidance_core::replan::{
-    PredictorMode, ReplanCase, ReplanConfig, ReplanLimits, predict_glide_with_sink,
-    predict_numerical, replan,
+    LiftSchedule, NumericalRun, PredictorMode, ReplanCase, ReplanConfig, ReplanLimits,
+    ReplanSolver, predict_glide_with_sink, predict_numerical, replan,
 };
 use guidance_core::scalar::Real;
 use guidance_core::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
@@ -30,6 +31,9 @@ struct Inputs {
     fractions: [f64; 2],
     limits: [f64; 2],
     mode: u8,
+    /// A lift schedule (`LiftSchedule`: speed high, lambda high, speed low, lambda low) for
+    /// the numerical predictions, if any.
+    schedule: Option<[f64; 4]>,
 }
 
 pub fn run<R: Rng>(rng: &mut R) -> Result<(), String> {
@@ -72,6 +76,18 @@ pub fn run<R: Rng>(rng: &mut R) -> Result<(), String> {
             pick(rng, (2.0, 15.0), (1.0, 20.0)),
         ],
         mode: rng.random_range(0..7),
+        schedule: None,
+    };
+    let inputs = Inputs {
+        schedule: rng.random_bool(0.5).then(|| {
+            [
+                pick(rng, (2000.0, 6000.0), (-100.0, 12_000.0)),
+                pick(rng, (0.5, 4.0), (-1.0, 20.0)),
+                pick(rng, (300.0, 2000.0), (-100.0, 12_000.0)),
+                pick(rng, (0.3, 2.0), (-1.0, 20.0)),
+            ]
+        }),
+        ..inputs
     };
     check::<f64>(&inputs)?;
     check::<f32>(&inputs)
@@ -148,6 +164,41 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
     {
         return Err(format!("{ty}: predict_numerical gave {p:?} for {i:?}"));
     }
+    let schedule = i.schedule.map(|[a, b, c, d]| LiftSchedule {
+        speed_high_m_s: s(a),
+        lambda_high: s(b),
+        speed_low_m_s: s(c),
+        lambda_low: s(d),
+    });
+    if let Some(sch) = schedule {
+        // Within its bounds for any speed (NaN included), valid or not.
+        for v in [-1.0, 0.0, 500.0, 3000.0, 9000.0, f64::NAN, f64::INFINITY] {
+            let l = sch.lambda_at(s(v));
+            let (a, b) = (sch.lambda_low, sch.lambda_high);
+            let inside = (l >= a.min(b) && l <= a.max(b)) || !(a.is_finite() && b.is_finite());
+            if sch.is_valid() && !(l.is_finite() && inside) {
+                return Err(format!("{ty}: lambda_at({v}) = {l:?} for {sch:?}"));
+            }
+        }
+        if let Ok(run) = NumericalRun::new(
+            &planet,
+            &atmosphere,
+            &vehicle,
+            &lift,
+            &entry,
+            &predictor,
+            PeakMode::Full,
+        ) {
+            let mut run = run.with_lift_schedule(sch);
+            if let Some(Ok(p)) = run.advance(u16::MAX)
+                && !finite_prediction(&p)
+            {
+                return Err(format!(
+                    "{ty}: scheduled numerical prediction gave {p:?} for {i:?}"
+                ));
+            }
+        }
+    }
     let config = ReplanConfig {
         lambda: s(i.lift[0]),
         min_vertical_fraction: s(i.fractions[0]),
@@ -178,15 +229,43 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
         latitude_rad: S::ZERO,
         longitude_rad: S::ZERO,
     };
-    let r = replan(
-        &planet,
-        &atmosphere,
-        &vehicle,
-        &nav,
-        s(i.target_range_m),
-        &limits,
-        &config,
-    );
+    let r = match schedule {
+        None => replan(
+            &planet,
+            &atmosphere,
+            &vehicle,
+            &nav,
+            s(i.target_range_m),
+            &limits,
+            &config,
+        ),
+        Some(sch) => {
+            let mut solver = ReplanSolver::new(
+                &planet,
+                &atmosphere,
+                &vehicle,
+                &nav,
+                s(i.target_range_m),
+                &limits,
+                &config,
+            )
+            .with_lift_schedule(sch);
+            // As `replan`: each step makes at most one predictor call (a numerical one spans
+            // at most MAX_STEPS / STEPS_PER_SOLVER_STEP + 1 steps), at most
+            // MAX_PREDICTOR_CALLS calls: 65 * 65 steps bound the solve.
+            let mut done = None;
+            for _ in 0..(65 * 65) {
+                done = solver.step();
+                if done.is_some() {
+                    break;
+                }
+            }
+            match done {
+                Some(r) => r,
+                None => return Err(format!("{ty}: scheduled solve did not finish for {i:?}")),
+            }
+        }
+    };
     let (lo, hi) = (config.min_vertical_fraction, config.max_vertical_fraction);
     // The solver's own rule for a usable interval (otherwise it falls back, typed).
     let bounds_valid = lo.is_finite() && hi.is_finite() && lo > S::ZERO && lo <= hi && hi <= S::ONE;

@@ -93,7 +93,7 @@ use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeT
 use crate::scalar::{Real, Scalar};
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
-use super::{ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver};
+use super::{LiftSchedule, ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver};
 use crate::vinh::VinhError;
 
 /// Largest accepted [`ReplanningConfig::every_n_ticks`] (one re-plan per 65535 ticks, about
@@ -326,6 +326,10 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     pending: Option<Pending<P>>,
     /// Onboard aerodynamic estimation (`None`: the predictor flies the model as is).
     estimator: Option<AeroEstimator<P>>,
+    /// The lift parameter against speed of numerical predictions and of the estimator's model.
+    lift_schedule: Option<LiftSchedule<P>>,
+    /// No solve starts while E-hat is above this.
+    start_energy: Option<S>,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -441,6 +445,8 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             last_position: None,
             pending: None,
             estimator: None,
+            lift_schedule: None,
+            start_energy: None,
         })
     }
 
@@ -453,6 +459,38 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     pub fn with_estimator(mut self, estimator: AeroEstimator<P>) -> Self {
         self.estimator = Some(estimator);
         self
+    }
+
+    /// Fly the lift parameter of `schedule` against the speed, instead of the constant
+    /// [`super::ReplanConfig::lambda`], in every numerical prediction
+    /// ([`super::ReplanSolver::with_lift_schedule`]) and in the estimator's model
+    /// ([`ReplanningGuidance::sense`]): for a stored angle-of-attack profile that changes along
+    /// the flight. Closed-form predictions keep the constant.
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] if the schedule is not valid
+    /// ([`LiftSchedule::is_valid`]).
+    pub fn with_lift_schedule(mut self, schedule: LiftSchedule<P>) -> Result<Self, GuidanceError> {
+        if !schedule.is_valid() {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        self.lift_schedule = Some(schedule);
+        Ok(self)
+    }
+
+    /// Start no solve while E-hat is above `max_normalized_energy` \[-\]: the stored profile
+    /// flies the entry until then (for example through the first pull-out, whose heat-flux
+    /// peak a constant-bank prediction from the entry state does not represent). Re-planning
+    /// ticks keep their cadence; a solve in progress is finished.
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] for a non-finite value.
+    pub fn with_start_energy(mut self, max_normalized_energy: S) -> Result<Self, GuidanceError> {
+        if !max_normalized_energy.is_finite() {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        self.start_energy = Some(max_normalized_energy);
+        Ok(self)
     }
 
     /// Feed the sensed aerodynamic accelerations at `nav` (the IMU's lift and drag
@@ -475,10 +513,14 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         };
         let m = &self.config.model;
         sensed.validate()?;
+        let lambda = match &self.lift_schedule {
+            Some(s) => s.lambda_at(to_p(nav.speed_m_s)),
+            None => self.config.solver.lambda,
+        };
         let Some(expected) = crate::estimate::expected_aero(
             &m.atmosphere,
             &m.vehicle,
-            self.config.solver.lambda,
+            lambda,
             to_p(nav.radius_m),
             to_p(nav.speed_m_s),
         ) else {
@@ -520,7 +562,15 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         let pending_before = self.pending;
         let mut calls = 0_u8;
         let mut steps = 0_u32;
-        if will_tick && (self.pending.is_some() || self.ticks.is_multiple_of(n)) {
+        let started = self.pending.is_some()
+            || match self.start_energy {
+                None => true,
+                Some(e0) => self
+                    .energy
+                    .normalized(nav.radius_m, nav.speed_m_s)
+                    .is_ok_and(|e| e <= e0),
+            };
+        if will_tick && started && (self.pending.is_some() || self.ticks.is_multiple_of(n)) {
             let e_hat = self.energy.normalized(nav.radius_m, nav.speed_m_s)?;
             let mut p = match self.pending {
                 Some(p) => p,
@@ -599,6 +649,10 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             &cfg.limits,
             &cfg.solver,
         );
+        let solver = match self.lift_schedule {
+            Some(s) => solver.with_lift_schedule(s),
+            None => solver,
+        };
         Pending {
             // A non-finite range to go (non-finite model radius or target sum): out of domain.
             solver: if rtg.is_some() {

@@ -44,6 +44,7 @@ use crate::vinh::num::{Zeroin, ZeroinStep};
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
 use crate::vinh::validity::Validity;
 
+use super::LiftSchedule;
 use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
@@ -98,6 +99,8 @@ pub struct ReplanSolver<S> {
     run: Option<NumericalRun<S>>,
     /// Integration steps taken by numerical predictions.
     integration_steps: u32,
+    /// The lift parameter of numerical predictions against speed (else `config.lambda`).
+    lift_schedule: Option<LiftSchedule<S>>,
     calls: u8,
     phase: Phase<S>,
 }
@@ -159,6 +162,7 @@ impl<S: Real> ReplanSolver<S> {
             numerical: config.mode == PredictorMode::Numerical,
             run: None,
             integration_steps: 0,
+            lift_schedule: None,
             calls: 0,
             phase: Phase::EndLo,
         };
@@ -183,6 +187,17 @@ impl<S: Real> ReplanSolver<S> {
             ));
         }
         s
+    }
+
+    /// This solver with its numerical predictions flying the lift parameter of `schedule`
+    /// against the speed ([`NumericalRun::with_lift_schedule`]; closed-form predictions keep
+    /// [`ReplanConfig::lambda`]). An invalid schedule is ignored.
+    #[must_use]
+    pub fn with_lift_schedule(mut self, schedule: LiftSchedule<S>) -> Self {
+        if schedule.is_valid() {
+            self.lift_schedule = Some(schedule);
+        }
+        self
     }
 
     /// This solver, finished as a fall-back for `e` (out of domain) without a predictor call.
@@ -275,7 +290,10 @@ impl<S: Real> ReplanSolver<S> {
                     &self.config.predictor,
                     peaks,
                 ) {
-                    Ok(r) => r,
+                    Ok(r) => match self.lift_schedule {
+                        Some(s) => r.with_lift_schedule(s),
+                        None => r,
+                    },
                     Err(e) => {
                         self.calls = self.calls.saturating_add(1);
                         return Some(Err(e));

@@ -3,6 +3,7 @@
 mod estimate;
 mod guidance_props;
 mod lateral;
+mod lift_schedule;
 mod navconv;
 mod node_capacity;
 mod numerical_predictor;

@@ -190,6 +190,8 @@ impl Fields {
             replanning,
             estimator,
             guidance,
+            lift_schedule,
+            replan_start_normalized_energy,
         } = s;
         self.debug("setup.energy", energy);
         self.debug("setup.interface_energy_j_kg", interface_energy_j_kg);
@@ -204,6 +206,11 @@ impl Fields {
         self.debug("setup.replanning", replanning);
         self.debug("setup.estimator", estimator);
         self.debug("setup.guidance", guidance);
+        self.debug("setup.lift_schedule", lift_schedule);
+        self.debug(
+            "setup.replan_start_normalized_energy",
+            replan_start_normalized_energy,
+        );
     }
 }
 

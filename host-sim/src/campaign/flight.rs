@@ -259,6 +259,12 @@ pub fn fly_case_logged(
             if mode == Mode::ReplanEstimation {
                 g = g.with_estimator(AeroEstimator::new(setup.estimator).map_err(gerr)?);
             }
+            if let Some(s) = setup.lift_schedule {
+                g = g.with_lift_schedule(s).map_err(gerr)?;
+            }
+            if let Some(e) = setup.replan_start_normalized_energy {
+                g = g.with_start_energy(e).map_err(gerr)?;
+            }
             let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
                 let s = &s.source;

@@ -101,6 +101,28 @@ pub struct CampaignGuidance {
     /// campaigns").
     #[serde(skip_serializing_if = "Option::is_none")]
     pub predictor_final_speed_offset_m_s: Option<f64>,
+    /// Lift parameter `lambda = C_L / C_L*` of the re-planner's predictor \[-\] (constant over
+    /// a prediction), in `(0, 20]`. Default (absent): 1, the polar's maximum L/D (the trim
+    /// point of a trim vehicle such as the SRM capsule). The value of a vehicle flying an
+    /// angle-of-attack profile: [`super::setup::profile_lift_parameter`] (HORUS-2B: 3.58).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub predictor_lift_parameter: Option<f64>,
+    /// The predictor flies the lift of the stored angle-of-attack profile (default false):
+    /// the constant lift parameter (closed forms) becomes
+    /// [`super::setup::profile_lift_parameter`] unless `predictor_lift_parameter` is set, and
+    /// numerical predictions and the onboard estimator's model follow
+    /// [`super::setup::profile_lift_schedule`] against speed. No effect on a trim vehicle.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub predictor_lift_profile: bool,
+    /// No re-plan starts while E-hat is above this \[-\] (default absent: from the entry): the
+    /// stored profile flies the entry pull-out. In `(0, 1]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replan_start_normalized_energy: Option<f64>,
+    /// The re-planner's heat-flux and g-load limits as multiples of the vehicle's `[heat flux,
+    /// g-load]` \[-\] (default `[1, 1]`; the campaign still counts flights over the vehicle's
+    /// own limits). Each in `(0, 100]`.
+    #[serde(skip_serializing_if = "is_unit_scale")]
+    pub replan_limit_scale: [f64; 2],
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -112,6 +134,11 @@ pub struct CampaignGuidance {
     /// Smallest sensed drag acceleration that updates the estimate \[m/s^2\] (default 0.5,
     /// about 0.05 g).
     pub estimator_min_drag_m_s2: f64,
+}
+
+/// Whether both limit scales are 1 (the default: not written).
+fn is_unit_scale(s: &[f64; 2]) -> bool {
+    *s == [1.0, 1.0]
 }
 
 impl Default for CampaignGuidance {
@@ -130,6 +157,10 @@ impl Default for CampaignGuidance {
             glide_sink: true,
             predictor: CampaignPredictor::Hybrid,
             predictor_final_speed_offset_m_s: None,
+            predictor_lift_parameter: None,
+            predictor_lift_profile: false,
+            replan_start_normalized_energy: None,
+            replan_limit_scale: [1.0, 1.0],
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -250,6 +281,32 @@ impl CampaignGuidance {
                     "must be [min, max] with 0 < min <= 1 <= max, finite",
                 ));
             }
+        }
+        if let Some(l) = self.predictor_lift_parameter
+            && !(l.is_finite() && l > 0.0 && l <= 20.0)
+        {
+            return Err(bad(
+                "predictor_lift_parameter",
+                l.to_string(),
+                "must be in (0, 20]",
+            ));
+        }
+        let [q, g] = self.replan_limit_scale;
+        if !(q.is_finite() && g.is_finite() && q > 0.0 && g > 0.0 && q <= 100.0 && g <= 100.0) {
+            return Err(bad(
+                "replan_limit_scale",
+                format!("[{q}, {g}]"),
+                "must be [heat flux, g-load] scales in (0, 100]",
+            ));
+        }
+        if let Some(e) = self.replan_start_normalized_energy
+            && !(e.is_finite() && e > 0.0 && e <= 1.0)
+        {
+            return Err(bad(
+                "replan_start_normalized_energy",
+                e.to_string(),
+                "must be in (0, 1]",
+            ));
         }
         let m = self.estimator_min_drag_m_s2;
         if !(m.is_finite() && m >= 0.0) {

@@ -10,7 +10,7 @@ use guidance_core::interp::Interpolation;
 use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
+    LiftSchedule, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
 };
 use guidance_core::vinh::PredictorConfig;
 
@@ -63,6 +63,10 @@ pub struct CampaignSetup {
     pub estimator: EstimatorConfig<f64>,
     /// The guidance settings these were built from.
     pub guidance: CampaignGuidance,
+    /// The numerical predictor's lift parameter against speed (`predictor_lift_profile`).
+    pub lift_schedule: Option<LiftSchedule<f64>>,
+    /// No re-plan above this E-hat (`replan_start_normalized_energy`).
+    pub replan_start_normalized_energy: Option<f64>,
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -139,6 +143,95 @@ fn energy_table(
             source: e.into(),
         }
     })
+}
+
+/// The predictor's lift parameter `lambda = C_L / C_L*` of the stored profile (a value for
+/// `[dispersions.guidance] predictor_lift_parameter`, docs/DISPERSIONS.md): the mean over
+/// the nominal flight `nominal`, weighted by the range flown, of `C_L(alpha)` at
+/// [`PREDICTOR_POLAR_MACH`] and the flown angle of attack, over the model polar's `C_L* =
+/// sqrt(C_D0/K)` (the lift coefficient of maximum L/D). A vehicle without angle-of-attack
+/// control (trim only, as the SRM capsule) gives 1: its model polar has the trim point at
+/// maximum L/D. With `lambda = 1` the predictor of HORUS-2B (alpha 40 deg for 85 % of the
+/// range: `C_L` 0.77 against `C_L*` 0.21, L/D 1.1 against 2.1) flew a vehicle that needs 3.7
+/// times the density to hold its glide (heat flux ~1.9x) and has twice the L/D.
+///
+/// # Errors
+/// [`CampaignError::Setting`] (`dispersions.guidance.predictor_lift_parameter`) if the result
+/// is not finite and positive (a nominal flight without range, a polar without lift).
+pub fn profile_lift_parameter(
+    vehicle: &crate::vehicle::Vehicle,
+    model: &guidance_core::replan::PredictorModel<f64>,
+    nominal: &SimResult,
+    file: &str,
+) -> Result<f64, CampaignError> {
+    if !vehicle.aero.controls_alpha() {
+        return Ok(1.0);
+    }
+    let cl_star = (model.vehicle.cd0 / model.vehicle.k_polar).sqrt();
+    let lambda_at =
+        |alpha: f64| vehicle.aero.coefficients(PREDICTOR_POLAR_MACH, alpha).cl / cl_star;
+    let (mut sum, mut range) = (0.0, 0.0);
+    for w in nominal.samples.windows(2) {
+        if let [a, b] = w {
+            let d = b.flown_range_rad - a.flown_range_rad;
+            sum += d * 0.5 * (lambda_at(a.attitude.alpha_rad) + lambda_at(b.attitude.alpha_rad));
+            range += d;
+        }
+    }
+    let l = sum / range;
+    if l.is_finite() && l > 0.0 {
+        Ok(l)
+    } else {
+        Err(CampaignError::Setting {
+            file: file.into(),
+            field: "dispersions.guidance.predictor_lift_parameter".into(),
+            value: l.to_string(),
+            reason: "the stored profile gives no finite positive lift parameter (set it)".into(),
+        })
+    }
+}
+
+/// The stored profile's lift parameter against speed, for a profile that holds one angle of
+/// attack and then ramps to another (HORUS-2B: 40 deg, then from E-hat 0.31 a ramp to 11.5
+/// deg): `lambda = C_L(alpha)/C_L*` at [`PREDICTOR_POLAR_MACH`] at the first and last sample
+/// of the nominal flight `nominal` (up to the interface speed `interface_speed_m_s` \[m/s\]),
+/// `speed_high_m_s` the speed where it first departs from the entry value by more than 1 %,
+/// `speed_low_m_s` where it first comes within 1 % of the final value. `None` for a trim vehicle
+/// or a profile whose lift parameter does not change by more than 1 %.
+#[must_use]
+pub fn profile_lift_schedule(
+    vehicle: &crate::vehicle::Vehicle,
+    model: &guidance_core::replan::PredictorModel<f64>,
+    nominal: &SimResult,
+    interface_speed_m_s: f64,
+) -> Option<LiftSchedule<f64>> {
+    if !vehicle.aero.controls_alpha() {
+        return None;
+    }
+    let cl_star = (model.vehicle.cd0 / model.vehicle.k_polar).sqrt();
+    let lambda_at =
+        |alpha: f64| vehicle.aero.coefficients(PREDICTOR_POLAR_MACH, alpha).cl / cl_star;
+    let flown: Vec<(f64, f64)> = nominal
+        .samples
+        .iter()
+        .take_while(|s| s.state.speed_m_s >= interface_speed_m_s)
+        .map(|s| (s.state.speed_m_s, lambda_at(s.attitude.alpha_rad)))
+        .collect();
+    let (&(_, high), &(_, low)) = (flown.first()?, flown.last()?);
+    let near = |a: f64, b: f64| (a - b).abs() <= 0.01 * b.abs();
+    if near(low, high) {
+        return None;
+    }
+    let i = flown.iter().position(|&(_, l)| !near(l, high))?;
+    let speed_high_m_s = flown.get(i.checked_sub(1)?)?.0;
+    let speed_low_m_s = flown.iter().skip(i).find(|&&(_, l)| near(l, low))?.0;
+    let s = LiftSchedule {
+        speed_high_m_s,
+        lambda_high: high,
+        speed_low_m_s,
+        lambda_low: low,
+    };
+    s.is_valid().then_some(s)
 }
 
 impl CampaignSetup {
@@ -263,11 +356,16 @@ impl CampaignSetup {
             every_n_ticks: gs.replan_every_n_ticks,
             target: RangeTarget::Point(lateral.target),
             limits: ReplanLimits {
-                heat_flux_w_m2: vehicle.limits.heat_flux_w_m2,
-                g_load: vehicle.limits.g_load,
+                heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * gs.replan_limit_scale[0],
+                g_load: vehicle.limits.g_load * gs.replan_limit_scale[1],
             },
             solver: ReplanConfig {
-                lambda: 1.0,
+                // 1: the polar's maximum L/D (the trim point of a trim vehicle).
+                lambda: match (gs.predictor_lift_parameter, gs.predictor_lift_profile) {
+                    (Some(l), _) => l,
+                    (None, true) => profile_lift_parameter(&vehicle, &model, &nominal, file)?,
+                    (None, false) => 1.0,
+                },
                 min_vertical_fraction: gs.min_vertical_fraction,
                 max_vertical_fraction: gs.max_vertical_fraction,
                 tolerance_m: gs.replan_tolerance_km * 1e3,
@@ -301,6 +399,12 @@ impl CampaignSetup {
             replanning,
             estimator: gs.estimator(),
             guidance: gs.clone(),
+            lift_schedule: if gs.predictor_lift_profile {
+                profile_lift_schedule(&vehicle, &model, &nominal, v_f)
+            } else {
+                None
+            },
+            replan_start_normalized_energy: gs.replan_start_normalized_energy,
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).

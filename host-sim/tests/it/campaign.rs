@@ -565,3 +565,63 @@ fn resume_refuses_other_inputs_and_reuses_identical_ones() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The predictor's lift parameter: `profile_lift_parameter` gives 1 for the trim-only SRM
+/// capsule (its polar's trim point is at maximum L/D) and, for HORUS-2B, the range-weighted
+/// `C_L(alpha)/C_L*` of its stored profile (alpha 40 deg over most of the range: `C_L` 0.77
+/// at Mach 20 against `C_L*` 0.206, lambda 3.73; 11.5 deg at the end, lambda 0.47), between
+/// them; `[dispersions.guidance] predictor_lift_parameter` reaches the solver (default 1) and a
+/// bad value names the field.
+#[test]
+fn predictor_lift_parameter_of_the_stored_profile() {
+    use host_sim::campaign::flight::fly_plain;
+    use host_sim::campaign::setup::{
+        PREDICTOR_POLAR_MACH, profile_lift_parameter, profile_lift_schedule,
+    };
+    use host_sim::replan_loop::predictor_model;
+    use host_sim::scenario::build_guidance;
+    let lambda_of = |sc: &Scenario| {
+        let vehicle = sc.load_vehicle().unwrap();
+        let env = sc.environment.build();
+        let g = build_guidance(sc, &env.planet, "t").unwrap();
+        let nominal = fly_plain(sc, &env, &vehicle, g).unwrap();
+        let fit =
+            host_sim::env::ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3)
+                .unwrap();
+        let model = predictor_model(&vehicle, &fit, &env.planet, PREDICTOR_POLAR_MACH).unwrap();
+        let end = nominal.samples.last().unwrap().state.speed_m_s;
+        (
+            profile_lift_parameter(&vehicle, &model, &nominal, "t").unwrap(),
+            profile_lift_schedule(&vehicle, &model, &nominal, end),
+        )
+    };
+    assert_eq!(lambda_of(&Scenario::srm_glide()), (1.0, None));
+    let (horus, schedule) = lambda_of(&Scenario::default());
+    assert!((3.4..3.73).contains(&horus), "HORUS-2B lambda {horus}");
+    // 40 deg (lambda 3.73) until the ramp starts near 4 km/s, 11.5 deg (0.55) at the end.
+    let s = schedule.unwrap();
+    assert!((s.lambda_high - 3.733).abs() < 0.01, "{s:?}");
+    assert!((s.lambda_low - 0.552).abs() < 0.01, "{s:?}");
+    assert!((3500.0..4500.0).contains(&s.speed_high_m_s), "{s:?}");
+    assert!((700.0..900.0).contains(&s.speed_low_m_s), "{s:?}");
+    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "l.toml");
+    assert_eq!(parse("").unwrap().guidance.predictor_lift_parameter, None);
+    let g = parse("predictor_lift_parameter = 3.5").unwrap().guidance;
+    let setup = CampaignSetup::with_guidance(
+        &Scenario::srm_glide(),
+        "builtin:srm-glide",
+        Some(2500.0),
+        &g,
+    )
+    .unwrap();
+    assert_eq!(setup.replanning.solver.lambda, 3.5);
+    assert_eq!(srm_setup().replanning.solver.lambda, 1.0);
+    for v in ["0.0", "-1.0", "25.0", "nan"] {
+        let e = parse(&format!("predictor_lift_parameter = {v}")).unwrap_err();
+        assert_eq!(
+            field_of(e),
+            "dispersions.guidance.predictor_lift_parameter",
+            "{v}"
+        );
+    }
+}

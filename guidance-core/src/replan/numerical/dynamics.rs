@@ -2,6 +2,7 @@
 //! equations of motion, the RK4 step and the step rule (see the parent module), and the
 //! parabolic refinement of a sampled peak.
 
+use crate::replan::LiftSchedule;
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, VehicleParams, aero_accelerations_m_s2};
 use crate::vinh::num::{k, sin_cos};
@@ -62,20 +63,29 @@ pub(super) struct Model<S> {
     /// `1 + lambda^2`.
     pub(super) one_l2: S,
     pub(super) f: S,
+    /// The lift parameter against speed (replaces `lambda` when present).
+    pub(super) schedule: Option<LiftSchedule<S>>,
+}
+
+/// `(lambda, 1 + lambda^2)` of `schedule` at speed `v` (out of line: the constant-lambda path
+/// of [`Model::rates`] keeps its code).
+#[inline(never)]
+fn scheduled<S: Real>(schedule: &LiftSchedule<S>, v: S) -> (S, S) {
+    let l = schedule.lambda_at(v);
+    (l, S::ONE + l * l)
 }
 
 impl<S: Real> Model<S> {
+    #[inline(always)]
     pub(super) fn rates(&self, y: &Y<S>) -> Rates<S> {
         let r = self.radius_m + y.h;
         let rho = self.atmosphere_h.density_unchecked(y.h);
-        let (drag, lift) = aero_accelerations_m_s2(
-            &self.vehicle,
-            self.sqrt_cd0_k,
-            self.lambda,
-            self.one_l2,
-            rho,
-            y.v,
-        );
+        let (lambda, one_l2) = match &self.schedule {
+            None => (self.lambda, self.one_l2),
+            Some(s) => scheduled(s, y.v),
+        };
+        let (drag, lift) =
+            aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, lambda, one_l2, rho, y.v);
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
         let v_r = y.v / r;

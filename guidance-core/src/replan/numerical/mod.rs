@@ -62,6 +62,7 @@
 //! [`VinhError::EscapeTrajectory`] (ascending above escape speed out of the atmosphere),
 //! [`VinhError::NonFiniteResult`] (defensive).
 
+use crate::replan::LiftSchedule;
 use crate::scalar::Real;
 use crate::vinh::VinhError;
 use crate::vinh::nondim::{
@@ -166,6 +167,7 @@ impl<S: Real> NumericalRun<S> {
                 lambda: lift.lambda,
                 one_l2: S::ONE + lift.lambda * lift.lambda,
                 f: lift.vertical_fraction,
+                schedule: None,
             },
             final_speed_m_s: config.final_speed_m_s,
             peaks,
@@ -191,6 +193,17 @@ impl<S: Real> NumericalRun<S> {
             above: state.flight_path_angle_rad > S::ZERO,
             outcome: None,
         })
+    }
+
+    /// This prediction with the lift parameter following `schedule` against the speed instead
+    /// of the constant `lift.lambda` (an angle-of-attack profile that changes along the
+    /// flight). An invalid schedule ([`LiftSchedule::is_valid`]) is ignored.
+    #[must_use]
+    pub fn with_lift_schedule(mut self, schedule: LiftSchedule<S>) -> Self {
+        if schedule.is_valid() {
+            self.model.schedule = Some(schedule);
+        }
+        self
     }
 
     /// Integration steps taken so far (at most [`MAX_STEPS`]).
