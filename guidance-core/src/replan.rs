@@ -65,11 +65,13 @@
 
 mod lift_schedule;
 pub mod numerical;
+mod path_bound;
 mod replanning;
 mod solver;
 
 pub use lift_schedule::LiftSchedule;
 pub use numerical::{NumericalRun, predict_numerical};
+pub use path_bound::PathBound;
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
     ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,

@@ -93,7 +93,9 @@ use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeT
 use crate::scalar::{Real, Scalar};
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
-use super::{LiftSchedule, ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver};
+use super::{
+    LiftSchedule, PathBound, ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver,
+};
 use crate::vinh::VinhError;
 
 /// Largest accepted [`ReplanningConfig::every_n_ticks`] (one re-plan per 65535 ticks, about
@@ -232,6 +234,8 @@ pub struct ReplanReport<S> {
     pub applied: bool,
     /// Number of nodes whose bank angle was set (0 if not applied).
     pub nodes_replanned: u16,
+    /// True if the installed bank is the [`PathBound`]'s, smaller than the solved `bank_rad`.
+    pub path_bound_active: bool,
 }
 
 /// Counts of re-plan outcomes since start (saturating).
@@ -250,6 +254,8 @@ pub struct ReplanCounts {
     pub fall_backs: u32,
     /// Re-plans whose table was installed.
     pub applied: u32,
+    /// Installed re-plans whose bank the [`PathBound`] lowered.
+    pub path_bound_active: u32,
     /// Largest predictor-call count of one re-plan.
     pub max_predictor_calls: u8,
 }
@@ -266,6 +272,9 @@ impl ReplanCounts {
         }
         if r.applied {
             inc(&mut self.applied);
+        }
+        if r.path_bound_active {
+            inc(&mut self.path_bound_active);
         }
         self.max_predictor_calls = self.max_predictor_calls.max(r.predictor_calls);
     }
@@ -330,6 +339,8 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     lift_schedule: Option<LiftSchedule<P>>,
     /// No solve starts while E-hat is above this.
     start_energy: Option<S>,
+    /// The limit-driven bound on the applied bank magnitude.
+    path_bound: Option<PathBound<P>>,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -447,6 +458,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             estimator: None,
             lift_schedule: None,
             start_energy: None,
+            path_bound: None,
         })
     }
 
@@ -491,6 +503,56 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         }
         self.start_energy = Some(max_normalized_energy);
         Ok(self)
+    }
+
+    /// Bound every installed re-planned bank magnitude by the heat-flux and g-load limits at
+    /// the state where it is installed: the vertical lift fraction is at least
+    /// [`PathBound::min_vertical_fraction`] of the predictor model (scaled by the onboard
+    /// estimate, with the lift parameter of the schedule at the current speed, else
+    /// [`super::ReplanConfig::lambda`]), within the solver's `[min, max]` vertical fraction.
+    /// The solver's own limit checks ([`ReplanningConfig::limits`]) are unchanged: set them
+    /// loose to leave the limits to the bound.
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] if the bound is not valid ([`PathBound::is_valid`]).
+    pub fn with_path_bound(mut self, bound: PathBound<P>) -> Result<Self, GuidanceError> {
+        if !bound.is_valid() {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        self.path_bound = Some(bound);
+        Ok(self)
+    }
+
+    /// The bank magnitude \[rad\] `bank_rad` lowered to the [`PathBound`] at `nav` (the
+    /// model scaled by the current estimate), and whether the bound lowered it. Unchanged without a
+    /// bound or where the bound is not computable.
+    fn bounded_bank(&self, bank_rad: P, nav: &NavState<P>) -> (P, bool) {
+        let Some(b) = &self.path_bound else {
+            return (bank_rad, false);
+        };
+        let m = &self.config.model;
+        let vehicle = self
+            .estimator
+            .as_ref()
+            .and_then(|e| e.scales().apply(&m.atmosphere, &m.vehicle))
+            .map_or(m.vehicle, |(_, v)| v);
+        let lambda = match &self.lift_schedule {
+            Some(s) => s.lambda_at(nav.speed_m_s),
+            None => self.config.solver.lambda,
+        };
+        let c = &self.config.solver;
+        match b.min_vertical_fraction(&m.planet, &vehicle, lambda, nav) {
+            Some(f) => {
+                let f = f.clamp(c.min_vertical_fraction, c.max_vertical_fraction);
+                let max_bank = f.clamp(P::ZERO, P::ONE).acos();
+                if bank_rad > max_bank {
+                    (max_bank, true)
+                } else {
+                    (bank_rad, false)
+                }
+            }
+            None => (bank_rad, false),
+        }
     }
 
     /// Feed the sensed aerodynamic accelerations at `nav` (the IMU's lift and drag
@@ -587,7 +649,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             match done {
                 Some(res) => {
                     self.pending = None;
-                    let (r, old) = self.apply(&p, &res, e_hat);
+                    let (r, old) = self.apply(&p, &res, e_hat, &navp);
                     report = Some(r);
                     previous = old;
                 }
@@ -674,6 +736,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         p: &Pending<P>,
         res: &ReplanResult<P>,
         e_hat: S,
+        nav: &NavState<P>,
     ) -> (ReplanReport<P>, Option<NodeTable<S, N>>) {
         let cfg = &self.config;
         let rtg = p.range_to_go_m;
@@ -700,12 +763,15 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             predicted_peak_g_load: res.prediction.map(|p| p.peak_g_load),
             applied: false,
             nodes_replanned: 0,
+            path_bound_active: false,
         };
         if !apply || !res.bank_rad.is_finite() {
             return (report, None);
         }
-        // The solved magnitude in the guidance scalar.
-        let bank = S::from_f64(res.bank_rad.to_f64());
+        let (bank, bound) = self.bounded_bank(res.bank_rad, nav);
+        report.path_bound_active = bound;
+        // The (bounded) solved magnitude in the guidance scalar.
+        let bank = S::from_f64(bank.to_f64());
         let mut table = self.guidance.table().clone();
         let bounds = table.bounds();
         let mut count = 0_u16;

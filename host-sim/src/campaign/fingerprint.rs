@@ -192,6 +192,7 @@ impl Fields {
             guidance,
             lift_schedule,
             replan_start_normalized_energy,
+            path_bound,
         } = s;
         self.debug("setup.energy", energy);
         self.debug("setup.interface_energy_j_kg", interface_energy_j_kg);
@@ -211,6 +212,10 @@ impl Fields {
             "setup.replan_start_normalized_energy",
             replan_start_normalized_energy,
         );
+        // Absent without a bound: the fingerprints of campaigns before it are unchanged.
+        if let Some(b) = path_bound {
+            self.debug("setup.path_bound", &b);
+        }
     }
 }
 

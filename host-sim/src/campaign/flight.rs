@@ -265,6 +265,9 @@ pub fn fly_case_logged(
             if let Some(e) = setup.replan_start_normalized_energy {
                 g = g.with_start_energy(e).map_err(gerr)?;
             }
+            if let Some(b) = setup.path_bound {
+                g = g.with_path_bound(b).map_err(gerr)?;
+            }
             let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
                 let s = &s.source;

@@ -123,6 +123,17 @@ pub struct CampaignGuidance {
     /// own limits). Each in `(0, 100]`.
     #[serde(skip_serializing_if = "is_unit_scale")]
     pub replan_limit_scale: [f64; 2],
+    /// Bound the re-planned bank magnitude by heat-flux and g-load limits at the state where
+    /// it is installed ([`guidance_core::replan::PathBound`], docs/DISPERSIONS.md "Path limits
+    /// as a bound on the bank"): the bound's limits as multiples of the vehicle's `[heat flux,
+    /// g-load]` \[-\], each in `(0, 100]` (below 1: a margin; 100 leaves that limit out).
+    /// Default (absent): no bound.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path_bound_limit_scale: Option<[f64; 2]>,
+    /// The bound's time to stop a descent \[s\], in `[0, 1000]` (default 0: the plain
+    /// quasi-equilibrium-glide bound). Only with `path_bound_limit_scale`.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub path_bound_descent_time_s: f64,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -134,6 +145,12 @@ pub struct CampaignGuidance {
     /// Smallest sensed drag acceleration that updates the estimate \[m/s^2\] (default 0.5,
     /// about 0.05 g).
     pub estimator_min_drag_m_s2: f64,
+}
+
+/// Whether `x` is 0 (the default: not written).
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// Whether both limit scales are 1 (the default: not written).
@@ -161,6 +178,8 @@ impl Default for CampaignGuidance {
             predictor_lift_profile: false,
             replan_start_normalized_energy: None,
             replan_limit_scale: [1.0, 1.0],
+            path_bound_limit_scale: None,
+            path_bound_descent_time_s: 0.0,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -297,6 +316,23 @@ impl CampaignGuidance {
                 "replan_limit_scale",
                 format!("[{q}, {g}]"),
                 "must be [heat flux, g-load] scales in (0, 100]",
+            ));
+        }
+        if let Some([q, g]) = self.path_bound_limit_scale
+            && !(q.is_finite() && g.is_finite() && q > 0.0 && g > 0.0 && q <= 100.0 && g <= 100.0)
+        {
+            return Err(bad(
+                "path_bound_limit_scale",
+                format!("[{q}, {g}]"),
+                "must be [heat flux, g-load] scales in (0, 100]",
+            ));
+        }
+        let t = self.path_bound_descent_time_s;
+        if !(t.is_finite() && (0.0..=1000.0).contains(&t)) {
+            return Err(bad(
+                "path_bound_descent_time_s",
+                t.to_string(),
+                "must be in [0, 1000] s",
             ));
         }
         if let Some(e) = self.replan_start_normalized_energy

@@ -10,7 +10,7 @@ use guidance_core::interp::Interpolation;
 use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    LiftSchedule, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
+    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
 };
 use guidance_core::vinh::PredictorConfig;
 
@@ -67,6 +67,8 @@ pub struct CampaignSetup {
     pub lift_schedule: Option<LiftSchedule<f64>>,
     /// No re-plan above this E-hat (`replan_start_normalized_energy`).
     pub replan_start_normalized_energy: Option<f64>,
+    /// The limit-driven bound on the re-planned bank (`path_bound_limit_scale`).
+    pub path_bound: Option<PathBound<f64>>,
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -405,6 +407,13 @@ impl CampaignSetup {
                 None
             },
             replan_start_normalized_energy: gs.replan_start_normalized_energy,
+            path_bound: gs.path_bound_limit_scale.map(|[q, g]| PathBound {
+                limits: ReplanLimits {
+                    heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * q,
+                    g_load: vehicle.limits.g_load * g,
+                },
+                descent_time_s: gs.path_bound_descent_time_s,
+            }),
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).

@@ -625,3 +625,42 @@ fn predictor_lift_parameter_of_the_stored_profile() {
         );
     }
 }
+
+/// `[dispersions.guidance] path_bound_limit_scale` and `path_bound_descent_time_s` reach the
+/// set-up as a `PathBound` on the vehicle's limits (none by default); bad values name the field.
+#[test]
+fn path_bound_settings_reach_the_setup() {
+    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
+    assert_eq!(srm_setup().path_bound, None);
+    let g = parse("path_bound_limit_scale = [100, 0.9]\npath_bound_descent_time_s = 20")
+        .unwrap()
+        .guidance;
+    let setup = CampaignSetup::with_guidance(
+        &Scenario::srm_glide(),
+        "builtin:srm-glide",
+        Some(2500.0),
+        &g,
+    )
+    .unwrap();
+    let b = setup.path_bound.unwrap();
+    let own = setup.scenario.load_vehicle().unwrap().limits;
+    assert_eq!(b.limits.heat_flux_w_m2, own.heat_flux_w_m2 * 100.0);
+    assert_eq!(b.limits.g_load, own.g_load * 0.9);
+    assert_eq!(b.descent_time_s, 20.0);
+    for v in ["[0, 1]", "[1, -1]", "[1, 101]", "[nan, 1]"] {
+        let e = parse(&format!("path_bound_limit_scale = {v}")).unwrap_err();
+        assert_eq!(
+            field_of(e),
+            "dispersions.guidance.path_bound_limit_scale",
+            "{v}"
+        );
+    }
+    for v in ["-1.0", "1001.0", "nan"] {
+        let e = parse(&format!("path_bound_descent_time_s = {v}")).unwrap_err();
+        assert_eq!(
+            field_of(e),
+            "dispersions.guidance.path_bound_descent_time_s",
+            "{v}"
+        );
+    }
+}
