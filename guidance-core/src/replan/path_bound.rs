@@ -85,9 +85,33 @@ impl<S: Real> PathBound<S> {
         if !ok {
             return None;
         }
-        let (r, v) = (nav.radius_m, nav.speed_m_s);
         let cl = lambda * (vehicle.cd0 / vehicle.k_polar).sqrt_raw();
         let cd = vehicle.cd0 * (S::ONE + lambda * lambda);
+        self.fraction(
+            planet.mu_m3_s2,
+            nav.radius_m,
+            nav.speed_m_s,
+            nav.flight_path_angle_rad.sin(),
+            cl,
+            cd,
+            vehicle,
+        )
+    }
+
+    /// [`PathBound::min_vertical_fraction`] without the input checks, from the gravitational
+    /// parameter \[m^3/s^2\], radius \[m\], speed \[m/s\], sine of the flight-path angle,
+    /// `C_L` and `C_D` \[-\] (for the numerical predictor, whose inputs are validated once).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn fraction(
+        &self,
+        mu_m3_s2: S,
+        r: S,
+        v: S,
+        sin_gamma: S,
+        cl: S,
+        cd: S,
+        vehicle: &VehicleParams<S>,
+    ) -> Option<S> {
         // g-load limit: lift part of n g0 at the polar's L/D.
         let n = self.limits.g_load * S::from_f64(G0_M_S2);
         let lift_g = n * cl / (cl * cl + cd * cd).sqrt_raw();
@@ -100,9 +124,9 @@ impl<S: Real> PathBound<S> {
         let lift_q = rho_q * v * v * vehicle.reference_area_m2.half() * cl / vehicle.mass_kg;
         let lift = lift_g.min(lift_q);
         // Vertical acceleration needed: gravity less centrifugal, plus stopping the descent.
-        let mut need = planet.mu_m3_s2 / (r * r) - v * v / r;
+        let mut need = mu_m3_s2 / (r * r) - v * v / r;
         if self.descent_time_s > S::ZERO {
-            let sink = v * nav.flight_path_angle_rad.sin();
+            let sink = v * sin_gamma;
             if sink < S::ZERO {
                 need = need - sink / self.descent_time_s;
             }

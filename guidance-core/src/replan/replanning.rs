@@ -341,6 +341,8 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     start_energy: Option<S>,
     /// The limit-driven bound on the applied bank magnitude.
     path_bound: Option<PathBound<P>>,
+    /// Numerical predictions fly the path bound too.
+    path_bound_predicted: bool,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -459,6 +461,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             lift_schedule: None,
             start_energy: None,
             path_bound: None,
+            path_bound_predicted: false,
         })
     }
 
@@ -511,15 +514,22 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// estimate, with the lift parameter of the schedule at the current speed, else
     /// [`super::ReplanConfig::lambda`]), within the solver's `[min, max]` vertical fraction.
     /// The solver's own limit checks ([`ReplanningConfig::limits`]) are unchanged: set them
-    /// loose to leave the limits to the bound.
+    /// loose to leave the limits to the bound. With `predicted`, numerical predictions fly the
+    /// bound too ([`ReplanSolver::with_path_bound`]: at every predicted state the fraction is
+    /// at least the bound's), so the range is solved for the bounded flight.
     ///
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] if the bound is not valid ([`PathBound::is_valid`]).
-    pub fn with_path_bound(mut self, bound: PathBound<P>) -> Result<Self, GuidanceError> {
+    pub fn with_path_bound(
+        mut self,
+        bound: PathBound<P>,
+        predicted: bool,
+    ) -> Result<Self, GuidanceError> {
         if !bound.is_valid() {
             return Err(GuidanceError::InvalidConfig);
         }
         self.path_bound = Some(bound);
+        self.path_bound_predicted = predicted;
         Ok(self)
     }
 
@@ -714,6 +724,10 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         let solver = match self.lift_schedule {
             Some(s) => solver.with_lift_schedule(s),
             None => solver,
+        };
+        let solver = match self.path_bound {
+            Some(b) if self.path_bound_predicted => solver.with_path_bound(b),
+            _ => solver,
         };
         Pending {
             // A non-finite range to go (non-finite model radius or target sum): out of domain.

@@ -44,12 +44,12 @@ use crate::vinh::num::{Zeroin, ZeroinStep};
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
 use crate::vinh::validity::Validity;
 
-use super::LiftSchedule;
 use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
     ReplanFallBack, ReplanLimits, ReplanResult, glide_prediction,
 };
+use super::{LiftSchedule, PathBound};
 
 /// Where the solver is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,6 +101,8 @@ pub struct ReplanSolver<S> {
     integration_steps: u32,
     /// The lift parameter of numerical predictions against speed (else `config.lambda`).
     lift_schedule: Option<LiftSchedule<S>>,
+    /// The path bound numerical predictions fly ([`NumericalRun::with_path_bound`]).
+    path_bound: Option<PathBound<S>>,
     calls: u8,
     phase: Phase<S>,
 }
@@ -163,6 +165,7 @@ impl<S: Real> ReplanSolver<S> {
             run: None,
             integration_steps: 0,
             lift_schedule: None,
+            path_bound: None,
             calls: 0,
             phase: Phase::EndLo,
         };
@@ -196,6 +199,17 @@ impl<S: Real> ReplanSolver<S> {
     pub fn with_lift_schedule(mut self, schedule: LiftSchedule<S>) -> Self {
         if schedule.is_valid() {
             self.lift_schedule = Some(schedule);
+        }
+        self
+    }
+
+    /// This solver with its numerical predictions flying at least the vertical lift fraction
+    /// of `bound` at every state ([`NumericalRun::with_path_bound`]; closed-form predictions
+    /// keep the constant fraction). An invalid bound is ignored.
+    #[must_use]
+    pub fn with_path_bound(mut self, bound: PathBound<S>) -> Self {
+        if bound.is_valid() {
+            self.path_bound = Some(bound);
         }
         self
     }
@@ -290,10 +304,16 @@ impl<S: Real> ReplanSolver<S> {
                     &self.config.predictor,
                     peaks,
                 ) {
-                    Ok(r) => match self.lift_schedule {
-                        Some(s) => r.with_lift_schedule(s),
-                        None => r,
-                    },
+                    Ok(r) => {
+                        let r = match self.lift_schedule {
+                            Some(s) => r.with_lift_schedule(s),
+                            None => r,
+                        };
+                        match self.path_bound {
+                            Some(b) => r.with_path_bound(b),
+                            None => r,
+                        }
+                    }
                     Err(e) => {
                         self.calls = self.calls.saturating_add(1);
                         return Some(Err(e));

@@ -266,7 +266,9 @@ pub fn fly_case_logged(
                 g = g.with_start_energy(e).map_err(gerr)?;
             }
             if let Some(b) = setup.path_bound {
-                g = g.with_path_bound(b).map_err(gerr)?;
+                g = g
+                    .with_path_bound(b, setup.guidance.path_bound_predicted)
+                    .map_err(gerr)?;
             }
             let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {

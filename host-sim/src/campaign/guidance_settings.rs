@@ -134,6 +134,10 @@ pub struct CampaignGuidance {
     /// quasi-equilibrium-glide bound). Only with `path_bound_limit_scale`.
     #[serde(skip_serializing_if = "is_zero")]
     pub path_bound_descent_time_s: f64,
+    /// The re-planner's numerical predictions fly the bound too (default false): the range is
+    /// solved for the bounded flight. Only with `path_bound_limit_scale`.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub path_bound_predicted: bool,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -180,6 +184,7 @@ impl Default for CampaignGuidance {
             replan_limit_scale: [1.0, 1.0],
             path_bound_limit_scale: None,
             path_bound_descent_time_s: 0.0,
+            path_bound_predicted: false,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],

@@ -2,7 +2,7 @@
 //! equations of motion, the RK4 step and the step rule (see the parent module), and the
 //! parabolic refinement of a sampled peak.
 
-use crate::replan::LiftSchedule;
+use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, VehicleParams, aero_accelerations_m_s2};
 use crate::vinh::num::{k, sin_cos};
@@ -46,6 +46,8 @@ pub(super) struct Rates<S> {
     pub(super) rho: S,
     pub(super) drag: S,
     pub(super) lift: S,
+    /// The vertical lift fraction flown (the model's, or the path bound's if larger).
+    pub(super) f: S,
 }
 
 /// The predictor model with the constant lift setting.
@@ -65,6 +67,29 @@ pub(super) struct Model<S> {
     pub(super) f: S,
     /// The lift parameter against speed (replaces `lambda` when present).
     pub(super) schedule: Option<LiftSchedule<S>>,
+    /// The vertical lift fraction is at least this bound's at every state (when present).
+    pub(super) bound: Option<PathBound<S>>,
+}
+
+/// `f`, raised to `bound`'s fraction at this state (out of line: the unbounded path of
+/// [`Model::rates`] keeps its code). A bound that is not computable leaves `f`.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn bounded_f<S: Real>(
+    bound: &PathBound<S>,
+    m: &Model<S>,
+    r: S,
+    v: S,
+    sin_gamma: S,
+    lambda: S,
+    one_l2: S,
+) -> S {
+    let cl = lambda * m.sqrt_cd0_k;
+    let cd = m.vehicle.cd0 * one_l2;
+    match bound.fraction(m.mu, r, v, sin_gamma, cl, cd, &m.vehicle) {
+        Some(fb) if fb > m.f => fb,
+        _ => m.f,
+    }
 }
 
 /// `(lambda, 1 + lambda^2)` of `schedule` at speed `v` (out of line: the constant-lambda path
@@ -88,17 +113,22 @@ impl<S: Real> Model<S> {
             aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, lambda, one_l2, rho, y.v);
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
+        let f = match &self.bound {
+            None => self.f,
+            Some(b) => bounded_f(b, self, r, y.v, sg, lambda, one_l2),
+        };
         let v_r = y.v / r;
         Rates {
             dy: Y {
                 h: y.v * sg,
                 v: -drag - g * sg,
-                gamma: self.f * lift / y.v - (g / y.v - v_r) * cg,
+                gamma: f * lift / y.v - (g / y.v - v_r) * cg,
                 theta: v_r * cg,
             },
             rho,
             drag,
             lift,
+            f,
         }
     }
 
@@ -131,7 +161,7 @@ impl<S: Real> Model<S> {
         if rt.drag * dt > dv_max {
             dt = dv_max / rt.drag;
         }
-        let fl = (self.f * rt.lift).abs();
+        let fl = (rt.f * rt.lift).abs();
         let phase: S = k(PHUGOID_STEP_RAD);
         if fl * dt * dt > phase * phase * h_s {
             dt = phase * (h_s / fl).sqrt_fast();

@@ -62,7 +62,7 @@
 //! [`VinhError::EscapeTrajectory`] (ascending above escape speed out of the atmosphere),
 //! [`VinhError::NonFiniteResult`] (defensive).
 
-use crate::replan::LiftSchedule;
+use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
 use crate::vinh::VinhError;
 use crate::vinh::nondim::{
@@ -168,6 +168,7 @@ impl<S: Real> NumericalRun<S> {
                 one_l2: S::ONE + lift.lambda * lift.lambda,
                 f: lift.vertical_fraction,
                 schedule: None,
+                bound: None,
             },
             final_speed_m_s: config.final_speed_m_s,
             peaks,
@@ -202,6 +203,17 @@ impl<S: Real> NumericalRun<S> {
     pub fn with_lift_schedule(mut self, schedule: LiftSchedule<S>) -> Self {
         if schedule.is_valid() {
             self.model.schedule = Some(schedule);
+        }
+        self
+    }
+
+    /// This prediction with the vertical lift fraction raised, at every state, to `bound`'s
+    /// ([`PathBound`]: the limits flown as a bank bound, as the guidance does with
+    /// [`crate::replan::ReplanningGuidance::with_path_bound`]). An invalid bound is ignored.
+    #[must_use]
+    pub fn with_path_bound(mut self, bound: PathBound<S>) -> Self {
+        if bound.is_valid() {
+            self.model.bound = Some(bound);
         }
         self
     }
