@@ -57,7 +57,7 @@ impl<S: Real> PathBound<S> {
     }
 
     /// The smallest vertical lift fraction \[-\] that keeps the quasi-equilibrium glide at
-    /// `nav`'s speed within the margin of the limits (module docs), in `[0, 1]`; for a vehicle
+    /// `nav`'s speed within [`PathBound::limits`] (module docs), in `[0, 1]`; for a vehicle
     /// flying the lift parameter `lambda` \[-\] of `vehicle`'s polar on `planet`. `None` for
     /// an invalid bound, non-finite or out-of-domain input (non-positive radius, speed, mass,
     /// area, `C_D0`, `K`, nose radius; negative `lambda`) or a non-finite result.
