@@ -295,7 +295,7 @@ pub struct ReplanningFile {
     /// Predictor skip budget.
     pub max_skips: Option<Num>,
     /// `"chain"`, `"glide"`, `"auto"`, `"auto-sink"`, `"numerical"`, `"hybrid"` or
-    /// `"hybrid-sink"`.
+    /// `"hybrid-sink"` (default `"hybrid"`).
     pub predictor: Option<PredictorFile>,
     /// Apply the nearest end when the target is out of reach.
     pub apply_out_of_reach: Option<bool>,

@@ -93,8 +93,9 @@
 //! # tolerance_m = 1000.0          # > 0
 //! # max_iterations = 20           # integer in [1, 40]
 //! # max_skips = 4                 # integer in [0, 8]
-//! # predictor = "auto"            # "chain", "glide", "auto", "auto-sink", "numerical",
-//! #                               # "hybrid" or "hybrid-sink"
+//! # predictor = "hybrid"          # "chain", "glide", "auto", "auto-sink", "numerical",
+//! #                               # "hybrid" or "hybrid-sink"; default "hybrid": the closed
+//! #                               # forms where InDomain, else the numerical predictor
 //! # apply_out_of_reach = true
 //! # polar_mach = 20.0             # Mach number of the vehicle polar, (0, 100]
 //! ```

@@ -177,7 +177,7 @@ pub(super) fn replanning(
         tolerance_m,
         max_iterations,
         max_skips,
-        mode: match t.predictor.unwrap_or(PredictorFile::Auto) {
+        mode: match t.predictor.unwrap_or(PredictorFile::Hybrid) {
             PredictorFile::Chain => PredictorMode::Chain,
             PredictorFile::Glide => PredictorMode::Glide,
             PredictorFile::Auto => PredictorMode::Auto,

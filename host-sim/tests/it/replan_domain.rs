@@ -280,8 +280,17 @@ fn log_of(lp: &ReplanLoop) -> ReplanLog {
         .collect()
 }
 
-/// The SRM closed-loop runs of `replan_loop` (simplified environment, five dispersions).
-pub fn srm_simplified() -> Vec<Point> {
+/// Label suffix of a predictor mode in the harness' rows (`Auto`: none).
+fn mode_label(mode: PredictorMode) -> String {
+    match mode {
+        PredictorMode::Auto => String::new(),
+        m => format!(", {m:?}"),
+    }
+}
+
+/// The SRM closed-loop runs of `replan_loop` (simplified environment, five dispersions),
+/// re-planning with the predictor `mode`.
+pub fn srm_simplified(mode: PredictorMode) -> Vec<Point> {
     let total = rl::fly_stored(&rl::setup(1.0, 0.0))
         .summary
         .flown_range_angle_rad;
@@ -289,10 +298,13 @@ pub fn srm_simplified() -> Vec<Point> {
     let mut out = Vec::new();
     for (density, dgamma_deg) in [(1.0, 0.0), (1.1, 0.0), (0.9, 0.0), (1.0, -0.2), (1.0, 0.1)] {
         let s = rl::setup(density, dgamma_deg);
-        let rc = rl::replanning_config(target, rl::EVERY, PredictorMode::Auto);
+        let rc = rl::replanning_config(target, rl::EVERY, mode);
         let (_, lp) = rl::fly_replanning(&s, rc);
         out.extend(recompute(
-            &format!("SRM simplified, density x{density}, gamma {dgamma_deg:+} deg"),
+            &format!(
+                "SRM simplified, density x{density}, gamma {dgamma_deg:+} deg{}",
+                mode_label(mode)
+            ),
             &rc,
             &log_of(&lp),
         ));
@@ -301,15 +313,16 @@ pub fn srm_simplified() -> Vec<Point> {
 }
 
 /// The SRM closed-loop runs of `replan_loop` in the full environment (headings 0 and 270 deg,
-/// flight-path-angle dispersions -0.2 and +0.1 deg).
-pub fn srm_full() -> Vec<Point> {
+/// flight-path-angle dispersions -0.2 and +0.1 deg), re-planning with the predictor `mode`.
+pub fn srm_full(mode: PredictorMode) -> Vec<Point> {
     let mut out = Vec::new();
     for heading in [0.0, 270.0] {
-        for run in rl::full_environment_runs(heading, &[-0.2, 0.1]) {
+        for run in rl::full_environment_runs_with(heading, &[-0.2, 0.1], mode) {
             out.extend(recompute(
                 &format!(
-                    "SRM full, heading {heading}, gamma {:+} deg",
-                    run.dgamma_deg
+                    "SRM full, heading {heading}, gamma {:+} deg{}",
+                    run.dgamma_deg,
+                    mode_label(mode)
                 ),
                 &run.config,
                 &log_of(&run.lp),
@@ -497,8 +510,12 @@ fn print_replanning_domain() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(10);
-    let mut all = srm_simplified();
-    all.extend(srm_full());
+    let mut all = Vec::new();
+    // Auto: the closed forms alone (for comparison); Hybrid: the scenario files' default.
+    for mode in [PredictorMode::Auto, PredictorMode::Hybrid] {
+        all.extend(srm_simplified(mode));
+        all.extend(srm_full(mode));
+    }
     for predictor in ["closed-form", "hybrid"] {
         all.extend(campaign(
             "srm-glide",
@@ -617,5 +634,79 @@ fn validate_integration_replanning_domain_in_domain_is_within_3_percent() {
         far_in * 3 >= far.len() * 2,
         "in domain {far_in} of {} far glide re-plans",
         far.len()
+    );
+}
+
+/// Against integration of the predictor's own equations, with the hybrid predictor (the
+/// scenario files' and the campaigns' default): every re-plan the re-planner applies is within
+/// 3 % of the integrated range; a re-plan on the closed forms is `InDomain` (else the hybrid
+/// would have flown the numerical prediction). Two `replan_loop` set-ups (SRM simplified with a
+/// 10 % thinner atmosphere than the predictor's; full environment heading west, -0.2 deg) and
+/// two dispersed flights of each built-in campaign in both re-planning modes. The whole domain
+/// is measured by [`print_replanning_domain`] (docs/VINH.md).
+#[test]
+fn validate_integration_replanning_domain_hybrid_is_within_3_percent() {
+    let total = rl::fly_stored(&rl::setup(1.0, 0.0))
+        .summary
+        .flown_range_angle_rad;
+    let target = guidance_core::replan::RangeTarget::FlownRangeAngle { total_rad: total };
+    let s = rl::setup(0.9, 0.0);
+    let rc = rl::replanning_config(target, rl::EVERY, PredictorMode::Hybrid);
+    let (_, lp) = rl::fly_replanning(&s, rc);
+    let mut points = recompute("SRM simplified, density x0.9, Hybrid", &rc, &log_of(&lp));
+    for run in rl::full_environment_runs_with(270.0, &[-0.2], PredictorMode::Hybrid) {
+        points.extend(recompute(
+            "SRM full, heading 270, -0.2 deg, Hybrid",
+            &run.config,
+            &log_of(&run.lp),
+        ));
+    }
+    points.extend(campaign(
+        "srm-glide",
+        &Scenario::srm_glide(),
+        Some(2500.0),
+        2,
+        "hybrid",
+    ));
+    points.extend(campaign(
+        "horus-2b-reference",
+        &Scenario::default(),
+        None,
+        2,
+        "hybrid",
+    ));
+    let (mut closed, mut numerical) = (0, 0);
+    let (mut closed_worst, mut numerical_worst) = (0.0_f64, 0.0_f64);
+    for p in &points {
+        let e = p.error_pct().map_or(f64::INFINITY, f64::abs);
+        assert!(
+            e <= IN_DOMAIN_BOUND_PCT,
+            "{}: {p:?}: range error {e:.2} %",
+            p.scenario
+        );
+        if p.numerical {
+            numerical += 1;
+            numerical_worst = numerical_worst.max(e);
+        } else {
+            assert_eq!(
+                p.prediction.validity,
+                guidance_core::vinh::Validity::InDomain,
+                "{}: {p:?}: a closed-form re-plan out of its domain",
+                p.scenario
+            );
+            closed += 1;
+            closed_worst = closed_worst.max(e);
+        }
+    }
+    println!(
+        "{} applied re-plans: {closed} on the closed forms (worst {closed_worst:.2} %), \
+         {numerical} numerical (worst {numerical_worst:.3} %)",
+        points.len()
+    );
+    // Both halves of the hybrid are exercised (the thinner atmosphere and the west heading hold
+    // states below their glide equilibrium, out of the closed forms' domain).
+    assert!(
+        closed > 0 && numerical > 0,
+        "{closed} closed, {numerical} numerical"
     );
 }

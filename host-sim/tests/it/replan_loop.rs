@@ -369,6 +369,15 @@ pub(crate) struct FullRun {
 
 /// The re-planned runs of the full environment (see [`full_environment`]).
 pub(crate) fn full_environment_runs(heading_deg: f64, dgammas_deg: &[f64]) -> Vec<FullRun> {
+    full_environment_runs_with(heading_deg, dgammas_deg, PredictorMode::Auto)
+}
+
+/// As [`full_environment_runs`], re-planning with the predictor `mode`.
+pub(crate) fn full_environment_runs_with(
+    heading_deg: f64,
+    dgammas_deg: &[f64],
+    mode: PredictorMode,
+) -> Vec<FullRun> {
     let env = Environment::full();
     let veh = host_sim::vehicle::by_name("srm").unwrap();
     let e0 = entry(0.0);
@@ -415,7 +424,7 @@ pub(crate) fn full_environment_runs(heading_deg: f64, dgammas_deg: &[f64]) -> Ve
             let mut rc = replanning_config(
                 RangeTarget::FlownRangeAngle { total_rad: total },
                 EVERY,
-                PredictorMode::Auto,
+                mode,
             );
             rc.model = predictor_model(&veh, &atm, &env.planet, 20.0).unwrap();
             let rg = ReplanningGuidance::new(

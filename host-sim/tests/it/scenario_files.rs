@@ -284,7 +284,7 @@ fn replanning_example_flies_to_its_target() {
     };
     assert!(rel(total_rad * sc.environment.planet.radius_m, 18_034.65e3) < 1e-15);
     assert_eq!(rp.every_n_ticks, 5);
-    assert_eq!(rp.mode, guidance_core::replan::PredictorMode::Auto);
+    assert_eq!(rp.mode, guidance_core::replan::PredictorMode::Hybrid);
     assert!(!rp.apply_out_of_reach);
     let text = host_sim::scenario::scenario_to_toml(&sc);
     let back = parse_scenario(&text, "printed.toml", Path::new(".")).unwrap();
@@ -371,7 +371,7 @@ fn bad_replanning_settings_are_named() {
 fn replanning_predictor_names_parse_and_round_trip() {
     use guidance_core::replan::PredictorMode;
     let base = std::fs::read_to_string(examples().join("srm-glide-replanning.toml")).unwrap();
-    let line = "predictor = \"auto\"";
+    let line = "predictor = \"hybrid\"";
     assert!(base.contains(line), "the example sets the predictor");
     let with = |name: &str| {
         base.lines()
@@ -416,4 +416,24 @@ fn replanning_predictor_names_parse_and_round_trip() {
     ] {
         assert!(e.contains(w), "`{e}` lacks `{w}`");
     }
+}
+
+/// Without a `predictor` line `[replanning]` flies the hybrid predictor (the closed forms where
+/// the prediction is `InDomain`, else the numerical one: docs/VINH.md, issue 10 item 5); `auto`
+/// stays selectable.
+#[test]
+fn replanning_predictor_defaults_to_hybrid() {
+    use guidance_core::replan::PredictorMode;
+    let base = std::fs::read_to_string(examples().join("srm-glide-replanning.toml")).unwrap();
+    let without: String = base
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("predictor ="))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(without.len(), base.len(), "the example sets the predictor");
+    let sc = parse_scenario(&without, "p.toml", &examples()).unwrap();
+    assert_eq!(sc.replanning.unwrap().mode, PredictorMode::Hybrid);
+    let auto = without.replace("[replanning]\n", "[replanning]\npredictor = \"auto\"\n");
+    let sc = parse_scenario(&auto, "p.toml", &examples()).unwrap();
+    assert_eq!(sc.replanning.unwrap().mode, PredictorMode::Auto);
 }
