@@ -68,7 +68,7 @@ pub mod numerical;
 mod replanning;
 mod solver;
 
-pub use lift_schedule::LiftSchedule;
+pub use lift_schedule::{LiftSchedule, LiftScheduleError, SCHEDULE_NODES, ScheduleNode};
 pub use numerical::{NumericalRun, predict_numerical};
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
