@@ -69,7 +69,7 @@ mod path_bound;
 mod replanning;
 mod solver;
 
-pub use lift_schedule::LiftSchedule;
+pub use lift_schedule::{LiftSchedule, LiftScheduleError, SCHEDULE_NODES, ScheduleNode};
 pub use numerical::{NumericalRun, predict_numerical};
 pub use path_bound::PathBound;
 pub use replanning::{

@@ -164,17 +164,17 @@ fn check<S: Real>(i: &Inputs) -> Result<(), String> {
     {
         return Err(format!("{ty}: predict_numerical gave {p:?} for {i:?}"));
     }
-    let schedule = i.schedule.map(|[a, b, c, d]| LiftSchedule {
-        speed_high_m_s: s(a),
-        lambda_high: s(b),
-        speed_low_m_s: s(c),
-        lambda_low: s(d),
-    });
+    let schedule = i
+        .schedule
+        .map(|[a, b, c, d]| LiftSchedule::linear(s(a), s(b), s(c), s(d)));
     if let Some(sch) = schedule {
         // Within its bounds for any speed (NaN included), valid or not.
         for v in [-1.0, 0.0, 500.0, 3000.0, 9000.0, f64::NAN, f64::INFINITY] {
             let l = sch.lambda_at(s(v));
-            let (a, b) = (sch.lambda_low, sch.lambda_high);
+            let (a, b) = match sch.used() {
+                [hi, lo] => (lo.lambda, hi.lambda),
+                _ => return Err(format!("{ty}: a linear schedule without 2 nodes: {sch:?}")),
+            };
             let inside = (l >= a.min(b) && l <= a.max(b)) || !(a.is_finite() && b.is_finite());
             if sch.is_valid() && !(l.is_finite() && inside) {
                 return Err(format!("{ty}: lambda_at({v}) = {l:?} for {sch:?}"));

@@ -585,11 +585,11 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         };
         let m = &self.config.model;
         sensed.validate()?;
-        let lambda = match &self.lift_schedule {
-            Some(s) => s.lambda_at(to_p(nav.speed_m_s)),
-            None => self.config.solver.lambda,
+        let (lambda, drag_scale) = match &self.lift_schedule {
+            Some(s) => s.at(to_p(nav.speed_m_s)),
+            None => (self.config.solver.lambda, P::ONE),
         };
-        let Some(expected) = crate::estimate::expected_aero(
+        let Some(mut expected) = crate::estimate::expected_aero(
             &m.atmosphere,
             &m.vehicle,
             lambda,
@@ -598,6 +598,8 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         ) else {
             return Ok(Some(EstimateStatus::NoModel));
         };
+        // The schedule's drag (a valid schedule's scale is finite and positive).
+        expected.drag_m_s2 = expected.drag_m_s2 * drag_scale;
         est.update(sensed, &expected).map(Some)
     }
 

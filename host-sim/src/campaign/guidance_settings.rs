@@ -114,6 +114,12 @@ pub struct CampaignGuidance {
     /// [`super::setup::profile_lift_schedule`] against speed. No effect on a trim vehicle.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_lift_profile: bool,
+    /// With `predictor_lift_profile`: the schedule carries the lift AND drag of the stored
+    /// profile's angle of attack at the Mach number of the nominal flight at each speed
+    /// ([`super::setup::profile_aero_schedule`]) instead of the lift at the polar's Mach 20
+    /// (default false).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub predictor_aero_mach: bool,
     /// No re-plan starts while E-hat is above this \[-\] (default absent: from the entry): the
     /// stored profile flies the entry pull-out. In `(0, 1]`.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -180,6 +186,7 @@ impl Default for CampaignGuidance {
             predictor_final_speed_offset_m_s: None,
             predictor_lift_parameter: None,
             predictor_lift_profile: false,
+            predictor_aero_mach: false,
             replan_start_normalized_energy: None,
             replan_limit_scale: [1.0, 1.0],
             path_bound_limit_scale: None,

@@ -10,7 +10,8 @@ use guidance_core::interp::Interpolation;
 use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig, TargetPoint,
+    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig,
+    SCHEDULE_NODES, ScheduleNode, TargetPoint,
 };
 use guidance_core::vinh::PredictorConfig;
 
@@ -227,13 +228,62 @@ pub fn profile_lift_schedule(
     let i = flown.iter().position(|&(_, l)| !near(l, high))?;
     let speed_high_m_s = flown.get(i.checked_sub(1)?)?.0;
     let speed_low_m_s = flown.iter().skip(i).find(|&&(_, l)| near(l, low))?.0;
-    let s = LiftSchedule {
-        speed_high_m_s,
-        lambda_high: high,
-        speed_low_m_s,
-        lambda_low: low,
-    };
+    let s = LiftSchedule::linear(speed_high_m_s, high, speed_low_m_s, low);
     s.is_valid().then_some(s)
+}
+
+/// The stored profile's aerodynamics against speed, Mach included: [`SCHEDULE_NODES`] nodes
+/// evenly spaced in speed from the entry speed of the nominal flight `nominal` to the
+/// interface speed `interface_speed_m_s` \[m/s\]; at each, the first nominal sample at or
+/// below the node's speed gives the angle of attack and the Mach number (its speed over the
+/// US76 speed of sound at its altitude), and the vehicle's tables `C_L`, `C_D` there give
+/// `lambda = C_L / C_L*` and the drag scale `C_D / (C_D0 (1 + lambda^2))` of the model polar
+/// (`C_D0`, `K` at [`PREDICTOR_POLAR_MACH`]). HORUS-2B: `C_L` 0.77 at Mach 20 and 40 deg; at
+/// Mach 5 the tables give more lift and drag than that polar. `None` for a trim vehicle or if
+/// the nodes are not a valid schedule (a nominal flight too short).
+#[must_use]
+pub fn profile_aero_schedule(
+    vehicle: &crate::vehicle::Vehicle,
+    model: &guidance_core::replan::PredictorModel<f64>,
+    nominal: &SimResult,
+    interface_speed_m_s: f64,
+) -> Option<LiftSchedule<f64>> {
+    if !vehicle.aero.controls_alpha() {
+        return None;
+    }
+    let (cd0, k) = (model.vehicle.cd0, model.vehicle.k_polar);
+    let cl_star = (cd0 / k).sqrt();
+    let flown: Vec<&crate::sim::results::Sample> = nominal
+        .samples
+        .iter()
+        .take_while(|s| s.state.speed_m_s >= interface_speed_m_s)
+        .collect();
+    let v_hi = flown.first()?.state.speed_m_s;
+    let v_lo = flown.last()?.state.speed_m_s;
+    let last = SCHEDULE_NODES.checked_sub(1)?;
+    let nodes: Vec<ScheduleNode<f64>> = (0..SCHEDULE_NODES)
+        .map(|i| {
+            let v = v_hi + (v_lo - v_hi) * i as f64 / last as f64;
+            let s = if i == last {
+                flown.last()
+            } else {
+                flown
+                    .iter()
+                    .find(|s| s.state.speed_m_s <= v)
+                    .or(flown.last())
+            }?;
+            let c = vehicle
+                .aero
+                .coefficients(s.conditions.mach, s.attitude.alpha_rad);
+            let lambda = c.cl / cl_star;
+            Some(ScheduleNode {
+                speed_m_s: v,
+                lambda,
+                drag_scale: c.cd / (cd0 * (1.0 + lambda * lambda)),
+            })
+        })
+        .collect::<Option<_>>()?;
+    LiftSchedule::from_nodes(&nodes).ok()
 }
 
 impl CampaignSetup {
@@ -401,10 +451,10 @@ impl CampaignSetup {
             replanning,
             estimator: gs.estimator(),
             guidance: gs.clone(),
-            lift_schedule: if gs.predictor_lift_profile {
-                profile_lift_schedule(&vehicle, &model, &nominal, v_f)
-            } else {
-                None
+            lift_schedule: match (gs.predictor_lift_profile, gs.predictor_aero_mach) {
+                (true, true) => profile_aero_schedule(&vehicle, &model, &nominal, v_f),
+                (true, false) => profile_lift_schedule(&vehicle, &model, &nominal, v_f),
+                (false, _) => None,
             },
             replan_start_normalized_energy: gs.replan_start_normalized_energy,
             path_bound: gs.path_bound_limit_scale.map(|[q, g]| PathBound {

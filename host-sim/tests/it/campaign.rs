@@ -600,10 +600,11 @@ fn predictor_lift_parameter_of_the_stored_profile() {
     assert!((3.4..3.73).contains(&horus), "HORUS-2B lambda {horus}");
     // 40 deg (lambda 3.73) until the ramp starts near 4 km/s, 11.5 deg (0.55) at the end.
     let s = schedule.unwrap();
-    assert!((s.lambda_high - 3.733).abs() < 0.01, "{s:?}");
-    assert!((s.lambda_low - 0.552).abs() < 0.01, "{s:?}");
-    assert!((3500.0..4500.0).contains(&s.speed_high_m_s), "{s:?}");
-    assert!((700.0..900.0).contains(&s.speed_low_m_s), "{s:?}");
+    let [hi, lo] = s.used() else { panic!("{s:?}") };
+    assert!((hi.lambda - 3.733).abs() < 0.01, "{s:?}");
+    assert!((lo.lambda - 0.552).abs() < 0.01, "{s:?}");
+    assert!((3500.0..4500.0).contains(&hi.speed_m_s), "{s:?}");
+    assert!((700.0..900.0).contains(&lo.speed_m_s), "{s:?}");
     let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "l.toml");
     assert_eq!(parse("").unwrap().guidance.predictor_lift_parameter, None);
     let g = parse("predictor_lift_parameter = 3.5").unwrap().guidance;

@@ -1,5 +1,6 @@
 //! The host-sim integration-test binary (one per crate). Each module is one topic.
 
+mod aero_schedule;
 mod analytic_validation;
 mod campaign;
 mod cli;

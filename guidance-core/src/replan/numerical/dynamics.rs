@@ -65,7 +65,8 @@ pub(super) struct Model<S> {
     /// `1 + lambda^2`.
     pub(super) one_l2: S,
     pub(super) f: S,
-    /// The lift parameter against speed (replaces `lambda` when present).
+    /// The lift parameter and drag scale against speed (replace `lambda` and the polar's
+    /// `1 + lambda^2` when present).
     pub(super) schedule: Option<LiftSchedule<S>>,
     /// The vertical lift fraction is at least this bound's at every state (when present).
     pub(super) bound: Option<PathBound<S>>,
@@ -92,12 +93,13 @@ fn bounded_f<S: Real>(
     }
 }
 
-/// `(lambda, 1 + lambda^2)` of `schedule` at speed `v` (out of line: the constant-lambda path
-/// of [`Model::rates`] keeps its code).
+/// `(lambda, (1 + lambda^2) drag scale)` of `schedule` at speed `v`: the lift parameter and the
+/// drag coefficient over `C_D0` (out of line: the constant-lambda path of [`Model::rates`]
+/// keeps its code).
 #[inline(never)]
 fn scheduled<S: Real>(schedule: &LiftSchedule<S>, v: S) -> (S, S) {
-    let l = schedule.lambda_at(v);
-    (l, S::ONE + l * l)
+    let (l, scale) = schedule.at(v);
+    (l, (S::ONE + l * l) * scale)
 }
 
 impl<S: Real> Model<S> {

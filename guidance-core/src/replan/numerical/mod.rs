@@ -295,9 +295,9 @@ impl<S: Real> NumericalRun<S> {
             return Some(Err(VinhError::StepLimit));
         }
         self.steps += 1;
-        let m = self.model;
         let y0 = self.y;
-        let rt = m.rates(&y0);
+        // Borrowed, not copied: the model carries the schedule (up to 12 nodes).
+        let rt = self.model.rates(&y0);
         if !(rt.dy.is_finite() && rt.rho.is_finite() && rt.drag.is_finite()) {
             return Some(Err(VinhError::NonFiniteResult));
         }
@@ -316,6 +316,7 @@ impl<S: Real> NumericalRun<S> {
         }
         self.above = above;
         // Escape: ascending with positive energy out of the atmosphere.
+        let m = &self.model;
         let r0 = m.radius_m + y0.h;
         if y0.gamma > S::ZERO
             && y0.v * y0.v > k::<S>(2.0) * m.mu / r0
@@ -349,7 +350,7 @@ impl<S: Real> NumericalRun<S> {
         dt: S,
         y1: &Y<S>,
     ) -> Result<Prediction<S>, VinhError> {
-        let m = self.model;
+        let m = &self.model;
         let vf = self.final_speed_m_s;
         // y0.v > vf >= y1.v, so the fraction is in (0, 1].
         let frac = ((y0.v - vf) / (y0.v - y1.v)).clamp(S::ZERO, S::ONE);
