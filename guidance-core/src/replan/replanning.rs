@@ -343,6 +343,9 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     path_bound: Option<PathBound<P>>,
     /// Numerical predictions fly the path bound too.
     path_bound_predicted: bool,
+    /// Numerical predictions model the planet's rotation in their equations (with the
+    /// model planet) instead of the effective planet.
+    numerical_rotation: bool,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -462,6 +465,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             start_energy: None,
             path_bound: None,
             path_bound_predicted: false,
+            numerical_rotation: false,
         })
     }
 
@@ -531,6 +535,17 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         self.path_bound = Some(bound);
         self.path_bound_predicted = predicted;
         Ok(self)
+    }
+
+    /// This guidance with its numerical predictions modelling the planet's rotation at
+    /// [`PredictorModel::rotation_rate_rad_s`] in their equations of motion (the latitude and
+    /// heading of the re-plan's start held: [`ReplanSolver::with_rotation`]) on the model
+    /// planet, instead of the effective planet of [`PredictorModel::effective_planet`] (which
+    /// closed-form predictions keep). `false` (the default): unchanged behaviour.
+    #[must_use]
+    pub fn with_numerical_rotation(mut self, on: bool) -> Self {
+        self.numerical_rotation = on;
+        self
     }
 
     /// The bank magnitude \[rad\] `bank_rad` lowered to the [`PathBound`] at `nav` (the
@@ -730,6 +745,11 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         let solver = match self.path_bound {
             Some(b) if self.path_bound_predicted => solver.with_path_bound(b),
             _ => solver,
+        };
+        let solver = if self.numerical_rotation {
+            solver.with_rotation(&m.planet, m.rotation_rate_rad_s, nav)
+        } else {
+            solver
         };
         Pending {
             // A non-finite range to go (non-finite model radius or target sum): out of domain.

@@ -103,8 +103,22 @@ pub struct ReplanSolver<S> {
     lift_schedule: Option<LiftSchedule<S>>,
     /// The path bound numerical predictions fly ([`NumericalRun::with_path_bound`]).
     path_bound: Option<PathBound<S>>,
+    /// The rotating planet of numerical predictions ([`ReplanSolver::with_rotation`]).
+    rotation: Option<SolverRotation<S>>,
     calls: u8,
     phase: Phase<S>,
+}
+
+/// The rotating planet of numerical predictions: the planet without a rotation correction,
+/// the rate \[rad/s\], latitude \[rad\] and heading \[rad, clockwise from north\] of the
+/// start state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct SolverRotation<S> {
+    planet: Planet<S>,
+    omega_rad_s: S,
+    latitude_rad: S,
+    heading_rad: S,
 }
 
 /// Whether the solver settings are in their domain (finite values checked separately):
@@ -166,6 +180,7 @@ impl<S: Real> ReplanSolver<S> {
             integration_steps: 0,
             lift_schedule: None,
             path_bound: None,
+            rotation: None,
             calls: 0,
             phase: Phase::EndLo,
         };
@@ -210,6 +225,24 @@ impl<S: Real> ReplanSolver<S> {
     pub fn with_path_bound(mut self, bound: PathBound<S>) -> Self {
         if bound.is_valid() {
             self.path_bound = Some(bound);
+        }
+        self
+    }
+
+    /// This solver with its numerical predictions on `planet` (give it the planet WITHOUT a
+    /// rotation correction of `mu`) rotating at `omega_rad_s` \[rad/s\], the latitude and
+    /// heading of `nav` held ([`NumericalRun::with_rotation`]); closed-form predictions keep
+    /// the planet of [`ReplanSolver::new`]. A zero or non-finite rate, or a planet that is not
+    /// valid, is ignored.
+    #[must_use]
+    pub fn with_rotation(mut self, planet: &Planet<S>, omega_rad_s: S, nav: &NavState<S>) -> Self {
+        if omega_rad_s != S::ZERO && omega_rad_s.is_finite() && planet.validate().is_ok() {
+            self.rotation = Some(SolverRotation {
+                planet: *planet,
+                omega_rad_s,
+                latitude_rad: nav.latitude_rad,
+                heading_rad: nav.heading_rad,
+            });
         }
         self
     }
@@ -296,7 +329,10 @@ impl<S: Real> ReplanSolver<S> {
             let mut run = match self.run.take() {
                 Some(r) => r,
                 None => match NumericalRun::new(
-                    &self.planet,
+                    match &self.rotation {
+                        Some(w) => &w.planet,
+                        None => &self.planet,
+                    },
                     &self.atmosphere,
                     &self.vehicle,
                     lift,
@@ -309,8 +345,14 @@ impl<S: Real> ReplanSolver<S> {
                             Some(s) => r.with_lift_schedule(s),
                             None => r,
                         };
-                        match self.path_bound {
+                        let r = match self.path_bound {
                             Some(b) => r.with_path_bound(b),
+                            None => r,
+                        };
+                        match &self.rotation {
+                            Some(w) => {
+                                r.with_rotation(w.omega_rad_s, w.latitude_rad, w.heading_rad)
+                            }
                             None => r,
                         }
                     }

@@ -270,6 +270,7 @@ pub fn fly_case_logged(
                     .with_path_bound(b, setup.guidance.path_bound_predicted)
                     .map_err(gerr)?;
             }
+            g = g.with_numerical_rotation(setup.guidance.predictor_rotation);
             let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
             finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
                 let s = &s.source;

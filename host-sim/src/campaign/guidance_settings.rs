@@ -144,6 +144,13 @@ pub struct CampaignGuidance {
     /// solved for the bounded flight. Only with `path_bound_limit_scale`.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub path_bound_predicted: bool,
+    /// The re-planner's numerical predictions model the planet's rotation in their equations
+    /// of motion, latitude and heading of the re-plan's start held, on the planet's own `mu`
+    /// (`ReplanningGuidance::with_numerical_rotation`; docs/DISPERSIONS.md, "The vehicle's
+    /// aerodynamics along the flight"); default false: the effective planet of the
+    /// closed forms. Not with `predictor = "closed-form"` (no numerical predictions).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub predictor_rotation: bool,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -192,6 +199,7 @@ impl Default for CampaignGuidance {
             path_bound_limit_scale: None,
             path_bound_descent_time_s: 0.0,
             path_bound_predicted: false,
+            predictor_rotation: false,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -320,6 +328,13 @@ impl CampaignGuidance {
                 "predictor_lift_parameter",
                 l.to_string(),
                 "must be in (0, 20]",
+            ));
+        }
+        if self.predictor_rotation && self.predictor == CampaignPredictor::ClosedForm {
+            return Err(bad(
+                "predictor_rotation",
+                "true".into(),
+                "needs numerical predictions (predictor = \"numerical\" or \"hybrid\")",
             ));
         }
         let [q, g] = self.replan_limit_scale;

@@ -70,6 +70,56 @@ pub(super) struct Model<S> {
     pub(super) schedule: Option<LiftSchedule<S>>,
     /// The vertical lift fraction is at least this bound's at every state (when present).
     pub(super) bound: Option<PathBound<S>>,
+    /// The planet's rotation, latitude and heading held (when present; module docs).
+    pub(super) rotation: Option<Rotation<S>>,
+}
+
+/// The rotating-planet terms of the planar equations with the latitude `phi` and heading `psi`
+/// held at their values at the start of the prediction (module docs, "Rotating planet").
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(super) struct Rotation<S> {
+    /// Coriolis turn rate `2 Omega cos(phi) sin(psi)` \[rad/s\].
+    pub(super) coriolis_rad_s: S,
+    /// `Omega^2 cos(phi)` \[1/s^2\].
+    pub(super) w2_cos_phi: S,
+    /// `cos(phi)` \[-\].
+    pub(super) cos_phi: S,
+    /// `sin(phi) cos(psi)` \[-\].
+    pub(super) sin_phi_cos_psi: S,
+}
+
+impl<S: Real> Rotation<S> {
+    /// `Omega` \[rad/s\] at latitude `phi` \[rad\] and heading `psi` \[rad, clockwise from
+    /// north\]; `None` if any is non-finite or the rate is zero.
+    pub(super) fn new(omega_rad_s: S, phi: S, psi: S) -> Option<Self> {
+        if !(omega_rad_s.is_finite() && phi.is_finite() && psi.is_finite())
+            || omega_rad_s == S::ZERO
+        {
+            return None;
+        }
+        let (sp, cp) = sin_cos(phi);
+        let (ss, cs) = sin_cos(psi);
+        Some(Self {
+            coriolis_rad_s: k::<S>(2.0) * omega_rad_s * cp * ss,
+            w2_cos_phi: omega_rad_s * omega_rad_s * cp,
+            cos_phi: cp,
+            sin_phi_cos_psi: sp * cs,
+        })
+    }
+}
+
+/// `dy` with the rotating-planet terms of `w` added at radius `r`, speed `v` and flight-path
+/// angle `(sg, cg) = (sin, cos)(gamma)` (out of line: the non-rotating path of
+/// [`Model::rates`] keeps its code).
+#[inline(never)]
+fn rotated<S: Real>(w: &Rotation<S>, r: S, v: S, sg: S, cg: S, dy: Y<S>) -> Y<S> {
+    let c = w.w2_cos_phi * r;
+    Y {
+        v: dy.v + c * (sg * w.cos_phi - cg * w.sin_phi_cos_psi),
+        gamma: dy.gamma + w.coriolis_rad_s + c * (cg * w.cos_phi + sg * w.sin_phi_cos_psi) / v,
+        ..dy
+    }
 }
 
 /// `f`, raised to `bound`'s fraction at this state (out of line: the unbounded path of
@@ -120,12 +170,16 @@ impl<S: Real> Model<S> {
             Some(b) => bounded_f(b, self, r, y.v, sg, lambda, one_l2),
         };
         let v_r = y.v / r;
+        let dy = Y {
+            h: y.v * sg,
+            v: -drag - g * sg,
+            gamma: f * lift / y.v - (g / y.v - v_r) * cg,
+            theta: v_r * cg,
+        };
         Rates {
-            dy: Y {
-                h: y.v * sg,
-                v: -drag - g * sg,
-                gamma: f * lift / y.v - (g / y.v - v_r) * cg,
-                theta: v_r * cg,
+            dy: match &self.rotation {
+                None => dy,
+                Some(w) => rotated(w, r, y.v, sg, cg, dy),
             },
             rho,
             drag,

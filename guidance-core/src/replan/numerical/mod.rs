@@ -16,6 +16,25 @@
 //! dtheta/dt = V cos(gamma)/r
 //! ```
 //!
+//! # Rotating planet (opt-in, [`NumericalRun::with_rotation`])
+//! The 3-DOF entry equations over a planet rotating at `Omega` (Vinh, Busemann & Culp 1980;
+//! heading `psi` clockwise from north, latitude `phi`, planet-relative speed) add to the
+//! speed and flight-path-angle rates
+//!
+//! ```text
+//! dV/dt     += Omega^2 r cos(phi) (sin(gamma) cos(phi) - cos(gamma) sin(phi) cos(psi))
+//! dgamma/dt += 2 Omega cos(phi) sin(psi)
+//!              + Omega^2 r cos(phi) (cos(gamma) cos(phi) + sin(gamma) sin(phi) cos(psi)) / V
+//! ```
+//!
+//! (Coriolis, then centrifugal; the Coriolis force is normal to the velocity, so it has no
+//! speed term). The planar projection holds `phi` and `psi` at their values at the start of the
+//! prediction (a documented first-order assumption: it ignores the heading's turn by the bank
+//! reversals and the latitude change along the track, and the rotation's terms in the heading
+//! and latitude rates); `r` and `V` are the current ones at every stage. The range-angle rate is
+//! unchanged. Use it with the planet's own `mu` (not the effective one), or the rotation counts
+//! twice.
+//!
 //! `D/m`, `L/m`, the Chapman heat flux and the g-load are the closed forms' own definitions
 //! (`crate::vinh::nondim`'s `aero_accelerations_m_s2`, `chapman_heat_flux_w_m2`, `g_load_of`;
 //! the density is [`ExpAtmosphere`]'s). The altitude `h = r - R` is the integrated variable so
@@ -74,7 +93,7 @@ use crate::vinh::num::k;
 mod dynamics;
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, PredictorConfig};
 use crate::vinh::validity::Validity;
-use dynamics::{Model, Node, Rates, Y, vertex};
+use dynamics::{Model, Node, Rates, Rotation, Y, vertex};
 
 /// Largest number of integration steps of one prediction.
 pub const MAX_STEPS: u16 = 4096;
@@ -169,6 +188,7 @@ impl<S: Real> NumericalRun<S> {
                 f: lift.vertical_fraction,
                 schedule: None,
                 bound: None,
+                rotation: None,
             },
             final_speed_m_s: config.final_speed_m_s,
             peaks,
@@ -215,6 +235,17 @@ impl<S: Real> NumericalRun<S> {
         if bound.is_valid() {
             self.model.bound = Some(bound);
         }
+        self
+    }
+
+    /// This prediction on a planet rotating at `omega_rad_s` \[rad/s\], with the latitude
+    /// `latitude_rad` \[rad\] and heading `heading_rad` \[rad, clockwise from north\] held
+    /// (module docs, "Rotating planet"): the Coriolis and centrifugal terms at the current
+    /// speed and radius of every step. Give it the planet without a rotation correction of its
+    /// `mu`. A zero or non-finite input leaves the prediction non-rotating (bit-identical).
+    #[must_use]
+    pub fn with_rotation(mut self, omega_rad_s: S, latitude_rad: S, heading_rad: S) -> Self {
+        self.model.rotation = Rotation::new(omega_rad_s, latitude_rad, heading_rad);
         self
     }
 
