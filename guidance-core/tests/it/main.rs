@@ -8,6 +8,7 @@ mod navconv;
 mod node_capacity;
 mod numerical_predictor;
 mod numerical_replan;
+mod numerical_rotation;
 mod path_bound;
 mod vinh_error_map;
 mod vinh_peaks;
