@@ -665,3 +665,21 @@ fn path_bound_settings_reach_the_setup() {
         );
     }
 }
+
+/// `[dispersions.guidance] predictor_rotation` (default off) is read with a numerical or hybrid
+/// predictor and refused, naming the file, field and value, with the closed forms.
+#[test]
+fn predictor_rotation_setting_needs_numerical_predictions() {
+    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
+    assert!(!parse("").unwrap().guidance.predictor_rotation);
+    for p in ["numerical", "hybrid"] {
+        let g = parse(&format!("predictor = \"{p}\"\npredictor_rotation = true"))
+            .unwrap()
+            .guidance;
+        assert!(g.predictor_rotation, "{p}");
+    }
+    let e = parse("predictor = \"closed-form\"\npredictor_rotation = true").unwrap_err();
+    let text = e.to_string();
+    assert!(text.contains("p.toml") && text.contains("true"), "{text}");
+    assert_eq!(field_of(e), "dispersions.guidance.predictor_rotation");
+}
