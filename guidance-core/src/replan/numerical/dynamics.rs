@@ -109,17 +109,15 @@ impl<S: Real> Rotation<S> {
     }
 }
 
-/// `dy` with the rotating-planet terms of `w` added at radius `r`, speed `v` and flight-path
-/// angle `(sg, cg) = (sin, cos)(gamma)` (out of line: the non-rotating path of
+/// `dy` with the rotating-planet terms of `w` added at the state `y` of a planet of radius
+/// `radius_m` (out of line, recomputing what it needs: the non-rotating path of
 /// [`Model::rates`] keeps its code).
 #[inline(never)]
-fn rotated<S: Real>(w: &Rotation<S>, r: S, v: S, sg: S, cg: S, dy: Y<S>) -> Y<S> {
-    let c = w.w2_cos_phi * r;
-    Y {
-        v: dy.v + c * (sg * w.cos_phi - cg * w.sin_phi_cos_psi),
-        gamma: dy.gamma + w.coriolis_rad_s + c * (cg * w.cos_phi + sg * w.sin_phi_cos_psi) / v,
-        ..dy
-    }
+fn add_rotation<S: Real>(w: &Rotation<S>, radius_m: S, y: &Y<S>, dy: &mut Y<S>) {
+    let (sg, cg) = sin_cos(y.gamma);
+    let c = w.w2_cos_phi * (radius_m + y.h);
+    dy.v = dy.v + c * (sg * w.cos_phi - cg * w.sin_phi_cos_psi);
+    dy.gamma = dy.gamma + w.coriolis_rad_s + c * (cg * w.cos_phi + sg * w.sin_phi_cos_psi) / y.v;
 }
 
 /// `f`, raised to `bound`'s fraction at this state (out of line: the unbounded path of
@@ -170,17 +168,17 @@ impl<S: Real> Model<S> {
             Some(b) => bounded_f(b, self, r, y.v, sg, lambda, one_l2),
         };
         let v_r = y.v / r;
-        let dy = Y {
+        let mut dy = Y {
             h: y.v * sg,
             v: -drag - g * sg,
             gamma: f * lift / y.v - (g / y.v - v_r) * cg,
             theta: v_r * cg,
         };
+        if let Some(w) = &self.rotation {
+            add_rotation(w, self.radius_m, y, &mut dy);
+        }
         Rates {
-            dy: match &self.rotation {
-                None => dy,
-                Some(w) => rotated(w, r, y.v, sg, cg, dy),
-            },
+            dy,
             rho,
             drag,
             lift,
