@@ -20,8 +20,8 @@
 //! # Numerical predictions
 //! In [`PredictorMode::Numerical`] (and [`PredictorMode::Hybrid`] /
 //! [`PredictorMode::HybridSink`] once switched) a prediction is a [`NumericalRun`] held in the
-//! solver and advanced by at most [`STEPS_PER_SOLVER_STEP`] integration steps per
-//! [`ReplanSolver::step`]: a step either advances the prediction in progress (and returns
+//! solver and advanced by at most [`super::numerical::STEPS_PER_SOLVER_STEP`] integration
+//! steps per [`ReplanSolver::step`]: a step either advances the prediction in progress (and returns
 //! `None` with the phase unchanged) or completes it and acts on it as for a closed-form
 //! prediction. [`ReplanSolver::predictor_calls`] counts completed predictions,
 //! [`ReplanSolver::integration_steps`] the integration steps.
@@ -29,7 +29,8 @@
 //! # Hybrid
 //! [`PredictorMode::Hybrid`] solves as [`PredictorMode::Auto`] ([`PredictorMode::AutoSink`]
 //! for [`PredictorMode::HybridSink`]) and trusts the result only if the prediction it would fly,
-//! the one with peaks at the chosen fraction, is [`Validity::InDomain`]. Otherwise (that
+//! the one with peaks at the chosen fraction, is
+//! [`crate::vinh::validity::Validity::InDomain`]. Otherwise (that
 //! prediction extrapolated, a closed form failing at a search point, or both closed forms
 //! failing at an end) the whole solve restarts with the numerical predictor. The ends' own
 //! validity does not decide: the bracketing predictions are far from the solution (at
@@ -39,17 +40,19 @@
 use crate::nav::NavState;
 use crate::scalar::Real;
 use crate::vinh::VinhError;
-use crate::vinh::nondim::{EntryState, ExpAtmosphere, LiftControl, Planet, VehicleParams};
+use crate::vinh::nondim::{EntryState, ExpAtmosphere, Planet, VehicleParams};
 use crate::vinh::num::{Zeroin, ZeroinStep};
-use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, predict_with};
-use crate::vinh::validity::Validity;
+use crate::vinh::predict::{PeakMode, PeakStatus, Prediction};
 
-use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
+use super::numerical::NumericalRun;
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
-    ReplanFallBack, ReplanLimits, ReplanResult, glide_prediction,
+    ReplanFallBack, ReplanLimits, ReplanResult,
 };
 use super::{LiftSchedule, PathBound};
+
+mod eval;
+mod switch;
 
 /// Where the solver is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -303,109 +306,6 @@ impl<S: Real> ReplanSolver<S> {
         )
     }
 
-    /// The prediction at `f`: `None` while a numerical prediction is in progress (call again
-    /// with the same `f` and `peaks` at the next step).
-    fn eval(&mut self, f: S, peaks: PeakMode<S>) -> Option<Result<Prediction<S>, VinhError>> {
-        let lift = LiftControl {
-            lambda: self.config.lambda,
-            vertical_fraction: f,
-        };
-        if self.numerical {
-            return self.eval_numerical(&lift, peaks);
-        }
-        self.calls = self.calls.saturating_add(1);
-        Some(self.eval_closed_form(&lift, peaks))
-    }
-
-    /// Advance (or start) the numerical prediction with `lift`: `None` while in progress.
-    /// Not inlined: keeps the closed-form path of [`ReplanSolver::step`] as lean as before.
-    #[inline(never)]
-    fn eval_numerical(
-        &mut self,
-        lift: &LiftControl<S>,
-        peaks: PeakMode<S>,
-    ) -> Option<Result<Prediction<S>, VinhError>> {
-        {
-            let mut run = match self.run.take() {
-                Some(r) => r,
-                None => match NumericalRun::new(
-                    match &self.rotation {
-                        Some(w) => &w.planet,
-                        None => &self.planet,
-                    },
-                    &self.atmosphere,
-                    &self.vehicle,
-                    lift,
-                    &self.state,
-                    &self.config.predictor,
-                    peaks,
-                ) {
-                    Ok(r) => {
-                        let r = match self.lift_schedule {
-                            Some(s) => r.with_lift_schedule(s),
-                            None => r,
-                        };
-                        let r = match self.path_bound {
-                            Some(b) => r.with_path_bound(b),
-                            None => r,
-                        };
-                        match &self.rotation {
-                            Some(w) => {
-                                r.with_rotation(w.omega_rad_s, w.latitude_rad, w.heading_rad)
-                            }
-                            None => r,
-                        }
-                    }
-                    Err(e) => {
-                        self.calls = self.calls.saturating_add(1);
-                        return Some(Err(e));
-                    }
-                },
-            };
-            let before = run.steps();
-            let out = run.advance(STEPS_PER_SOLVER_STEP);
-            self.integration_steps = self
-                .integration_steps
-                .saturating_add(u32::from(run.steps().saturating_sub(before)));
-            if out.is_none() {
-                self.run = Some(run);
-            } else {
-                self.calls = self.calls.saturating_add(1);
-            }
-            out
-        }
-    }
-
-    /// One closed-form prediction with `lift`.
-    fn eval_closed_form(
-        &self,
-        lift: &LiftControl<S>,
-        peaks: PeakMode<S>,
-    ) -> Result<Prediction<S>, VinhError> {
-        if self.glide {
-            glide_prediction(
-                &self.planet,
-                &self.atmosphere,
-                &self.vehicle,
-                lift,
-                &self.state,
-                &self.config.predictor,
-                peaks,
-                self.sink,
-            )
-        } else {
-            predict_with(
-                &self.planet,
-                &self.atmosphere,
-                &self.vehicle,
-                lift,
-                &self.state,
-                &self.config.predictor,
-                peaks,
-            )
-        }
-    }
-
     fn finish(&mut self, r: ReplanResult<S>) -> Option<ReplanResult<S>> {
         self.phase = Phase::Done(r);
         Some(r)
@@ -607,52 +507,6 @@ impl<S: Real> ReplanSolver<S> {
                     return None;
                 }
             }
-        }
-    }
-
-    /// Whether the solve is hybrid and still on the closed forms.
-    fn hybrid_closed_form(&self) -> bool {
-        matches!(
-            self.config.mode,
-            PredictorMode::Hybrid | PredictorMode::HybridSink
-        ) && !self.numerical
-    }
-
-    /// Whether the prediction `p` to be flown sends a hybrid solve to the numerical predictor
-    /// (out of the closed forms' validated domain).
-    fn leaves_domain(&self, p: &Prediction<S>) -> bool {
-        self.hybrid_closed_form() && p.validity != Validity::InDomain
-    }
-
-    /// Restart the solve with the numerical predictor (hybrid modes).
-    fn switch_to_numerical(&mut self) -> Option<ReplanResult<S>> {
-        self.numerical = true;
-        self.glide = false;
-        self.sink = false;
-        self.run = None;
-        self.phase = Phase::EndLo;
-        None
-    }
-
-    /// A prediction at an end of the interval failed: in [`PredictorMode::Auto`] (or
-    /// [`PredictorMode::AutoSink`], and the hybrid modes) redo the ends with the glide (once);
-    /// in the hybrid modes then with the numerical predictor; else fall back.
-    fn end_failed(&mut self, e: VinhError) -> Option<ReplanResult<S>> {
-        let auto = matches!(
-            self.config.mode,
-            PredictorMode::Auto
-                | PredictorMode::AutoSink
-                | PredictorMode::Hybrid
-                | PredictorMode::HybridSink
-        );
-        if auto && !self.glide && !self.numerical {
-            self.glide = true;
-            self.phase = Phase::EndLo;
-            None
-        } else if self.hybrid_closed_form() {
-            self.switch_to_numerical()
-        } else {
-            self.fail(ReplanFallBack::OutOfDomain(e))
         }
     }
 }
