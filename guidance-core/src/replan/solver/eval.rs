@@ -13,7 +13,11 @@ use super::ReplanSolver;
 impl<S: Real> ReplanSolver<S> {
     /// The prediction at `f`: `None` while a numerical prediction is in progress (call again
     /// with the same `f` and `peaks` at the next step).
-    pub(super) fn eval(&mut self, f: S, peaks: PeakMode<S>) -> Option<Result<Prediction<S>, VinhError>> {
+    pub(super) fn eval(
+        &mut self,
+        f: S,
+        peaks: PeakMode<S>,
+    ) -> Option<Result<Prediction<S>, VinhError>> {
         let lift = LiftControl {
             lambda: self.config.lambda,
             vertical_fraction: f,
