@@ -109,15 +109,14 @@ impl<S: Real> Rotation<S> {
     }
 }
 
-/// `dy` with the rotating-planet terms of `w` added at the state `y` of a planet of radius
-/// `radius_m` (out of line, recomputing what it needs: the non-rotating path of
-/// [`Model::rates`] keeps its code).
+/// `dy` with the rotating-planet terms of `w` added at radius `r` \[m\], speed `v` \[m/s\] and
+/// flight-path angle of sine `sg` and cosine `cg` (out of line: the non-rotating path of
+/// [`Model::rates`] keeps its code; the sine and cosine are the ones `rates` computed).
 #[inline(never)]
-fn add_rotation<S: Real>(w: &Rotation<S>, radius_m: S, y: &Y<S>, dy: &mut Y<S>) {
-    let (sg, cg) = sin_cos(y.gamma);
-    let c = w.w2_cos_phi * (radius_m + y.h);
+fn add_rotation<S: Real>(w: &Rotation<S>, r: S, v: S, (sg, cg): (S, S), dy: &mut Y<S>) {
+    let c = w.w2_cos_phi * r;
     dy.v = dy.v + c * (sg * w.cos_phi - cg * w.sin_phi_cos_psi);
-    dy.gamma = dy.gamma + w.coriolis_rad_s + c * (cg * w.cos_phi + sg * w.sin_phi_cos_psi) / y.v;
+    dy.gamma = dy.gamma + w.coriolis_rad_s + c * (cg * w.cos_phi + sg * w.sin_phi_cos_psi) / v;
 }
 
 /// `f`, raised to `bound`'s fraction at this state (out of line: the unbounded path of
@@ -175,7 +174,7 @@ impl<S: Real> Model<S> {
             theta: v_r * cg,
         };
         if let Some(w) = &self.rotation {
-            add_rotation(w, self.radius_m, y, &mut dy);
+            add_rotation(w, r, y.v, (sg, cg), &mut dy);
         }
         Rates {
             dy,
