@@ -116,6 +116,13 @@ pub struct OptimizeArgs {
     /// `population` (alias `history`: history-based, from a mating parent; the default).
     #[arg(long, value_enum, default_value = "population")]
     pub scea_genes: super::optimize_structured::SceaGenesArg,
+    /// MOEA/D and NSGA-II: keep an external archive of the feasible non-dominated solutions
+    /// found during the run (Zhang & Li 2007's external population, not in pagmo), at most N
+    /// members, truncated by least exclusive hypervolume contribution; the front written,
+    /// printed and scored is then the archive's (summary.json: "front_source": "archive").
+    /// Default: none (pagmo's semantics: the final population's front).
+    #[arg(long, value_name = "N")]
+    pub archive: Option<usize>,
     /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
     /// gains only with --batch-size > 1.
     #[arg(long, default_value_t = 1)]
@@ -233,6 +240,21 @@ pub enum OptimizeError {
     /// `--threads 0`.
     #[error("command line: --threads 0: use at least 1")]
     Threads,
+    /// `--archive 0`.
+    #[error(
+        "command line: --archive 0: the archive's capacity must be at least 1 (or drop --archive)"
+    )]
+    ArchiveZero,
+    /// `--archive` where no archive is implemented.
+    #[error(
+        "command line: --archive applies to --algorithm moead or nsga2 on the test problems (given --algorithm {algorithm} --problem {problem}); drop it"
+    )]
+    ArchiveNotHere {
+        /// Algorithm asked for.
+        algorithm: &'static str,
+        /// Problem asked for.
+        problem: String,
+    },
     /// The rayon pool could not be built.
     #[error("cannot start {threads} evaluation threads: {source}")]
     Pool {
@@ -275,6 +297,12 @@ pub(super) struct Summary<'a> {
     pub(super) true_front_hypervolume: Option<f64>,
     pub(super) hypervolume_ratio: Option<f64>,
     pub(super) feasible_fraction: f64,
+    /// What the front (front.csv, hypervolume, front_size) is taken from: "population" (the
+    /// final population; pagmo's semantics) or "archive" (the external archive, `--archive`).
+    pub(super) front_source: &'static str,
+    /// Capacity of the external archive (`--archive`), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) archive_capacity: Option<usize>,
     pub(super) front_size: usize,
     /// Wall time of the evolution alone (no problem set-up, no output) [s].
     pub(super) wall_time_s: f64,
@@ -283,6 +311,8 @@ pub(super) struct Summary<'a> {
 
 pub(super) struct Outcome {
     pub(super) population: Vec<Individual<Vec<f64>>>,
+    /// The external archive's members, when the run kept one (the result front).
+    pub(super) archive: Option<Vec<Individual<Vec<f64>>>>,
     pub(super) evaluations: u64,
     pub(super) wall_time_s: f64,
 }
@@ -307,9 +337,33 @@ fn drive<A: Algorithm<TestProblem>>(
     let wall_time_s = start.elapsed().as_secs_f64();
     Ok(Outcome {
         population: alg.population().to_vec(),
+        archive: alg.external_archive().map(<[_]>::to_vec),
         evaluations: alg.evaluations(),
         wall_time_s,
     })
+}
+
+/// `--archive`: at least 1, and only where the run keeps and reports it (MOEA/D and NSGA-II
+/// on the test problems).
+fn check_archive(a: &OptimizeArgs) -> Result<(), OptimizeError> {
+    match a.archive {
+        None => Ok(()),
+        Some(0) => Err(OptimizeError::ArchiveZero),
+        Some(_) => {
+            let fixed_test_problem = !super::optimize_reentry::wants_reentry(a)
+                && crate::optim::problems::Vlmop::by_name(&a.problem).is_none();
+            if fixed_test_problem
+                && matches!(a.algorithm, AlgorithmName::Moead | AlgorithmName::Nsga2)
+            {
+                Ok(())
+            } else {
+                Err(OptimizeError::ArchiveNotHere {
+                    algorithm: a.algorithm_name(),
+                    problem: a.problem.clone(),
+                })
+            }
+        }
+    }
 }
 
 /// MOEA/D settings from the arguments (also SCEA's).
@@ -325,6 +379,7 @@ pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
         neighbours: a.neighbours,
         mutation_probability: a.mutation_probability,
         batch_size: a.batch_size,
+        archive: a.archive,
         ..MoeadConfig::default()
     }
 }
@@ -358,6 +413,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
             algorithm: a.algorithm_name(),
         });
     }
+    check_archive(a)?;
     if super::optimize_reentry::wants_reentry(a) {
         return Ok(super::optimize_reentry::run(a, out)?);
     }
@@ -394,6 +450,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         AlgorithmName::Nsga2 => {
             let config = Nsga2Config {
                 population: a.population,
+                archive: a.archive,
                 ..Nsga2Config::default()
             };
             drive(Nsga2::new(config, a.seed), &problem, a.generations, pool)?
@@ -405,10 +462,11 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, pool)?,
     };
     let pop = &outcome.population;
-    let front_idx = feasible_front_indices(pop);
+    let result = outcome.archive.as_deref().unwrap_or(pop);
+    let front_idx = feasible_front_indices(result);
     let front: Vec<&[f64]> = front_idx
         .iter()
-        .map(|&i| pop[i].objectives.as_slice())
+        .map(|&i| result[i].objectives.as_slice())
         .collect();
     let hv = hypervolume(&front, &reference)?;
     let true_hv = problem.front_hypervolume(&reference, 20_000);
@@ -427,6 +485,12 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         true_front_hypervolume: true_hv,
         hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
         feasible_fraction: feasible_fraction(pop),
+        front_source: if outcome.archive.is_some() {
+            "archive"
+        } else {
+            "population"
+        },
+        archive_capacity: a.archive,
         front_size: front.len(),
         wall_time_s: outcome.wall_time_s,
         threads: a.threads,
@@ -527,6 +591,7 @@ mod tests {
             n_gen_mark: 7,
             mhaco_constraints: MhacoConstraintsArg::FeasibilityFirst,
             scea_genes: super::super::optimize_structured::SceaGenesArg::Population,
+            archive: None,
             threads: 1,
             reference: None,
             out,
@@ -640,6 +705,62 @@ mod tests {
         a.n_gen_mark = 0;
         let e = run(&a, &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("n_gen_mark"), "{e}");
+    }
+
+    #[test]
+    fn optimize_archive_reports_the_archive_front_and_refuses_bad_values() {
+        let dir = |t: &str| {
+            std::env::temp_dir().join(format!(
+                "host-sim-optimize-archive-{t}-{}",
+                std::process::id()
+            ))
+        };
+        let summary = |d: &Path| -> serde_json::Value {
+            serde_json::from_str(&std::fs::read_to_string(d.join("summary.json")).unwrap()).unwrap()
+        };
+        for alg in [AlgorithmName::Moead, AlgorithmName::Nsga2] {
+            let mut a = args("zdt1", alg, Some(dir("plain")));
+            a.generations = 30;
+            run(&a, &mut Vec::new()).unwrap();
+            a.archive = Some(12);
+            a.out = Some(dir("archive"));
+            let mut text = Vec::new();
+            run(&a, &mut text).unwrap();
+            let (plain, with) = (summary(&dir("plain")), summary(&dir("archive")));
+            assert_eq!(plain["front_source"], "population", "{alg:?}");
+            assert!(plain.get("archive_capacity").is_none());
+            assert_eq!(with["front_source"], "archive", "{alg:?}");
+            assert_eq!(with["archive_capacity"], 12);
+            assert_eq!(with["front_size"], 12);
+            // The population is the same run's; the front is the archive's.
+            let read = |d: PathBuf, f: &str| std::fs::read_to_string(d.join(f)).unwrap();
+            assert_eq!(
+                read(dir("plain"), "population.csv"),
+                read(dir("archive"), "population.csv")
+            );
+            assert_eq!(read(dir("archive"), "front.csv").lines().count(), 13);
+            let text = String::from_utf8(text).unwrap();
+            assert!(text.contains("12 front points"), "{text}");
+            for t in ["plain", "archive"] {
+                std::fs::remove_dir_all(dir(t)).unwrap();
+            }
+        }
+        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        a.archive = Some(0);
+        let e = run(&a, &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("--archive 0"), "{e}");
+        for (problem, alg) in [
+            ("zdt1", AlgorithmName::Mhaco),
+            ("zdt1", AlgorithmName::Scea),
+            ("vlmop1", AlgorithmName::Scea),
+            ("srm", AlgorithmName::Moead),
+        ] {
+            let mut a = args(problem, alg, None);
+            a.archive = Some(10);
+            let e = run(&a, &mut Vec::new()).unwrap_err();
+            assert!(matches!(e, OptimizeError::ArchiveNotHere { .. }), "{e}");
+            assert!(e.to_string().contains("--archive applies to"), "{e}");
+        }
     }
 
     #[test]

@@ -97,6 +97,7 @@ pub(super) fn drive_scea(
                 violation: i.violation,
             })
             .collect(),
+        archive: None,
         evaluations,
         wall_time_s,
     })
@@ -160,6 +161,8 @@ pub(super) fn run_variable_length(
         true_front_hypervolume: true_hv,
         hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
         feasible_fraction: feasible_fraction(&pop),
+        front_source: "population",
+        archive_capacity: None,
         front_size: front.len(),
         wall_time_s,
         threads: a.threads,
@@ -234,6 +237,7 @@ mod tests {
             n_gen_mark: 7,
             mhaco_constraints: super::super::optimize_cmd::MhacoConstraintsArg::FeasibilityFirst,
             scea_genes: SceaGenesArg::Population,
+            archive: None,
             threads: 1,
             reference: None,
             out: None,

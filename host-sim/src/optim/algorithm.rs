@@ -40,6 +40,19 @@ pub trait Algorithm<P: Problem> {
     /// The current population (parents), evaluated.
     fn population(&self) -> &[Individual<P::Decision>];
 
+    /// The external archive of feasible non-dominated solutions found during the run, when
+    /// the algorithm keeps one ([`crate::optim::ParetoArchive`]: MOEA/D, SCEA and NSGA-II with
+    /// `archive: Some(capacity)`). Default: none (pagmo's semantics).
+    fn external_archive(&self) -> Option<&[Individual<P::Decision>]> {
+        None
+    }
+
+    /// The individuals the run's result front is taken from: the external archive when there
+    /// is one, else the population.
+    fn result(&self) -> &[Individual<P::Decision>] {
+        self.external_archive().unwrap_or_else(|| self.population())
+    }
+
     /// The initial population has been evaluated.
     fn is_initialised(&self) -> bool;
 

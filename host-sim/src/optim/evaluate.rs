@@ -132,6 +132,7 @@ where
                 generation: after.1,
                 evaluations: algorithm.evaluations(),
                 population: algorithm.population(),
+                archive: algorithm.external_archive(),
             });
         }
     }

@@ -12,12 +12,15 @@
 //! * [`population`]: evaluated [`Individual`]s, constraint violation, feasible fronts;
 //! * [`pareto`]: dominance, non-dominated sorting, crowding distance; [`rng`]: the one seeded,
 //!   serialisable generator of a run;
+//! * [`archive`]: [`ParetoArchive`], the bounded external archive of non-dominated solutions
+//!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
 //! * [`hypervolume`]: exact hypervolume, contributions, least contributor.
 //!
 //! See docs/OPTIMISERS.md for the semantics and the measured convergence.
 
 pub mod algorithm;
 pub mod algorithms;
+pub mod archive;
 pub mod chromosome;
 pub mod error;
 pub mod evaluate;
@@ -36,6 +39,7 @@ pub use algorithms::{
     ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes, Nsga2, Nsga2Config, Scea,
     SceaConfig,
 };
+pub use archive::ParetoArchive;
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
 pub use evaluate::{Evaluator, Rayon, Serial, evolve};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};

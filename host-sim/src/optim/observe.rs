@@ -18,6 +18,9 @@ pub struct GenerationReport<'a, D> {
     pub evaluations: u64,
     /// The population (decisions, objectives, constraint values and violations).
     pub population: &'a [Individual<D>],
+    /// The algorithm's external archive of feasible non-dominated solutions, if it keeps one
+    /// ([`crate::optim::Algorithm::external_archive`]); then it is the reported front.
+    pub archive: Option<&'a [Individual<D>]>,
 }
 
 impl<D> GenerationReport<'_, D> {
@@ -27,15 +30,15 @@ impl<D> GenerationReport<'_, D> {
         feasible_fraction(self.population)
     }
 
-    /// Objective vectors of the feasible non-dominated individuals.
+    /// Objective vectors of the feasible non-dominated individuals: of the external archive
+    /// when the algorithm keeps one, else of the population.
     #[must_use]
     pub fn front(&self) -> Vec<Vec<f64>> {
-        feasible_front(self.population)
+        feasible_front(self.archive.unwrap_or(self.population))
     }
 
-    /// Hypervolume of the feasible non-dominated individuals with respect to `reference`
-    /// (failed and infeasible individuals never reach the hypervolume code; 0 when none is
-    /// feasible).
+    /// Hypervolume of [`Self::front`] with respect to `reference` (failed and infeasible
+    /// individuals never reach the hypervolume code; 0 when none is feasible).
     ///
     /// # Errors
     /// [`HypervolumeError`] for a reference point of the wrong dimension.

@@ -6,10 +6,14 @@
 //! each pair of winners gives two children by SBX (probability `cr`, index `eta_c`) and
 //! polynomial mutation (per-variable probability `m`, index `eta_m`). Survival keeps the best
 //! `population` of parents + children by front, the last front cut by crowding distance.
+//!
+//! Opt-in (`archive: Some(capacity)`, not pagmo): every evaluated individual is also offered,
+//! in batch order, to an external [`ParetoArchive`], which is then the run's result front.
 
 use serde::{Deserialize, Serialize};
 
 use crate::optim::algorithm::{Algorithm, Batch, check_objectives};
+use crate::optim::archive::{ParetoArchive, check_capacity};
 use crate::optim::error::{ConfigError, OptimError};
 use crate::optim::operators::{polynomial_mutation, random_point, sbx};
 use crate::optim::pareto::{constrained_sort_fronts, crowding_distance, rank_crowding_cmp};
@@ -34,6 +38,11 @@ pub struct Nsga2Config {
     pub m: f64,
     /// Polynomial-mutation distribution index in [1, 100] (default 50).
     pub eta_m: f64,
+    /// Capacity of an external archive of the feasible non-dominated solutions found during
+    /// the run ([`ParetoArchive`], hypervolume truncation); it is then the run's result
+    /// front. `None` (default): pagmo's semantics, the result is the final population.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archive: Option<usize>,
 }
 
 impl Default for Nsga2Config {
@@ -44,6 +53,7 @@ impl Default for Nsga2Config {
             eta_c: 10.0,
             m: 0.01,
             eta_m: 50.0,
+            archive: None,
         }
     }
 }
@@ -71,6 +81,9 @@ impl Nsga2Config {
         check_range(NAME, "eta_c", self.eta_c, 1.0, 100.0, "[1, 100]")?;
         check_range(NAME, "m", self.m, 0.0, 1.0, "[0, 1]")?;
         check_range(NAME, "eta_m", self.eta_m, 1.0, 100.0, "[1, 100]")?;
+        if let Some(capacity) = self.archive {
+            check_capacity(NAME, capacity)?;
+        }
         Ok(())
     }
 }
@@ -85,6 +98,10 @@ pub struct Nsga2 {
     initialised: bool,
     generation: u64,
     evaluations: u64,
+    /// The external archive (`config.archive`), every evaluated individual offered in batch
+    /// order.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    archive: Option<ParetoArchive<Vec<f64>>>,
 }
 
 impl Nsga2 {
@@ -99,6 +116,7 @@ impl Nsga2 {
             initialised: false,
             generation: 0,
             evaluations: 0,
+            archive: None,
         }
     }
 
@@ -130,6 +148,12 @@ impl Nsga2 {
     #[must_use]
     pub fn config(&self) -> &Nsga2Config {
         &self.config
+    }
+
+    /// The external archive, when `config.archive` is set (created by the first ask).
+    #[must_use]
+    pub fn archive(&self) -> Option<&ParetoArchive<Vec<f64>>> {
+        self.archive.as_ref()
     }
 
     /// Rank (front number) and crowding distance of every member of `pop`.
@@ -253,6 +277,7 @@ impl<P: RealProblem> Algorithm<P> for Nsga2 {
             } else {
                 check_objectives(problem)?;
                 self.config.check()?;
+                self.archive = self.config.archive.map(ParetoArchive::new).transpose()?;
                 let decisions = (0..self.config.population)
                     .map(|_| random_point(problem.bounds(), &mut self.rng))
                     .collect();
@@ -279,6 +304,11 @@ impl<P: RealProblem> Algorithm<P> for Nsga2 {
             return Ok(());
         }
         let told = self.batch.take();
+        if let Some(archive) = &mut self.archive {
+            for ind in &told {
+                archive.offer(ind);
+            }
+        }
         if self.initialised {
             self.survive(told);
             self.generation += 1;
@@ -291,6 +321,10 @@ impl<P: RealProblem> Algorithm<P> for Nsga2 {
 
     fn population(&self) -> &[Individual<Vec<f64>>] {
         &self.population
+    }
+
+    fn external_archive(&self) -> Option<&[Individual<Vec<f64>>]> {
+        self.archive.as_ref().map(ParetoArchive::members)
     }
 
     fn is_initialised(&self) -> bool {

@@ -19,6 +19,12 @@
 //! Ask/tell: `batch_size` offspring are made from the same population state and applied in
 //! index order when all are told. `batch_size = 1` (default) is pagmo's steady-state loop;
 //! larger batches allow parallel evaluation at the price of slightly staler parents.
+//!
+//! Opt-in (`archive: Some(capacity)`, not pagmo): Zhang & Li's (2007) external population.
+//! Every evaluated individual (the initial population, then each child) is offered, in batch
+//! order, to a bounded [`ParetoArchive`] of the feasible non-dominated solutions found so far,
+//! which is then the run's result front ([`Algorithm::external_archive`]). The archive never
+//! feeds back into selection, so the population evolves exactly as without it.
 
 use std::fmt::Debug;
 
@@ -26,6 +32,7 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use crate::optim::algorithm::{Algorithm, Batch, Scratch, check_objectives};
+use crate::optim::archive::{ParetoArchive, check_capacity};
 use crate::optim::error::{ConfigError, OptimError};
 use crate::optim::operators::{de_step, polynomial_mutation, random_point};
 use crate::optim::population::Individual;
@@ -67,6 +74,12 @@ pub struct MoeadConfig {
     pub mutation_probability: Option<f64>,
     /// Offspring per ask (default 1: pagmo's steady state).
     pub batch_size: usize,
+    /// Capacity of an external archive of the feasible non-dominated solutions found during
+    /// the run (Zhang & Li 2007's external population, bounded by hypervolume truncation:
+    /// [`ParetoArchive`]); it is then the run's result front. `None` (default): pagmo's
+    /// semantics, no archive, the result is the final population.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archive: Option<usize>,
 }
 
 impl Default for MoeadConfig {
@@ -84,6 +97,7 @@ impl Default for MoeadConfig {
             preserve_diversity: true,
             mutation_probability: None,
             batch_size: 1,
+            archive: None,
         }
     }
 }
@@ -131,6 +145,9 @@ impl MoeadConfig {
         check_range(NAME, "realb", self.realb, 0.0, 1.0, "[0, 1]")?;
         if let Some(p) = self.mutation_probability {
             check_range(NAME, "mutation_probability", p, 0.0, 1.0, "[0, 1]")?;
+        }
+        if let Some(capacity) = self.archive {
+            check_capacity(NAME, capacity)?;
         }
         Ok(())
     }
@@ -234,6 +251,10 @@ pub struct MoeadWith<D, V> {
     initialised: bool,
     generation: u64,
     evaluations: u64,
+    /// The external archive (`config.archive`), every evaluated individual offered in batch
+    /// order.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    archive: Option<ParetoArchive<D>>,
     #[serde(skip)]
     scratch: Scratch<Buffers<D>>,
 }
@@ -283,6 +304,7 @@ impl<D: Decision, V> MoeadWith<D, V> {
             initialised: false,
             generation: 0,
             evaluations: 0,
+            archive: None,
             scratch: Scratch::default(),
         }
     }
@@ -336,6 +358,12 @@ impl<D: Decision, V> MoeadWith<D, V> {
         &self.variation
     }
 
+    /// The external archive, when `config.archive` is set (created by the first ask).
+    #[must_use]
+    pub fn archive(&self) -> Option<&ParetoArchive<D>> {
+        self.archive.as_ref()
+    }
+
     fn start<P>(&mut self, problem: &P) -> Result<(), OptimError>
     where
         P: Problem<Decision = D>,
@@ -349,6 +377,7 @@ impl<D: Decision, V> MoeadWith<D, V> {
         self.weights = generate(n, m, self.config.weights, &mut self.rng)?;
         self.neighbourhoods = neighbourhoods(&self.weights, self.config.neighbours);
         self.ideal = vec![f64::MAX; m];
+        self.archive = self.config.archive.map(ParetoArchive::new).transpose()?;
         let decisions = (0..n)
             .map(|_| self.variation.random(problem, &mut self.rng))
             .collect();
@@ -534,6 +563,11 @@ where
             for (child, origin) in told.iter().zip(&origins) {
                 self.apply(child, *origin);
             }
+            if let Some(archive) = &mut self.archive {
+                for child in &told {
+                    archive.offer(child);
+                }
+            }
             self.origins = origins;
             self.cursor += told.len();
             self.scratch
@@ -549,6 +583,9 @@ where
             let told = self.batch.take();
             for ind in &told {
                 Self::update_ideal(&mut self.ideal, ind);
+                if let Some(archive) = &mut self.archive {
+                    archive.offer(ind);
+                }
             }
             self.population = told;
             self.initialised = true;
@@ -559,6 +596,10 @@ where
 
     fn population(&self) -> &[Individual<P::Decision>] {
         &self.population
+    }
+
+    fn external_archive(&self) -> Option<&[Individual<P::Decision>]> {
+        self.archive.as_ref().map(ParetoArchive::members)
     }
 
     fn is_initialised(&self) -> bool {

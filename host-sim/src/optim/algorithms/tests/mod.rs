@@ -49,6 +49,7 @@ fn run<A: Algorithm<TestProblem>>(mut alg: A, p: &TestProblem, gens: u64) -> A {
     alg
 }
 
+mod archive;
 mod convergence;
 mod variable;
 
