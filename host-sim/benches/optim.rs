@@ -2,6 +2,8 @@
 //! population 100, 250 generations (25,100 evaluations), MOEA/D and NSGA-II with pagmo's
 //! defaults, seeds 1..=10 in turn (one run per iteration). The median hypervolume over the
 //! ten seeds (reference point (1.1, 1.1); true front 0.8767) is printed once per algorithm.
+//! The `-archive100` variants keep the opt-in external archive of capacity 100 (Zhang & Li's
+//! EP, `archive: Some(100)`) and report its front.
 //! Peer figures (pygmo 2.20): `scripts/compare_pygmo.py`, docs/PERFORMANCE.md.
 
 use std::hint::black_box;
@@ -11,8 +13,8 @@ use host_sim::optim::hypervolume::hypervolume;
 use host_sim::optim::population::feasible_front;
 use host_sim::optim::problems::Zdt;
 use host_sim::optim::{
-    Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config, Serial,
-    evolve,
+    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
+    Serial, evolve,
 };
 
 const GENERATIONS: u64 = 250;
@@ -30,6 +32,29 @@ fn run_nsga2(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
     a.population().to_vec()
 }
 
+/// The archive's capacity of the `-archive100` variants (pygmo's output size: the population).
+const ARCHIVE: Option<usize> = Some(100);
+
+fn run_moead_archive(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
+    let config = MoeadConfig {
+        archive: ARCHIVE,
+        ..MoeadConfig::default()
+    };
+    let mut a = Moead::new(config, seed);
+    evolve(&mut a, problem, &Serial, GENERATIONS, &mut NoObserver).expect("moead runs");
+    Algorithm::<Zdt>::result(&a).to_vec()
+}
+
+fn run_nsga2_archive(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
+    let config = Nsga2Config {
+        archive: ARCHIVE,
+        ..Nsga2Config::default()
+    };
+    let mut a = Nsga2::new(config, seed);
+    evolve(&mut a, problem, &Serial, GENERATIONS, &mut NoObserver).expect("nsga2 runs");
+    Algorithm::<Zdt>::result(&a).to_vec()
+}
+
 fn median_hypervolume(run: fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>, problem: &Zdt) -> Vec<f64> {
     let mut hv: Vec<f64> = (1..=SEEDS)
         .map(|s| hypervolume(&feasible_front(&run(problem, s)), &[1.1, 1.1]).expect("hypervolume"))
@@ -41,7 +66,12 @@ fn median_hypervolume(run: fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>, problem: 
 fn bench(c: &mut Criterion) {
     let problem = Zdt::standard(1).expect("zdt1");
     type Run = fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>;
-    let algorithms: [(&str, Run); 2] = [("moead", run_moead), ("nsga2", run_nsga2)];
+    let algorithms: [(&str, Run); 4] = [
+        ("moead", run_moead),
+        ("nsga2", run_nsga2),
+        ("moead-archive100", run_moead_archive),
+        ("nsga2-archive100", run_nsga2_archive),
+    ];
     for (name, run) in algorithms {
         let hv = median_hypervolume(run, &problem);
         println!(

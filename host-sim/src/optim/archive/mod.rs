@@ -34,6 +34,7 @@
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use super::algorithm::Scratch;
 use super::error::ConfigError;
 use super::hypervolume::least_contributor;
 use super::pareto::dominates;
@@ -49,6 +50,11 @@ const REFERENCE: f64 = 1.1;
 pub struct ParetoArchive<D> {
     capacity: usize,
     members: Vec<Individual<D>>,
+    /// Two objectives: the members' objectives, flat and contiguous (`[f1, f2]` per member, in
+    /// the members' order), so that bisection and the contribution scan never chase the
+    /// members' own allocations. Derived from `members`: not serialised, rebuilt when stale.
+    #[serde(skip)]
+    keys: Scratch<Vec<[f64; 2]>>,
 }
 
 impl<D: Clone> ParetoArchive<D> {
@@ -61,6 +67,7 @@ impl<D: Clone> ParetoArchive<D> {
         Ok(Self {
             capacity,
             members: Vec::with_capacity(capacity + 1),
+            keys: Scratch::default(),
         })
     }
 
@@ -103,43 +110,75 @@ impl<D: Clone> ParetoArchive<D> {
         {
             return false;
         }
-        let at = if f.len() == 2 {
-            match self.place_2d(f) {
-                Some(at) => at,
-                None => return false,
-            }
-        } else {
-            match self.place_any(f) {
-                Some(at) => at,
-                None => return false,
-            }
+        if f.len() == 2 {
+            return self.offer_2d(candidate, [f[0], f[1]]);
+        }
+        let Some(at) = self.place_any(f) else {
+            return false;
         };
         self.members.insert(at, candidate.clone());
         if self.members.len() > self.capacity {
-            let out = self.least_contributor();
+            let out = self.least_contributor_any();
             self.members.remove(out);
             return out != at;
         }
         true
     }
 
-    /// Two objectives: refuse a weakly dominated candidate, drop the members it dominates, and
-    /// return where it goes (members sorted by `f1` ascending, `f2` strictly descending).
-    fn place_2d(&mut self, f: &[f64]) -> Option<usize> {
-        let (x, y) = (f[0], f[1]);
-        // Last member with f1 <= x has the smallest f2 of all such members.
-        let p = self.members.partition_point(|m| m.objectives[0] <= x);
-        if p > 0 && self.members[p - 1].objectives[1] <= y {
-            return None;
+    /// Two objectives (members sorted by `f1` ascending, `f2` strictly descending): refuse a
+    /// weakly dominated candidate, drop the members it dominates, insert it, truncate.
+    fn offer_2d(&mut self, candidate: &Individual<D>, [x, y]: [f64; 2]) -> bool {
+        let keys = &mut self.keys.0;
+        if keys.len() != self.members.len() {
+            keys.clear();
+            keys.extend(
+                self.members
+                    .iter()
+                    .map(|m| [m.objectives[0], m.objectives[1]]),
+            );
+        }
+        // The last member with f1 <= x has the smallest f2 of all such members.
+        let p = keys.partition_point(|k| k[0] <= x);
+        if p > 0 && keys[p - 1][1] <= y {
+            return false;
         }
         // Dominated members: f1 >= x and f2 >= y, a contiguous run from the first f1 >= x.
-        let q = self.members.partition_point(|m| m.objectives[0] < x);
+        let q = keys.partition_point(|k| k[0] < x);
         let mut end = q;
-        while end < self.members.len() && self.members[end].objectives[1] >= y {
+        while end < keys.len() && keys[end][1] >= y {
             end += 1;
         }
-        self.members.drain(q..end);
-        Some(q)
+        if end > q {
+            // It replaces the members it dominates (no truncation: the archive shrank or kept
+            // its size); the first one's buffers are reused.
+            keys.drain(q + 1..end);
+            keys[q] = [x, y];
+            self.members.drain(q + 1..end);
+            self.members[q].clone_from(candidate);
+            return true;
+        }
+        keys.insert(q, [x, y]);
+        if keys.len() <= self.capacity {
+            self.members.insert(q, candidate.clone());
+            return true;
+        }
+        // Full: the least contributor of members + candidate leaves. Moving only the members
+        // between the two positions, the leaving member's buffers take the candidate.
+        let out = least_contributor_2d(keys);
+        keys.remove(out);
+        let slot = match out.cmp(&q) {
+            std::cmp::Ordering::Equal => return false,
+            std::cmp::Ordering::Greater => {
+                self.members[q..out].rotate_right(1);
+                q
+            }
+            std::cmp::Ordering::Less => {
+                self.members[out..q].rotate_left(1);
+                q - 1
+            }
+        };
+        self.members[slot].clone_from(candidate);
+        true
     }
 
     /// Any number of objectives: the same by a linear scan; lexicographic position.
@@ -158,26 +197,14 @@ impl<D: Clone> ParetoArchive<D> {
         )
     }
 
-    /// Index of the member with the least exclusive contribution (first of equals), on the
-    /// unit box of the members' ideal and nadir points with reference point 1.1.
-    fn least_contributor(&self) -> usize {
+    /// More than two objectives: index of the member with the least exclusive contribution
+    /// (first of equals), on the unit box of the members' ideal and nadir points with
+    /// reference point 1.1.
+    fn least_contributor_any(&self) -> usize {
         let n = self.members.len();
         let m = self.members[0].objectives.len();
         let (ideal, nadir) = self.bounds(m);
         let unit = |i: usize, k: usize| to_unit(self.members[i].objectives[k], ideal[k], nadir[k]);
-        if m == 2 {
-            // Sorted front: member i's box is [x_i, x_{i+1}) x [y_i, y_{i-1}).
-            let mut best = (0, f64::INFINITY);
-            for i in 0..n {
-                let right = if i + 1 < n { unit(i + 1, 0) } else { REFERENCE };
-                let top = if i > 0 { unit(i - 1, 1) } else { REFERENCE };
-                let c = (right - unit(i, 0)) * (top - unit(i, 1));
-                if c < best.1 {
-                    best = (i, c);
-                }
-            }
-            return best.0;
-        }
         let points: Vec<Vec<f64>> = (0..n)
             .map(|i| (0..m).map(|k| unit(i, k)).collect())
             .collect();
@@ -198,6 +225,44 @@ impl<D: Clone> ParetoArchive<D> {
         }
         (ideal, nadir)
     }
+}
+
+/// Two objectives, at least two sorted members (`f1` ascending, `f2` strictly descending):
+/// index of the least exclusive contributor (first of equals). Member `i` alone dominates the
+/// rectangle `[x_i, x_{i+1}) x [y_i, y_{i-1})`, the reference point `r = nadir + 0.1 (nadir -
+/// ideal)` closing the ends (nadir `(x_last, y_first)`, ideal `(x_first, y_last)`). Raw
+/// coordinates: the unit-box areas of the module documentation times one common factor.
+fn least_contributor_2d(keys: &[[f64; 2]]) -> usize {
+    let n = keys.len();
+    let (first, last) = (keys[0], keys[n - 1]);
+    let rx = last[0] + (REFERENCE - 1.0) * (last[0] - first[0]);
+    let ry = first[1] + (REFERENCE - 1.0) * (first[1] - last[1]);
+    if !(rx > last[0] && ry > first[1] && rx.is_finite() && ry.is_finite()) {
+        // The margin is lost to rounding or overflows: the same on the unit box.
+        let unit: Vec<[f64; 2]> = keys
+            .iter()
+            .map(|k| {
+                [
+                    to_unit(k[0], first[0], last[0]),
+                    to_unit(k[1], last[1], first[1]),
+                ]
+            })
+            .collect();
+        let (ux, uy) = (unit[n - 1][0], unit[0][1]);
+        if ux + (REFERENCE - 1.0) * ux > ux && uy + (REFERENCE - 1.0) * uy > uy {
+            return least_contributor_2d(&unit);
+        }
+        return n - 1;
+    }
+    let mut best = (0, (keys[1][0] - first[0]) * (ry - first[1]));
+    for i in 1..n {
+        let right = if i + 1 < n { keys[i + 1][0] } else { rx };
+        let c = (right - keys[i][0]) * (keys[i - 1][1] - keys[i][1]);
+        if c < best.1 {
+            best = (i, c);
+        }
+    }
+    best.0
 }
 
 /// Check an archive capacity (at least 1) for the setting `name` of `algorithm`.

@@ -217,3 +217,27 @@ fn hypervolume_truncation_keeps_extremes_and_spread_in_2d() {
     assert_eq!(xs.len(), 11);
     assert_eq!((xs[0], xs[10]), (0.0, 1.0));
 }
+
+/// Magnitudes near the float limits and extents lost to rounding: no panic, no NaN, the
+/// capacity held (the margin falls back to the unit box, or the last member leaves).
+#[test]
+fn extreme_magnitudes_keep_the_archive_bounded() {
+    for m in [2, 3] {
+        let mut a = ParetoArchive::new(3).unwrap();
+        let cases: [(f64, f64); 3] = [(1e308, -1e307), (1e16, 1.0), (1e-300, 1e-310)];
+        for (base, step) in cases {
+            for i in 0..8 {
+                let t = f64::from(i);
+                let mut p = vec![base + t * step, base - t * step];
+                p.resize(m, base);
+                a.offer(&ind(&p, 0.0));
+                assert!(a.len() <= 3, "m={m} {p:?}");
+                assert!(
+                    a.members()
+                        .iter()
+                        .all(|x| x.objectives.iter().all(|v| v.is_finite()))
+                );
+            }
+        }
+    }
+}
