@@ -370,3 +370,36 @@ fn scea_converges_on_zdt1_and_dtlz2_as_fixed_length_chromosomes() {
     println!("scea dtlz2 {ratio:.4}");
     assert!(ratio > SCEA_DTLZ2, "dtlz2 {ratio}");
 }
+
+/// SCEA inherits MOEA/D's opt-in external archive: the population is unchanged, the archive
+/// holds feasible mutually non-dominated chromosomes within its capacity and checkpoints.
+#[test]
+fn scea_external_archive_leaves_the_run_unchanged_and_checkpoints() {
+    let p = Vlmop::standard(1).unwrap();
+    let make = |archive| {
+        Scea::new(
+            SceaConfig {
+                moead: MoeadConfig {
+                    population: 20,
+                    neighbours: 5,
+                    archive,
+                    ..MoeadConfig::default()
+                },
+                new_genes: NewGenes::Population,
+                ..SceaConfig::default()
+            },
+            6,
+        )
+    };
+    let plain = run(make(None), &p, 10);
+    let with = run(make(Some(8)), &p, 10);
+    let pop = |a: &Scea| <Scea as Algorithm<Vlmop>>::population(a).to_vec();
+    assert_eq!(pop(&plain), pop(&with));
+    assert!(<Scea as Algorithm<Vlmop>>::external_archive(&plain).is_none());
+    let archive = <Scea as Algorithm<Vlmop>>::external_archive(&with).unwrap();
+    assert!(!archive.is_empty() && archive.len() <= 8);
+    assert!(archive.iter().all(|i| i.is_feasible()));
+    assert_eq!(feasible_front(archive).len(), archive.len());
+    let back: Scea = serde_json::from_str(&serde_json::to_string(&with).unwrap()).unwrap();
+    assert_eq!(back, with);
+}
