@@ -116,11 +116,12 @@ pub struct OptimizeArgs {
     /// `population` (alias `history`: history-based, from a mating parent; the default).
     #[arg(long, value_enum, default_value = "population")]
     pub scea_genes: super::optimize_structured::SceaGenesArg,
-    /// MOEA/D and NSGA-II: keep an external archive of the feasible non-dominated solutions
-    /// found during the run (Zhang & Li 2007's external population, not in pagmo), at most N
-    /// members, truncated by least exclusive hypervolume contribution; the front written,
-    /// printed and scored is then the archive's (summary.json: "front_source": "archive").
-    /// Default: none (pagmo's semantics: the final population's front).
+    /// MOEA/D, NSGA-II and SCEA: keep an external archive of the feasible non-dominated
+    /// solutions found during the run (Zhang & Li 2007's external population, not in pagmo),
+    /// at most N members, truncated by least exclusive hypervolume contribution; the front
+    /// written, printed and scored is then the archive's (summary.json: "front_source":
+    /// "archive"; re-entry runs: `archive` in config.toml). Default: none (pagmo's
+    /// semantics: the final population's front).
     #[arg(long, value_name = "N")]
     pub archive: Option<usize>,
     /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
@@ -245,16 +246,19 @@ pub enum OptimizeError {
         "command line: --archive 0: the archive's capacity must be at least 1 (or drop --archive)"
     )]
     ArchiveZero,
-    /// `--archive` where no archive is implemented.
+    /// `--archive` with an algorithm that keeps none.
     #[error(
-        "command line: --archive applies to --algorithm moead or nsga2 on the test problems (given --algorithm {algorithm} --problem {problem}); drop it"
+        "command line: --archive applies to --algorithm moead, nsga2 or scea (given --algorithm {algorithm}); drop it"
     )]
     ArchiveNotHere {
         /// Algorithm asked for.
         algorithm: &'static str,
-        /// Problem asked for.
-        problem: String,
     },
+    /// `--archive` beside `--config` or `--resume`.
+    #[error(
+        "command line: --archive with --config or --resume: the run file decides; set `archive = N` in it instead"
+    )]
+    ArchiveInFile,
     /// The rayon pool could not be built.
     #[error("cannot start {threads} evaluation threads: {source}")]
     Pool {
@@ -343,26 +347,17 @@ fn drive<A: Algorithm<TestProblem>>(
     })
 }
 
-/// `--archive`: at least 1, and only where the run keeps and reports it (MOEA/D and NSGA-II
-/// on the test problems).
+/// `--archive`: at least 1, only for the algorithms that keep one (MOEA/D, NSGA-II, SCEA), and
+/// not beside a run file (`--config`, `--resume`: the file's `archive` field decides).
 fn check_archive(a: &OptimizeArgs) -> Result<(), OptimizeError> {
     match a.archive {
         None => Ok(()),
         Some(0) => Err(OptimizeError::ArchiveZero),
-        Some(_) => {
-            let fixed_test_problem = !super::optimize_reentry::wants_reentry(a)
-                && crate::optim::problems::Vlmop::by_name(&a.problem).is_none();
-            if fixed_test_problem
-                && matches!(a.algorithm, AlgorithmName::Moead | AlgorithmName::Nsga2)
-            {
-                Ok(())
-            } else {
-                Err(OptimizeError::ArchiveNotHere {
-                    algorithm: a.algorithm_name(),
-                    problem: a.problem.clone(),
-                })
-            }
-        }
+        Some(_) if a.config.is_some() || a.resume.is_some() => Err(OptimizeError::ArchiveInFile),
+        Some(_) if a.algorithm == AlgorithmName::Mhaco => Err(OptimizeError::ArchiveNotHere {
+            algorithm: a.algorithm_name(),
+        }),
+        Some(_) => Ok(()),
     }
 }
 
@@ -749,17 +744,28 @@ mod tests {
         a.archive = Some(0);
         let e = run(&a, &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("--archive 0"), "{e}");
-        for (problem, alg) in [
-            ("zdt1", AlgorithmName::Mhaco),
-            ("zdt1", AlgorithmName::Scea),
-            ("vlmop1", AlgorithmName::Scea),
-            ("srm", AlgorithmName::Moead),
-        ] {
-            let mut a = args(problem, alg, None);
+        for problem in ["zdt1", "srm"] {
+            let mut a = args(problem, AlgorithmName::Mhaco, None);
             a.archive = Some(10);
             let e = run(&a, &mut Vec::new()).unwrap_err();
             assert!(matches!(e, OptimizeError::ArchiveNotHere { .. }), "{e}");
             assert!(e.to_string().contains("--archive applies to"), "{e}");
+        }
+        let mut a = args("srm", AlgorithmName::Moead, None);
+        a.archive = Some(10);
+        a.resume = Some(PathBuf::from("runs/none"));
+        let e = run(&a, &mut Vec::new()).unwrap_err();
+        assert!(matches!(e, OptimizeError::ArchiveInFile), "{e}");
+        // SCEA on a fixed-length and on a variable-length problem reports its archive too.
+        for problem in ["zdt1", "vlmop1"] {
+            let mut a = args(problem, AlgorithmName::Scea, Some(dir("scea")));
+            a.archive = Some(6);
+            run(&a, &mut Vec::new()).unwrap();
+            let s = summary(&dir("scea"));
+            assert_eq!(s["front_source"], "archive", "{problem}");
+            let n = s["front_size"].as_u64().unwrap();
+            assert!((1..=6).contains(&n), "{problem}: {s}");
+            std::fs::remove_dir_all(dir("scea")).unwrap();
         }
     }
 

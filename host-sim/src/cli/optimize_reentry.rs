@@ -55,6 +55,13 @@ pub struct ReentryRunConfig {
     /// written before the field existed).
     #[serde(default = "history_genes")]
     pub scea_genes: NewGenes,
+    /// MOEA/D, NSGA-II and SCEA: capacity of the external archive of the feasible
+    /// non-dominated solutions found during the run (Zhang & Li 2007's external population,
+    /// hypervolume truncation; not in pagmo), whose front is then the run's front (front.csv,
+    /// the member scenarios, the recorded front and hypervolume). Absent (default): pagmo's
+    /// semantics, the final population's front.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archive: Option<usize>,
     /// Hypervolume reference point `[f_r, f_Q]` (objective units).
     pub reference: Vec<f64>,
     /// The design problem.
@@ -86,6 +93,7 @@ impl ReentryRunConfig {
             limit: 1,
             mutation_probability: Some(1.0 / 64.0),
             scea_genes: history_genes(),
+            archive: None,
             reference,
             problem,
         })
@@ -243,6 +251,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     c.neighbours = a.neighbours;
     c.mutation_probability = a.mutation_probability;
     c.scea_genes = a.scea_genes.new_genes();
+    c.archive = a.archive;
     if let Some(r) = &a.reference {
         c.reference.clone_from(r);
     }
@@ -270,6 +279,26 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
     }
     if c.threads == 0 {
         return bad("threads", "0".into(), "use at least 1".into());
+    }
+    match c.archive {
+        Some(0) => {
+            return bad(
+                "archive",
+                "0".into(),
+                "the archive's capacity must be at least 1 (or leave the field out)".into(),
+            );
+        }
+        Some(n) if c.algorithm.starts_with("mhaco") => {
+            return bad(
+                "archive",
+                n.to_string(),
+                format!(
+                    "applies to moead, nsga2 and scea, not {}; leave it out",
+                    c.algorithm
+                ),
+            );
+        }
+        _ => {}
     }
     let m = 2 + usize::from(c.problem.objectives.skips);
     if c.reference.len() != m || !c.reference.iter().all(|v| v.is_finite()) {
@@ -370,6 +399,7 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         limit: c.limit,
         mutation_probability: c.mutation_probability,
         batch_size: c.batch_size,
+        archive: c.archive,
         ..MoeadConfig::default()
     };
     if c.algorithm == "scea" {
@@ -400,6 +430,7 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         "nsga2" => {
             let cfg = Nsga2Config {
                 population: c.population,
+                archive: c.archive,
                 ..Nsga2Config::default()
             };
             drive(&ctx, Nsga2::new(cfg, c.seed), out)
@@ -525,7 +556,14 @@ where
     let start = Instant::now();
     let save = |alg: &A, records: &mut Vec<Record>| -> Result<(), ReentryError> {
         let pop = flat::<P>(alg.population());
-        let rec = record_of(alg.generation(), alg.evaluations(), &pop, &ctx.c.reference);
+        let result = alg.external_archive().map(flat::<P>);
+        let rec = record_of(
+            alg.generation(),
+            alg.evaluations(),
+            &pop,
+            result.as_deref().unwrap_or(&pop),
+            &ctx.c.reference,
+        );
         bar.set_position(rec.generation + 1);
         bar.set_message(format!(
             "gen {} feasible {:.0} % best f {:?} hv {:.4}",
@@ -555,8 +593,9 @@ where
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
     let last = records.last().cloned();
+    // The front's members: the external archive's when the run keeps one.
     let scenarios: Vec<Option<Scenario>> = alg
-        .population()
+        .result()
         .iter()
         .map(|i| ctx.problem.scenario(&i.decision))
         .collect();
@@ -564,6 +603,7 @@ where
         ctx.dir,
         &scenarios,
         &flat::<P>(alg.population()),
+        &flat::<P>(alg.result()),
         &records,
         ctx.c,
         ctx.problem.reentry().analytical(),
@@ -571,7 +611,7 @@ where
     if let Some(r) = last {
         writeln!(
             out,
-            "{} on {}: generation {}, {} evaluations in {:.2} s this session, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members; wrote {}",
+            "{} on {}: generation {}, {} evaluations in {:.2} s this session, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members{}; wrote {}",
             ctx.c.algorithm,
             ctx.c.problem.base,
             r.generation,
@@ -581,6 +621,9 @@ where
             r.hypervolume,
             ctx.c.reference,
             r.front.len(),
+            ctx.c
+                .archive
+                .map_or_else(String::new, |n| format!(" (external archive of {n})")),
             ctx.dir.display()
         )?;
     }

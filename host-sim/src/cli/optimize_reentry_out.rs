@@ -28,7 +28,8 @@ pub struct Record {
     pub evaluations: u64,
     /// Fraction of feasible individuals.
     pub feasible_fraction: f64,
-    /// Hypervolume of the feasible front (0 without feasible members).
+    /// Hypervolume of the feasible front (0 without feasible members): of the external
+    /// archive when the run keeps one (`archive` in config.toml).
     pub hypervolume: f64,
     /// Smallest violation in the population.
     pub min_violation: f64,
@@ -36,15 +37,17 @@ pub struct Record {
     pub best: Vec<f64>,
     /// Mean feasible value per objective (NaN: none feasible).
     pub mean: Vec<f64>,
-    /// The feasible front's objective vectors.
+    /// The feasible front's objective vectors (the external archive's, if any).
     pub front: Vec<Vec<f64>>,
 }
 
-/// The record of a population.
+/// The record of a population; the front and its hypervolume are those of `result` (the
+/// population itself, or the run's external archive).
 pub fn record_of(
     generation: u64,
     evaluations: u64,
     pop: &[Individual<Vec<f64>>],
+    result: &[Individual<Vec<f64>>],
     reference: &[f64],
 ) -> Record {
     let m = reference.len();
@@ -60,9 +63,9 @@ pub fn record_of(
             mean[k] = feas.iter().map(|i| i.objectives[k]).sum::<f64>() / feas.len() as f64;
         }
     }
-    let mut front: Vec<Vec<f64>> = feasible_front_indices(pop)
+    let mut front: Vec<Vec<f64>> = feasible_front_indices(result)
         .into_iter()
-        .map(|i| pop[i].objectives.clone())
+        .map(|i| result[i].objectives.clone())
         .collect();
     front.sort_by(|a, b| a[0].total_cmp(&b[0]));
     Record {
@@ -181,15 +184,19 @@ fn member_run(
     Some(run.result)
 }
 
-/// Write the final files: records, front, member scenarios, chosen trajectories (flown by
-/// the problem's simulator: `analytical` for an analytical problem), plots.
+/// Write the final files: records, population, front (the feasible front of `result`: the
+/// population, or the external archive), member scenarios (`scenarios`: one per `result`
+/// member), chosen trajectories (flown by the problem's simulator: `analytical` for an
+/// analytical problem), plots.
 ///
 /// # Errors
 /// [`ReportError`].
+#[allow(clippy::too_many_arguments)] // the final files need exactly these inputs
 pub fn write_final(
     dir: &Path,
     scenarios: &[Option<Scenario>],
     pop: &[Individual<Vec<f64>>],
+    result: &[Individual<Vec<f64>>],
     records: &[Record],
     c: &ReentryRunConfig,
     analytical: Option<&AnalyticalModel>,
@@ -218,9 +225,9 @@ pub fn write_final(
     write_atomic(&dir.join("generations.json"), json.as_bytes())?;
     write_atomic(&dir.join("population.csv"), csv_of(pop).as_bytes())?;
     // The front, sorted by range objective, with one scenario file per member.
-    let mut idx = feasible_front_indices(pop);
-    idx.sort_by(|&a, &b| pop[a].objectives[0].total_cmp(&pop[b].objectives[0]));
-    let front: Vec<Individual<Vec<f64>>> = idx.iter().map(|&i| pop[i].clone()).collect();
+    let mut idx = feasible_front_indices(result);
+    idx.sort_by(|&a, &b| result[a].objectives[0].total_cmp(&result[b].objectives[0]));
+    let front: Vec<Individual<Vec<f64>>> = idx.iter().map(|&i| result[i].clone()).collect();
     let front_scenarios: Vec<Option<Scenario>> = idx
         .iter()
         .map(|&i| scenarios.get(i).cloned().flatten())

@@ -484,3 +484,72 @@ fn sample_counts_failed_evaluations_as_infeasible() {
     assert!(said.contains(&format!(": {feasible} feasible;")), "{said}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The external archive on a re-entry run (`--archive`, `archive` in config.toml): the
+/// population is the plain run's, the front comes from the archive (feasible, within its
+/// capacity), a resumed run gives the uninterrupted run's files,
+/// and bad values name the field.
+#[test]
+fn archive_on_a_reentry_run_resumes_and_writes_the_archive_front() {
+    let common = [
+        "--problem",
+        "srm",
+        "--population",
+        "4",
+        "--neighbours",
+        "3",
+        "--seed",
+        "7",
+    ];
+    let run = |dir: &Path, g: &str, extra: &[&str]| {
+        let mut v = common.to_vec();
+        let d = dir.to_str().unwrap();
+        v.extend(["--generations", g, "--out", d]);
+        v.extend(extra);
+        optimize(&v).unwrap()
+    };
+    let (a, b, p) = (tmp("archive_a"), tmp("archive_b"), tmp("archive_p"));
+    let text = run(&a, "2", &["--archive", "3"]);
+    assert!(text.contains("(external archive of 3)"), "{text}");
+    run(&b, "1", &["--archive", "3"]);
+    optimize(&["--resume", b.to_str().unwrap(), "--generations", "2"]).unwrap();
+    for f in ["generations.json", "population.csv", "front.csv"] {
+        assert_eq!(read(&a, f), read(&b, f), "{f}");
+    }
+    assert!(read(&a, "config.toml").contains("archive = 3"));
+    run(&p, "2", &[]);
+    assert!(!read(&p, "config.toml").contains("archive"));
+    assert_eq!(read(&a, "population.csv"), read(&p, "population.csv"));
+    let rows = read(&a, "front.csv").lines().count() - 1;
+    assert!((1..=3).contains(&rows), "{rows}");
+    // Every front row is feasible (violation, the last column, 0).
+    for row in read(&a, "front.csv").lines().skip(1) {
+        assert_eq!(
+            row.rsplit(',').next().unwrap().parse::<f64>().unwrap(),
+            0.0,
+            "{row}"
+        );
+    }
+    // A config file with archive = 0 or with MHACO names the field.
+    let c = tmp("archive_c");
+    std::fs::create_dir_all(&c).unwrap();
+    for (from, to) in [
+        ("archive = 3", "archive = 0"),
+        ("algorithm = \"moead\"", "algorithm = \"mhaco\""),
+    ] {
+        let cfg = c.join("run.toml");
+        std::fs::write(&cfg, read(&a, "config.toml").replace(from, to)).unwrap();
+        let e = optimize(&[
+            "--config",
+            cfg.to_str().unwrap(),
+            "--out",
+            c.join("r").to_str().unwrap(),
+        ])
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("field `archive`"), "{e}");
+    }
+    for d in [a, b, p, c] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}

@@ -53,12 +53,21 @@ fn scea_config(a: &OptimizeArgs) -> SceaConfig {
     }
 }
 
-/// Evolve SCEA on `problem`; the population and the evolution's wall time.
+/// What an SCEA run leaves: the population, the external archive (`--archive`), the
+/// evaluations and the evolution's wall time [s].
+type SceaOutcome = (
+    Vec<Individual<Chromosome>>,
+    Option<Vec<Individual<Chromosome>>>,
+    u64,
+    f64,
+);
+
+/// Evolve SCEA on `problem`.
 fn evolve_scea<P: StructuredProblem>(
     a: &OptimizeArgs,
     problem: &P,
     pool: Option<Arc<rayon::ThreadPool>>,
-) -> Result<(Vec<Individual<Chromosome>>, u64, f64), OptimError> {
+) -> Result<SceaOutcome, OptimError> {
     let mut alg = Scea::new(scea_config(a), a.seed);
     let start = Instant::now();
     match pool {
@@ -74,6 +83,7 @@ fn evolve_scea<P: StructuredProblem>(
     let wall = start.elapsed().as_secs_f64();
     Ok((
         <Scea as Algorithm<P>>::population(&alg).to_vec(),
+        <Scea as Algorithm<P>>::external_archive(&alg).map(<[_]>::to_vec),
         alg.evaluations(),
         wall,
     ))
@@ -86,18 +96,20 @@ pub(super) fn drive_scea(
     pool: Option<Arc<rayon::ThreadPool>>,
 ) -> Result<Outcome, OptimError> {
     let wrapped = FixedLength::new(problem.clone());
-    let (population, evaluations, wall_time_s) = evolve_scea(a, &wrapped, pool)?;
-    Ok(Outcome {
-        population: population
-            .into_iter()
+    let (population, archive, evaluations, wall_time_s) = evolve_scea(a, &wrapped, pool)?;
+    let fixed = |inds: Vec<Individual<Chromosome>>| -> Vec<Individual<Vec<f64>>> {
+        inds.into_iter()
             .map(|i| Individual {
                 decision: i.decision.fixed,
                 objectives: i.objectives,
                 constraints: i.constraints,
                 violation: i.violation,
             })
-            .collect(),
-        archive: None,
+            .collect()
+    };
+    Ok(Outcome {
+        population: fixed(population),
+        archive: archive.map(fixed),
         evaluations,
         wall_time_s,
     })
@@ -135,10 +147,11 @@ pub(super) fn run_variable_length(
         None => problem.reference_point(),
     };
     let pool = pool(a.threads)?;
-    let (pop, evaluations, wall_time_s) = evolve_scea(a, problem, pool)?;
-    let front: Vec<&[f64]> = feasible_front_indices(&pop)
+    let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, pool)?;
+    let result = archive.as_deref().unwrap_or(&pop);
+    let front: Vec<&[f64]> = feasible_front_indices(result)
         .into_iter()
-        .map(|i| pop[i].objectives.as_slice())
+        .map(|i| result[i].objectives.as_slice())
         .collect();
     let hv = hypervolume(&front, &reference)?;
     let true_hv = problem
@@ -161,8 +174,12 @@ pub(super) fn run_variable_length(
         true_front_hypervolume: true_hv,
         hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
         feasible_fraction: feasible_fraction(&pop),
-        front_source: "population",
-        archive_capacity: None,
+        front_source: if archive.is_some() {
+            "archive"
+        } else {
+            "population"
+        },
+        archive_capacity: a.archive,
         front_size: front.len(),
         wall_time_s,
         threads: a.threads,
