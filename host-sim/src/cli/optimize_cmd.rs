@@ -773,15 +773,23 @@ mod tests {
     fn optimize_threads_do_not_change_the_result() {
         let dir =
             |t| std::env::temp_dir().join(format!("host-sim-optimize-t{t}-{}", std::process::id()));
-        for alg in [AlgorithmName::Nsga2, AlgorithmName::Moead] {
+        for (alg, archive) in [
+            (AlgorithmName::Nsga2, None),
+            (AlgorithmName::Moead, None),
+            (AlgorithmName::Nsga2, Some(7)),
+            (AlgorithmName::Moead, Some(7)),
+        ] {
             for t in [1usize, 3] {
                 let mut a = args("constr", alg, Some(dir(t)));
                 a.threads = t;
                 a.batch_size = 8;
+                a.archive = archive;
                 run(&a, &mut Vec::new()).unwrap();
             }
-            let read = |t| std::fs::read_to_string(dir(t).join("population.csv")).unwrap();
-            assert_eq!(read(1), read(3), "{alg:?}");
+            for f in ["population.csv", "front.csv"] {
+                let read = |t| std::fs::read_to_string(dir(t).join(f)).unwrap();
+                assert_eq!(read(1), read(3), "{alg:?} {archive:?} {f}");
+            }
             for t in [1usize, 3] {
                 std::fs::remove_dir_all(dir(t)).unwrap();
             }
