@@ -149,6 +149,8 @@ pub struct Guidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     time_resyncs: u32,
     /// Bank sign imposed by a lateral logic (`None`: the table's own sign).
     bank_sign: Option<BankSign>,
+    /// Largest bank magnitude \[rad\] imposed by a path-limit bound (`None`: the table's).
+    bank_cap: Option<S>,
 }
 
 impl<S: Scalar, const N: usize> Guidance<S, N> {
@@ -190,6 +192,7 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
             time_gate: TimeGate::new(TimeWindow::for_period(config.period_s)),
             time_resyncs: 0,
             bank_sign: None,
+            bank_cap: None,
         })
     }
 
@@ -246,6 +249,18 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
                 sigma_rad: bounds.clamp_sigma(sign.apply(target.sigma_rad)),
             },
             None => target,
+        };
+        // A path-limit cap on the magnitude, also before the rate limit.
+        let target = match self.bank_cap {
+            Some(cap) if target.sigma_rad.abs() > cap => Command {
+                alpha_rad: target.alpha_rad,
+                sigma_rad: bounds.clamp_sigma(if target.sigma_rad < S::ZERO {
+                    -cap
+                } else {
+                    cap
+                }),
+            },
+            _ => target,
         };
         let limited = limit_command(start, target, self.config.rates, self.config.period_s);
         let command = Command {
@@ -409,6 +424,20 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
     /// reversal), else the reversed bank is clamped (with thesis bounds 0..90 deg: to 0).
     pub fn set_bank_sign(&mut self, sign: Option<BankSign>) {
         self.bank_sign = sign;
+    }
+
+    /// Cap the bank magnitude at `cap` \[rad\] from the next tick on (`None`: no cap), keeping
+    /// the sign: a path-limit bound ([`crate::replan::PathBound`]). Like the sign, it applies
+    /// to the interpolated target before the rate limiter, so the attitude never jumps. A
+    /// negative or non-finite cap is ignored (`None`).
+    pub fn set_bank_cap(&mut self, cap: Option<S>) {
+        self.bank_cap = cap.filter(|c| c.is_finite() && *c >= S::ZERO);
+    }
+
+    /// The imposed bank-magnitude cap \[rad\] (`None`: none).
+    #[must_use]
+    pub fn bank_cap(&self) -> Option<S> {
+        self.bank_cap
     }
 
     /// The imposed bank sign (`None`: the table's own).
