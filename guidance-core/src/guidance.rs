@@ -554,6 +554,34 @@ mod tests {
         assert_eq!(g.attitude_at(604.0), at_tick);
     }
 
+    /// A bank cap (path-limit bound) lowers the target's magnitude, keeps its sign and is
+    /// flown through the rate limiter (59.8 -> 20 deg at 15 deg/s: 29.8, 20); an invalid cap
+    /// clears it; without it the target is the table's again.
+    #[test]
+    fn bank_cap_is_rate_limited_and_keeps_the_sign() {
+        let mut g = reference::<f64>();
+        g.update(&nav(600.0)).unwrap();
+        g.update(&nav(602.0)).unwrap();
+        assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
+        g.set_bank_cap(Some(20.0 * DEG));
+        assert_eq!(g.bank_cap(), Some(20.0 * DEG));
+        g.update(&nav(604.0)).unwrap();
+        assert!((g.command().sigma_rad - 29.8 * DEG).abs() < 1e-12);
+        g.update(&nav(606.0)).unwrap();
+        assert!((g.command().sigma_rad - 20.0 * DEG).abs() < 1e-12);
+        // The reference table's bounds are 0..90 deg: a negative sign clamps to 0, within the cap.
+        g.set_bank_sign(Some(BankSign::Negative));
+        g.update(&nav(608.0)).unwrap();
+        assert!(g.target().sigma_rad <= 0.0 && g.target().sigma_rad > -20.0 * DEG - 1e-12);
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            g.set_bank_cap(Some(bad));
+            assert_eq!(g.bank_cap(), None);
+        }
+        g.set_bank_sign(None);
+        g.update(&nav(610.0)).unwrap();
+        assert!((g.target().sigma_rad - 59.8 * DEG).abs() < 1e-12);
+    }
+
     /// The ramp end is where `attitude_at` reaches the command, per angle.
     #[test]
     fn ramp_end_matches_attitude_at() {
