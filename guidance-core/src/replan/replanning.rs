@@ -600,8 +600,9 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// accelerations at the navigation sample's time) to the estimator, against the model's
     /// expectation at `nav`'s radius and speed with the solver's `lambda`
     /// ([`crate::estimate::expected_aero`]). Call it before [`ReplanningGuidance::update`]
-    /// with the same sample. Without an estimator it does nothing
-    /// (`Ok(None)`).
+    /// with the same sample. With a barrier bound the sample is also kept for the bound's
+    /// margins at that sample's update. Without an estimator the result is `Ok(None)`; without
+    /// an estimator and a barrier it does nothing.
     ///
     /// # Errors
     /// [`EstimateError`] for a non-finite or negative sensed acceleration (the estimate is
@@ -611,12 +612,15 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         nav: &NavState<S>,
         sensed: &SensedAero<P>,
     ) -> Result<Option<EstimateStatus>, EstimateError> {
+        if !self.uses_sensed() {
+            return Ok(None);
+        }
+        sensed.validate()?;
+        self.sensed = Some((nav.time_s, *sensed));
         let Some(est) = self.estimator.as_mut() else {
             return Ok(None);
         };
         let m = &self.config.model;
-        sensed.validate()?;
-        self.sensed = Some((nav.time_s, *sensed));
         let (lambda, drag_scale) = match &self.lift_schedule {
             Some(s) => s.at(to_p(nav.speed_m_s)),
             None => (self.config.solver.lambda, P::ONE),
@@ -633,6 +637,14 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         // The schedule's drag (a valid schedule's scale is finite and positive).
         expected.drag_m_s2 = expected.drag_m_s2 * drag_scale;
         est.update(sensed, &expected).map(Some)
+    }
+
+    /// Whether this guidance uses sensed accelerations ([`ReplanningGuidance::sense`]): with
+    /// an estimator, or with a barrier bound ([`PathBound`], which measures its margins with
+    /// them).
+    #[must_use]
+    pub fn uses_sensed(&self) -> bool {
+        self.estimator.is_some() || self.path_bound.is_some_and(|b| b.is_barrier())
     }
 
     /// The current aerodynamic estimate (`None` without estimation).
