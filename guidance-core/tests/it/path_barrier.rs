@@ -252,3 +252,34 @@ fn replanning_guidance_caps_the_bank_at_every_tick() {
         last = Some(s);
     }
 }
+
+/// A barrier makes `ReplanningGuidance` use sensed accelerations without an estimator (it
+/// measures its margins with them); sensing then validates the sample; without an estimator
+/// or a barrier sensing does nothing.
+#[test]
+fn a_barrier_uses_sensed_accelerations_without_an_estimator() {
+    let total = glide_range_m(0.6) / R_EARTH;
+    let cfg = rcfg(
+        RangeTarget::FlownRangeAngle { total_rad: total },
+        3,
+        PredictorMode::Glide,
+    );
+    let n = glide_nav(0.0);
+    let bad = SensedAero {
+        lift_m_s2: -1.0,
+        drag_m_s2: 1.0,
+    };
+    let mut plain = replanning(cfg);
+    assert!(!plain.uses_sensed());
+    assert_eq!(plain.sense(&n, &bad), Ok(None));
+    let mut with = replanning(cfg)
+        .with_path_bound(barrier(1e12, 2.5, 0.15, 1.0), false)
+        .unwrap();
+    assert!(with.uses_sensed());
+    assert!(with.sense(&n, &bad).is_err());
+    let good = SensedAero {
+        lift_m_s2: 1.0,
+        drag_m_s2: 1.0,
+    };
+    assert_eq!(with.sense(&n, &good), Ok(None));
+}
