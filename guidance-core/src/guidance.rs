@@ -149,6 +149,8 @@ pub struct Guidance<S, const N: usize = DEFAULT_NODE_CAPACITY> {
     time_resyncs: u32,
     /// Bank sign imposed by a lateral logic (`None`: the table's own sign).
     bank_sign: Option<BankSign>,
+    /// Largest bank magnitude \[rad\] imposed by a path-limit bound (`None`: the table's).
+    bank_cap: Option<S>,
 }
 
 impl<S: Scalar, const N: usize> Guidance<S, N> {
@@ -190,6 +192,7 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
             time_gate: TimeGate::new(TimeWindow::for_period(config.period_s)),
             time_resyncs: 0,
             bank_sign: None,
+            bank_cap: None,
         })
     }
 
@@ -246,6 +249,18 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
                 sigma_rad: bounds.clamp_sigma(sign.apply(target.sigma_rad)),
             },
             None => target,
+        };
+        // A path-limit cap on the magnitude, also before the rate limit.
+        let target = match self.bank_cap {
+            Some(cap) if target.sigma_rad.abs() > cap => Command {
+                alpha_rad: target.alpha_rad,
+                sigma_rad: bounds.clamp_sigma(if target.sigma_rad < S::ZERO {
+                    -cap
+                } else {
+                    cap
+                }),
+            },
+            _ => target,
         };
         let limited = limit_command(start, target, self.config.rates, self.config.period_s);
         let command = Command {
@@ -411,6 +426,20 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
         self.bank_sign = sign;
     }
 
+    /// Cap the bank magnitude at `cap` \[rad\] from the next tick on (`None`: no cap), keeping
+    /// the sign: a path-limit bound ([`crate::replan::PathBound`]). Like the sign, it applies
+    /// to the interpolated target before the rate limiter, so the attitude never jumps. A
+    /// negative or non-finite cap is ignored (`None`).
+    pub fn set_bank_cap(&mut self, cap: Option<S>) {
+        self.bank_cap = cap.filter(|c| c.is_finite() && *c >= S::ZERO);
+    }
+
+    /// The imposed bank-magnitude cap \[rad\] (`None`: none).
+    #[must_use]
+    pub fn bank_cap(&self) -> Option<S> {
+        self.bank_cap
+    }
+
     /// The imposed bank sign (`None`: the table's own).
     #[must_use]
     pub fn bank_sign(&self) -> Option<BankSign> {
@@ -523,6 +552,34 @@ mod tests {
         assert!((at_tick.sigma_rad - 52.5 * DEG).abs() < 1e-12);
         g.update(&nav(604.0)).unwrap();
         assert_eq!(g.attitude_at(604.0), at_tick);
+    }
+
+    /// A bank cap (path-limit bound) lowers the target's magnitude, keeps its sign and is
+    /// flown through the rate limiter (59.8 -> 20 deg at 15 deg/s: 29.8, 20); an invalid cap
+    /// clears it; without it the target is the table's again.
+    #[test]
+    fn bank_cap_is_rate_limited_and_keeps_the_sign() {
+        let mut g = reference::<f64>();
+        g.update(&nav(600.0)).unwrap();
+        g.update(&nav(602.0)).unwrap();
+        assert!((g.command().sigma_rad - 59.8 * DEG).abs() < 1e-12);
+        g.set_bank_cap(Some(20.0 * DEG));
+        assert_eq!(g.bank_cap(), Some(20.0 * DEG));
+        g.update(&nav(604.0)).unwrap();
+        assert!((g.command().sigma_rad - 29.8 * DEG).abs() < 1e-12);
+        g.update(&nav(606.0)).unwrap();
+        assert!((g.command().sigma_rad - 20.0 * DEG).abs() < 1e-12);
+        // The reference table's bounds are 0..90 deg: a negative sign clamps to 0, within the cap.
+        g.set_bank_sign(Some(BankSign::Negative));
+        g.update(&nav(608.0)).unwrap();
+        assert!(g.target().sigma_rad <= 0.0 && g.target().sigma_rad > -20.0 * DEG - 1e-12);
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            g.set_bank_cap(Some(bad));
+            assert_eq!(g.bank_cap(), None);
+        }
+        g.set_bank_sign(None);
+        g.update(&nav(610.0)).unwrap();
+        assert!((g.target().sigma_rad - 59.8 * DEG).abs() < 1e-12);
     }
 
     /// The ramp end is where `attitude_at` reaches the command, per angle.

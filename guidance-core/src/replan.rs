@@ -71,7 +71,7 @@ mod solver;
 
 pub use lift_schedule::{LiftSchedule, LiftScheduleError, SCHEDULE_NODES, ScheduleNode};
 pub use numerical::{NumericalRun, predict_numerical};
-pub use path_bound::PathBound;
+pub use path_bound::{PathBound, SENSED_MIN_DRAG_M_S2};
 pub use replanning::{
     HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
     ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,

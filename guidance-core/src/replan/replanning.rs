@@ -346,6 +346,9 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     /// Numerical predictions model the planet's rotation in their equations (with the
     /// model planet) instead of the effective planet.
     numerical_rotation: bool,
+    /// The last sensed aerodynamic accelerations and their sample's time \[s\] (for the
+    /// barrier bound).
+    sensed: Option<(S, SensedAero<P>)>,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -466,6 +469,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             path_bound: None,
             path_bound_predicted: false,
             numerical_rotation: false,
+            sensed: None,
         })
     }
 
@@ -552,40 +556,53 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// model scaled by the current estimate), and whether the bound lowered it. Unchanged without a
     /// bound or where the bound is not computable.
     fn bounded_bank(&self, bank_rad: P, nav: &NavState<P>) -> (P, bool) {
-        let Some(b) = &self.path_bound else {
-            return (bank_rad, false);
-        };
+        match self.bound_max_bank(nav) {
+            Some(max_bank) if bank_rad > max_bank => (max_bank, true),
+            _ => (bank_rad, false),
+        }
+    }
+
+    /// The largest bank magnitude \[rad\] the [`PathBound`] allows at `nav` (the model scaled
+    /// by the current estimate; the barrier law when the bound has one), within the solver's
+    /// vertical-fraction interval. `None` without a bound or where it is not computable.
+    fn bound_max_bank(&self, nav: &NavState<P>) -> Option<P> {
+        let b = self.path_bound.as_ref()?;
         let m = &self.config.model;
-        let vehicle = self
+        let (atmosphere, vehicle) = self
             .estimator
             .as_ref()
             .and_then(|e| e.scales().apply(&m.atmosphere, &m.vehicle))
-            .map_or(m.vehicle, |(_, v)| v);
-        let lambda = match &self.lift_schedule {
-            Some(s) => s.lambda_at(nav.speed_m_s),
-            None => self.config.solver.lambda,
+            .unwrap_or((m.atmosphere, m.vehicle));
+        let f = if b.is_barrier() {
+            let aero = match &self.lift_schedule {
+                Some(s) => s.at(nav.speed_m_s),
+                None => (self.config.solver.lambda, P::ONE),
+            };
+            // The accelerations sensed at this sample, when there are some.
+            let sensed = self
+                .sensed
+                .filter(|(t, _)| to_p::<S, P>(*t) == nav.time_s)
+                .map(|(_, a)| a);
+            b.barrier_vertical_fraction(&m.planet, &atmosphere, &vehicle, aero, nav, sensed)?
+        } else {
+            let lambda = match &self.lift_schedule {
+                Some(s) => s.lambda_at(nav.speed_m_s),
+                None => self.config.solver.lambda,
+            };
+            b.min_vertical_fraction(&m.planet, &vehicle, lambda, nav)?
         };
         let c = &self.config.solver;
-        match b.min_vertical_fraction(&m.planet, &vehicle, lambda, nav) {
-            Some(f) => {
-                let f = f.clamp(c.min_vertical_fraction, c.max_vertical_fraction);
-                let max_bank = f.clamp(P::ZERO, P::ONE).acos();
-                if bank_rad > max_bank {
-                    (max_bank, true)
-                } else {
-                    (bank_rad, false)
-                }
-            }
-            None => (bank_rad, false),
-        }
+        let f = f.clamp(c.min_vertical_fraction, c.max_vertical_fraction);
+        Some(f.clamp(P::ZERO, P::ONE).acos())
     }
 
     /// Feed the sensed aerodynamic accelerations at `nav` (the IMU's lift and drag
     /// accelerations at the navigation sample's time) to the estimator, against the model's
     /// expectation at `nav`'s radius and speed with the solver's `lambda`
     /// ([`crate::estimate::expected_aero`]). Call it before [`ReplanningGuidance::update`]
-    /// with the same sample. Without an estimator it does nothing
-    /// (`Ok(None)`).
+    /// with the same sample. With a barrier bound the sample is also kept for the bound's
+    /// margins at that sample's update. Without an estimator the result is `Ok(None)`; without
+    /// an estimator and a barrier it does nothing.
     ///
     /// # Errors
     /// [`EstimateError`] for a non-finite or negative sensed acceleration (the estimate is
@@ -595,11 +612,15 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         nav: &NavState<S>,
         sensed: &SensedAero<P>,
     ) -> Result<Option<EstimateStatus>, EstimateError> {
+        if !self.uses_sensed() {
+            return Ok(None);
+        }
+        sensed.validate()?;
+        self.sensed = Some((nav.time_s, *sensed));
         let Some(est) = self.estimator.as_mut() else {
             return Ok(None);
         };
         let m = &self.config.model;
-        sensed.validate()?;
         let (lambda, drag_scale) = match &self.lift_schedule {
             Some(s) => s.at(to_p(nav.speed_m_s)),
             None => (self.config.solver.lambda, P::ONE),
@@ -616,6 +637,14 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         // The schedule's drag (a valid schedule's scale is finite and positive).
         expected.drag_m_s2 = expected.drag_m_s2 * drag_scale;
         est.update(sensed, &expected).map(Some)
+    }
+
+    /// Whether this guidance uses sensed accelerations ([`ReplanningGuidance::sense`]): with
+    /// an estimator, or with a barrier bound ([`PathBound`], which measures its margins with
+    /// them).
+    #[must_use]
+    pub fn uses_sensed(&self) -> bool {
+        self.estimator.is_some() || self.path_bound.is_some_and(|b| b.is_barrier())
     }
 
     /// The current aerodynamic estimate (`None` without estimation).
@@ -683,6 +712,12 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
                 None => self.pending = Some(p),
             }
         }
+        // A barrier bound caps the bank at every tick (not only at re-plans).
+        let cap_before = self.guidance.bank_cap();
+        if will_tick && self.path_bound.is_some_and(|b| b.is_barrier()) {
+            let cap = self.bound_max_bank(&navp).map(|c| S::from_f64(c.to_f64()));
+            self.guidance.set_bank_cap(cap);
+        }
         let out = match self.guidance.update(nav) {
             Ok(o) => o,
             Err(e) => {
@@ -690,6 +725,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
                     // Restore the table in use before this sample (it was valid).
                     let _ = self.guidance.replace_table(t);
                 }
+                self.guidance.set_bank_cap(cap_before);
                 self.pending = pending_before;
                 return Err(e);
             }

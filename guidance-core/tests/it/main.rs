@@ -9,6 +9,7 @@ mod node_capacity;
 mod numerical_predictor;
 mod numerical_replan;
 mod numerical_rotation;
+mod path_barrier;
 mod path_bound;
 mod vinh_error_map;
 mod vinh_peaks;

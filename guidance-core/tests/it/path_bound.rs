@@ -36,6 +36,8 @@ fn bound(q_w_m2: f64, g_load: f64, descent_time_s: f64) -> PathBound<f64> {
             g_load,
         },
         descent_time_s,
+        barrier_frequency_rad_s: 0.0,
+        barrier_damping: 0.0,
     }
 }
 

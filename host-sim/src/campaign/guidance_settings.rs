@@ -140,6 +140,13 @@ pub struct CampaignGuidance {
     /// quasi-equilibrium-glide bound). Only with `path_bound_limit_scale`.
     #[serde(skip_serializing_if = "is_zero")]
     pub path_bound_descent_time_s: f64,
+    /// The bound's barrier law `[omega, zeta]`: natural frequency \[rad/s\] in `(0, 1]` and
+    /// damping ratio \[-\] in `[0, 10]` (`guidance_core::replan::PathBound`, module docs:
+    /// the distance to each limit may not close faster than a damped second-order response;
+    /// applied at every guidance tick; replaces the descent term). Default (absent): the
+    /// equilibrium bound. Only with `path_bound_limit_scale`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path_bound_barrier: Option<[f64; 2]>,
     /// The re-planner's numerical predictions fly the bound too (default false): the range is
     /// solved for the bounded flight. Only with `path_bound_limit_scale`.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
@@ -198,6 +205,7 @@ impl Default for CampaignGuidance {
             replan_limit_scale: [1.0, 1.0],
             path_bound_limit_scale: None,
             path_bound_descent_time_s: 0.0,
+            path_bound_barrier: None,
             path_bound_predicted: false,
             predictor_rotation: false,
             estimator_lift_to_drag_gain: 0.1,
@@ -360,6 +368,15 @@ impl CampaignGuidance {
                 "path_bound_descent_time_s",
                 t.to_string(),
                 "must be in [0, 1000] s",
+            ));
+        }
+        if let Some([w, z]) = self.path_bound_barrier
+            && !(w.is_finite() && w > 0.0 && w <= 1.0 && z.is_finite() && (0.0..=10.0).contains(&z))
+        {
+            return Err(bad(
+                "path_bound_barrier",
+                format!("[{w}, {z}]"),
+                "must be [frequency in (0, 1] rad/s, damping in [0, 10]]",
             ));
         }
         if let Some(e) = self.replan_start_normalized_energy

@@ -463,6 +463,8 @@ impl CampaignSetup {
                     g_load: vehicle.limits.g_load * g,
                 },
                 descent_time_s: gs.path_bound_descent_time_s,
+                barrier_frequency_rad_s: gs.path_bound_barrier.map_or(0.0, |[w, _]| w),
+                barrier_damping: gs.path_bound_barrier.map_or(0.0, |[_, z]| z),
             }),
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle

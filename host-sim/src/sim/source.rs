@@ -100,8 +100,8 @@ pub trait FlightGuidance {
         let _ = (nav, sensed);
         Ok(())
     }
-    /// Whether [`FlightGuidance::sense`] uses its measurements (an onboard estimator is
-    /// running); default: no.
+    /// Whether [`FlightGuidance::sense`] uses its measurements (an onboard estimator or a
+    /// barrier bound is running); default: no.
     fn senses(&self) -> bool {
         false
     }
@@ -164,7 +164,7 @@ impl<const N: usize> FlightGuidance for ReplanningGuidance<f64, N> {
         ReplanningGuidance::sense(self, nav, sensed).map(|_| ())
     }
     fn senses(&self) -> bool {
-        ReplanningGuidance::aero_scales(self).is_some()
+        ReplanningGuidance::uses_sensed(self)
     }
     fn aero_scales(&self) -> Option<AeroScales<f64>> {
         ReplanningGuidance::aero_scales(self)

@@ -627,8 +627,9 @@ fn predictor_lift_parameter_of_the_stored_profile() {
     }
 }
 
-/// `[dispersions.guidance] path_bound_limit_scale` and `path_bound_descent_time_s` reach the
-/// set-up as a `PathBound` on the vehicle's limits (none by default); bad values name the field.
+/// `[dispersions.guidance] path_bound_limit_scale`, `path_bound_descent_time_s` and
+/// `path_bound_barrier` reach the set-up as a `PathBound` on the vehicle's limits (none by
+/// default); bad values name the field.
 #[test]
 fn path_bound_settings_reach_the_setup() {
     let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
@@ -661,6 +662,36 @@ fn path_bound_settings_reach_the_setup() {
         assert_eq!(
             field_of(e),
             "dispersions.guidance.path_bound_descent_time_s",
+            "{v}"
+        );
+    }
+    // The barrier law: off (0, 0) by default, [omega, zeta] when set.
+    assert_eq!((b.barrier_frequency_rad_s, b.barrier_damping), (0.0, 0.0));
+    let g = parse("path_bound_limit_scale = [1, 1]\npath_bound_barrier = [0.15, 0.8]")
+        .unwrap()
+        .guidance;
+    let setup = CampaignSetup::with_guidance(
+        &Scenario::srm_glide(),
+        "builtin:srm-glide",
+        Some(2500.0),
+        &g,
+    )
+    .unwrap();
+    let b = setup.path_bound.unwrap();
+    assert!(b.is_barrier());
+    assert_eq!((b.barrier_frequency_rad_s, b.barrier_damping), (0.15, 0.8));
+    for v in [
+        "[0, 1]",
+        "[-0.1, 1]",
+        "[1.5, 1]",
+        "[0.1, -1]",
+        "[0.1, 11]",
+        "[nan, 1]",
+    ] {
+        let e = parse(&format!("path_bound_barrier = {v}")).unwrap_err();
+        assert_eq!(
+            field_of(e),
+            "dispersions.guidance.path_bound_barrier",
             "{v}"
         );
     }

@@ -2,6 +2,7 @@
 //! equations of motion, the RK4 step and the step rule (see the parent module), and the
 //! parabolic refinement of a sampled peak.
 
+use crate::replan::path_bound::BarrierPoint;
 use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, VehicleParams, aero_accelerations_m_s2};
@@ -128,13 +129,29 @@ fn bounded_f<S: Real>(
     m: &Model<S>,
     r: S,
     v: S,
-    sin_gamma: S,
-    lambda: S,
-    one_l2: S,
+    (sin_gamma, cos_gamma): (S, S),
+    (lambda, one_l2): (S, S),
+    (rho, drag, lift): (S, S, S),
 ) -> S {
-    let cl = lambda * m.sqrt_cd0_k;
-    let cd = m.vehicle.cd0 * one_l2;
-    match bound.fraction(m.mu, r, v, sin_gamma, cl, cd, &m.vehicle) {
+    let fb = if bound.is_barrier() {
+        let p = BarrierPoint {
+            mu_m3_s2: m.mu,
+            r,
+            v,
+            sin_gamma,
+            cos_gamma,
+            rho,
+            scale_height_m: m.atmosphere_h.scale_height_m,
+            lift,
+            drag,
+        };
+        bound.barrier_fraction(&p, m.vehicle.nose_radius_m)
+    } else {
+        let cl = lambda * m.sqrt_cd0_k;
+        let cd = m.vehicle.cd0 * one_l2;
+        bound.fraction(m.mu, r, v, sin_gamma, cl, cd, &m.vehicle)
+    };
+    match fb {
         Some(fb) if fb > m.f => fb,
         _ => m.f,
     }
@@ -164,7 +181,15 @@ impl<S: Real> Model<S> {
         let (sg, cg) = sin_cos(y.gamma);
         let f = match &self.bound {
             None => self.f,
-            Some(b) => bounded_f(b, self, r, y.v, sg, lambda, one_l2),
+            Some(b) => bounded_f(
+                b,
+                self,
+                r,
+                y.v,
+                (sg, cg),
+                (lambda, one_l2),
+                (rho, drag, lift),
+            ),
         };
         let v_r = y.v / r;
         let mut dy = Y {
