@@ -128,6 +128,10 @@ impl<S: Real> BankReversalLogic<S> {
             return Some(false);
         };
         let two = S::ONE + S::ONE;
+        // The target behind (passed): the end is no longer ahead, nothing to null.
+        if dpsi.abs() > S::PI / two {
+            return Some(false);
+        }
         let settled = self
             .last_reversal_s
             .is_none_or(|t0| nav.time_s - t0 >= two * t.reversal_lead_s);

@@ -29,6 +29,7 @@
 //! `c y_keep > tol` (keeping the sign ends more than the tolerance off on the side of the
 //! turn) and either `c y_rev >= -tol` (reversing now does not end more than `tol` off on the
 //! other side) or `|y_rev| <= |y_rev(s - h)|` (waiting a tick would end farther off), the
+//! target is ahead (`|dpsi| <= pi/2`: once passed, a reversal only lofts the vehicle), the
 //! measured turn has the sign of the bank (`c kappa > 0`: the last
 //! reversal is over), at least `2 lead` seconds after the last reversal, and the usual limits
 //! hold (fewer than `max_reversals`, farther than `freeze_angle_rad`).

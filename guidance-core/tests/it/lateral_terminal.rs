@@ -212,7 +212,8 @@ fn terminal_law_ends_on_the_target_where_the_corridor_does_not() {
 /// law reverses when keeping the turn ends far left and reversing now ends within the
 /// tolerance (a 300 km turn radius: keep -4.8 km, reverse +0.05 km), waits when reversing now
 /// would overshoot to the right (100 km radius: keep -11.2 km, reverse +3.2 km), and never
-/// reverses while the measured turn is against the bank sign (a reversal in progress).
+/// reverses while the measured turn is against the bank sign (a reversal in progress) or once
+/// the target is behind.
 #[test]
 fn terminal_law_reverses_on_the_predicted_crossrange() {
     let n = |t: f64, heading_deg: f64, x_km: f64, y_km: f64| NavState {
@@ -244,6 +245,27 @@ fn terminal_law_reverses_on_the_predicted_crossrange() {
     assert_eq!(decide(300.0, true), (BankSign::Positive, true));
     assert_eq!(decide(100.0, true), (BankSign::Negative, false));
     assert_eq!(decide(300.0, false), (BankSign::Negative, false));
+    // The target passed: 44 km east of it, heading 88 deg (away), bank positive, turning
+    // right on a 500 km radius. Ahead of the target the same numbers would ask for a reversal
+    // (keep +3.5 km, reverse +0.59 km, within the tolerance); behind it, none.
+    let mut l = BankReversalLogic::new(config(1.0))
+        .unwrap()
+        .with_terminal(terminal(100.0))
+        .unwrap();
+    let chord = 88.0 - 1.5 / 500.0 / DEG;
+    let (x0, y0) = (44.0 - 3.0 * (chord * DEG).sin(), -3.0 * (chord * DEG).cos());
+    assert_eq!(
+        l.update(&n(0.0, 100.0, x0, y0)).unwrap().sign,
+        BankSign::Positive
+    );
+    let s = l.update(&n(2.0, 88.0, 44.0, 0.0)).unwrap();
+    assert!(
+        s.heading_error_rad.abs() > 90.0 * DEG && !s.reversed,
+        "{s:?}"
+    );
+    let kappa = 2.0 * (1.5 / 500.0) / (3e3 / R);
+    let (keep, rev) = predicted_offsets(44e3 / R, s.heading_error_rad, kappa, 1.0, 6e3 / R);
+    assert!(keep * R > 3e3 && (rev * R).abs() < 1e3, "{keep} {rev}");
     // The corridor alone keeps the sign on the same states.
     let mut l = BankReversalLogic::new(config(1.0)).unwrap();
     l.update(&n(0.0, 110.0, -47.0, 0.0)).unwrap();
