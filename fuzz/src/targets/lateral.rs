@@ -7,7 +7,9 @@
 use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
 use guidance_core::guidance::{BankSign, Command, Guidance, GuidanceConfig};
 use guidance_core::interp::Interpolation;
-use guidance_core::lateral::{BankReversalLogic, Corridor, CorridorAxis, LateralConfig};
+use guidance_core::lateral::{
+    BankReversalLogic, Corridor, CorridorAxis, LateralConfig, TerminalLateral,
+};
 use guidance_core::nav::NavState;
 use guidance_core::nodes::{AngleBounds, Independent, NodeTable};
 use guidance_core::replan::TargetPoint;
@@ -29,6 +31,15 @@ pub fn run<R: Rng>(rng: &mut R) -> Result<(), String> {
         value(rng, 0.0, 1.0, 0.0),
     ];
     let max_rev = rng.random_range(0..12u8);
+    // Half the cases with the terminal law (hostile settings: a rejected one is flown
+    // without it).
+    let terminal = rng.random_bool(0.5).then(|| {
+        [
+            value(rng, 0.0, 3.2, 0.05),
+            value(rng, 0.0, 0.01, 0.05),
+            value(rng, 0.0, 20.0, 0.05),
+        ]
+    });
     let mut navs = Vec::new();
     let mut t = 0.0;
     for _ in 0..60 {
@@ -48,11 +59,16 @@ pub fn run<R: Rng>(rng: &mut R) -> Result<(), String> {
         }
         navs.push(n);
     }
-    fly::<f64>(&cfg, max_rev, &navs)?;
-    fly::<f32>(&cfg, max_rev, &navs)
+    fly::<f64>(&cfg, max_rev, terminal, &navs)?;
+    fly::<f32>(&cfg, max_rev, terminal, &navs)
 }
 
-fn fly<S: Real>(cfg: &[f64; 9], max_rev: u8, navs: &[[f64; 7]]) -> Result<(), String> {
+fn fly<S: Real>(
+    cfg: &[f64; 9],
+    max_rev: u8,
+    terminal: Option<[f64; 3]>,
+    navs: &[[f64; 7]],
+) -> Result<(), String> {
     let c = |v: f64| S::from_f64(v);
     let energy = EnergyNormalizer::new(
         EARTH_MU_M3_S2,
@@ -85,6 +101,16 @@ fn fly<S: Real>(cfg: &[f64; 9], max_rev: u8, navs: &[[f64; 7]]) -> Result<(), St
     let Ok(mut logic) = BankReversalLogic::new(config) else {
         return Ok(()); // rejected with a typed error: fine
     };
+    if let Some([start, tol, lead]) = terminal {
+        let t = TerminalLateral {
+            start_angle_rad: c(start),
+            tolerance_rad: c(tol),
+            reversal_lead_s: c(lead),
+        };
+        if let Ok(l) = logic.with_terminal(t) {
+            logic = l;
+        }
+    }
     let bounds = AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0).map_err(|e| format!("{e:?}"))?;
     let table = NodeTable::from_deg(
         Independent::TimeS,

@@ -8,6 +8,7 @@ use crate::replan::TargetPoint;
 use crate::scalar::Real;
 
 use super::corridor::Corridor;
+use super::terminal::{TerminalLateral, reverse_now};
 
 /// Settings of [`BankReversalLogic`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,6 +53,11 @@ pub struct BankReversalLogic<S> {
     sign: Option<BankSign>,
     reversals: u8,
     armed: bool,
+    terminal: Option<TerminalLateral<S>>,
+    /// Latitude and longitude at the previous call \[rad\] (the measured turn).
+    previous: Option<(S, S)>,
+    /// Time of the last reversal \[s\].
+    last_reversal_s: Option<S>,
 }
 
 impl<S: Real> BankReversalLogic<S> {
@@ -77,7 +83,82 @@ impl<S: Real> BankReversalLogic<S> {
             sign: None,
             reversals: 0,
             armed: true,
+            terminal: None,
+            previous: None,
+            last_reversal_s: None,
         })
+    }
+
+    /// Decide the last reversals with the terminal crossrange law once the target is closer
+    /// than `terminal.start_angle_rad` ([`TerminalLateral`]; without: the corridor to the end).
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] for invalid terminal settings.
+    pub fn with_terminal(mut self, terminal: TerminalLateral<S>) -> Result<Self, GuidanceError> {
+        terminal.validate()?;
+        self.terminal = Some(terminal);
+        Ok(self)
+    }
+
+    /// The terminal law's settings (`None`: off).
+    #[must_use]
+    pub fn terminal(&self) -> Option<&TerminalLateral<S>> {
+        self.terminal.as_ref()
+    }
+
+    /// The terminal law's decision at `nav` for `sign` in force, heading error `dpsi` and
+    /// range angle `theta` \[rad\]: `Some(reverse?)` inside the terminal range, `None`
+    /// outside it (the corridor decides).
+    fn terminal_reverses(
+        &self,
+        nav: &NavState<S>,
+        sign: BankSign,
+        dpsi: S,
+        theta: S,
+    ) -> Option<bool> {
+        let t = self.terminal?;
+        if theta >= t.start_angle_rad {
+            return None;
+        }
+        let c = match sign {
+            BankSign::Positive => S::ONE,
+            BankSign::Negative => -S::ONE,
+        };
+        let Some((kappa, step)) = self.measured_turn(nav) else {
+            return Some(false);
+        };
+        let two = S::ONE + S::ONE;
+        // The target behind (passed): the end is no longer ahead, nothing to null.
+        if dpsi.abs() > S::PI / two {
+            return Some(false);
+        }
+        let settled = self
+            .last_reversal_s
+            .is_none_or(|t0| nav.time_s - t0 >= two * t.reversal_lead_s);
+        if !(c * kappa > S::ZERO && settled) {
+            return Some(false);
+        }
+        let ground_rate = nav.speed_m_s * nav.flight_path_angle_rad.cos() / nav.radius_m;
+        let d = t.reversal_lead_s * ground_rate;
+        Some(reverse_now(theta, dpsi, kappa, c, d, step, t.tolerance_rad))
+    }
+
+    /// The heading's turn per angle flown since the previous call \[rad/rad\] (positive:
+    /// clockwise) and that angle \[rad\], `None` without a previous position or with no
+    /// motion.
+    fn measured_turn(&self, nav: &NavState<S>) -> Option<(S, S)> {
+        let (lat0, lon0) = self.previous?;
+        let (lat, lon) = (nav.latitude_rad, nav.longitude_rad);
+        let delta = central_angle(lat0, lon0, lat, lon)?;
+        if !(delta > S::EPSILON) {
+            return None;
+        }
+        // The chord's direction at the current point, from the bearing back to the previous
+        // point; on a circular arc the heading is turned from it by half the arc's turn.
+        let back = initial_bearing(lat, lon, lat0, lon0)?;
+        let half_turn = wrap_pi(nav.heading_rad - (back + S::PI))?;
+        let kappa = (half_turn + half_turn) / delta;
+        kappa.is_finite().then_some((kappa, delta))
     }
 
     /// Decide the bank sign at `nav` (call at each guidance tick, before the guidance update).
@@ -114,15 +195,18 @@ impl<S: Real> BankReversalLogic<S> {
                     BankSign::Positive => dpsi > S::ZERO,
                     BankSign::Negative => dpsi < S::ZERO,
                 };
-                if diverging
-                    && self.armed
-                    && dpsi.abs() > width
+                let wanted = match self.terminal_reverses(nav, sign, dpsi, theta) {
+                    Some(terminal) => terminal,
+                    None => diverging && self.armed && dpsi.abs() > width,
+                };
+                if wanted
                     && self.reversals < self.config.max_reversals
                     && theta > self.config.freeze_angle_rad
                 {
                     reversed = true;
                     self.reversals = self.reversals.saturating_add(1);
                     self.armed = false;
+                    self.last_reversal_s = Some(nav.time_s);
                     sign.reversed()
                 } else {
                     sign
@@ -130,6 +214,7 @@ impl<S: Real> BankReversalLogic<S> {
             }
         };
         self.sign = Some(sign);
+        self.previous = Some((lat, lon));
         Ok(LateralStatus {
             sign,
             heading_error_rad: dpsi,

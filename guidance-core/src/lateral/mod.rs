@@ -23,6 +23,12 @@
 //!    across the target bearing (a navigation glitch), cannot make the bank chatter; a corridor
 //!    narrower than the hysteresis ends the reversals.
 //!
+//! # Terminal law (opt-in)
+//! With [`BankReversalLogic::with_terminal`] the reversals inside a set range of the target
+//! come from the predicted crossrange at the end instead of the corridor ([`TerminalLateral`]:
+//! the turn measured between calls, a reversal at the tick whose reversed path ends nearest
+//! the target). Without it the corridor decides to the freeze distance, as before.
+//!
 //! # Rate limits
 //! The sign is applied to the interpolated bank target by [`Guidance::set_bank_sign`] /
 //! [`ReplanningGuidance::set_bank_sign`] *before* the rate limiter: a reversal from `+s` to
@@ -48,6 +54,8 @@
 
 mod corridor;
 mod logic;
+mod terminal;
 
 pub use corridor::{Corridor, CorridorAxis};
 pub use logic::{BankReversalLogic, LateralConfig, LateralStatus};
+pub use terminal::{TerminalLateral, predicted_offsets, reverse_now};

@@ -187,6 +187,7 @@ impl Fields {
             table,
             guidance_config,
             lateral,
+            lateral_terminal,
             replanning,
             estimator,
             guidance,
@@ -215,6 +216,10 @@ impl Fields {
         // Absent without a bound: the fingerprints of campaigns before it are unchanged.
         if let Some(b) = path_bound {
             self.debug("setup.path_bound", &b);
+        }
+        // Absent without the terminal law, likewise.
+        if let Some(t) = lateral_terminal {
+            self.debug("setup.lateral_terminal", &t);
         }
     }
 }

@@ -231,7 +231,13 @@ pub fn fly_case_logged(
         field: "guidance",
         source,
     };
-    let logic = || BankReversalLogic::new(setup.lateral).map_err(gerr);
+    let logic = || {
+        let l = BankReversalLogic::new(setup.lateral).map_err(gerr)?;
+        match setup.lateral_terminal {
+            Some(t) => l.with_terminal(t).map_err(gerr),
+            None => Ok(l),
+        }
+    };
     let run = |src: &mut dyn FnMut() -> Result<Flown, CampaignError>| src();
     let (result, reversals, replans, fall_backs, estimated_scales, log) = match mode {
         Mode::Stored => run(&mut || {

@@ -158,6 +158,20 @@ pub struct CampaignGuidance {
     /// closed forms. Not with `predictor = "closed-form"` (no numerical predictions).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_rotation: bool,
+    /// The last reversals from the predicted crossrange at the interface once the target is
+    /// closer than this \[km\] (`guidance_core::lateral::TerminalLateral`; docs/DISPERSIONS.md,
+    /// "The crossrange of HORUS-2B"), in `(freeze_km, 2000]`. Default (absent): the corridor to
+    /// the end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub terminal_lateral_km: Option<f64>,
+    /// The terminal law's accepted predicted crossrange \[km\], `> 0` and at most 100
+    /// (default 1). Only with `terminal_lateral_km`.
+    #[serde(skip_serializing_if = "is_one")]
+    pub terminal_tolerance_km: f64,
+    /// The terminal law's time from the start of a reversal to the middle of its bank ramp
+    /// \[s\], in `[0, 60]` (default 5). Only with `terminal_lateral_km`.
+    #[serde(skip_serializing_if = "is_five")]
+    pub terminal_reversal_lead_s: f64,
     /// Fading-memory gain of the onboard L/D-scale estimate per tick \[-\] (default 0.1).
     pub estimator_lift_to_drag_gain: f64,
     /// Fading-memory gain of the onboard drag-scale estimate per tick \[-\] (default 0.2).
@@ -175,6 +189,18 @@ pub struct CampaignGuidance {
 #[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
 fn is_zero(x: &f64) -> bool {
     *x == 0.0
+}
+
+/// Whether `x` is 1 (the default terminal tolerance: not written).
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
+}
+
+/// Whether `x` is 5 (the default terminal reversal lead: not written).
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_five(x: &f64) -> bool {
+    *x == 5.0
 }
 
 /// Whether both limit scales are 1 (the default: not written).
@@ -208,6 +234,9 @@ impl Default for CampaignGuidance {
             path_bound_barrier: None,
             path_bound_predicted: false,
             predictor_rotation: false,
+            terminal_lateral_km: None,
+            terminal_tolerance_km: 1.0,
+            terminal_reversal_lead_s: 5.0,
             estimator_lift_to_drag_gain: 0.1,
             estimator_drag_gain: 0.2,
             estimator_lift_to_drag_bounds: [0.5, 2.0],
@@ -386,6 +415,31 @@ impl CampaignGuidance {
                 "replan_start_normalized_energy",
                 e.to_string(),
                 "must be in (0, 1]",
+            ));
+        }
+        if let Some(k) = self.terminal_lateral_km
+            && !(k.is_finite() && k > self.freeze_km && k <= 2000.0)
+        {
+            return Err(bad(
+                "terminal_lateral_km",
+                k.to_string(),
+                "must be in (freeze_km, 2000]",
+            ));
+        }
+        let tol = self.terminal_tolerance_km;
+        if !(tol.is_finite() && tol > 0.0 && tol <= 100.0) {
+            return Err(bad(
+                "terminal_tolerance_km",
+                tol.to_string(),
+                "must be in (0, 100]",
+            ));
+        }
+        let lead = self.terminal_reversal_lead_s;
+        if !(lead.is_finite() && (0.0..=60.0).contains(&lead)) {
+            return Err(bad(
+                "terminal_reversal_lead_s",
+                lead.to_string(),
+                "must be in [0, 60] s",
             ));
         }
         let m = self.estimator_min_drag_m_s2;

@@ -7,7 +7,7 @@ use guidance_core::estimate::EstimatorConfig;
 use guidance_core::geo::central_angle;
 use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
 use guidance_core::interp::Interpolation;
-use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig};
+use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig, TerminalLateral};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
     LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig,
@@ -58,6 +58,8 @@ pub struct CampaignSetup {
     pub guidance_config: GuidanceConfig<f64>,
     /// Lateral logic settings.
     pub lateral: LateralConfig<f64>,
+    /// The lateral logic's terminal crossrange law (`terminal_lateral_km`; `None`: off).
+    pub lateral_terminal: Option<TerminalLateral<f64>>,
     /// Re-planner settings.
     pub replanning: ReplanningConfig<f64>,
     /// Onboard estimation settings ([`super::Mode::ReplanEstimation`]).
@@ -448,6 +450,11 @@ impl CampaignSetup {
             table,
             guidance_config,
             lateral,
+            lateral_terminal: gs.terminal_lateral_km.map(|k| TerminalLateral {
+                start_angle_rad: k * 1e3 / planet.radius_m,
+                tolerance_rad: gs.terminal_tolerance_km * 1e3 / planet.radius_m,
+                reversal_lead_s: gs.terminal_reversal_lead_s,
+            }),
             replanning,
             estimator: gs.estimator(),
             guidance: gs.clone(),

@@ -714,3 +714,69 @@ fn predictor_rotation_setting_needs_numerical_predictions() {
     assert!(text.contains("p.toml") && text.contains("true"), "{text}");
     assert_eq!(field_of(e), "dispersions.guidance.predictor_rotation");
 }
+
+/// `[dispersions.guidance] terminal_lateral_km` (default off) builds the lateral logic's
+/// terminal law in SI units; bad values of it and of its tolerance and lead are errors naming
+/// the file, field and value.
+#[test]
+fn terminal_lateral_settings_are_read_and_checked() {
+    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
+    let g = parse("").unwrap().guidance;
+    assert_eq!(g.terminal_lateral_km, None);
+    assert_eq!(
+        (g.terminal_tolerance_km, g.terminal_reversal_lead_s),
+        (1.0, 5.0)
+    );
+    let g = parse("terminal_lateral_km = 200.0\nfreeze_km = 5.0\nterminal_tolerance_km = 0.5")
+        .unwrap()
+        .guidance;
+    let setup = CampaignSetup::with_guidance(
+        &Scenario::srm_glide(),
+        "builtin:srm-glide",
+        Some(2500.0),
+        &g,
+    )
+    .unwrap();
+    let t = setup.lateral_terminal.unwrap();
+    let r = setup.planet_radius_m;
+    assert!((t.start_angle_rad * r - 200e3).abs() < 1e-6);
+    assert!((t.tolerance_rad * r - 500.0).abs() < 1e-9);
+    assert_eq!(t.reversal_lead_s, 5.0);
+    for (text, field, value) in [
+        ("terminal_lateral_km = 20.0", "terminal_lateral_km", "20"),
+        ("terminal_lateral_km = nan", "terminal_lateral_km", "NaN"),
+        (
+            "terminal_lateral_km = 3000.0",
+            "terminal_lateral_km",
+            "3000",
+        ),
+        ("terminal_tolerance_km = 0.0", "terminal_tolerance_km", "0"),
+        (
+            "terminal_tolerance_km = -1.0",
+            "terminal_tolerance_km",
+            "-1",
+        ),
+        (
+            "terminal_reversal_lead_s = -1.0",
+            "terminal_reversal_lead_s",
+            "-1",
+        ),
+        (
+            "terminal_reversal_lead_s = 61.0",
+            "terminal_reversal_lead_s",
+            "61",
+        ),
+    ] {
+        let e = parse(text).unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("p.toml") && msg.contains(value),
+            "{text}: {msg}"
+        );
+        assert_eq!(
+            field_of(e),
+            format!("dispersions.guidance.{field}"),
+            "{text}"
+        );
+    }
+}
