@@ -117,6 +117,29 @@ impl<S: Real> PathBound<S> {
             && self.barrier_damping >= S::ZERO
     }
 
+    /// Whether the bound and the inputs the two laws share are usable (module docs).
+    fn inputs_ok(
+        &self,
+        planet: &Planet<S>,
+        vehicle: &VehicleParams<S>,
+        lambda: S,
+        nav: &NavState<S>,
+    ) -> bool {
+        let pos = |v: S| v.is_finite() && v > S::ZERO;
+        self.is_valid()
+            && pos(planet.mu_m3_s2)
+            && pos(nav.radius_m)
+            && pos(nav.speed_m_s)
+            && nav.flight_path_angle_rad.is_finite()
+            && pos(vehicle.mass_kg)
+            && pos(vehicle.reference_area_m2)
+            && pos(vehicle.cd0)
+            && pos(vehicle.k_polar)
+            && pos(vehicle.nose_radius_m)
+            && lambda.is_finite()
+            && lambda >= S::ZERO
+    }
+
     /// Whether the barrier law is on (`barrier_frequency_rad_s > 0`).
     #[must_use]
     pub fn is_barrier(&self) -> bool {
@@ -149,22 +172,11 @@ impl<S: Real> PathBound<S> {
             return self.min_vertical_fraction(planet, vehicle, lambda, nav);
         }
         let pos = |v: S| v.is_finite() && v > S::ZERO;
-        let ok = self.is_valid()
-            && pos(planet.mu_m3_s2)
-            && pos(nav.radius_m)
-            && pos(nav.speed_m_s)
-            && nav.flight_path_angle_rad.is_finite()
-            && pos(vehicle.mass_kg)
-            && pos(vehicle.reference_area_m2)
-            && pos(vehicle.cd0)
-            && pos(vehicle.k_polar)
-            && pos(vehicle.nose_radius_m)
+        let ok = self.inputs_ok(planet, vehicle, lambda, nav)
             && pos(drag_scale)
             && pos(atmosphere.rho0_kg_m3)
             && pos(atmosphere.scale_height_m)
-            && atmosphere.ref_radius_m.is_finite()
-            && lambda.is_finite()
-            && lambda >= S::ZERO;
+            && atmosphere.ref_radius_m.is_finite();
         if !ok {
             return None;
         }
@@ -252,20 +264,7 @@ impl<S: Real> PathBound<S> {
         lambda: S,
         nav: &NavState<S>,
     ) -> Option<S> {
-        let pos = |v: S| v.is_finite() && v > S::ZERO;
-        let ok = self.is_valid()
-            && pos(planet.mu_m3_s2)
-            && pos(nav.radius_m)
-            && pos(nav.speed_m_s)
-            && nav.flight_path_angle_rad.is_finite()
-            && pos(vehicle.mass_kg)
-            && pos(vehicle.reference_area_m2)
-            && pos(vehicle.cd0)
-            && pos(vehicle.k_polar)
-            && pos(vehicle.nose_radius_m)
-            && lambda.is_finite()
-            && lambda >= S::ZERO;
-        if !ok {
+        if !self.inputs_ok(planet, vehicle, lambda, nav) {
             return None;
         }
         let cl = lambda * (vehicle.cd0 / vehicle.k_polar).sqrt_raw();

@@ -3,29 +3,15 @@
 //! response; the sensed accelerations in place of the model's; the bank cap it puts on
 //! `Guidance` at every tick.
 
+use crate::path_bound::{nav, predict};
 use crate::vinh_replan::{glide_nav, glide_range_m, rcfg, replanning};
 use crate::vinh_support::inputs::{atmosphere, horus, planet};
 use crate::vinh_support::vehicles::R_EARTH;
 use guidance_core::estimate::SensedAero;
 use guidance_core::nav::NavState;
 use guidance_core::replan::{
-    NumericalRun, PathBound, PredictorMode, RangeTarget, ReplanLimits, SENSED_MIN_DRAG_M_S2,
+    PathBound, PredictorMode, RangeTarget, ReplanLimits, SENSED_MIN_DRAG_M_S2,
 };
-use guidance_core::vinh::{EntryState, LiftControl, PeakMode, Prediction, PredictorConfig};
-
-const DEG: f64 = std::f64::consts::PI / 180.0;
-
-fn nav(alt_km: f64, speed_m_s: f64, gamma_deg: f64) -> NavState<f64> {
-    NavState {
-        time_s: 0.0,
-        radius_m: R_EARTH + alt_km * 1e3,
-        speed_m_s,
-        flight_path_angle_rad: gamma_deg * DEG,
-        heading_rad: 90.0 * DEG,
-        latitude_rad: 0.0,
-        longitude_rad: 0.0,
-    }
-}
 
 fn barrier(q_w_m2: f64, g_load: f64, omega: f64, zeta: f64) -> PathBound<f64> {
     PathBound {
@@ -155,36 +141,6 @@ fn an_invalid_barrier_is_no_bound() {
         None,
         "zero drag scale"
     );
-}
-
-/// A numerical prediction of HORUS-2B from 75 km at 7 km/s at a steep bank (f = 0.2),
-/// flying `bound` (if any).
-fn predict(bound: Option<PathBound<f64>>) -> Prediction<f64> {
-    let run = NumericalRun::new(
-        &planet(),
-        &atmosphere(),
-        &horus(),
-        &LiftControl {
-            lambda: 3.7,
-            vertical_fraction: 0.2,
-        },
-        &EntryState {
-            radius_m: R_EARTH + 75e3,
-            speed_m_s: 7000.0,
-            flight_path_angle_rad: -0.2 * DEG,
-        },
-        &PredictorConfig {
-            final_speed_m_s: 780.0,
-            max_skips: 4,
-        },
-        PeakMode::Full,
-    )
-    .unwrap();
-    let mut run = match bound {
-        Some(b) => run.with_path_bound(b),
-        None => run,
-    };
-    run.advance(u16::MAX).unwrap().unwrap()
 }
 
 /// Flown by the numerical predictor, the barrier holds a binding heat-flux limit and a

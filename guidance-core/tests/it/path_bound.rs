@@ -17,7 +17,7 @@ use guidance_core::vinh::{EntryState, LiftControl, PeakMode, Prediction, Predict
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
-fn nav(alt_km: f64, speed_m_s: f64, gamma_deg: f64) -> NavState<f64> {
+pub(crate) fn nav(alt_km: f64, speed_m_s: f64, gamma_deg: f64) -> NavState<f64> {
     NavState {
         time_s: 0.0,
         radius_m: R_EARTH + alt_km * 1e3,
@@ -228,7 +228,7 @@ fn replanning_guidance_applies_the_bound() {
 }
 
 /// A numerical prediction of HORUS-2B at a steep bank (f = 0.2) flying `bound` (if any).
-fn predict(bound: Option<PathBound<f64>>) -> Prediction<f64> {
+pub(crate) fn predict(bound: Option<PathBound<f64>>) -> Prediction<f64> {
     let run = NumericalRun::new(
         &planet(),
         &atmosphere(),
