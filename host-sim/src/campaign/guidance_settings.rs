@@ -153,13 +153,13 @@ pub struct CampaignGuidance {
     pub path_bound_predicted: bool,
     /// The re-planner's numerical predictions model the planet's rotation in their equations
     /// of motion, latitude and heading of the re-plan's start held, on the planet's own `mu`
-    /// (`ReplanningGuidance::with_numerical_rotation`; docs/DISPERSIONS.md, "The vehicle's
+    /// (`ReplanningGuidance::with_numerical_rotation`; docs/HORUS-DISPERSIONS.md, "The vehicle's
     /// aerodynamics along the flight"); default false: the effective planet of the
     /// closed forms. Not with `predictor = "closed-form"` (no numerical predictions).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_rotation: bool,
     /// The last reversals from the predicted crossrange at the interface once the target is
-    /// closer than this \[km\] (`guidance_core::lateral::TerminalLateral`; docs/DISPERSIONS.md,
+    /// closer than this \[km\] (`guidance_core::lateral::TerminalLateral`; docs/HORUS-DISPERSIONS.md,
     /// "The crossrange of HORUS-2B"), in `(freeze_km, 2000]`. Default (absent): the corridor to
     /// the end.
     #[serde(skip_serializing_if = "Option::is_none")]
