@@ -283,6 +283,53 @@ mod tests {
         }
     }
 
+    /// `sbx_child`: inside the bounds; half of the variables crossed; far from the bounds the
+    /// crossed values are centred on the parents' mean, spread on both sides (the first child
+    /// of `sbx`, in distribution).
+    #[test]
+    fn sbx_child_crosses_half_the_variables_centred_on_the_parents() {
+        let n = 40;
+        let bounds = Bounds::uniform(n, -100.0, 100.0).unwrap();
+        let (p1, p2) = (vec![0.3; n], vec![0.7; n]);
+        let mut rng = OptimRng::new(8);
+        let mut child = Vec::new();
+        let (mut crossed, mut sum, mut above) = (0usize, 0.0, 0usize);
+        let trials = 4000;
+        for _ in 0..trials {
+            sbx_child(&p1, &p2, &bounds, 1.0, 20.0, &mut rng, &mut child);
+            for &c in &child {
+                assert!((-100.0..=100.0).contains(&c));
+                if c != 0.3 {
+                    crossed += 1;
+                    sum += c;
+                    above += usize::from(c > 0.5);
+                }
+            }
+        }
+        let frac = crossed as f64 / (trials * n) as f64;
+        assert!((frac - 0.5).abs() < 0.01, "{frac}");
+        let mean = sum / crossed as f64;
+        assert!((mean - 0.5).abs() < 0.002, "{mean}");
+        let up = above as f64 / crossed as f64;
+        assert!((up - 0.5).abs() < 0.01, "{up}");
+        // Probability 0: the first parent unchanged; near a bound: inside it.
+        sbx_child(&p1, &p2, &bounds, 0.0, 20.0, &mut rng, &mut child);
+        assert_eq!(child, p1);
+        let tight = Bounds::uniform(3, 0.0, 1.0).unwrap();
+        for _ in 0..1000 {
+            sbx_child(
+                &[0.0, 1.0, 0.5],
+                &[1e-9, 0.999, 0.0],
+                &tight,
+                1.0,
+                2.0,
+                &mut rng,
+                &mut child,
+            );
+            assert!(child.iter().all(|c| (0.0..=1.0).contains(c)), "{child:?}");
+        }
+    }
+
     #[test]
     fn sbx_children_are_centred_on_the_parents() {
         // SBX preserves the mean of the two parents (before clamping).
