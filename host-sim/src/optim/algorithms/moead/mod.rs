@@ -540,6 +540,14 @@ impl<D: Decision, V> MoeadWith<D, V> {
         self.scratch.0.pool = pool;
     }
 
+    /// The subproblems the current generation works on, in order (all of them, shuffled, in
+    /// pagmo's MOEA/D; the DRA selection with resource allocation; empty before the initial
+    /// population is told).
+    #[must_use]
+    pub fn subproblems_this_generation(&self) -> &[usize] {
+        &self.order
+    }
+
     /// The utilities of subproblems `0..n` (MOEA/D-DRA), `None` without resource allocation.
     #[must_use]
     pub fn utilities(&self) -> Option<&[f64]> {

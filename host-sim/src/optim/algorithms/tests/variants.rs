@@ -238,4 +238,31 @@ fn variant_threshold_survey() {
         let min = r.iter().copied().fold(f64::INFINITY, f64::min);
         println!("{name}: min {min:.4} {r:.4?}");
     }
+    // How DRA spreads the evaluations: utilities after 1250 generations, and how often each
+    // subproblem was selected (children per subproblem; pagmo's MOEA/D: 250 each).
+    for seed in 1..=3 {
+        let mut a = dra(100, seed, 50, 1);
+        let mut made = vec![0u32; 100];
+        run_shuffled(&mut a, &zdt1, 0, 1);
+        for g in 1..=1250 {
+            for &n in a.subproblems_this_generation() {
+                made[n] += 1;
+            }
+            run_shuffled(&mut a, &zdt1, g, 1);
+        }
+        let mut u = a.utilities().unwrap().to_vec();
+        u.sort_by(f64::total_cmp);
+        made.sort_unstable();
+        println!(
+            "dra seed {seed}: utilities min {:.3} median {:.3} max {:.3}; below 0.5: {}; children per subproblem min {} median {} max {} (the two boundary ones {})",
+            u[0],
+            u[50],
+            u[99],
+            u.iter().filter(|&&x| x < 0.5).count(),
+            made[0],
+            made[50],
+            made[97],
+            made[99]
+        );
+    }
 }
