@@ -3,7 +3,10 @@
 //! defaults, seeds 1..=10 in turn (one run per iteration). The median hypervolume over the
 //! ten seeds (reference point (1.1, 1.1); true front 0.8767) is printed once per algorithm.
 //! The `-archive100` variants keep the opt-in external archive of capacity 100 (Zhang & Li's
-//! EP, `archive: Some(100)`) and report its front.
+//! EP, `archive: Some(100)`) and report its front. `moead-dra` is MOEA/D-DRA's resource
+//! allocation (Zhang, Liu & Li 2009): 100 / 5 = 20 children per generation, so 1250
+//! generations for the same 25,100 evaluations; `moead-sbx` is Zhang & Li's (2007) SBX
+//! variation (250 generations).
 //! Peer figures (pygmo 2.20): `scripts/compare_pygmo.py`, docs/PERFORMANCE.md.
 
 use std::hint::black_box;
@@ -13,8 +16,8 @@ use host_sim::optim::hypervolume::hypervolume;
 use host_sim::optim::population::feasible_front;
 use host_sim::optim::problems::Zdt;
 use host_sim::optim::{
-    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver, Nsga2, Nsga2Config,
-    Serial, evolve,
+    Algorithm, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NoObserver, Nsga2,
+    Nsga2Config, ResourceAllocation, SbxVariation, Serial, evolve,
 };
 
 const GENERATIONS: u64 = 250;
@@ -55,6 +58,27 @@ fn run_nsga2_archive(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
     Algorithm::<Zdt>::result(&a).to_vec()
 }
 
+/// MOEA/D-DRA generations for 25,100 evaluations: (25,100 - 100) / (100 / 5).
+const DRA_GENERATIONS: u64 = 1250;
+
+fn run_moead_dra(problem: &Zdt, seed: u64, archive: Option<usize>) -> Vec<Individual<Vec<f64>>> {
+    let config = MoeadConfig {
+        archive,
+        resource_allocation: Some(ResourceAllocation::default()),
+        ..MoeadConfig::default()
+    };
+    let mut a = Moead::new(config, seed);
+    evolve(&mut a, problem, &Serial, DRA_GENERATIONS, &mut NoObserver).expect("moead-dra runs");
+    assert_eq!(Algorithm::<Zdt>::evaluations(&a), 25_100);
+    Algorithm::<Zdt>::result(&a).to_vec()
+}
+
+fn run_moead_sbx(problem: &Zdt, seed: u64) -> Vec<Individual<Vec<f64>>> {
+    let mut a = MoeadSbx::sbx(MoeadConfig::default(), SbxVariation::default(), seed);
+    evolve(&mut a, problem, &Serial, GENERATIONS, &mut NoObserver).expect("moead-sbx runs");
+    a.population().to_vec()
+}
+
 fn median_hypervolume(run: fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>, problem: &Zdt) -> Vec<f64> {
     let mut hv: Vec<f64> = (1..=SEEDS)
         .map(|s| hypervolume(&feasible_front(&run(problem, s)), &[1.1, 1.1]).expect("hypervolume"))
@@ -66,11 +90,14 @@ fn median_hypervolume(run: fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>, problem: 
 fn bench(c: &mut Criterion) {
     let problem = Zdt::standard(1).expect("zdt1");
     type Run = fn(&Zdt, u64) -> Vec<Individual<Vec<f64>>>;
-    let algorithms: [(&str, Run); 4] = [
+    let algorithms: [(&str, Run); 7] = [
         ("moead", run_moead),
         ("nsga2", run_nsga2),
         ("moead-archive100", run_moead_archive),
         ("nsga2-archive100", run_nsga2_archive),
+        ("moead-dra", |p, s| run_moead_dra(p, s, None)),
+        ("moead-dra-archive100", |p, s| run_moead_dra(p, s, ARCHIVE)),
+        ("moead-sbx", run_moead_sbx),
     ];
     for (name, run) in algorithms {
         let hv = median_hypervolume(run, &problem);

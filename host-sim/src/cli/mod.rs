@@ -13,6 +13,8 @@ mod optimize_reentry_out;
 #[cfg(test)]
 mod optimize_reentry_tests;
 mod optimize_structured;
+#[cfg(test)]
+mod optimize_variants_tests;
 mod sample_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;

@@ -15,8 +15,9 @@ use crate::optim::hypervolume::{HypervolumeError, hypervolume};
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
 use crate::optim::{
-    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
-    Nsga2, Nsga2Config, OptimError, Problem, Rayon, Serial, WeightGeneration, evolve,
+    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx,
+    NoObserver, Nsga2, Nsga2Config, OptimError, Problem, Rayon, SbxVariation, Serial,
+    WeightGeneration, evolve,
 };
 use crate::report::{ReportError, RunDir};
 
@@ -55,6 +56,16 @@ pub enum WeightsArg {
     Random,
 }
 
+/// MOEA/D's variation operator on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MoeadOperatorArg {
+    /// pagmo's MOEA/D-DE (Li & Zhang 2009): DE step (CR 1, F 0.5), polynomial mutation.
+    De,
+    /// Zhang & Li's (2007) original MOEA/D: SBX (index 20, probability 1) of the two
+    /// parents, polynomial mutation. Not pagmo.
+    Sbx,
+}
+
 /// MHACO constraint handling on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum MhacoConstraintsArg {
@@ -80,9 +91,16 @@ pub struct OptimizeArgs {
     /// Population size.
     #[arg(long, default_value_t = 100)]
     pub population: usize,
-    /// Generations after the initial population.
+    /// Generations after the initial population (with --resource-allocation a generation
+    /// makes population / 5 children, not population: see --evaluations).
     #[arg(long, default_value_t = DEFAULT_GENERATIONS)]
     pub generations: u64,
+    /// MOEA/D and NSGA-II on the test problems: budget in evaluations, initial population
+    /// included, instead of --generations: runs the fewest whole generations that reach it
+    /// (generations = ceil((E - population) / children per generation); population 100 and
+    /// E = 25100: 250 generations, or 1250 with --resource-allocation).
+    #[arg(long, value_name = "E", conflicts_with = "generations")]
+    pub evaluations: Option<u64>,
     /// Seed of the run's random-number generator.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -124,6 +142,18 @@ pub struct OptimizeArgs {
     /// semantics: the final population's front).
     #[arg(long, value_name = "N")]
     pub archive: Option<usize>,
+    /// MOEA/D and SCEA: MOEA/D-DRA's dynamic resource allocation (Zhang, Liu & Li, CEC 2009;
+    /// not in pagmo): each generation works on the boundary subproblems and 10-way
+    /// tournament winners on utility, population / 5 in all, utilities updated every 50
+    /// generations. A generation then makes population / 5 children: compare budgets with
+    /// --evaluations. Default: off (pagmo's semantics).
+    #[arg(long)]
+    pub resource_allocation: bool,
+    /// MOEA/D variation: `de` (pagmo's MOEA/D-DE, the default) or `sbx` (Zhang & Li 2007's
+    /// original MOEA/D: SBX with index 20 and probability 1, then polynomial mutation; not
+    /// in pagmo).
+    #[arg(long, value_enum, default_value = "de")]
+    pub moead_operator: MoeadOperatorArg,
     /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
     /// gains only with --batch-size > 1.
     #[arg(long, default_value_t = 1)]
@@ -254,6 +284,35 @@ pub enum OptimizeError {
         /// Algorithm asked for.
         algorithm: &'static str,
     },
+    /// `--resource-allocation` with an algorithm or problem that does not take it.
+    #[error(
+        "command line: --resource-allocation applies to --algorithm moead or scea on the test problems (given --algorithm {algorithm} --problem {problem}); drop it"
+    )]
+    ResourceAllocationNotHere {
+        /// Algorithm asked for.
+        algorithm: &'static str,
+        /// Problem asked for.
+        problem: String,
+    },
+    /// `--moead-operator sbx` with another algorithm or a re-entry problem.
+    #[error(
+        "command line: --moead-operator sbx applies to --algorithm moead on the test problems (given --algorithm {algorithm} --problem {problem}); drop it"
+    )]
+    OperatorNotHere {
+        /// Algorithm asked for.
+        algorithm: &'static str,
+        /// Problem asked for.
+        problem: String,
+    },
+    /// `--evaluations` with an algorithm or problem that does not take it, or below the
+    /// initial population.
+    #[error("command line: --evaluations {evaluations}: {why}")]
+    Evaluations {
+        /// Budget given.
+        evaluations: u64,
+        /// What to change.
+        why: String,
+    },
     /// `--archive` beside `--config` or `--resume`.
     #[error(
         "command line: --archive with --config or --resume: the run file decides; set `archive = N` in it instead"
@@ -307,6 +366,12 @@ pub(super) struct Summary<'a> {
     /// Capacity of the external archive (`--archive`), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) archive_capacity: Option<usize>,
+    /// MOEA/D-DRA's resource allocation was on (`--resource-allocation`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub(super) resource_allocation: bool,
+    /// MOEA/D's variation when not pagmo's DE (`--moead-operator sbx`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) moead_operator: Option<&'static str>,
     pub(super) front_size: usize,
     /// Wall time of the evolution alone (no problem set-up, no output) [s].
     pub(super) wall_time_s: f64,
@@ -375,8 +440,60 @@ pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
         mutation_probability: a.mutation_probability,
         batch_size: a.batch_size,
         archive: a.archive,
+        resource_allocation: a
+            .resource_allocation
+            .then(crate::optim::ResourceAllocation::default),
         ..MoeadConfig::default()
     }
+}
+
+/// `--resource-allocation`: MOEA/D or SCEA on a test problem only (re-entry runs take their
+/// settings from the run file).
+fn check_resource_allocation(a: &OptimizeArgs) -> Result<(), OptimizeError> {
+    let here = matches!(a.algorithm, AlgorithmName::Moead | AlgorithmName::Scea)
+        && !super::optimize_reentry::wants_reentry(a);
+    if a.resource_allocation && !here {
+        return Err(OptimizeError::ResourceAllocationNotHere {
+            algorithm: a.algorithm_name(),
+            problem: a.problem.clone(),
+        });
+    }
+    if a.moead_operator != MoeadOperatorArg::De
+        && (a.algorithm != AlgorithmName::Moead || super::optimize_reentry::wants_reentry(a))
+    {
+        return Err(OptimizeError::OperatorNotHere {
+            algorithm: a.algorithm_name(),
+            problem: a.problem.clone(),
+        });
+    }
+    Ok(())
+}
+
+/// The generations to run: `--generations`, or the fewest whole generations whose
+/// evaluations, initial population included, reach `--evaluations`.
+fn generations_to_run(a: &OptimizeArgs, objectives: usize) -> Result<u64, OptimizeError> {
+    let Some(e) = a.evaluations else {
+        return Ok(a.generations);
+    };
+    let err = |why: String| OptimizeError::Evaluations {
+        evaluations: e,
+        why,
+    };
+    let per_generation = match a.algorithm {
+        AlgorithmName::Moead => moead_config(a)
+            .resource_allocation
+            .map_or(a.population, |ra| {
+                ra.subproblems_per_generation(a.population, objectives)
+            }),
+        _ => a.population,
+    };
+    let n = a.population as u64;
+    if e < n || per_generation == 0 {
+        return Err(err(format!(
+            "below the initial population of {n}; use at least {n}"
+        )));
+    }
+    Ok((e - n).div_ceil(per_generation as u64))
 }
 
 /// The evaluation pool for `--threads` (`None`: serial).
@@ -409,6 +526,20 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         });
     }
     check_archive(a)?;
+    check_resource_allocation(a)?;
+    if let Some(evaluations) = a.evaluations {
+        let fixed = matches!(a.algorithm, AlgorithmName::Moead | AlgorithmName::Nsga2);
+        if !fixed || super::optimize_reentry::wants_reentry(a) {
+            return Err(OptimizeError::Evaluations {
+                evaluations,
+                why: format!(
+                    "applies to --algorithm moead or nsga2 on the test problems (given --algorithm {} --problem {}); use --generations",
+                    a.algorithm_name(),
+                    a.problem
+                ),
+            });
+        }
+    }
     if super::optimize_reentry::wants_reentry(a) {
         return Ok(super::optimize_reentry::run(a, out)?);
     }
@@ -436,11 +567,22 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         }
         None => problem.reference_point(),
     };
+    let generations = generations_to_run(a, m)?;
     let pool = pool(a.threads)?;
     let outcome = match a.algorithm {
         AlgorithmName::Moead => {
             let config = moead_config(a);
-            drive(Moead::new(config, a.seed), &problem, a.generations, pool)?
+            match a.moead_operator {
+                MoeadOperatorArg::De => {
+                    drive(Moead::new(config, a.seed), &problem, generations, pool)?
+                }
+                MoeadOperatorArg::Sbx => drive(
+                    MoeadSbx::sbx(config, SbxVariation::default(), a.seed),
+                    &problem,
+                    generations,
+                    pool,
+                )?,
+            }
         }
         AlgorithmName::Nsga2 => {
             let config = Nsga2Config {
@@ -448,7 +590,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
                 archive: a.archive,
                 ..Nsga2Config::default()
             };
-            drive(Nsga2::new(config, a.seed), &problem, a.generations, pool)?
+            drive(Nsga2::new(config, a.seed), &problem, generations, pool)?
         }
         AlgorithmName::Mhaco => {
             let config = mhaco_config(a);
@@ -469,7 +611,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         problem: &a.problem,
         algorithm: a.algorithm.as_str(),
         population: a.population,
-        generations: a.generations,
+        generations,
         seed: a.seed,
         objectives: m,
         variables: crate::optim::RealProblem::bounds(&problem).dim(),
@@ -486,6 +628,8 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
             "population"
         },
         archive_capacity: a.archive,
+        resource_allocation: a.resource_allocation,
+        moead_operator: (a.moead_operator == MoeadOperatorArg::Sbx).then_some("sbx"),
         front_size: front.len(),
         wall_time_s: outcome.wall_time_s,
         threads: a.threads,
@@ -587,6 +731,9 @@ mod tests {
             mhaco_constraints: MhacoConstraintsArg::FeasibilityFirst,
             scea_genes: super::super::optimize_structured::SceaGenesArg::Population,
             archive: None,
+            resource_allocation: false,
+            moead_operator: MoeadOperatorArg::De,
+            evaluations: None,
             threads: 1,
             reference: None,
             out,

@@ -180,6 +180,8 @@ pub(super) fn run_variable_length(
             "population"
         },
         archive_capacity: a.archive,
+        resource_allocation: a.resource_allocation,
+        moead_operator: None,
         front_size: front.len(),
         wall_time_s,
         threads: a.threads,
@@ -255,6 +257,9 @@ mod tests {
             mhaco_constraints: super::super::optimize_cmd::MhacoConstraintsArg::FeasibilityFirst,
             scea_genes: SceaGenesArg::Population,
             archive: None,
+            resource_allocation: false,
+            moead_operator: super::super::optimize_cmd::MoeadOperatorArg::De,
+            evaluations: None,
             threads: 1,
             reference: None,
             out: None,

@@ -36,8 +36,8 @@ pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
 pub use algorithms::{
-    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes, Nsga2, Nsga2Config, Scea,
-    SceaConfig,
+    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2,
+    Nsga2Config, ResourceAllocation, SbxVariation, Scea, SceaConfig,
 };
 pub use archive::ParetoArchive;
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};

@@ -6,7 +6,10 @@ pub mod nsga2;
 pub mod scea;
 
 pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig};
-pub use moead::{DeVariation, Moead, MoeadConfig, MoeadVariation, MoeadWith};
+pub use moead::{
+    DeVariation, Moead, MoeadConfig, MoeadSbx, MoeadVariation, MoeadWith, ResourceAllocation,
+    SbxVariation,
+};
 pub use nsga2::{Nsga2, Nsga2Config};
 pub use scea::{NewGenes, Scea, SceaConfig, SceaVariation};
 

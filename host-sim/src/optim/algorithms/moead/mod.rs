@@ -25,6 +25,12 @@
 //! order, to a bounded [`ParetoArchive`] of the feasible non-dominated solutions found so far,
 //! which is then the run's result front ([`Algorithm::external_archive`]). The archive never
 //! feeds back into selection, so the population evolves exactly as without it.
+//!
+//! Opt-in (`resource_allocation: Some(..)`, not pagmo): MOEA/D-DRA's dynamic resource
+//! allocation (Zhang, Liu & Li 2009, [`ResourceAllocation`]): a generation works on the
+//! boundary subproblems and tournament winners on utility (population / 5 in all) instead of
+//! every subproblem, so a generation has fewer evaluations; the variation and replacement of
+//! each chosen subproblem are the above.
 
 use std::fmt::Debug;
 
@@ -43,6 +49,13 @@ use crate::optim::weights::{
 };
 
 use super::check_range;
+
+mod dra;
+mod sbx;
+
+pub use dra::ResourceAllocation;
+use dra::{DraState, boundary_subproblems};
+pub use sbx::{MoeadSbx, SbxVariation};
 
 const NAME: &str = "moead";
 
@@ -80,6 +93,11 @@ pub struct MoeadConfig {
     /// semantics, no archive, the result is the final population.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub archive: Option<usize>,
+    /// MOEA/D-DRA's dynamic resource allocation (Zhang, Liu & Li 2009): each generation
+    /// works on the boundary subproblems and tournament winners on utility (population / 5
+    /// by default) rather than on all subproblems. `None` (default): pagmo's semantics.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resource_allocation: Option<ResourceAllocation>,
 }
 
 impl Default for MoeadConfig {
@@ -98,6 +116,7 @@ impl Default for MoeadConfig {
             mutation_probability: None,
             batch_size: 1,
             archive: None,
+            resource_allocation: None,
         }
     }
 }
@@ -148,6 +167,9 @@ impl MoeadConfig {
         }
         if let Some(capacity) = self.archive {
             check_capacity(NAME, capacity)?;
+        }
+        if let Some(ra) = &self.resource_allocation {
+            ra.check(self.population)?;
         }
         Ok(())
     }
@@ -255,6 +277,9 @@ pub struct MoeadWith<D, V> {
     /// order.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     archive: Option<ParetoArchive<D>>,
+    /// MOEA/D-DRA's utilities (`config.resource_allocation`), created with the population.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dra: Option<DraState>,
     #[serde(skip)]
     scratch: Scratch<Buffers<D>>,
 }
@@ -265,6 +290,7 @@ struct Buffers<D> {
     pool: Vec<usize>,
     told: Vec<Individual<D>>,
     spare: Vec<D>,
+    candidates: Vec<usize>,
 }
 
 impl<D> Default for Buffers<D> {
@@ -273,6 +299,7 @@ impl<D> Default for Buffers<D> {
             pool: Vec::new(),
             told: Vec::new(),
             spare: Vec::new(),
+            candidates: Vec::new(),
         }
     }
 }
@@ -305,6 +332,7 @@ impl<D: Decision, V> MoeadWith<D, V> {
             generation: 0,
             evaluations: 0,
             archive: None,
+            dra: None,
             scratch: Scratch::default(),
         }
     }
@@ -408,8 +436,7 @@ impl<D: Decision, V> MoeadWith<D, V> {
         P: Problem<Decision = D>,
         V: MoeadVariation<P>,
     {
-        let np = self.config.population;
-        let count = self.config.batch_size.min(np - self.cursor);
+        let count = self.config.batch_size.min(self.order.len() - self.cursor);
         let mut batch = std::mem::take(&mut self.batch);
         let mut spare = std::mem::take(&mut self.scratch.0.spare);
         self.origins.clear();
@@ -513,10 +540,55 @@ impl<D: Decision, V> MoeadWith<D, V> {
         self.scratch.0.pool = pool;
     }
 
+    /// The subproblems the current generation works on, in order (all of them, shuffled, in
+    /// pagmo's MOEA/D; the DRA selection with resource allocation; empty before the initial
+    /// population is told).
+    #[must_use]
+    pub fn subproblems_this_generation(&self) -> &[usize] {
+        &self.order
+    }
+
+    /// The utilities of subproblems `0..n` (MOEA/D-DRA), `None` without resource allocation.
+    #[must_use]
+    pub fn utilities(&self) -> Option<&[f64]> {
+        self.dra.as_ref().map(|d| d.utility.as_slice())
+    }
+
+    /// MOEA/D-DRA: every `period` generations, the utilities from each member's relative
+    /// improvement of its decomposed value (with the current ideal point).
+    fn update_utilities(&mut self) {
+        let (Some(ra), Some(dra)) = (&self.config.resource_allocation, &mut self.dra) else {
+            return;
+        };
+        if !self.generation.is_multiple_of(ra.period) {
+            return;
+        }
+        let (kind, weights, ideal) = (self.config.decomposition, &self.weights, &self.ideal);
+        dra.update(&self.population, |i, f| {
+            decompose(kind, f, &weights[i], ideal)
+        });
+    }
+
     fn new_generation_order(&mut self) {
+        self.cursor = 0;
+        if let (Some(ra), Some(dra)) = (&self.config.resource_allocation, &self.dra) {
+            let m = self.ideal.len();
+            let count = ra.subproblems_per_generation(self.population.len(), m);
+            let boundary = boundary_subproblems(&self.weights, m);
+            let mut candidates = std::mem::take(&mut self.scratch.0.candidates);
+            dra.select(
+                &boundary,
+                count,
+                ra.tournament,
+                &mut self.rng,
+                &mut self.order,
+                &mut candidates,
+            );
+            self.scratch.0.candidates = candidates;
+            return;
+        }
         self.order = (0..self.config.population).collect();
         self.rng.shuffle(&mut self.order);
-        self.cursor = 0;
     }
 }
 
@@ -575,8 +647,9 @@ where
                 .spare
                 .extend(told.drain(..).map(|i| i.decision));
             self.scratch.0.told = told;
-            if self.cursor >= self.config.population {
+            if self.cursor >= self.order.len() {
                 self.generation += 1;
+                self.update_utilities();
                 self.new_generation_order();
             }
         } else {
@@ -588,6 +661,9 @@ where
                 }
             }
             self.population = told;
+            if self.config.resource_allocation.is_some() {
+                self.dra = Some(DraState::new(&self.population));
+            }
             self.initialised = true;
             self.new_generation_order();
         }

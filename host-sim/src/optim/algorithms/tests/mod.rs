@@ -52,6 +52,7 @@ fn run<A: Algorithm<TestProblem>>(mut alg: A, p: &TestProblem, gens: u64) -> A {
 mod archive;
 mod convergence;
 mod variable;
+mod variants;
 
 // ---------------------------------------------------------------------------------------
 // Bad settings

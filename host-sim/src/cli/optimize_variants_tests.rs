@@ -1,0 +1,117 @@
+//! `host-sim optimize` with the opt-in MOEA/D variants (`--resource-allocation`,
+//! `--moead-operator sbx`) and the `--evaluations` budget, parsed from real flags.
+
+use clap::Parser;
+
+use super::optimize_cmd::{OptimizeArgs, OptimizeError, run};
+
+#[derive(Parser)]
+struct Cli {
+    #[command(flatten)]
+    a: OptimizeArgs,
+}
+
+fn parse(flags: &[&str]) -> OptimizeArgs {
+    let mut argv = vec!["optimize"];
+    argv.extend_from_slice(flags);
+    Cli::try_parse_from(argv).unwrap().a
+}
+
+fn summary(flags: &[&str], tag: &str) -> serde_json::Value {
+    let dir = std::env::temp_dir().join(format!(
+        "host-sim-optimize-variants-{tag}-{}",
+        std::process::id()
+    ));
+    let mut a = parse(flags);
+    a.out = Some(dir.clone());
+    run(&a, &mut Vec::new()).unwrap();
+    let json = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    serde_json::from_str(&json).unwrap()
+}
+
+const SMALL: [&str; 4] = ["--population", "20", "--neighbours", "5"];
+
+#[test]
+fn evaluations_budget_counts_dra_generations_of_a_fifth_of_the_population() {
+    let with = |extra: &[&str], tag| {
+        let mut f = SMALL.to_vec();
+        f.extend_from_slice(extra);
+        summary(&f, tag)
+    };
+    // pagmo's MOEA/D: (100 - 20) / 20 = 4 generations.
+    let s = with(&["--evaluations", "100"], "de");
+    assert_eq!(
+        (s["generations"].as_u64(), s["evaluations"].as_u64()),
+        (Some(4), Some(100))
+    );
+    assert!(s.get("resource_allocation").is_none());
+    assert!(s.get("moead_operator").is_none());
+    // DRA: 20 / 5 = 4 children per generation, (100 - 20) / 4 = 20 generations.
+    let s = with(&["--resource-allocation", "--evaluations", "100"], "dra");
+    assert_eq!(
+        (s["generations"].as_u64(), s["evaluations"].as_u64()),
+        (Some(20), Some(100))
+    );
+    assert_eq!(s["resource_allocation"], true);
+    // Rounded up to whole generations.
+    let s = with(&["--resource-allocation", "--evaluations", "101"], "dra-up");
+    assert_eq!(
+        (s["generations"].as_u64(), s["evaluations"].as_u64()),
+        (Some(21), Some(104))
+    );
+    // --generations counts DRA generations.
+    let s = with(&["--resource-allocation", "--generations", "3"], "dra-gens");
+    assert_eq!(s["evaluations"].as_u64(), Some(32));
+    // SBX: same budget, another run.
+    let s = with(&["--moead-operator", "sbx", "--evaluations", "100"], "sbx");
+    assert_eq!(s["moead_operator"], "sbx");
+    assert_eq!(s["evaluations"].as_u64(), Some(100));
+    let s = summary(
+        &[
+            "--algorithm",
+            "nsga2",
+            "--population",
+            "20",
+            "--evaluations",
+            "100",
+        ],
+        "nsga2",
+    );
+    assert_eq!(s["generations"].as_u64(), Some(4));
+}
+
+#[test]
+fn variant_flags_where_they_do_not_apply_say_what_to_change() {
+    let err = |flags: &[&str]| run(&parse(flags), &mut Vec::new()).unwrap_err();
+    let e = err(&["--algorithm", "nsga2", "--resource-allocation"]);
+    assert!(
+        matches!(e, OptimizeError::ResourceAllocationNotHere { .. }),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("--resource-allocation applies to"),
+        "{e}"
+    );
+    let e = err(&["--problem", "srm", "--resource-allocation"]);
+    assert!(
+        e.to_string().contains("--resource-allocation applies to"),
+        "{e}"
+    );
+    let e = err(&["--algorithm", "scea", "--moead-operator", "sbx"]);
+    assert!(
+        e.to_string().contains("--moead-operator sbx applies to"),
+        "{e}"
+    );
+    let e = err(&["--algorithm", "mhaco", "--evaluations", "1000"]);
+    assert!(
+        e.to_string().contains("--evaluations 1000: applies to"),
+        "{e}"
+    );
+    let e = err(&["--evaluations", "50"]);
+    assert!(e.to_string().contains("use at least 100"), "{e}");
+    // --evaluations and --generations together: clap refuses.
+    assert!(
+        Cli::try_parse_from(["optimize", "--evaluations", "500", "--generations", "4"]).is_err()
+    );
+}
