@@ -32,6 +32,7 @@ pub mod population;
 pub mod problem;
 pub mod problems;
 pub mod rng;
+pub mod root;
 pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
