@@ -45,7 +45,7 @@
 //! ([`PathBound::barrier_vertical_fraction`]). [`crate::replan::ReplanningGuidance`] applies
 //! a barrier bound at every guidance tick, not only at re-plans.
 
-use crate::estimate::SensedAero;
+use crate::estimate::{SensedAero, expected_aero};
 use crate::monitor::{CHAPMAN_C_STAR, CHAPMAN_RHO0_KG_M3, CHAPMAN_SPEED_EXPONENT, CHAPMAN_VC_M_S};
 use crate::nav::NavState;
 use crate::scalar::Real;
@@ -183,10 +183,9 @@ impl<S: Real> PathBound<S> {
         let r = nav.radius_m;
         let v = nav.speed_m_s;
         let rho = atmosphere.density_unchecked(r);
-        let cl = lambda * (vehicle.cd0 / vehicle.k_polar).sqrt_raw();
-        let cd = vehicle.cd0 * (S::ONE + lambda * lambda) * drag_scale;
-        let qm = rho * v * v * vehicle.reference_area_m2.half() / vehicle.mass_kg;
-        let (lift, drag) = (qm * cl, qm * cd);
+        // The model's accelerations, as the onboard estimator expects them.
+        let model = expected_aero(atmosphere, vehicle, lambda, r, v)?;
+        let (lift, drag) = (model.lift_m_s2, model.drag_m_s2 * drag_scale);
         let min_drag = S::from_f64(SENSED_MIN_DRAG_M_S2);
         let (rho, lift, drag) = match sensed {
             Some(a) if a.validate().is_ok() && a.drag_m_s2 >= min_drag && drag > S::ZERO => {

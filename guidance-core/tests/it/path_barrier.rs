@@ -7,7 +7,7 @@ use crate::path_bound::{nav, predict};
 use crate::vinh_replan::{glide_nav, glide_range_m, rcfg, replanning};
 use crate::vinh_support::inputs::{atmosphere, horus, planet};
 use crate::vinh_support::vehicles::R_EARTH;
-use guidance_core::estimate::SensedAero;
+use guidance_core::estimate::{SensedAero, expected_aero};
 use guidance_core::nav::NavState;
 use guidance_core::replan::{
     PathBound, PredictorMode, RangeTarget, ReplanLimits, SENSED_MIN_DRAG_M_S2,
@@ -33,14 +33,7 @@ fn at(b: &PathBound<f64>, n: &NavState<f64>, sensed: Option<SensedAero<f64>>) ->
 
 /// The model's lift and drag accelerations \[m/s^2\] of HORUS-2B at lambda 3.7 at `n`.
 fn model_aero(n: &NavState<f64>) -> SensedAero<f64> {
-    let (a, v) = (atmosphere(), horus());
-    let rho = a.rho0_kg_m3 * (-(n.radius_m - a.ref_radius_m) / a.scale_height_m).exp();
-    let qm = rho * n.speed_m_s * n.speed_m_s * v.reference_area_m2 / (2.0 * v.mass_kg);
-    let lambda: f64 = 3.7;
-    SensedAero {
-        lift_m_s2: qm * lambda * (v.cd0 / v.k_polar).sqrt(),
-        drag_m_s2: qm * v.cd0 * (1.0 + lambda * lambda),
-    }
+    expected_aero(&atmosphere(), &horus(), 3.7, n.radius_m, n.speed_m_s).unwrap()
 }
 
 /// Far above both floors the barrier does not bind; in air denser than the heat-flux limit
