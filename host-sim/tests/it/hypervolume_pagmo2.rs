@@ -1,6 +1,10 @@
-//! Exact hypervolume against the published pagmo2 reference data (issue 9 item 12), read in
-//! place from `shared/data/hypervolume` beside the repository clone (never copied into it;
-//! see its README and ORIGIN.md for the format and the provenance).
+//! Exact hypervolume against the published pagmo2 reference data, read in place from
+//! `shared/data/hypervolume` beside the repository clone (never copied into it: its ORIGIN.md
+//! asks so; see its README for the format and the provenance).
+//!
+//! A clone with nothing beside it has no such folder: there the tests print a line saying
+//! what they skipped and why, and pass. Under CI (`CI` set to `true`) the data must be there
+//! and a missing folder fails the test.
 
 use std::path::PathBuf;
 
@@ -10,14 +14,30 @@ fn close(a: f64, b: f64, rel: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(b.abs())
 }
 
-/// `shared/data/hypervolume` beside the repository clone (read in place, never copied).
-fn pagmo_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/hypervolume")
+/// `shared/data/hypervolume` beside the repository clone (read in place, never copied), or
+/// `None` after printing why the calling test is skipped. Under CI a missing folder panics.
+fn pagmo_dir(test: &str) -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/hypervolume");
+    if dir.join("testcases_list.txt").is_file() {
+        return Some(dir);
+    }
+    let ci = std::env::var("CI").is_ok_and(|v| v == "true");
+    assert!(
+        !ci,
+        "{}: missing under CI=true (shared/ must sit beside the clone)",
+        dir.display()
+    );
+    println!(
+        "skipped {test}: the pagmo2 reference data is not beside this clone ({} is missing; \
+         it is read in place, never shipped in the repository)",
+        dir.display()
+    );
+    None
 }
 
 /// The whitespace-separated numbers of a pagmo2 test file.
-fn tokens(name: &str) -> Vec<f64> {
-    let path = pagmo_dir().join("testcases").join(name);
+fn tokens(dir: &std::path::Path, name: &str) -> Vec<f64> {
+    let path = dir.join("testcases").join(name);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
         panic!(
             "{}: {e} (shared/ must sit beside the clone)",
@@ -34,8 +54,8 @@ type Front = (Vec<Vec<f64>>, Vec<f64>, Vec<f64>);
 
 /// Parse a file of the given kind: "compute" and "least_contributor" have one trailing value
 /// (the answer or index), "exclusive" two (the index, then the answer).
-fn fronts(name: &str, trailing: usize) -> Vec<Front> {
-    let t = tokens(name);
+fn fronts(dir: &std::path::Path, name: &str, trailing: usize) -> Vec<Front> {
+    let t = tokens(dir, name);
     let mut it = t.into_iter();
     let count = it.next().unwrap() as usize;
     (0..count)
@@ -56,7 +76,10 @@ fn fronts(name: &str, trailing: usize) -> Vec<Front> {
 /// whatever pagmo2 algorithm name it is listed under: we have one algorithm per dimension.
 #[test]
 fn validate_pagmo2_testcases_list() {
-    let list = std::fs::read_to_string(pagmo_dir().join("testcases_list.txt")).unwrap();
+    let Some(dir) = pagmo_dir("validate_pagmo2_testcases_list") else {
+        return;
+    };
+    let list = std::fs::read_to_string(dir.join("testcases_list.txt")).unwrap();
     let mut seen = std::collections::BTreeSet::new();
     let mut checked = 0;
     for line in list.lines().map(str::trim) {
@@ -70,7 +93,7 @@ fn validate_pagmo2_testcases_list() {
         }
         match kind {
             "compute" => {
-                for (k, (pts, r, tail)) in fronts(file, 1).into_iter().enumerate() {
+                for (k, (pts, r, tail)) in fronts(&dir, file, 1).into_iter().enumerate() {
                     let hv = hypervolume(&pts, &r).unwrap();
                     assert!(
                         (hv - tail[0]).abs() < eps,
@@ -81,7 +104,7 @@ fn validate_pagmo2_testcases_list() {
                 }
             }
             "exclusive" => {
-                for (k, (pts, r, tail)) in fronts(file, 2).into_iter().enumerate() {
+                for (k, (pts, r, tail)) in fronts(&dir, file, 2).into_iter().enumerate() {
                     let c = contributions(&pts, &r).unwrap();
                     let got = c[tail[0] as usize];
                     assert!(
@@ -93,7 +116,7 @@ fn validate_pagmo2_testcases_list() {
                 }
             }
             "least_contributor" => {
-                for (k, (pts, r, tail)) in fronts(file, 1).into_iter().enumerate() {
+                for (k, (pts, r, tail)) in fronts(&dir, file, 1).into_iter().enumerate() {
                     let lc = least_contributor(&pts, &r).unwrap();
                     assert_eq!(lc, tail[0] as usize, "{file} #{k}");
                     checked += 1;
@@ -115,7 +138,10 @@ fn validate_pagmo2_testcases_list() {
 fn validate_pygmo_moocore_pagmo2_c_max_t1_d7_n64() {
     let pygmo = 4.436_137_897_138_503e18;
     let moocore = 4.436_137_897_138_493_4e18;
-    for (pts, r, tail) in fronts("c_max_t1_d7_n64", 1) {
+    let Some(dir) = pagmo_dir("validate_pygmo_moocore_pagmo2_c_max_t1_d7_n64") else {
+        return;
+    };
+    for (pts, r, tail) in fronts(&dir, "c_max_t1_d7_n64", 1) {
         let hv = hypervolume(&pts, &r).unwrap();
         assert!(close(hv, pygmo, 1e-12), "{hv} vs pygmo {pygmo}");
         assert!(close(hv, moocore, 1e-12), "{hv} vs moocore {moocore}");
