@@ -61,11 +61,11 @@
 //! the closed forms' domain) `k` counts solver steps: each advances the prediction in progress
 //! by at most [`super::numerical::STEPS_PER_SOLVER_STEP`] integration steps (or completes a
 //! closed-form call), so a numerical prediction spans several ticks and a solve many more
-//! (a converged SRM glide re-plan: about 30 steps; docs/VINH.md, "Numerical predictor").
+//! (a converged SRM glide re-plan: about 30 steps; docs/reference/vinh.md, "Numerical predictor").
 //!
 //! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
 //! below 200 k instructions with `k = 1` (measured maximum 115 k: the tick that runs the chain
-//! prediction with peaks; docs/PERFORMANCE.md); a worst-case solve then takes at most
+//! prediction with peaks; docs/reference/performance.md); a worst-case solve then takes at most
 //! [`super::MAX_PREDICTOR_CALLS`] ticks, in practice 5-30.
 //!
 //! # Cost (worst case, bounded)

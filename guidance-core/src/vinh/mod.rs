@@ -28,7 +28,7 @@
 //!   the surface.
 //! * Arc: `0 < gamma0 < 90 deg`, elliptic, re-entry radius between periapsis and apoapsis.
 //!
-//! # Accuracy (measured, docs/VINH.md)
+//! # Accuracy (measured, docs/reference/vinh.md)
 //! Against integration of the exact equations in the same environment: skip exit speed <= 0.8 %,
 //! deepest altitude <= 0.25 km, peak heat flux <= 1.7 %, peak g-load <= 3.3 %, exit flight-path
 //! angle <= 0.36 deg (SRM) / 1.1 deg (HORUS-2B), range angle <= 11.2 %; glide final range angle

@@ -12,7 +12,7 @@
 //!   differs from the reference point's are [`HypervolumeError`]s naming the point and
 //!   coordinate. Nothing panics and no NaN is returned.
 //!
-//! Algorithms (see docs/HYPERVOLUME.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
+//! Algorithms (see docs/reference/hypervolume.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
 //! dimension sweep with a bit-set staircase (O(n log n)); 4-D by sweeping the fourth
 //! coordinate and adding each point's exclusive 3-D contribution, computed locally (O(n^2));
 //! 5-D and more by WFG slicing the last objective down to the 4-D case. Exclusive
