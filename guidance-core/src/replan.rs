@@ -71,11 +71,13 @@ mod solver;
 
 pub use lift_schedule::{LiftSchedule, LiftScheduleError, SCHEDULE_NODES, ScheduleNode};
 pub use numerical::{NumericalRun, predict_numerical};
-pub use path_bound::{PathBound, SENSED_MIN_DRAG_M_S2};
+pub use path_bound::{
+    DEFAULT_BARRIER_DAMPING, DEFAULT_BARRIER_FREQUENCY_RAD_S, PathBound, SENSED_MIN_DRAG_M_S2,
+};
 pub use replanning::{
-    HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
-    ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,
-    range_to_go_m,
+    DEFAULT_EVERY_N_TICKS, HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget,
+    ReplanCounts, ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput,
+    TargetPoint, range_to_go_m,
 };
 pub use solver::ReplanSolver;
 
@@ -173,6 +175,52 @@ pub struct ReplanConfig<S> {
     pub predictor: PredictorConfig<S>,
     /// Which prediction to use.
     pub mode: PredictorMode,
+}
+
+/// Default [`ReplanConfig::lambda`]: the angle of attack of maximum L/D \[-\].
+pub const DEFAULT_LAMBDA: f64 = 1.0;
+/// Default [`ReplanConfig::min_vertical_fraction`] \[-\] (a bank of at most 87.1 deg).
+pub const DEFAULT_MIN_VERTICAL_FRACTION: f64 = 0.05;
+/// Default [`ReplanConfig::max_vertical_fraction`] \[-\] (lift up allowed).
+pub const DEFAULT_MAX_VERTICAL_FRACTION: f64 = 1.0;
+/// Default [`ReplanConfig::tolerance_m`] \[m\].
+pub const DEFAULT_TOLERANCE_M: f64 = 1000.0;
+/// Default [`ReplanConfig::max_iterations`] \[predictions\].
+pub const DEFAULT_MAX_ITERATIONS: u8 = 20;
+/// Default [`PredictorConfig::max_skips`] of [`ReplanConfig::new`].
+pub const DEFAULT_MAX_SKIPS: u8 = 4;
+
+impl<S: Real> ReplanConfig<S> {
+    /// The re-planner's default settings for a prediction that ends at `final_speed_m_s`
+    /// \[m/s\] (the terminal interface speed, `> 0`): lambda [`DEFAULT_LAMBDA`], vertical
+    /// fraction in [[`DEFAULT_MIN_VERTICAL_FRACTION`], [`DEFAULT_MAX_VERTICAL_FRACTION`]],
+    /// tolerance [`DEFAULT_TOLERANCE_M`], [`DEFAULT_MAX_ITERATIONS`] iterations,
+    /// [`DEFAULT_MAX_SKIPS`] skips, [`PredictorMode::Hybrid`] (the closed forms where their
+    /// prediction is in the validated domain, else the numerical predictor). These are the
+    /// defaults of host-sim's `[replanning]` section and campaigns.
+    ///
+    /// ```
+    /// use guidance_core::replan::{PredictorMode, ReplanConfig};
+    /// let c = ReplanConfig::<f32>::new(2500.0);
+    /// assert_eq!(c.predictor.final_speed_m_s, 2500.0);
+    /// assert_eq!(c.mode, PredictorMode::Hybrid);
+    /// assert_eq!((c.min_vertical_fraction, c.tolerance_m), (0.05, 1000.0));
+    /// ```
+    #[must_use]
+    pub fn new(final_speed_m_s: S) -> Self {
+        Self {
+            lambda: S::from_f64(DEFAULT_LAMBDA),
+            min_vertical_fraction: S::from_f64(DEFAULT_MIN_VERTICAL_FRACTION),
+            max_vertical_fraction: S::from_f64(DEFAULT_MAX_VERTICAL_FRACTION),
+            tolerance_m: S::from_f64(DEFAULT_TOLERANCE_M),
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+            predictor: PredictorConfig {
+                final_speed_m_s,
+                max_skips: DEFAULT_MAX_SKIPS,
+            },
+            mode: PredictorMode::Hybrid,
+        }
+    }
 }
 
 /// Why the re-planner fell back to the stored profile.

@@ -45,6 +45,18 @@ impl std::fmt::Debug for Flight {
 ///
 /// # Errors
 /// [`ScenarioError`] for vehicle, guidance or simulation failures.
+///
+/// ```
+/// use host_sim::scenario::{Scenario, fly};
+/// use host_sim::sim::TerminationReason;
+/// // The HORUS-2B reference mission (full environment), ended at 25 km altitude.
+/// let flight = fly(&Scenario::default(), "(built-in)", &mut |_| {})?;
+/// let s = &flight.result.summary;
+/// assert_eq!(s.termination, TerminationReason::Altitude);
+/// assert!(s.range_angle_rad.to_degrees() > 10.0);
+/// assert!(s.peak_heat_flux_w_m2.value > 0.0);
+/// # Ok::<(), host_sim::scenario::ScenarioError>(())
+/// ```
 pub fn fly(
     sc: &Scenario,
     file: &str,

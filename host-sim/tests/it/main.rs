@@ -5,6 +5,7 @@ mod analytic_validation;
 mod campaign;
 mod cli;
 mod closed_loop;
+mod core_defaults;
 mod doc_reference;
 mod dynamics_validation;
 mod env_validation;
