@@ -1,5 +1,6 @@
 //! The reference documents generated from the code are current: docs/reference/cli.md is the
-//! `--help` of every command (clap). Regenerate with
+//! `--help` of every command (clap); the generated blocks of docs/reference/scenario.md are
+//! the annotated scenario template (`--print-scenario`). Regenerate with
 //! `UPDATE_DOCS=1 cargo test -p host-sim --test it doc_reference`.
 
 use std::path::{Path, PathBuf};
@@ -59,4 +60,39 @@ fn cli_markdown() -> String {
 #[test]
 fn cli_reference_is_current() {
     check_or_update("cli.md", &cli_markdown());
+}
+
+/// `doc` with the block between `<!-- generated: NAME -->` and the next
+/// `<!-- end generated -->` replaced by `content` in a TOML code block.
+fn with_generated(doc: &str, name: &str, content: &str) -> String {
+    let start = format!("<!-- generated: {name} -->\n");
+    let end = "<!-- end generated -->";
+    let Some(a) = doc.find(&start).map(|i| i + start.len()) else {
+        panic!(
+            "docs/reference/scenario.md has no `{}` marker",
+            start.trim()
+        );
+    };
+    let b = a + doc[a..]
+        .find(end)
+        .expect("an end marker after each generated block");
+    format!("{}```toml\n{content}```\n{}", &doc[..a], &doc[b..])
+}
+
+#[test]
+fn scenario_reference_is_current() {
+    use host_sim::scenario::{Scenario, read_scenario, scenario_to_toml};
+    let stored = std::fs::read_to_string(doc_path("scenario.md")).expect("scenario.md");
+    let template = scenario_to_toml(&Scenario::default());
+    let example = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join("examples")
+        .join("srm-glide-replanning.toml");
+    let replanning = scenario_to_toml(&read_scenario(&example).expect("the example reads"));
+    let section = &replanning[replanning
+        .find("[replanning]")
+        .expect("the example has [replanning]")..];
+    let doc = with_generated(&stored, "print-scenario", &template);
+    let doc = with_generated(&doc, "print-scenario-replanning", section);
+    check_or_update("scenario.md", &doc);
 }

@@ -22,6 +22,7 @@ mod pil_reliability;
 mod pil_replanning;
 mod pil_scenarios;
 mod pil_support;
+mod print_scenario;
 mod replan_domain;
 mod replan_loop;
 mod run_dir_kill;
