@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use guidance_core::replan::RangeTarget;
+
 use super::{Scenario, ScenarioError, build_guidance, build_replanning_guidance};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
@@ -121,13 +123,18 @@ pub fn write_flight(
         env.planet.radius_m,
     );
     summary.pil = pil;
-    let files = report::write_run(
-        out_dir,
-        &result,
-        &summary,
-        veh.limits.heat_flux_w_m2,
-        veh.limits.g_load,
-    )?;
+    // The rate limits drawn are the guidance's (what its rate limiter flies), the target the
+    // re-planner's point if it aims at one.
+    let limits = report::PlotLimits {
+        alpha_rate_rad_s: sc.guidance.alpha_rate_rad_s,
+        sigma_rate_rad_s: sc.guidance.sigma_rate_rad_s,
+        target: sc.replanning.as_ref().and_then(|r| match r.target {
+            RangeTarget::Point(p) => Some((p.latitude_rad, p.longitude_rad)),
+            RangeTarget::FlownRangeAngle { .. } => None,
+        }),
+        ..report::PlotLimits::of_vehicle(&veh.limits)
+    };
+    let files = report::write_run(out_dir, &result, &summary, &limits)?;
     Ok(RunOutput {
         result,
         summary,
