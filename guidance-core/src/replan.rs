@@ -319,7 +319,7 @@ pub fn predict_glide_with<S: Real>(
 /// at the mean of the current and final speeds; on long glides the same as
 /// [`sink_range_angle`]; nothing for a state below the glide start radius): a state above the equilibrium of the commanded lift (after a
 /// bank change) sinks to it in a phugoid and flies farther than the glide started at its
-/// equilibrium. Against integration (glide range-error map, docs/reference/vinh.md) every start of the
+/// equilibrium. Against integration (glide range-error map, docs/validation/vinh-numerical.md) every start of the
 /// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
 /// the sink: up to -12.7 %), so its validity accepts start offsets up to
 /// [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_M`] (without the sink: [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
@@ -330,7 +330,7 @@ pub fn predict_glide_with<S: Real>(
 /// start radius is mostly model error (a denser atmosphere than the predictor's raises the real
 /// equilibrium), not a sink to come, and the sink term then adds range that is never flown
 /// (SRM glide with density x 1.1: final range error -6.4 km against +2.8 km without it;
-/// docs/reference/vinh.md).
+/// docs/validation/vinh-numerical.md).
 ///
 /// # Errors
 /// As [`predict_glide_with`].
@@ -454,7 +454,7 @@ pub(crate) fn glide_prediction<S: Real>(
 /// `state.radius_m` to the glide start radius `r_g` (the equilibrium of the commanded lift at
 /// the state's speed), which the glide closed form, started at `r_g`, does not contain.
 ///
-/// Model (docs/reference/vinh.md, "sink to the equilibrium glide"): above its new equilibrium by
+/// Model (docs/validation/vinh-numerical.md, "sink to the equilibrium glide"): above its new equilibrium by
 /// `dh = r - r_g` the vehicle meets `exp(-dh/H)` of the equilibrium density, so its drag falls
 /// short of the glide's by `1 - exp(-dh/H)`; it sinks to the equilibrium and oscillates about
 /// it (a phugoid of angular frequency `w = sqrt(a/H)`, `a = mu/r^2 - V^2/r` the net downward
@@ -463,7 +463,7 @@ pub(crate) fn glide_prediction<S: Real>(
 /// given back by the later ones. The range gained is taken as the range flown during one
 /// radian of phugoid phase at the initial drag deficit: `(V/r) (1 - exp(-dh/H)) / w`. No
 /// fitted constant; validated against integration by the glide range-error map
-/// ([`predict_glide_with_sink`]; docs/reference/vinh.md). A state below `r_g` gives the symmetric
+/// ([`predict_glide_with_sink`]; docs/validation/vinh-numerical.md). A state below `r_g` gives the symmetric
 /// (negative) term, not validated. Zero when `a <= 0` (at or above circular speed, where the glide closed
 /// form is out of domain anyway) or for non-finite values.
 #[must_use]

@@ -61,12 +61,12 @@
 //! the closed forms' domain) `k` counts solver steps: each advances the prediction in progress
 //! by at most [`super::numerical::STEPS_PER_SOLVER_STEP`] integration steps (or completes a
 //! closed-form call), so a numerical prediction spans several ticks and a solve many more
-//! (a converged SRM glide re-plan: about 30 steps; docs/reference/vinh.md, "Numerical predictor").
+//! (docs/reference/vinh.md, "Numerical predictor").
 //!
 //! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
-//! below 200 k instructions with `k = 1` (measured maximum 115 k: the tick that runs the chain
-//! prediction with peaks; docs/reference/performance.md); a worst-case solve then takes at most
-//! [`super::MAX_PREDICTOR_CALLS`] ticks, in practice 5-30.
+//! below 200 k instructions with `k = 1` (the measured counts and their budgets:
+//! docs/reference/performance.md, `onboard-demo/insn-budget.toml`); a worst-case solve then
+//! takes at most [`super::MAX_PREDICTOR_CALLS`] ticks.
 //!
 //! # Cost (worst case, bounded)
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle

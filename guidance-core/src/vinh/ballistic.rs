@@ -22,7 +22,7 @@
 //!   11 km/s that the thesis reports as complex numbers: the escape speed at 122 km is 11.07 km/s).
 //! * Re-entry radius between periapsis and apoapsis: [`VinhError::NoReentry`].
 //! * Exact for two-body motion (validated against Cartesian propagation to integration
-//!   tolerance, docs/reference/vinh.md); atmosphere, oblateness and planet rotation are ignored.
+//!   tolerance, docs/validation/vinh-numerical.md); atmosphere, oblateness and planet rotation are ignored.
 
 use super::error::VinhError;
 use super::nondim::{EntryState, Planet};

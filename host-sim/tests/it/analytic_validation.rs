@@ -7,7 +7,7 @@
 //! central gravity, the same exponential atmosphere as the closed forms), flying the same polar
 //! at constant lift and bank. Bounds: the thesis' fig. 8.5 claim (glide final range angle
 //! <= 3 % in that environment) where it makes one, otherwise the closed forms' accuracy envelope
-//! measured by guidance-core against an independent exact integration (docs/reference/vinh.md, bounds of
+//! measured by guidance-core against an independent exact integration (docs/validation/vinh-numerical.md, bounds of
 //! `validate_vinh_skip_srm_against_exact_integration`): an error in this crate's conversion
 //! (atmosphere reference, lift/bank mapping, units) would break them.
 //!
