@@ -407,7 +407,7 @@ pub fn standard_plots(
         point("end", track.last()),
     ];
     if let Some((lat, lon)) = limits.target {
-        // The target's longitude on the track's branch (the same unwrapping).
+        // The target's longitude unwrapped next to the track's end (no jump of 360 deg).
         let near = lons.last().copied().unwrap_or(0.0);
         let lon = near + (lon.to_degrees() - near + 180.0).rem_euclid(360.0) - 180.0;
         ground.push(point("target", Some(&(lon, lat.to_degrees()))));
