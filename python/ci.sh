@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Python package's test step (docs/PYTHON.md), run by .ci/run before `cargo xtask test`:
+# The Python package's test step (docs/reference/python.md), run by .ci/run before `cargo xtask test`:
 # a virtual environment with maturin, numpy, pandas, dask[distributed], pytest (and pygmo and
 # pymoo if they install: their tests skip otherwise), the wheel built with `maturin build --release` and
 # installed, fmt/clippy of the bindings crate, then pytest against the host-sim binary.

@@ -4,9 +4,9 @@
 //! re-planning solve (chain mode, bisection to 1 km), the solver's worst case (58 chain calls)
 //! and one glide-mode re-planning solve.
 //!
-//! `cargo bench -p guidance-core --bench closed_forms` (numbers in docs/VINH.md).
+//! `cargo bench -p guidance-core --bench closed_forms` (numbers in docs/reference/vinh.md).
 //! Inputs: SRM capsule (polar C_D0 = 0.2576, K = 0.1879 from the thesis' sec. 9.2 glide entry,
-//! docs/VINH.md), Earth, exponential atmosphere (1.225 kg/m^3, H_s = 7.2 km).
+//! docs/reference/vinh.md), Earth, exponential atmosphere (1.225 kg/m^3, H_s = 7.2 km).
 
 use std::hint::black_box;
 use std::time::Duration;

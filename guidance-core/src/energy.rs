@@ -16,6 +16,9 @@ use crate::scalar::Scalar;
 pub const EARTH_MU_M3_S2: f64 = 3.986_004_418e14;
 /// Earth's mean equatorial radius \[m\] used by the thesis' spherical Earth.
 pub const EARTH_RADIUS_M: f64 = 6_378_137.0;
+/// Earth rotation rate \[rad/s\] (sidereal; WGS84/IERS), for the re-planner's
+/// rotating-planet corrections.
+pub const EARTH_ROTATION_RATE_RAD_S: f64 = 7.292_115e-5;
 
 /// Specific mechanical energy E = V^2/2 - mu/r \[J/kg\], in `f64`.
 #[must_use]

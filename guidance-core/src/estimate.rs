@@ -127,6 +127,42 @@ pub struct EstimatorConfig<S> {
     pub min_drag_m_s2: S,
 }
 
+/// Default [`EstimatorConfig::lift_to_drag_gain`] \[-\] (a time constant of about 20 s at
+/// the 2 s guidance period).
+pub const DEFAULT_LIFT_TO_DRAG_GAIN: f64 = 0.1;
+/// Default [`EstimatorConfig::drag_gain`] \[-\] (about 10 s: it follows the altitude-varying
+/// density).
+pub const DEFAULT_DRAG_GAIN: f64 = 0.2;
+/// Default [`EstimatorConfig::lift_to_drag_bounds`] \[-\].
+pub const DEFAULT_LIFT_TO_DRAG_BOUNDS: (f64, f64) = (0.5, 2.0);
+/// Default [`EstimatorConfig::drag_bounds`] \[-\].
+pub const DEFAULT_DRAG_BOUNDS: (f64, f64) = (0.3, 3.0);
+/// Default [`EstimatorConfig::min_drag_m_s2`] \[m/s^2\] (about 0.05 g).
+pub const DEFAULT_MIN_DRAG_M_S2: f64 = 0.5;
+
+impl<S: Real> Default for EstimatorConfig<S> {
+    /// The dispersion campaigns' estimator: gains [`DEFAULT_LIFT_TO_DRAG_GAIN`] and
+    /// [`DEFAULT_DRAG_GAIN`], bounds [`DEFAULT_LIFT_TO_DRAG_BOUNDS`] and
+    /// [`DEFAULT_DRAG_BOUNDS`], threshold [`DEFAULT_MIN_DRAG_M_S2`].
+    ///
+    /// ```
+    /// use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
+    /// let estimator = AeroEstimator::new(EstimatorConfig::<f32>::default())?;
+    /// assert_eq!(estimator.scales().lift_to_drag, 1.0);
+    /// # Ok::<(), guidance_core::GuidanceError>(())
+    /// ```
+    fn default() -> Self {
+        let pair = |(a, b): (f64, f64)| (S::from_f64(a), S::from_f64(b));
+        Self {
+            lift_to_drag_gain: S::from_f64(DEFAULT_LIFT_TO_DRAG_GAIN),
+            drag_gain: S::from_f64(DEFAULT_DRAG_GAIN),
+            lift_to_drag_bounds: pair(DEFAULT_LIFT_TO_DRAG_BOUNDS),
+            drag_bounds: pair(DEFAULT_DRAG_BOUNDS),
+            min_drag_m_s2: S::from_f64(DEFAULT_MIN_DRAG_M_S2),
+        }
+    }
+}
+
 /// Why [`AeroEstimator::update`] rejected a sample (the estimate is unchanged).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

@@ -161,6 +161,31 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for an invalid config or tension, or a non-finite
     /// `initial`.
+    ///
+    /// ```
+    /// use guidance_core::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
+    /// use guidance_core::guidance::{Command, Guidance, GuidanceConfig, RateLimits};
+    /// use guidance_core::interp::Interpolation;
+    /// use guidance_core::nodes::{AngleBounds, Independent, NodeTable};
+    /// // Energy-indexed nodes (E-hat, alpha [deg], sigma [deg]), thesis bounds.
+    /// let table = NodeTable::<f32>::from_deg(
+    ///     Independent::NormalizedEnergy,
+    ///     &[(1.0, 40.0, 0.0), (0.5, 30.0, 60.0), (0.0, 10.0, 30.0)],
+    ///     AngleBounds::thesis_default(),
+    /// )?;
+    /// // E-hat = 1 at the entry interface: 122 km, 7435.5 m/s.
+    /// let energy = EnergyNormalizer::new(
+    ///     EARTH_MU_M3_S2,
+    ///     EARTH_RADIUS_M,
+    ///     EARTH_RADIUS_M + 122e3,
+    ///     7435.5,
+    /// )?;
+    /// let config = GuidanceConfig { period_s: 2.0, rates: RateLimits::thesis_default() };
+    /// let initial = Command { alpha_rad: 0.698, sigma_rad: 0.0 };
+    /// let guidance = Guidance::new(config, table, Interpolation::Linear, energy, initial)?;
+    /// assert_eq!(guidance.command(), initial);
+    /// # Ok::<(), guidance_core::GuidanceError>(())
+    /// ```
     pub fn new(
         config: GuidanceConfig<S>,
         table: NodeTable<S, N>,
@@ -211,6 +236,33 @@ impl<S: Scalar, const N: usize> Guidance<S, N> {
     /// [`GuidanceError::NonIncreasingTime`] (time before the last tick). On error the held
     /// command and the ramp remain valid and nothing changes, except that an implausible time
     /// is counted towards a re-synchronisation.
+    ///
+    /// One flight of the HORUS-2B reference mission's first minute, a sample every 0.5 s: the
+    /// command changes at the 2 s ticks only and never faster than the rate limits.
+    ///
+    /// ```
+    /// use guidance_core::missions::horus2b_reference;
+    /// use guidance_core::NavState;
+    /// let mission = horus2b_reference::<f32>()?;
+    /// let mut guidance = mission.guidance(mission.earth_energy_normalizer()?)?;
+    /// let mut ticks = 0;
+    /// for i in 0..120 {
+    ///     let nav = NavState {
+    ///         time_s: 0.5 * i as f32,
+    ///         radius_m: 6_378_137.0 + 122e3 - 100.0 * i as f32,
+    ///         speed_m_s: 7435.5,
+    ///         flight_path_angle_rad: -0.025,
+    ///         heading_rad: 1.235,
+    ///         latitude_rad: -0.389,
+    ///         longitude_rad: -1.862,
+    ///     };
+    ///     let out = guidance.update(&nav)?;
+    ///     ticks += usize::from(out.ticked);
+    ///     assert!(out.command.alpha_rad.is_finite() && out.command.sigma_rad.is_finite());
+    /// }
+    /// assert_eq!(ticks, 30); // one tick per 2 s
+    /// # Ok::<(), guidance_core::GuidanceError>(())
+    /// ```
     pub fn update(&mut self, nav: &NavState<S>) -> Result<GuidanceOutput<S>, GuidanceError> {
         nav.validate()?;
         let x = match self.table.independent() {

@@ -1,6 +1,6 @@
-//! # guidance-core
+#![doc = include_str!("../README.md")]
 //!
-//! `no_std`, allocation-free re-entry guidance for flight software.
+//! ## Modules
 //!
 //! The flow is: navigation state ([`NavState`]) -> normalised energy ([`energy`]) ->
 //! node table lookup ([`nodes`]) -> interpolation ([`interp`]) -> attitude-rate limiting

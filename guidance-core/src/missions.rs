@@ -6,7 +6,24 @@
 //! rate limits, the initial attitude, and the entry-interface state that defines E-hat = 1.
 //! What a simulator adds around it (vehicle model, environment, termination) is not here.
 //!
-//! [`horus2b_reference`]: the HORUS-2B nominal mission of the thesis (sec. 2.2 and 7.4).
+//! [`horus2b_reference`]: the HORUS-2B nominal mission of the thesis (sec. 2.2 and 7.4);
+//! [`srm_glide`]: the SRM capsule's energy-indexed glide from the thesis' sec. 9.2 entry.
+//!
+//! The reference vehicles' parameters a firmware needs are here too: mass, area, nose radius,
+//! limits ([`HORUS2B_LIMITS`], [`SRM_LIMITS`]) and the parabolic drag polar the re-planner's
+//! predictor uses ([`horus2b_vehicle`], its per-Mach table [`HORUS2B_DRAG_POLAR`], and
+//! [`srm_vehicle`]). They are the values host-sim flies (a host-sim test checks both).
+//!
+//! ```
+//! use guidance_core::missions::{horus2b_reference, HORUS2B_LIMITS, horus2b_vehicle};
+//! let mission = horus2b_reference::<f32>()?;
+//! let mut guidance = mission.guidance(mission.earth_energy_normalizer()?)?;
+//! assert_eq!(guidance.command(), mission.initial);
+//! let polar = horus2b_vehicle::<f32>();              // Mach-20 polar of thesis table 8.1
+//! assert_eq!((polar.cd0, polar.k_polar), (0.0488, 1.147));
+//! assert_eq!(HORUS2B_LIMITS.heat_flux_w_m2, 500e3);
+//! # Ok::<(), guidance_core::GuidanceError>(())
+//! ```
 
 use crate::command::Command;
 use crate::energy::{EARTH_MU_M3_S2, EARTH_RADIUS_M, EnergyNormalizer};
@@ -15,7 +32,9 @@ use crate::guidance::{Guidance, GuidanceConfig};
 use crate::interp::Interpolation;
 use crate::nodes::{AngleBounds, DEFAULT_NODE_CAPACITY, Independent, NodeTable, NodeTableError};
 use crate::rate::RateLimits;
-use crate::scalar::Scalar;
+use crate::replan::ReplanLimits;
+use crate::scalar::{Real, Scalar};
+use crate::vinh::nondim::VehicleParams;
 
 /// Degrees to radians, in `f64`.
 const DEG_TO_RAD: f64 = core::f64::consts::PI / 180.0;
@@ -163,6 +182,182 @@ pub fn horus2b_reference<S: Scalar>() -> Result<Mission<S>, GuidanceError> {
         },
         initial: Command::from_deg(40.0, 0.0).ok_or(GuidanceError::InvalidConfig)?,
         entry: HORUS2B_ENTRY,
+    })
+}
+
+/// Operational limits of a vehicle (SI units, radians).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct VehicleLimits {
+    /// Stagnation-point heat flux (Chapman) \[W/m^2\].
+    pub heat_flux_w_m2: f64,
+    /// Aerodynamic load \[g0\].
+    pub g_load: f64,
+    /// Rate of the g-load \[1/s\].
+    pub g_load_rate_per_s: f64,
+    /// Angle-of-attack rate \[rad/s\].
+    pub alpha_rate_rad_s: f64,
+    /// Bank-angle rate \[rad/s\].
+    pub sigma_rate_rad_s: f64,
+}
+
+impl VehicleLimits {
+    /// The heat-flux and g-load limits as the re-planner and the path bound take them.
+    #[must_use]
+    pub fn load_limits<S: Real>(&self) -> ReplanLimits<S> {
+        ReplanLimits {
+            heat_flux_w_m2: S::from_f64(self.heat_flux_w_m2),
+            g_load: S::from_f64(self.g_load),
+        }
+    }
+
+    /// The attitude-rate limits as the guidance takes them.
+    #[must_use]
+    pub fn rate_limits<S: Scalar>(&self) -> RateLimits<S> {
+        RateLimits {
+            alpha_rad_s: S::from_f64(self.alpha_rate_rad_s),
+            sigma_rad_s: S::from_f64(self.sigma_rate_rad_s),
+        }
+    }
+}
+
+/// HORUS-2B mass \[kg\] (thesis table 2.1).
+pub const HORUS2B_MASS_KG: f64 = 26_029.0;
+/// HORUS-2B aerodynamic reference area \[m^2\] (thesis table 2.1).
+pub const HORUS2B_REFERENCE_AREA_M2: f64 = 110.0;
+/// HORUS-2B nose radius \[m\] (thesis table 2.1).
+pub const HORUS2B_NOSE_RADIUS_M: f64 = 0.8;
+
+/// HORUS-2B limits (thesis table 2.1): heat flux 500 kW/m^2, g-load 3, g-load rate 0.5 1/s,
+/// angle-of-attack rate 5 deg/s, bank rate 15 deg/s.
+pub const HORUS2B_LIMITS: VehicleLimits = VehicleLimits {
+    heat_flux_w_m2: 500.0e3,
+    g_load: 3.0,
+    g_load_rate_per_s: 0.5,
+    alpha_rate_rad_s: 5.0 * DEG_TO_RAD,
+    sigma_rate_rad_s: 15.0 * DEG_TO_RAD,
+};
+
+/// HORUS-2B parabolic drag polar `C_D = C_D0 + K C_L^2` per Mach number (thesis table 8.1):
+/// rows `(Mach, C_D0, K)`, increasing Mach.
+pub const HORUS2B_DRAG_POLAR: [(f64, f64, f64); 7] = [
+    (1.2, 0.03067, 0.6481),
+    (1.5, 0.04055, 0.5907),
+    (2.0, 0.04582, 0.715),
+    (3.0, 0.04302, 0.8864),
+    (5.0, 0.05561, 0.948),
+    (10.0, 0.05408, 1.016),
+    (20.0, 0.0488, 1.147),
+];
+
+/// HORUS-2B for the re-planner's predictor at hypersonic speed: mass, area and nose radius of
+/// table 2.1 with the Mach-20 polar of table 8.1 (`C_D0 = 0.0488`, `K = 1.147`; maximum L/D
+/// 2.11 at `C_L* = 0.206`).
+#[must_use]
+pub fn horus2b_vehicle<S: Real>() -> VehicleParams<S> {
+    horus2b_vehicle_at_mach(20.0)
+}
+
+/// HORUS-2B with its polar at `mach` \[-\]: [`HORUS2B_DRAG_POLAR`] linear in Mach between
+/// the tabulated Mach numbers, clamped outside them (a NaN Mach gives the Mach-20 polar).
+#[must_use]
+pub fn horus2b_vehicle_at_mach<S: Real>(mach: f64) -> VehicleParams<S> {
+    let (mut cd0, mut k) = (0.0488, 1.147);
+    let first = HORUS2B_DRAG_POLAR
+        .first()
+        .copied()
+        .unwrap_or((1.2, 0.03067, 0.6481));
+    if mach <= first.0 {
+        (cd0, k) = (first.1, first.2);
+    }
+    for w in HORUS2B_DRAG_POLAR.windows(2) {
+        if let [a, b] = w {
+            if mach == b.0 {
+                (cd0, k) = (b.1, b.2);
+            } else if mach > a.0 && mach < b.0 {
+                let t = (mach - a.0) / (b.0 - a.0);
+                (cd0, k) = (a.1 + t * (b.1 - a.1), a.2 + t * (b.2 - a.2));
+            }
+        }
+    }
+    VehicleParams {
+        mass_kg: S::from_f64(HORUS2B_MASS_KG),
+        reference_area_m2: S::from_f64(HORUS2B_REFERENCE_AREA_M2),
+        cd0: S::from_f64(cd0),
+        k_polar: S::from_f64(k),
+        nose_radius_m: S::from_f64(HORUS2B_NOSE_RADIUS_M),
+    }
+}
+
+/// SRM capsule mass \[kg\] (thesis table 2.3).
+pub const SRM_MASS_KG: f64 = 38.77;
+/// SRM capsule reference area \[m^2\] (thesis table 2.3, the disc of 0.75 m).
+pub const SRM_REFERENCE_AREA_M2: f64 = 0.441;
+/// SRM capsule nose radius \[m\] (thesis table 2.3).
+pub const SRM_NOSE_RADIUS_M: f64 = 0.9;
+/// SRM trim lift coefficient \[-\]: the thesis' maximum C_L of the capsule (sec. 8.1.5).
+pub const SRM_TRIM_CL: f64 = 1.2786;
+/// SRM trim lift-to-drag ratio \[-\] (the thesis' SRM E* of 2.27).
+pub const SRM_TRIM_LIFT_TO_DRAG: f64 = 2.27;
+
+/// SRM limits: the thesis uses HORUS-2B's constraint values for both vehicles (sec. 4.2.3).
+pub const SRM_LIMITS: VehicleLimits = HORUS2B_LIMITS;
+
+/// The SRM capsule for the re-planner's predictor: the parabolic polar whose maximum-L/D
+/// point is the trim point (`lambda = 1` flies [`SRM_TRIM_CL`] at [`SRM_TRIM_LIFT_TO_DRAG`]):
+/// `C_D0 = C_D,trim / 2`, `K = C_D0 / C_L,trim^2`.
+#[must_use]
+pub fn srm_vehicle<S: Real>() -> VehicleParams<S> {
+    let cd0 = SRM_TRIM_CL / SRM_TRIM_LIFT_TO_DRAG / 2.0;
+    VehicleParams {
+        mass_kg: S::from_f64(SRM_MASS_KG),
+        reference_area_m2: S::from_f64(SRM_REFERENCE_AREA_M2),
+        cd0: S::from_f64(cd0),
+        k_polar: S::from_f64(cd0 / (SRM_TRIM_CL * SRM_TRIM_CL)),
+        nose_radius_m: S::from_f64(SRM_NOSE_RADIUS_M),
+    }
+}
+
+/// SRM glide entry (thesis sec. 9.2): 100 km, 7658.34 m/s, -0.056 deg, heading 90 deg (east)
+/// from latitude and longitude 0.
+pub const SRM_GLIDE_ENTRY: EntryInterface = EntryInterface {
+    altitude_m: 100_000.0,
+    speed_m_s: 7658.34,
+    flight_path_angle_rad: -0.056 * DEG_TO_RAD,
+    heading_rad: 90.0 * DEG_TO_RAD,
+    latitude_rad: 0.0,
+    longitude_rad: 0.0,
+};
+
+/// The SRM glide's bank-only table: rows `(E-hat [-], alpha [deg], sigma [deg])`
+/// (illustrative nodes; the thesis does not print its optimised ones).
+pub const SRM_GLIDE_NODES_DEG: [(f64, f64, f64); 4] = [
+    (1.0, 0.0, 0.0),
+    (0.8, 0.0, 40.0),
+    (0.4, 0.0, 60.0),
+    (0.0, 0.0, 0.0),
+];
+
+/// The SRM capsule's energy-indexed glide (host-sim's built-in `srm-glide`): the table
+/// [`SRM_GLIDE_NODES_DEG`] with linear interpolation and two-sided bank bounds (alpha 0..45
+/// deg, sigma -90..90 deg, so a lateral logic can reverse the bank), the 2 s period and the
+/// 5 deg/s and 15 deg/s rate limits, initial attitude 0, 0, entry [`SRM_GLIDE_ENTRY`].
+///
+/// # Errors
+/// Only if `S` cannot represent the values (never for `f32`, `f64`, `Fixed`).
+pub fn srm_glide<S: Scalar>() -> Result<Mission<S>, GuidanceError> {
+    let bounds = AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0)?;
+    let table = NodeTable::from_deg(Independent::NormalizedEnergy, &SRM_GLIDE_NODES_DEG, bounds)?;
+    Ok(Mission {
+        name: "srm-glide",
+        table,
+        interpolation: Interpolation::Linear,
+        config: GuidanceConfig {
+            period_s: S::from_f64(2.0),
+            rates: SRM_LIMITS.rate_limits(),
+        },
+        initial: Command::from_deg(0.0, 0.0).ok_or(GuidanceError::InvalidConfig)?,
+        entry: SRM_GLIDE_ENTRY,
     })
 }
 

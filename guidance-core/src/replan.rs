@@ -58,7 +58,7 @@
 //! all but the last and the limit grid are range-only. In practice Brent's method converges in
 //! a handful of predictions and stops at the scalar type's working precision (the worst-case
 //! benchmark with an unreachable 1e-6 m tolerance: 29 calls in `f32`). Measured on the
-//! Cortex-M4F in `f32` (docs/PERFORMANCE.md, `cargo xtask bench-firmware`): predictor chain
+//! Cortex-M4F in `f32` (docs/reference/performance.md, `cargo xtask bench-firmware`): predictor chain
 //! 81 k instructions, converged re-plan 0.44 M, worst case 1.1 M; spread over ticks with one
 //! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
 //! 115 k instructions.
@@ -71,11 +71,13 @@ mod solver;
 
 pub use lift_schedule::{LiftSchedule, LiftScheduleError, SCHEDULE_NODES, ScheduleNode};
 pub use numerical::{NumericalRun, predict_numerical};
-pub use path_bound::{PathBound, SENSED_MIN_DRAG_M_S2};
+pub use path_bound::{
+    DEFAULT_BARRIER_DAMPING, DEFAULT_BARRIER_FREQUENCY_RAD_S, PathBound, SENSED_MIN_DRAG_M_S2,
+};
 pub use replanning::{
-    HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget, ReplanCounts,
-    ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput, TargetPoint,
-    range_to_go_m,
+    DEFAULT_EVERY_N_TICKS, HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget,
+    ReplanCounts, ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput,
+    TargetPoint, range_to_go_m,
 };
 pub use solver::ReplanSolver;
 
@@ -137,12 +139,12 @@ pub enum PredictorMode {
     /// re-planner whose model is corrected onboard ([`crate::estimate`]): with the model's own
     /// density error uncorrected, an offset from the equilibrium is mostly model error, not a
     /// sink to come ([`predict_glide_with_sink`]). Measured in the dispersion campaigns
-    /// (docs/DISPERSIONS.md).
+    /// (docs/reference/campaigns.md).
     AutoSink,
     /// Numerical integration of the predictor model's planar equations of motion from the
     /// navigated state (its flight-path angle included) with constant lift, to the final speed:
     /// valid wherever the model is, at the cost of many right-hand sides per prediction (spread
-    /// over several solver steps). See docs/VINH.md, "Numerical predictor".
+    /// over several solver steps). See docs/reference/vinh.md, "Numerical predictor".
     Numerical,
     /// The closed forms as in `Auto` when both ends of the interval are in their validated
     /// domain (validity `InDomain`); otherwise the whole solve is redone with `Numerical`
@@ -173,6 +175,52 @@ pub struct ReplanConfig<S> {
     pub predictor: PredictorConfig<S>,
     /// Which prediction to use.
     pub mode: PredictorMode,
+}
+
+/// Default [`ReplanConfig::lambda`]: the angle of attack of maximum L/D \[-\].
+pub const DEFAULT_LAMBDA: f64 = 1.0;
+/// Default [`ReplanConfig::min_vertical_fraction`] \[-\] (a bank of at most 87.1 deg).
+pub const DEFAULT_MIN_VERTICAL_FRACTION: f64 = 0.05;
+/// Default [`ReplanConfig::max_vertical_fraction`] \[-\] (lift up allowed).
+pub const DEFAULT_MAX_VERTICAL_FRACTION: f64 = 1.0;
+/// Default [`ReplanConfig::tolerance_m`] \[m\].
+pub const DEFAULT_TOLERANCE_M: f64 = 1000.0;
+/// Default [`ReplanConfig::max_iterations`] \[predictions\].
+pub const DEFAULT_MAX_ITERATIONS: u8 = 20;
+/// Default [`PredictorConfig::max_skips`] of [`ReplanConfig::new`].
+pub const DEFAULT_MAX_SKIPS: u8 = 4;
+
+impl<S: Real> ReplanConfig<S> {
+    /// The re-planner's default settings for a prediction that ends at `final_speed_m_s`
+    /// \[m/s\] (the terminal interface speed, `> 0`): lambda [`DEFAULT_LAMBDA`], vertical
+    /// fraction in [[`DEFAULT_MIN_VERTICAL_FRACTION`], [`DEFAULT_MAX_VERTICAL_FRACTION`]],
+    /// tolerance [`DEFAULT_TOLERANCE_M`], [`DEFAULT_MAX_ITERATIONS`] iterations,
+    /// [`DEFAULT_MAX_SKIPS`] skips, [`PredictorMode::Hybrid`] (the closed forms where their
+    /// prediction is in the validated domain, else the numerical predictor). These are the
+    /// defaults of host-sim's `[replanning]` section and campaigns.
+    ///
+    /// ```
+    /// use guidance_core::replan::{PredictorMode, ReplanConfig};
+    /// let c = ReplanConfig::<f32>::new(2500.0);
+    /// assert_eq!(c.predictor.final_speed_m_s, 2500.0);
+    /// assert_eq!(c.mode, PredictorMode::Hybrid);
+    /// assert_eq!((c.min_vertical_fraction, c.tolerance_m), (0.05, 1000.0));
+    /// ```
+    #[must_use]
+    pub fn new(final_speed_m_s: S) -> Self {
+        Self {
+            lambda: S::from_f64(DEFAULT_LAMBDA),
+            min_vertical_fraction: S::from_f64(DEFAULT_MIN_VERTICAL_FRACTION),
+            max_vertical_fraction: S::from_f64(DEFAULT_MAX_VERTICAL_FRACTION),
+            tolerance_m: S::from_f64(DEFAULT_TOLERANCE_M),
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+            predictor: PredictorConfig {
+                final_speed_m_s,
+                max_skips: DEFAULT_MAX_SKIPS,
+            },
+            mode: PredictorMode::Hybrid,
+        }
+    }
 }
 
 /// Why the re-planner fell back to the stored profile.
@@ -271,7 +319,7 @@ pub fn predict_glide_with<S: Real>(
 /// at the mean of the current and final speeds; on long glides the same as
 /// [`sink_range_angle`]; nothing for a state below the glide start radius): a state above the equilibrium of the commanded lift (after a
 /// bank change) sinks to it in a phugoid and flies farther than the glide started at its
-/// equilibrium. Against integration (glide range-error map, docs/VINH.md) every start of the
+/// equilibrium. Against integration (glide range-error map, docs/validation/vinh-numerical.md) every start of the
 /// map with vertical L/D 0.6-2.5 and a glide start radius at 70-110 km is within 2.9 % (without
 /// the sink: up to -12.7 %), so its validity accepts start offsets up to
 /// [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_M`] (without the sink: [`crate::vinh::validity::GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit
@@ -282,7 +330,7 @@ pub fn predict_glide_with<S: Real>(
 /// start radius is mostly model error (a denser atmosphere than the predictor's raises the real
 /// equilibrium), not a sink to come, and the sink term then adds range that is never flown
 /// (SRM glide with density x 1.1: final range error -6.4 km against +2.8 km without it;
-/// docs/VINH.md).
+/// docs/validation/vinh-numerical.md).
 ///
 /// # Errors
 /// As [`predict_glide_with`].
@@ -406,7 +454,7 @@ pub(crate) fn glide_prediction<S: Real>(
 /// `state.radius_m` to the glide start radius `r_g` (the equilibrium of the commanded lift at
 /// the state's speed), which the glide closed form, started at `r_g`, does not contain.
 ///
-/// Model (docs/VINH.md, "sink to the equilibrium glide"): above its new equilibrium by
+/// Model (docs/validation/vinh-numerical.md, "sink to the equilibrium glide"): above its new equilibrium by
 /// `dh = r - r_g` the vehicle meets `exp(-dh/H)` of the equilibrium density, so its drag falls
 /// short of the glide's by `1 - exp(-dh/H)`; it sinks to the equilibrium and oscillates about
 /// it (a phugoid of angular frequency `w = sqrt(a/H)`, `a = mu/r^2 - V^2/r` the net downward
@@ -415,7 +463,7 @@ pub(crate) fn glide_prediction<S: Real>(
 /// given back by the later ones. The range gained is taken as the range flown during one
 /// radian of phugoid phase at the initial drag deficit: `(V/r) (1 - exp(-dh/H)) / w`. No
 /// fitted constant; validated against integration by the glide range-error map
-/// ([`predict_glide_with_sink`]; docs/VINH.md). A state below `r_g` gives the symmetric
+/// ([`predict_glide_with_sink`]; docs/validation/vinh-numerical.md). A state below `r_g` gives the symmetric
 /// (negative) term, not validated. Zero when `a <= 0` (at or above circular speed, where the glide closed
 /// form is out of domain anyway) or for non-finite values.
 #[must_use]

@@ -1,6 +1,6 @@
 //! Dispersion-campaign throughput: 16 dispersed flights of the SRM glide (terminal interface
 //! 2.5 km/s) per iteration, per guidance mode, on 1 and on 2 rayon threads. Flights per second
-//! = 16 / time per iteration (docs/PERFORMANCE.md, docs/DISPERSIONS.md).
+//! = 16 / time per iteration (docs/reference/performance.md, docs/reference/campaigns.md).
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -2,7 +2,7 @@
 //! (non-negative orthant) or on the unit simplex, reference point 1.1 in every objective,
 //! the sizes of the peer measurements (3-D n = 2000, 4-D and 5-D n = 1000), plus all
 //! exclusive contributions in 2-D and 3-D. The side-by-side comparison with moocore and pygmo
-//! on identical fronts is scripts/compare_hypervolume.py (docs/PERFORMANCE.md).
+//! on identical fronts is scripts/compare_hypervolume.py (docs/reference/performance.md).
 
 use std::hint::black_box;
 

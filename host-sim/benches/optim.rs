@@ -7,7 +7,7 @@
 //! allocation (Zhang, Liu & Li 2009): 100 / 5 = 20 children per generation, so 1250
 //! generations for the same 25,100 evaluations; `moead-sbx` is Zhang & Li's (2007) SBX
 //! variation (250 generations).
-//! Peer figures (pygmo 2.20): `scripts/compare_pygmo.py`, docs/PERFORMANCE.md.
+//! Peer figures (pygmo 2.20): `scripts/compare_pygmo.py`, docs/reference/performance.md.
 
 use std::hint::black_box;
 
@@ -118,7 +118,7 @@ fn bench(c: &mut Criterion) {
 }
 
 /// MHACO on the same setting: pagmo's defaults (ker 63, q 1, threshold 1, n_gen_mark 7) and
-/// the recommended n_gen_mark 15 (docs/OPTIMISERS.md).
+/// the recommended n_gen_mark 15 (docs/reference/optimisers.md).
 fn bench_mhaco(c: &mut Criterion) {
     let problem = Zdt::standard(1).expect("zdt1");
     for (name, n_gen_mark) in [("mhaco-pagmo-defaults", 7), ("mhaco-n_gen_mark-15", 15)] {

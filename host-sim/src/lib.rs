@@ -1,4 +1,6 @@
-//! # host-sim
+#![doc = include_str!("../README.md")]
+//!
+//! ## Modules
 //!
 //! Host-side (std) re-entry simulation around `guidance-core`:
 //! environment models ([`env`](mod@env): atmosphere, gravity, planet), vehicles ([`vehicle`]),

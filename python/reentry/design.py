@@ -1,4 +1,4 @@
-"""The re-entry mission-design problems (host-sim ``design``, docs/MISSION_DESIGN.md) as
+"""The re-entry mission-design problems (host-sim ``design``, docs/reference/mission-design.md) as
 pygmo user-defined problems and, optionally, pymoo problems.
 
 * :class:`DesignProblem`: the thesis' fixed-length guidance problem (presets ``horus-2b``,

@@ -1,4 +1,4 @@
-"""Dispersion campaigns (host-sim ``campaign``, ``host-sim dispersions``, docs/DISPERSIONS.md).
+"""Dispersion campaigns (host-sim ``campaign``, ``host-sim dispersions``, docs/reference/campaigns.md).
 
 A :class:`DispersionCampaign` holds a scenario, the ``[dispersions]`` settings and the guidance
 modes, with the campaign's set-up built in Rust (nominal flights, terminal interface, target,

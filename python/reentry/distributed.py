@@ -19,7 +19,7 @@ Command line: ``python -m reentry.distributed {optimize,dispersions,campaign,ben
 bench-dispersions} --help`` (or
 ``reentry-dask``), with ``--scheduler tcp://HOST:8786`` or a ``LocalCluster`` of
 ``--workers N`` processes (no dashboard and no fixed port; ``--dashboard :0`` for one on a free
-port). See docs/PYTHON.md.
+port). See docs/reference/python.md.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The optimisers through ask/tell, the test problems, pygmo compatibility and :func:`evolve`.
 
 The algorithms are host-sim's (MOEA/D and NSGA-II with pagmo's semantics, see
-docs/OPTIMISERS.md). They only ask for decisions and are told evaluations back by index, so
+docs/reference/optimisers.md). They only ask for decisions and are told evaluations back by index, so
 whoever evaluates (Python, Rust, Dask workers, in any order) the run is the same, bit for bit,
 for the same seed.
 """
@@ -212,7 +212,7 @@ class _Algorithm:
 
 
 class Moead(_Algorithm):
-    """MOEA/D-DE with pagmo's defaults (host-sim ``Moead``; docs/OPTIMISERS.md).
+    """MOEA/D-DE with pagmo's defaults (host-sim ``Moead``; docs/reference/optimisers.md).
 
     ``weights``: ``"grid"``, ``"low-discrepancy"``, ``"random"``; ``decomposition``:
     ``"tchebycheff"``, ``"weighted"``, ``"pbi"``; ``batch_size`` offspring per ask (1:
@@ -268,7 +268,7 @@ class Nsga2(_Algorithm):
 
 
 class Mhaco(_Algorithm):
-    """MHACO, pagmo's ``maco`` semantics (host-sim ``Mhaco``; docs/OPTIMISERS.md).
+    """MHACO, pagmo's ``maco`` semantics (host-sim ``Mhaco``; docs/reference/optimisers.md).
 
     ``constraints``: ``"feasibility-first"`` (default) or, for the thesis' constraints as
     objectives, ``{"as-objectives": {"scales": None, "cap": 2.0, "penalty": 0.5}}``."""

@@ -3,11 +3,20 @@
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
+
+# `python -m pytest` run inside python/ puts that source tree first on sys.path; its reentry/
+# holds no compiled _native unless `maturin develop` put one there. Then test the installed
+# package instead (pytest runs from the repository root and from python/ alike).
+_SOURCE = REPO / "python"
+_COMPILED = [*(_SOURCE / "reentry").glob("_native*.so"), *(_SOURCE / "reentry").glob("_native*.pyd")]
+if not _COMPILED:
+    sys.path[:] = [p for p in sys.path if Path(p or os.curdir).resolve() != _SOURCE]
 
 
 def _host_sim() -> Path | None:

@@ -15,6 +15,7 @@ use onboard_spec::machines::{
     MACHINES, PIL_MACHINE, QEMU_SYSTEM, QemuMachine, RUNNER_KILL_AFTER_S, RUNNER_TIMEOUT_S,
 };
 
+mod board_example;
 mod defmt_log;
 mod golden;
 mod insn;
@@ -39,6 +40,7 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|s
   defmt     smoke firmware with defmt over semihosting on both machines, decoded by defmt-print\n\
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
+  board-example  build examples/board-firmware (a standalone crate using guidance-core) and run it in QEMU\n\
   fuzz      fuzz the flight code (node tables, guidance, frame decoder, closed forms, lateral, estimate):\n\
             [--seconds N per target | --cases N] [--seed S] [--target T]; default: the CI budget";
 
@@ -51,6 +53,7 @@ fn main() -> ExitCode {
         Some("stack") => setup().and_then(|()| stack::stack()),
         Some("defmt") => setup().and_then(|()| defmt_log::defmt_log()),
         Some("pil") => setup().and_then(|()| pil()),
+        Some("board-example") => setup().and_then(|()| board_example::board_example()),
         Some("bench-firmware") => {
             let json = args.iter().skip(1).any(|a| a == "--json");
             setup().and_then(|()| bench_firmware(json).map(|_| ()))
@@ -375,6 +378,10 @@ fn test() -> Result<(), String> {
         }),
     ));
     steps.push(("firmware under QEMU", Box::new(firmware)));
+    steps.push((
+        "board example (examples/board-firmware) under QEMU",
+        Box::new(board_example::board_example),
+    ));
     steps.push(("PIL closed loop", Box::new(pil)));
     steps.push((
         "firmware instruction counts within onboard-demo/insn-budget.toml",

@@ -34,7 +34,40 @@ pub struct Corridor<S> {
     pub width_low_rad: S,
 }
 
+/// Default corridor half-width at the entry speed \[deg\] ([`Corridor::narrowing_with_speed`]).
+pub const DEFAULT_WIDTH_ENTRY_DEG: f64 = 15.0;
+/// Default corridor half-width near the final speed \[deg\].
+pub const DEFAULT_WIDTH_FINAL_DEG: f64 = 3.0;
+/// Default fraction of the entry-to-final speed span above the final speed where the
+/// corridor reaches its final width \[-\].
+pub const DEFAULT_LOW_SPEED_FRACTION: f64 = 0.05;
+
 impl<S: Real> Corridor<S> {
+    /// The default speed corridor from `entry_speed_m_s` to `final_speed_m_s` \[m/s\]
+    /// (`final < entry`): [`DEFAULT_WIDTH_ENTRY_DEG`] at and above the entry speed, narrowing
+    /// linearly to [`DEFAULT_WIDTH_FINAL_DEG`] at
+    /// `final + DEFAULT_LOW_SPEED_FRACTION (entry - final)` (the dispersion campaigns'
+    /// default).
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] for non-finite speeds or `final >= entry`.
+    pub fn narrowing_with_speed(
+        entry_speed_m_s: S,
+        final_speed_m_s: S,
+    ) -> Result<Self, GuidanceError> {
+        let deg = S::PI / S::from_f64(180.0);
+        let c = Self {
+            axis: CorridorAxis::Speed,
+            x_high: entry_speed_m_s,
+            width_high_rad: S::from_f64(DEFAULT_WIDTH_ENTRY_DEG) * deg,
+            x_low: final_speed_m_s
+                + S::from_f64(DEFAULT_LOW_SPEED_FRACTION) * (entry_speed_m_s - final_speed_m_s),
+            width_low_rad: S::from_f64(DEFAULT_WIDTH_FINAL_DEG) * deg,
+        };
+        c.validate()?;
+        Ok(c)
+    }
+
     /// Check the corridor: finite values, `x_low < x_high`, both widths in `(0, pi]`.
     ///
     /// # Errors

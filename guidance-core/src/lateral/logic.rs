@@ -27,6 +27,42 @@ pub struct LateralConfig<S> {
     pub freeze_angle_rad: S,
 }
 
+/// Default [`LateralConfig::hysteresis_rad`] \[deg\].
+pub const DEFAULT_HYSTERESIS_DEG: f64 = 1.0;
+/// Default [`LateralConfig::max_reversals`].
+pub const DEFAULT_MAX_REVERSALS: u8 = 12;
+/// Default freeze distance \[m\]: no reversal within 30 km of the target.
+pub const DEFAULT_FREEZE_DISTANCE_M: f64 = 30_000.0;
+
+impl<S: Real> LateralConfig<S> {
+    /// The default logic for `target` with `corridor` (e.g.
+    /// [`Corridor::narrowing_with_speed`]) on a planet of radius `planet_radius_m` \[m\]:
+    /// hysteresis [`DEFAULT_HYSTERESIS_DEG`], at most [`DEFAULT_MAX_REVERSALS`] reversals, no
+    /// reversal within [`DEFAULT_FREEZE_DISTANCE_M`] of the target (the dispersion
+    /// campaigns' defaults).
+    ///
+    /// ```
+    /// use guidance_core::lateral::{BankReversalLogic, Corridor, LateralConfig};
+    /// use guidance_core::replan::TargetPoint;
+    /// let target = TargetPoint { latitude_rad: 0.1_f64, longitude_rad: 1.2 };
+    /// let corridor = Corridor::narrowing_with_speed(7600.0, 2500.0)?;
+    /// let logic = BankReversalLogic::new(LateralConfig::new(target, corridor, 6_378_137.0))?;
+    /// assert_eq!(logic.reversals(), 0);
+    /// # Ok::<(), guidance_core::GuidanceError>(())
+    /// ```
+    #[must_use]
+    pub fn new(target: TargetPoint<S>, corridor: Corridor<S>, planet_radius_m: S) -> Self {
+        let deg = S::PI / S::from_f64(180.0);
+        Self {
+            target,
+            corridor,
+            hysteresis_rad: S::from_f64(DEFAULT_HYSTERESIS_DEG) * deg,
+            max_reversals: DEFAULT_MAX_REVERSALS,
+            freeze_angle_rad: S::from_f64(DEFAULT_FREEZE_DISTANCE_M) / planet_radius_m,
+        }
+    }
+}
+
 /// What one [`BankReversalLogic::update`] decided.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -166,6 +202,35 @@ impl<S: Real> BankReversalLogic<S> {
     /// # Errors
     /// [`GuidanceError::NonFiniteState`] / [`GuidanceError::UnphysicalState`] for a bad
     /// navigation state; nothing changes then.
+    ///
+    /// ```
+    /// use guidance_core::guidance::BankSign;
+    /// use guidance_core::lateral::{BankReversalLogic, Corridor, LateralConfig};
+    /// use guidance_core::replan::TargetPoint;
+    /// use guidance_core::NavState;
+    /// // Target due east on the equator; the vehicle heads 20 deg left of it (north of east).
+    /// let target = TargetPoint { latitude_rad: 0.0_f64, longitude_rad: 0.5 };
+    /// let corridor = Corridor::narrowing_with_speed(7600.0, 2500.0)?;
+    /// let mut logic = BankReversalLogic::new(LateralConfig::new(target, corridor, 6_378_137.0))?;
+    /// let nav = NavState {
+    ///     time_s: 0.0,
+    ///     radius_m: 6_378_137.0 + 80e3,
+    ///     speed_m_s: 7000.0,
+    ///     flight_path_angle_rad: -0.01,
+    ///     heading_rad: 70.0_f64.to_radians(),
+    ///     latitude_rad: 0.0,
+    ///     longitude_rad: 0.0,
+    /// };
+    /// let first = logic.update(&nav)?; // the sign that reduces the heading error: right
+    /// assert!((first.heading_error_rad.to_degrees() + 20.0).abs() < 0.1);
+    /// assert_eq!((first.sign, first.reversed), (BankSign::Positive, false));
+    /// // Later the bank has turned the vehicle 20 deg right of the target, outside the
+    /// // 15 deg corridor: the sign reverses.
+    /// let later = NavState { time_s: 60.0, heading_rad: 110.0_f64.to_radians(), ..nav };
+    /// let status = logic.update(&later)?;
+    /// assert_eq!((status.sign, status.reversed), (BankSign::Negative, true));
+    /// # Ok::<(), guidance_core::GuidanceError>(())
+    /// ```
     pub fn update(&mut self, nav: &NavState<S>) -> Result<LateralStatus<S>, GuidanceError> {
         nav.validate()?;
         let t = self.config.target;

@@ -56,6 +56,12 @@ mod corridor;
 mod logic;
 mod terminal;
 
-pub use corridor::{Corridor, CorridorAxis};
-pub use logic::{BankReversalLogic, LateralConfig, LateralStatus};
+pub use corridor::{
+    Corridor, CorridorAxis, DEFAULT_LOW_SPEED_FRACTION, DEFAULT_WIDTH_ENTRY_DEG,
+    DEFAULT_WIDTH_FINAL_DEG,
+};
+pub use logic::{
+    BankReversalLogic, DEFAULT_FREEZE_DISTANCE_M, DEFAULT_HYSTERESIS_DEG, DEFAULT_MAX_REVERSALS,
+    LateralConfig, LateralStatus,
+};
 pub use terminal::{TerminalLateral, predicted_offsets, reverse_now};

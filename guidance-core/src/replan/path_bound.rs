@@ -98,7 +98,45 @@ pub(crate) struct BarrierPoint<S> {
     pub drag: S,
 }
 
+/// Default [`PathBound::barrier_frequency_rad_s`] of [`PathBound::barrier`] \[rad/s\] (chosen
+/// on HORUS-2B dispersion campaigns: docs/reference/path-limits.md).
+pub const DEFAULT_BARRIER_FREQUENCY_RAD_S: f64 = 0.2;
+/// Default [`PathBound::barrier_damping`] of [`PathBound::barrier`] \[-\] (critical damping).
+pub const DEFAULT_BARRIER_DAMPING: f64 = 1.0;
+
 impl<S: Real> PathBound<S> {
+    /// The barrier law holding `limits` (heat flux \[W/m^2\], g-load \[-\]) with natural
+    /// frequency [`DEFAULT_BARRIER_FREQUENCY_RAD_S`] and damping [`DEFAULT_BARRIER_DAMPING`]
+    /// (module docs, "Barrier law").
+    ///
+    /// ```
+    /// use guidance_core::missions::HORUS2B_LIMITS;
+    /// use guidance_core::replan::PathBound;
+    /// let bound = PathBound::<f32>::barrier(HORUS2B_LIMITS.load_limits());
+    /// assert!(bound.is_valid());
+    /// ```
+    #[must_use]
+    pub fn barrier(limits: ReplanLimits<S>) -> Self {
+        Self {
+            limits,
+            descent_time_s: S::ZERO,
+            barrier_frequency_rad_s: S::from_f64(DEFAULT_BARRIER_FREQUENCY_RAD_S),
+            barrier_damping: S::from_f64(DEFAULT_BARRIER_DAMPING),
+        }
+    }
+
+    /// The quasi-equilibrium-glide bound holding `limits`, asking a descent to stop within
+    /// `descent_time_s` \[s\] (`>= 0`; 0: no descent term; module docs, "Bound").
+    #[must_use]
+    pub fn equilibrium(limits: ReplanLimits<S>, descent_time_s: S) -> Self {
+        Self {
+            limits,
+            descent_time_s,
+            barrier_frequency_rad_s: S::ZERO,
+            barrier_damping: S::ZERO,
+        }
+    }
+
     /// Whether the bound is usable: finite, positive limits, `descent_time_s >= 0`.
     #[must_use]
     pub fn is_valid(&self) -> bool {

@@ -61,12 +61,12 @@
 //! the closed forms' domain) `k` counts solver steps: each advances the prediction in progress
 //! by at most [`super::numerical::STEPS_PER_SOLVER_STEP`] integration steps (or completes a
 //! closed-form call), so a numerical prediction spans several ticks and a solve many more
-//! (a converged SRM glide re-plan: about 30 steps; docs/VINH.md, "Numerical predictor").
+//! (docs/reference/vinh.md, "Numerical predictor").
 //!
 //! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
-//! below 200 k instructions with `k = 1` (measured maximum 115 k: the tick that runs the chain
-//! prediction with peaks; docs/PERFORMANCE.md); a worst-case solve then takes at most
-//! [`super::MAX_PREDICTOR_CALLS`] ticks, in practice 5-30.
+//! below 200 k instructions with `k = 1` (the measured counts and their budgets:
+//! docs/reference/performance.md, `onboard-demo/insn-budget.toml`); a worst-case solve then
+//! takes at most [`super::MAX_PREDICTOR_CALLS`] ticks.
 //!
 //! # Cost (worst case, bounded)
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
@@ -82,7 +82,7 @@
 //! The closed forms assume a non-rotating planet. [`PredictorModel::rotation_rate_rad_s`]
 //! enables a first-order effective-gravity correction (see there).
 
-use crate::energy::EnergyNormalizer;
+use crate::energy::{EARTH_ROTATION_RATE_RAD_S, EnergyNormalizer};
 use crate::error::GuidanceError;
 use crate::estimate::{AeroEstimator, AeroScales, EstimateError, EstimateStatus, SensedAero};
 use crate::geo::{central_angle, initial_bearing};
@@ -152,6 +152,36 @@ pub struct PredictorModel<S> {
 }
 
 impl<S: Real> PredictorModel<S> {
+    /// A model of `vehicle` (its parabolic polar) on a non-rotating `planet` with
+    /// `atmosphere`.
+    #[must_use]
+    pub fn new(planet: Planet<S>, atmosphere: ExpAtmosphere<S>, vehicle: VehicleParams<S>) -> Self {
+        Self {
+            planet,
+            atmosphere,
+            vehicle,
+            rotation_rate_rad_s: S::ZERO,
+        }
+    }
+
+    /// A model of `vehicle` on the thesis' Earth ([`Planet::earth`], [`ExpAtmosphere::earth`]:
+    /// `rho0 = 1.225 kg/m^3`, `H_s = 7200 m`) with the effective-gravity correction for the
+    /// Earth's rotation ([`EARTH_ROTATION_RATE_RAD_S`]).
+    ///
+    /// ```
+    /// use guidance_core::missions::horus2b_vehicle;
+    /// use guidance_core::replan::PredictorModel;
+    /// let model = PredictorModel::<f32>::earth(horus2b_vehicle());
+    /// assert_eq!(model.planet.radius_m, 6_378_137.0);
+    /// ```
+    #[must_use]
+    pub fn earth(vehicle: VehicleParams<S>) -> Self {
+        Self {
+            rotation_rate_rad_s: S::from_f64(EARTH_ROTATION_RATE_RAD_S),
+            ..Self::new(Planet::earth(), ExpAtmosphere::earth(), vehicle)
+        }
+    }
+
     /// The planet the predictor uses at `nav` (see [`PredictorModel::rotation_rate_rad_s`]);
     /// the model planet if the correction is zero, non-finite or would make `mu` non-positive.
     #[must_use]
@@ -202,6 +232,51 @@ pub struct ReplanningConfig<S> {
     /// numerical prediction), the table in use flying until the solve completes (module docs,
     /// "Bounded work per tick").
     pub steps_per_tick: u8,
+}
+
+/// Default [`ReplanningConfig::every_n_ticks`] \[ticks\]: a re-plan every 10 s at the 2 s
+/// guidance period.
+pub const DEFAULT_EVERY_N_TICKS: u16 = 5;
+
+impl<S: Real> ReplanningConfig<S> {
+    /// The default re-planner aimed at `target`, its predictions ending at `final_speed_m_s`
+    /// \[m/s\] and checked against `limits` (peak heat flux \[W/m^2\] and g-load), predicting
+    /// with `model`: a re-plan every [`DEFAULT_EVERY_N_TICKS`] ticks, the solver settings of
+    /// [`ReplanConfig::new`], the nearest end applied when the target is out of reach
+    /// (`apply_out_of_reach = true`), the whole solve in its tick (`steps_per_tick = 0`; set
+    /// it to 1 on a target with a per-tick budget). Every field stays public for changes;
+    /// [`ReplanningGuidance::new`] checks them.
+    ///
+    /// ```
+    /// use guidance_core::missions::{HORUS2B_LIMITS, horus2b_vehicle};
+    /// use guidance_core::replan::{PredictorModel, RangeTarget, ReplanningConfig};
+    /// let target = RangeTarget::FlownRangeAngle { total_rad: 0.9_f32 };
+    /// let mut config = ReplanningConfig::new(
+    ///     target,
+    ///     2500.0,
+    ///     HORUS2B_LIMITS.load_limits(),
+    ///     PredictorModel::earth(horus2b_vehicle()),
+    /// );
+    /// config.steps_per_tick = 1; // spread each solve over ticks
+    /// assert_eq!(config.every_n_ticks, 5);
+    /// ```
+    #[must_use]
+    pub fn new(
+        target: RangeTarget<S>,
+        final_speed_m_s: S,
+        limits: ReplanLimits<S>,
+        model: PredictorModel<S>,
+    ) -> Self {
+        Self {
+            every_n_ticks: DEFAULT_EVERY_N_TICKS,
+            target,
+            limits,
+            solver: ReplanConfig::new(final_speed_m_s),
+            model,
+            apply_out_of_reach: true,
+            steps_per_tick: 0,
+        }
+    }
 }
 
 /// What one re-plan did.
@@ -411,6 +486,42 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// domain (vertical-fraction interval not in `(0, 1]`, tolerance or limits not positive,
     /// more than [`super::MAX_ITERATIONS`] iterations or [`crate::vinh::predict::MAX_SKIPS`]
     /// skips, negative lambda, final speed not positive).
+    ///
+    /// The SRM glide of [`crate::missions::srm_glide`] re-planned to a flown range of 8000 km
+    /// with the default settings ([`ReplanningConfig::new`]):
+    ///
+    /// ```
+    /// use guidance_core::missions::{SRM_LIMITS, srm_glide, srm_vehicle};
+    /// use guidance_core::replan::{PredictorModel, RangeTarget, ReplanningConfig, ReplanningGuidance};
+    /// use guidance_core::NavState;
+    /// let m = srm_glide::<f64>()?;
+    /// let target = RangeTarget::FlownRangeAngle { total_rad: 8.0e6 / 6_378_137.0 };
+    /// let mut model = PredictorModel::earth(srm_vehicle());
+    /// model.rotation_rate_rad_s = 0.0; // the SRM glide's planet does not rotate
+    /// let config = ReplanningConfig::new(target, 2500.0, SRM_LIMITS.load_limits(), model);
+    /// let mut g = ReplanningGuidance::new(
+    ///     m.config,
+    ///     m.table.clone(),
+    ///     m.interpolation,
+    ///     m.earth_energy_normalizer()?,
+    ///     m.initial,
+    ///     config,
+    /// )?;
+    /// let nav = NavState {
+    ///     time_s: 0.0,
+    ///     radius_m: 6_378_137.0 + 100e3,
+    ///     speed_m_s: 7658.34,
+    ///     flight_path_angle_rad: -0.001,
+    ///     heading_rad: core::f64::consts::FRAC_PI_2,
+    ///     latitude_rad: 0.0,
+    ///     longitude_rad: 0.0,
+    /// };
+    /// let out = g.update(&nav)?; // tick 0 re-plans
+    /// let report = out.replan.expect("the first tick re-plans");
+    /// assert!(report.predictor_calls > 0);
+    /// assert!(out.guidance.command.sigma_rad.abs() <= core::f64::consts::FRAC_PI_2);
+    /// # Ok::<(), guidance_core::GuidanceError>(())
+    /// ```
     pub fn new(
         guidance_config: GuidanceConfig<S>,
         table: NodeTable<S, N>,

@@ -22,7 +22,7 @@
 //!   11 km/s that the thesis reports as complex numbers: the escape speed at 122 km is 11.07 km/s).
 //! * Re-entry radius between periapsis and apoapsis: [`VinhError::NoReentry`].
 //! * Exact for two-body motion (validated against Cartesian propagation to integration
-//!   tolerance, docs/VINH.md); atmosphere, oblateness and planet rotation are ignored.
+//!   tolerance, docs/validation/vinh-numerical.md); atmosphere, oblateness and planet rotation are ignored.
 
 use super::error::VinhError;
 use super::nondim::{EntryState, Planet};
@@ -296,7 +296,7 @@ impl<S: Real> BallisticArc<S> {
         let half = ea.half();
         let nu_half = ((S::ONE + e).sqrt() * half.sin()).atan2((S::ONE - e).sqrt() * half.cos());
         let mut nu = nu_half + nu_half;
-        // Unwrap to the branch of E: nu - E is small compared with pi for the same revolution.
+        // Unwrap E to the same revolution as nu: nu - E is small compared with pi for the same revolution.
         let two_pi = S::PI + S::PI;
         if nu - ea > S::PI {
             nu = nu - two_pi;

@@ -13,7 +13,7 @@
 //!   auxiliary `B` of eq. 3.72, ERRATA); `phi1` from the defining relation eq. 3.64,
 //!   `eta (1 + lambda^2) u / phi = eta k / y - 1/y'`, evaluated with `y1` and its analytic
 //!   derivative `y1'` (eq. 3.73/3.74 is its closed form; the printed eq. 3.74 is compared with
-//!   this in the tests, see docs/VINH.md);
+//!   this in the tests, see docs/validation/vinh-numerical.md);
 //! * range angle (3.77, ERRATA layout):
 //!   `theta = (E/2) { ln[(1-u)/(1-u_E)] + (2/s) ln[u_E (1-u) / ((1-u_E) u)] +
 //!   (2/s) \[1/(1-u_E) - 1/(1-u)\] }`;
@@ -31,7 +31,7 @@
 //! * `u` in `(0, u_E]` with the second-order altitude above the surface:
 //!   [`VinhError::GlideSpeedOutOfDomain`].
 //! * Measured accuracy of the final range angle against the numerical solution in the same
-//!   (simplified) environment: docs/VINH.md (thesis claim, fig. 8.5: <= 3 % below 110 km).
+//!   (simplified) environment: docs/validation/vinh-numerical.md (thesis claim, fig. 8.5: <= 3 % below 110 km).
 
 use super::error::VinhError;
 use super::nondim::{
@@ -43,7 +43,7 @@ use crate::scalar::Real;
 
 /// Smallest accepted `1 - u_E` (glide entry speed ratio to circular, `u_E = 1/(1 + k1)`).
 ///
-/// Chosen from the measured validation (docs/VINH.md; measured with the limit lowered): the final
+/// Chosen from the measured validation (docs/validation/vinh-numerical.md; measured with the limit lowered): the final
 /// range-angle error against the numerical glide grows as `1 - u_E` shrinks (about 2 % at
 /// 0.012, 3 % at 0.006, 5-9 % at 0.0015-0.003, 15-50 % at 1e-4 to 4e-4); HORUS-2B at 122 km has
 /// `1 - u_E ~ 1e-4` (thesis sec. 8.1.6). 0.01 keeps the measured error below 2.1 %.

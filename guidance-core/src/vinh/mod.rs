@@ -28,14 +28,15 @@
 //!   the surface.
 //! * Arc: `0 < gamma0 < 90 deg`, elliptic, re-entry radius between periapsis and apoapsis.
 //!
-//! # Accuracy (measured, docs/VINH.md)
-//! Against integration of the exact equations in the same environment: skip exit speed <= 0.8 %,
+//! # Accuracy
+//! Bounds against integration of the exact equations in the same environment: skip exit speed <= 0.8 %,
 //! deepest altitude <= 0.25 km, peak heat flux <= 1.7 %, peak g-load <= 3.3 %, exit flight-path
 //! angle <= 0.36 deg (SRM) / 1.1 deg (HORUS-2B), range angle <= 11.2 %; glide final range angle
 //! <= 2.5 % at 70-110 km (thesis: <= 3 %), 3.2 % for final speeds of 0.3 `V_E`; Kepler arc to
-//! 1e-8 against two-body propagation.
+//! 1e-8 against two-body propagation (the tables and their commands:
+//! docs/validation/vinh-numerical.md).
 //!
-//! `f32` against `f64` (measured, `vinh_f32_agrees_with_f64`): skip exit speed 1e-5 relative,
+//! `f32` against `f64` (bounds of `vinh_f32_agrees_with_f64`): skip exit speed 1e-5 relative,
 //! exit flight-path angle 1e-6 rad, range angle 1e-4, peak heat flux 5e-4; glide range angle
 //! 1e-3; Kepler range angle and flight time 1e-4 (default libm back end).
 

@@ -44,7 +44,7 @@ pub const CHAPMAN_VC_M_S: f64 = 7905.4;
 pub const CHAPMAN_SPEED_EXPONENT: f64 = 3.15;
 /// Standard gravity used to express g-loads, eq. 2.1 \[m/s^2\].
 pub const G0_M_S2: f64 = 9.806_65;
-/// Highest accepted reference speed \[m/s\]: the top of the validated range (docs/VINH.md).
+/// Highest accepted reference speed \[m/s\]: the top of the validated range (docs/validation/vinh-numerical.md).
 /// Thesis sec. 8.2.1 reports complex numbers for entry speeds above 11000 m/s. With the ERRATA
 /// corrections the skip closed form stays real and accurate up to this limit (measured); what
 /// does fail above about 11 km/s is the ballistic arc: the local escape speed at 122 km is
@@ -98,7 +98,7 @@ pub struct ExpAtmosphere<S> {
 impl<S: Real> ExpAtmosphere<S> {
     /// Earth, `rho0 = 1.225 kg/m^3` at `R = 6378137 m`, `H_s = 7200 m`. The thesis does not
     /// state its `H_s`; 7200 m is a common Earth value (and reproduces, with the SRM data, the
-    /// thesis' sec. 9.2 glide entry at 100 km: see docs/VINH.md).
+    /// thesis' sec. 9.2 glide entry at 100 km: see docs/validation/vinh-numerical.md).
     #[must_use]
     pub fn earth() -> Self {
         Self {

@@ -258,7 +258,7 @@ pub fn predict_with<S: Real>(
         }
     }
     // Final glide from the captured state. The capture itself (the descent from the interface
-    // to the glide start radius) is not modelled: the chain error map (docs/VINH.md) measured
+    // to the glide start radius) is not modelled: the chain error map (docs/validation/vinh-numerical.md) measured
     // range errors of -62 to +1117 % for chains captured after a skip or an arc, which are never
     // in domain. Captured in the first skip from a descending state, the chain is the glide
     // started from the state (as the glide mode): checked as one (re-planning domain).
@@ -324,7 +324,7 @@ fn skip_validity_and<S: Real>(
 }
 
 /// Validity of one skip `skip` from `entry`: `InDomain` inside the region validated against
-/// integration (docs/VINH.md: the validation grid and the skip error map), else the first
+/// integration (docs/validation/vinh-numerical.md: the validation grid and the skip error map), else the first
 /// reason: entry speed outside [`SKIP_SPEED_RANGE_M_S`], entry flight-path angle outside
 /// [`SKIP_FPA_RANGE_RAD`], vertical L/D below [`SKIP_MIN_VERTICAL_LD`], exit `|eta v|` above
 /// [`SKIP_MAX_EXIT_ETA_V`].

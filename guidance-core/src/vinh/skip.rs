@@ -38,7 +38,7 @@
 //!   [`VinhError::BeyondDeepestPoint`] is returned, never a complex or NaN `phi`.
 //! * The solution is planar and non-rotating, with an exponential atmosphere and inverse-square
 //!   gravity; `cos(gamma) ~ 1` and `h ~ 0` are assumed (eq. 3.33-3.35), so accuracy degrades for
-//!   steep entries and deep dives (see docs/VINH.md for the measured errors).
+//!   steep entries and deep dives (see docs/validation/vinh-numerical.md for the measured errors).
 
 use super::error::VinhError;
 use super::nondim::{NonDim, k1_min};
@@ -51,7 +51,7 @@ use crate::scalar::Real;
 /// Largest accepted `|eta v|` along the skip: the speed-ratio range `V/V_E` in
 /// `[exp(-0.35), exp(0.35)] = [0.70, 1.42]` over which `exp(eta v) ~ 1 + eta v` (error
 /// `(eta v)^2/2 <= 25 %` of the gravity term) is used; the measured exit errors grow with
-/// `eta v` (docs/VINH.md).
+/// `eta v` (docs/validation/vinh-numerical.md).
 pub const MAX_ETA_V: f64 = 0.7;
 
 /// Relative tolerance (times `c^2`) for a negative second-order `phi^2` near the deepest point.

@@ -2,19 +2,19 @@
 //!
 //! The closed forms return a typed [`VinhError`] outside their mathematical domain (out of
 //! domain). Inside it, their accuracy was measured against numerical integration of the same
-//! equations only over the validation grids of docs/VINH.md; a prediction with any phase
+//! equations only over the validation grids of docs/validation/vinh-numerical.md; a prediction with any phase
 //! outside those grids is computed but *extrapolated*: its error is not known to be within the
 //! documented bounds (skip exit speed <= 0.8 %, glide range angle <= 3.2 %, ...). The limits
 //! below are the edges of the validated grids; the glide limits come from the range-error map
 //! of the glide-mode prediction against integration (`tests/it/vinh_error_map.rs`, L/D 0.3 to
-//! 2.5, 70-100 km, vertical fractions 0.3 to 1; docs/VINH.md): from an equilibrium start the
+//! 2.5, 70-100 km, vertical fractions 0.3 to 1; docs/validation/vinh-numerical.md): from an equilibrium start the
 //! error is <= 2.8 % for vertical L/D 0.72 to 2.5 and -4.4 % at 0.5; a start above the
 //! equilibrium of the commanded bank (the descent to it is not modelled) adds about
 //! `0.56 (dh_km / E)^2` percent for a start `dh_km` above the glide start radius and a total
 //! L/D `E` (3.7 % at 2.6 km for `E` = 1 ... 0.6 % for `E` = 2.5). A glide started from the
 //! state (glide mode, or a chain captured in its first skip) is also checked against the
 //! re-planning domain (every re-plan applied in host-sim's closed-loop runs and campaigns,
-//! recomputed against integration; docs/VINH.md): the state at most
+//! recomputed against integration; docs/validation/vinh-numerical.md): the state at most
 //! [`GLIDE_MAX_START_ABOVE_STATE_M`] below the glide start and within
 //! [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] of the glide's flight-path angle; there every
 //! in-domain prediction was within 2.65 %.
@@ -32,7 +32,7 @@ pub const SKIP_FPA_RANGE_RAD: (f64, f64) = (
     2.0 * core::f64::consts::PI / 180.0 - 1e-9,
     7.0 * core::f64::consts::PI / 180.0 + 1e-9,
 );
-/// Smallest vertical lift-to-drag ratio of a validated skip (skip error map, docs/VINH.md:
+/// Smallest vertical lift-to-drag ratio of a validated skip (skip error map, docs/validation/vinh-numerical.md:
 /// at 0.36 an in-grid skip was 18.6 % short in range and 1.4 deg off in exit flight-path
 /// angle, at 0.5 its exit speed 1.9 % high; the validation grids start at 1.2).
 pub const SKIP_MIN_VERTICAL_LD: f64 = 0.6;
@@ -53,18 +53,18 @@ pub const GLIDE_MAX_START_OFFSET_PER_LD_M: f64 = 1_900.0;
 /// with the sink modelled (`replan::predict_glide_with_sink`) \[m\]: the largest start offset of
 /// the glide range-error map (8.7 km: an equilibrium start of full lift flown at a vertical
 /// fraction of 0.3), over which that prediction is within 2.9 % for vertical L/D 0.6 to 2.5
-/// (docs/VINH.md).
+/// (docs/validation/vinh-numerical.md).
 pub const GLIDE_MAX_START_OFFSET_M: f64 = 9_000.0;
 /// Largest distance a glide-mode prediction may start *above* the state \[m\] (the state below
 /// the equilibrium of the commanded lift at its speed). The glide error map starts every glide
 /// at or below the state; the re-planning domain (the re-plans of host-sim's closed-loop
-/// scenarios and campaigns recomputed against integration, docs/VINH.md) found states up to
+/// scenarios and campaigns recomputed against integration, docs/validation/vinh-numerical.md) found states up to
 /// 5 km below their glide start radius, descending at up to 0.8 deg, whose prediction was up to
 /// 5.8 % long; up to 1 km below it every in-domain prediction was within 2.5 %.
 pub const GLIDE_MAX_START_ABOVE_STATE_M: f64 = 1_000.0;
 /// Largest difference between the state's flight-path angle and the one the glide imposes at
 /// its start radius (eq. 3.79) for a glide started from the state \[rad\] (0.2 deg). The glide
-/// does not use the state's flight-path angle; in the re-planning domain (docs/VINH.md) states
+/// does not use the state's flight-path angle; in the re-planning domain (docs/validation/vinh-numerical.md) states
 /// descending 0.2-0.3 deg steeper than the glide were up to 3.9 % long, within 0.2 deg every
 /// prediction that met the other glide checks was within 2.7 %.
 pub const GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD: f64 = 0.2 * core::f64::consts::PI / 180.0;
@@ -84,7 +84,7 @@ pub enum Extrapolation {
     /// A chain reaching its final glide through a capture after a skip or an arc (a skip that
     /// does not exit, or an exit too shallow for an arc): the descent from the interface radius
     /// to the glide start radius is not modelled (zero range), and the chain error map shows
-    /// errors far beyond the phases' own (docs/VINH.md). A chain captured in its first skip
+    /// errors far beyond the phases' own (docs/validation/vinh-numerical.md). A chain captured in its first skip
     /// from a descending state is the glide started from the state and is checked as one
     /// instead (start offset, flight-path angle).
     CaptureTransition,

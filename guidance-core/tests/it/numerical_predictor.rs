@@ -235,7 +235,7 @@ fn numerical_predictor_counts_the_skip() {
 }
 
 /// In the glide closed form's validated domain (glide mode `InDomain`), the numerical range
-/// agrees with it within the glide's documented accuracy (docs/VINH.md: 2.5 % at 70-110 km).
+/// agrees with it within the glide's documented accuracy (docs/validation/vinh-numerical.md: 2.5 % at 70-110 km).
 #[test]
 fn numerical_predictor_agrees_with_the_glide_closed_form_in_its_domain() {
     let mut checked = 0;

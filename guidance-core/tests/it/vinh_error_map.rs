@@ -7,7 +7,7 @@
 //!
 //! `validate_dormand_prince_glide_map_validity_is_honest` checks that the typed validity is
 //! honest: every prediction classified `InDomain` is within the documented 3.2 %.
-//! `print_glide_range_error_map` (ignored) prints the map of docs/VINH.md.
+//! `print_glide_range_error_map` (ignored) prints the map of docs/validation/vinh-numerical.md.
 
 use crate::vinh_support::dynamics::{Lift, eom_dim};
 use crate::vinh_support::inputs::{atmosphere, params, planet};
@@ -137,7 +137,7 @@ fn validate_dormand_prince_glide_map_validity_is_honest() {
 }
 
 #[test]
-#[ignore = "prints the glide range error map of docs/VINH.md"]
+#[ignore = "prints the glide range error map of docs/validation/vinh-numerical.md"]
 fn print_glide_range_error_map() {
     println!(
         "| L/D | h [km] | cos(sigma) | validity | range error [%] | validity with sink | range error with sink [%] |"

@@ -101,7 +101,7 @@ fn skip_peaks_match_dense_scan() {
 
 /// Skip peaks in `f32`: derivative-free Brent stops at `sqrt(f32::EPSILON)`; against the `f64`
 /// dense scan the values agree to 5e-4 (the `f32`-vs-`f64` bound of the skip's peak heat flux,
-/// docs/VINH.md).
+/// docs/validation/vinh-numerical.md).
 #[test]
 fn skip_peaks_f32_match_f64_dense_scan() {
     use guidance_core::vinh::{EntryState, NonDim};

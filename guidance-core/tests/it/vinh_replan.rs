@@ -832,7 +832,7 @@ proptest! {
 /// the descent to it not modelled: zero range) does not contain. Checked: the thesis' <= 3 %
 /// at the equilibrium start; below it the prediction falls short (the missing descent) and the
 /// shortfall grows as the start moves away from the equilibrium (smaller cos(sigma)).
-/// Measured (docs/VINH.md): -10.3 % at 0.3, -3.2 % at 0.5, -0.9 % at 0.7, +0.6 % at 1.
+/// Measured (docs/validation/vinh-numerical.md): -10.3 % at 0.3, -3.2 % at 0.5, -0.9 % at 0.7, +0.6 % at 1.
 /// `predict_glide_with_sink` adds the sink (`sink_range_angle`): within 3 % at every bank.
 #[test]
 fn validate_dormand_prince_glide_predictor_range() {

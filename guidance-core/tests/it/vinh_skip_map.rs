@@ -12,7 +12,7 @@
 //! `validate_dormand_prince_skip_map_validity_is_honest` and
 //! `validate_dormand_prince_chain_map_validity_is_honest` check the typed validity against the
 //! maps: every `InDomain` point is within the documented accuracy. `print_skip_error_map` and
-//! `print_chain_error_map` (ignored) print the maps of docs/VINH.md.
+//! `print_chain_error_map` (ignored) print the maps of docs/validation/vinh-numerical.md.
 
 use crate::vinh_support::dynamics::{Lift, eom_dim, skip_dim};
 use crate::vinh_support::inputs::{atmosphere, lift, params, planet};
@@ -230,7 +230,7 @@ fn validate_dormand_prince_chain_map_validity_is_honest() {
 }
 
 #[test]
-#[ignore = "prints the skip error map of docs/VINH.md"]
+#[ignore = "prints the skip error map of docs/validation/vinh-numerical.md"]
 fn print_skip_error_map() {
     println!(
         "| L/D | V_E [m/s] | gamma_E [deg] | cos(sigma) | validity | exit V [%] | exit gamma [deg] | range [%] | peak q [%] | peak n [%] |"
@@ -248,7 +248,7 @@ fn print_skip_error_map() {
 }
 
 #[test]
-#[ignore = "prints the chain error map of docs/VINH.md"]
+#[ignore = "prints the chain error map of docs/validation/vinh-numerical.md"]
 fn print_chain_error_map() {
     println!("| L/D | V_E [m/s] | gamma_E [deg] | cos(sigma) | validity | range error [%] |");
     println!("|---|---|---|---|---|---|");

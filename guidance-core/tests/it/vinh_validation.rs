@@ -10,7 +10,7 @@
 //! table 8.1 polar read from shared/data/horus2b/drag_polar.csv).
 //!
 //! `print_vinh_error_table` (ignored) prints the measured errors as the Markdown tables of
-//! docs/VINH.md.
+//! docs/validation/vinh-numerical.md.
 
 use crate::vinh_support::dynamics::{self, Lift, NdSystem, RefConsts, SkipSummary};
 use crate::vinh_support::inputs::{atmosphere, params, planet};
@@ -210,7 +210,7 @@ fn validate_vinh_skip_nondim_setup_and_exact_equations() {
 /// entry at 122 km, V_E in {7435.5, 7800, 9000, 10500} m/s, gamma_E in {-2, -3, -5, -7} deg,
 /// lambda in {0.5, 1}. The thesis states no number for the skip (sec. 8.2.1: "minimal
 /// deviations", deviations "near the atmospheric exit"); the bounds are the measured maxima
-/// (docs/VINH.md) rounded up, so that a regression in any term fails.
+/// (docs/validation/vinh-numerical.md) rounded up, so that a regression in any term fails.
 #[test]
 fn validate_vinh_skip_srm_against_exact_integration() {
     let (rows, n) = skip_grid(&vehicles::srm(), NdSystem::Exact);
@@ -440,7 +440,7 @@ impl GlideRow {
 /// Thesis sec. 8.1.4 / fig. 8.5: "errors in the final range angle not exceeding 3.0 %" for the
 /// SRM glide against the simplified numerical model, altitudes up to 110 km. Region here: 70-110
 /// km, cos(sigma) in {0.3, 0.5, 0.7, 1}, final speed 0.8 and 0.5 of the entry speed. Measured
-/// max 2.5 % (docs/VINH.md); asserted: the thesis' 3 %. Heat flux and g-load peaks within 2 %
+/// max 2.5 % (docs/validation/vinh-numerical.md); asserted: the thesis' 3 %. Heat flux and g-load peaks within 2 %
 /// and 3 % (measured 0.9 % and 2.0 %).
 #[test]
 fn validate_vinh_glide_srm_range_angle_fig_8_5_region() {
@@ -459,7 +459,7 @@ fn validate_vinh_glide_srm_range_angle_fig_8_5_region() {
 }
 
 /// At lower final speeds (0.3 V_E) the error grows past the thesis' 3 %: measured max 3.2 % for
-/// the SRM at 70 km and cos(sigma) = 0.3 (recorded in docs/VINH.md, not hidden). Bound 4 %.
+/// the SRM at 70 km and cos(sigma) = 0.3 (recorded in docs/validation/vinh-numerical.md, not hidden). Bound 4 %.
 #[test]
 fn validate_vinh_glide_srm_low_final_speed() {
     let (rows, _) = glide_grid(&vehicles::srm(), &[70.0, 90.0, 110.0], &[0.3, 1.0], &[0.3]);
@@ -495,7 +495,7 @@ fn validate_vinh_glide_horus() {
 
 /// `phi1` computed by the library from the defining relation (3.64) with the analytic `y1'`
 /// against the printed closed form eq. 3.73/3.74. Also checks the library against a centred
-/// finite difference of `y1` (so the analytic derivative is right). Records (docs/VINH.md) how
+/// finite difference of `y1` (so the analytic derivative is right). Records (docs/validation/vinh-numerical.md) how
 /// far the printed 3.74 is from the defining relation.
 #[test]
 fn validate_vinh_glide_phi1_defining_relation() {
@@ -671,10 +671,10 @@ fn validate_kepler_ballistic_eq_3_81_needs_exit_phase() {
 /// The predictor's first skip + arc against one integration of the exact equations through the
 /// skip, the near-vacuum arc (exponential atmosphere continued above 122 km, density < 1e-11
 /// kg/m^3 above 250 km) and back down to 122 km. The range error is dominated by the exit
-/// flight-path-angle error of the skip amplified by the arc (measured, docs/VINH.md).
+/// flight-path-angle error of the skip amplified by the arc (measured, docs/validation/vinh-numerical.md).
 #[test]
 fn validate_vinh_predictor_skip_and_arc_against_integration() {
-    // Measured: 7800 m/s -3 deg: -4.1 %, 9000 m/s -5 deg: see docs/VINH.md.
+    // Measured: 7800 m/s -3 deg: -4.1 %, 9000 m/s -5 deg: see docs/validation/vinh-numerical.md.
     for &(v_e, g_deg, bound) in &[
         (7800.0, -3.0, 0.05),
         (9000.0, -5.0, 0.06),
@@ -1069,7 +1069,7 @@ fn vinh_f32_agrees_with_f64() {
     }
 }
 
-/// Prints the measured errors as Markdown (docs/VINH.md). Run with
+/// Prints the measured errors as Markdown (docs/validation/vinh-numerical.md). Run with
 /// `cargo test -p guidance-core --test it print_vinh_error_table -- --ignored --nocapture`.
 #[test]
 #[ignore]

@@ -1,5 +1,5 @@
 //! Typed validity of predictor outputs (issue 10 item 6): in domain inside the validated grids
-//! of docs/VINH.md, extrapolated (with the reason) outside them, out of domain with the error.
+//! of docs/validation/vinh-numerical.md, extrapolated (with the reason) outside them, out of domain with the error.
 
 use crate::vinh_replan::glide_nav;
 use crate::vinh_support::inputs::{atmosphere, lift, planet, srm};
@@ -118,7 +118,7 @@ fn chain_predictions_carry_their_validity() {
     assert_ne!(validity_of(&r), Validity::InDomain, "{r:?}");
 }
 
-/// The glide-start checks derived from the re-planning domain (docs/VINH.md): a glide-mode
+/// The glide-start checks derived from the re-planning domain (docs/validation/vinh-numerical.md): a glide-mode
 /// prediction from the SRM glide entry is in domain at the glide's flight-path angle,
 /// `GlideFlightPathAngle` 0.4 deg steeper, `GlideBelowEquilibrium` from 3 km below its glide start
 /// radius (in domain from 0.5 km below).

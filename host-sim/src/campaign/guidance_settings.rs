@@ -21,8 +21,8 @@ pub enum CampaignPredictor {
     Numerical,
     /// The closed forms when the prediction to be flown is in their validated domain, else the
     /// numerical predictor: `PredictorMode::Hybrid`, or `HybridSink` with onboard estimation and
-    /// `glide_sink` (`"hybrid"`, the default: docs/DISPERSIONS.md, "Numerical and hybrid
-    /// predictors in the campaigns").
+    /// `glide_sink` (`"hybrid"`, the default; the measured campaigns: docs/reference/campaigns.md,
+    /// "Results").
     #[default]
     Hybrid,
 }
@@ -41,10 +41,8 @@ impl CampaignPredictor {
         }
     }
 
-    /// The default `predictor_final_speed_offset_m_s` of this predictor \[m/s\]: each tuned on
-    /// the SRM campaign's seeds 1 and 2 (800 flights, `replan-estimation`; docs/DISPERSIONS.md):
-    /// closed forms 0 (their behaviour before the setting existed; 3 was best on the tuning
-    /// seeds but not on the reporting seed), numerical 5, hybrid 6.
+    /// The default `predictor_final_speed_offset_m_s` of this predictor \[m/s\]: closed forms 0,
+    /// numerical 5, hybrid 6 (how they were chosen: CHANGELOG.md, issue 12).
     #[must_use]
     pub fn default_final_speed_offset_m_s(self) -> f64 {
         match self {
@@ -65,8 +63,8 @@ pub struct CampaignGuidance {
     /// (default 3).
     pub corridor_width_final_deg: f64,
     /// Where the corridor reaches its final width, as a fraction of the speed span from the
-    /// interface speed `V_f` to the entry speed `V_e` \[-\], in `[0, 1)` (default 0.05, tuned on
-    /// seeds 1 and 2, docs/DISPERSIONS.md).
+    /// interface speed `V_f` to the entry speed `V_e` \[-\], in `[0, 1)` (default 0.05; how it
+    /// was chosen: CHANGELOG.md, issue 12).
     pub corridor_low_speed_fraction: f64,
     /// Corridor hysteresis \[deg\] (default 1).
     pub hysteresis_deg: f64,
@@ -97,8 +95,7 @@ pub struct CampaignGuidance {
     /// [`CampaignGuidance::final_speed_offset_m_s`]). The flights end at the interface
     /// *energy*, the predictors at a *speed*: a flight ending below the nominal end altitude (a
     /// larger bank than the stored profile's at the end) is still faster than the interface
-    /// speed when it ends (docs/DISPERSIONS.md, "Numerical and hybrid predictors in the
-    /// campaigns").
+    /// speed when it ends.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub predictor_final_speed_offset_m_s: Option<f64>,
     /// Lift parameter `lambda = C_L / C_L*` of the re-planner's predictor \[-\] (constant over
@@ -130,8 +127,7 @@ pub struct CampaignGuidance {
     #[serde(skip_serializing_if = "is_unit_scale")]
     pub replan_limit_scale: [f64; 2],
     /// Bound the re-planned bank magnitude by heat-flux and g-load limits at the state where
-    /// it is installed ([`guidance_core::replan::PathBound`], docs/DISPERSIONS.md "Path limits
-    /// as a bound on the bank"): the bound's limits as multiples of the vehicle's `[heat flux,
+    /// it is installed ([`guidance_core::replan::PathBound`], docs/reference/path-limits.md): the bound's limits as multiples of the vehicle's `[heat flux,
     /// g-load]` \[-\], each in `(0, 100]` (below 1: a margin; 100 leaves that limit out).
     /// Default (absent): no bound.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -153,13 +149,13 @@ pub struct CampaignGuidance {
     pub path_bound_predicted: bool,
     /// The re-planner's numerical predictions model the planet's rotation in their equations
     /// of motion, latitude and heading of the re-plan's start held, on the planet's own `mu`
-    /// (`ReplanningGuidance::with_numerical_rotation`; docs/HORUS-DISPERSIONS.md, "The vehicle's
-    /// aerodynamics along the flight"); default false: the effective planet of the
+    /// (`ReplanningGuidance::with_numerical_rotation`; docs/reference/campaigns.md, "The Earth's
+    /// rotation in the numerical predictor"); default false: the effective planet of the
     /// closed forms. Not with `predictor = "closed-form"` (no numerical predictions).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_rotation: bool,
     /// The last reversals from the predicted crossrange at the interface once the target is
-    /// closer than this \[km\] (`guidance_core::lateral::TerminalLateral`; docs/HORUS-DISPERSIONS.md,
+    /// closer than this \[km\] (`guidance_core::lateral::TerminalLateral`; CHANGELOG.md,
     /// "The crossrange of HORUS-2B"), in `(freeze_km, 2000]`. Default (absent): the corridor to
     /// the end.
     #[serde(skip_serializing_if = "Option::is_none")]

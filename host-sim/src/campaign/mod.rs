@@ -1,6 +1,6 @@
 //! Dispersion campaigns (Monte Carlo): N closed-loop flights of one scenario with dispersed
 //! entry state, atmosphere, aerodynamics and mass, flown with three guidance modes on the same
-//! cases, with statistics, a footprint and histograms (docs/DISPERSIONS.md).
+//! cases, with statistics, a footprint and histograms (docs/reference/campaigns.md).
 //!
 //! * [`settings`]: the `[dispersions]` TOML section, defaults, validation naming the field;
 //! * [`guidance_settings`]: its `[dispersions.guidance]` table (corridor, re-planner, onboard

@@ -151,7 +151,7 @@ fn energy_table(
 }
 
 /// The predictor's lift parameter `lambda = C_L / C_L*` of the stored profile (a value for
-/// `[dispersions.guidance] predictor_lift_parameter`, docs/DISPERSIONS.md): the mean over
+/// `[dispersions.guidance] predictor_lift_parameter`, docs/reference/campaigns.md): the mean over
 /// the nominal flight `nominal`, weighted by the range flown, of `C_L(alpha)` at
 /// [`PREDICTOR_POLAR_MACH`] and the flown angle of attack, over the model polar's `C_L* =
 /// sqrt(C_D0/K)` (the lift coefficient of maximum L/D). A vehicle without angle-of-attack

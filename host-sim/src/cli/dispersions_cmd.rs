@@ -1,4 +1,4 @@
-//! `host-sim dispersions`: a Monte Carlo campaign of one scenario (docs/DISPERSIONS.md).
+//! `host-sim dispersions`: a Monte Carlo campaign of one scenario (docs/reference/campaigns.md).
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;

@@ -611,7 +611,7 @@ where
     if let Some(r) = last {
         writeln!(
             out,
-            "{} on {}: generation {}, {} evaluations in {:.2} s this session, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members{}; wrote {}",
+            "{} on {}: generation {}, {} evaluations in {:.2} s in this run, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members{}; wrote {}",
             ctx.c.algorithm,
             ctx.c.problem.base,
             r.generation,

@@ -177,8 +177,7 @@ fn member_run(
         run_dir,
         &run.result,
         &summary,
-        limits.heat_flux_w_m2,
-        limits.g_load,
+        &crate::report::PlotLimits::of_vehicle(&limits),
     )
     .ok()?;
     Some(run.result)

@@ -22,7 +22,7 @@ pub struct SimulateArgs {
     /// Built-in scenario instead of a file: horus-2b-reference (default) or srm-glide.
     #[arg(long, value_name = "NAME", conflicts_with = "scenario")]
     pub builtin: Option<String>,
-    /// Print the scenario (default or loaded) as TOML and exit without simulating.
+    /// Print the scenario (default or loaded) as annotated TOML (each key's unit, range and default; file paths absolute) and exit without simulating.
     #[arg(long)]
     pub print_scenario: bool,
     /// Do not show a progress bar.

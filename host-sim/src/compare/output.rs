@@ -80,8 +80,7 @@ pub fn write_case_into(
             &sub.join(name),
             result,
             &summary,
-            vehicle.limits.heat_flux_w_m2,
-            vehicle.limits.g_load,
+            &report::PlotLimits::of_vehicle(&vehicle.limits),
         )
     };
     if let Ok(a) = &runs.analytic {

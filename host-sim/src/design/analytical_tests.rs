@@ -97,7 +97,7 @@ fn analytical_srm_known_node_table_gives_the_analytical_simulators_own_result() 
 /// 0.5 % in range angle. Not closer, by construction: the closed form refers `u = V^2 r_E / mu`
 /// and its thin-atmosphere range to its start radius `r_E`, which the single glide keeps at
 /// 100 km down to 40 km while each segment takes its own (measured: 0.38 % shorter range and
-/// 0.47 % lower peak heat flux with 6 joins, against the closed form's 2-3 % error to the numerical glide, docs/ANALYTIC.md).
+/// 0.47 % lower peak heat flux with 6 joins, against the closed form's 2-3 % error to the numerical glide, docs/validation/analytic-vs-numerical.md).
 #[test]
 fn uniform_bank_table_flies_the_single_glide() {
     let p = problem("srm-analytical");

@@ -20,8 +20,8 @@ pub struct Planet {
     pub j2: f64,
 }
 
-/// Earth's rotation rate [rad/s].
-pub const EARTH_ROTATION_RATE_RAD_S: f64 = 7.292_115e-5;
+/// Earth's rotation rate [rad/s] (the core's constant).
+pub use guidance_core::energy::EARTH_ROTATION_RATE_RAD_S;
 /// Earth's second zonal harmonic J2 [-].
 pub const EARTH_J2: f64 = 1.082_626_7e-3;
 

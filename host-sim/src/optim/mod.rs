@@ -16,7 +16,7 @@
 //!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
 //! * [`hypervolume`]: exact hypervolume, contributions, least contributor.
 //!
-//! See docs/OPTIMISERS.md for the semantics and the measured convergence.
+//! See docs/reference/optimisers.md for the semantics and the measured convergence.
 
 pub mod algorithm;
 pub mod algorithms;

@@ -15,7 +15,7 @@ use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
 pub(crate) use plot::ensure_font;
-pub use plot::{Series, line_plot_png, line_plot_svg, standard_plots};
+pub use plot::{PlotLimits, Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, clean_stale};
 pub use summary::{
     FinalState, LinkFaultsOut, PeakOut, PilOut, SummaryReport, ViolationsOut, summary_report,
@@ -90,18 +90,10 @@ pub fn write_run(
     dir: &Path,
     res: &SimResult,
     summary: &SummaryReport,
-    heat_limit_w_m2: f64,
-    g_limit: f64,
+    limits: &PlotLimits,
 ) -> Result<Vec<PathBuf>, ReportError> {
     let mut rd = RunDir::begin(dir)?;
-    write_run_files(
-        &mut rd,
-        Path::new(""),
-        res,
-        summary,
-        heat_limit_w_m2,
-        g_limit,
-    )?;
+    write_run_files(&mut rd, Path::new(""), res, summary, limits)?;
     rd.commit()
 }
 
@@ -115,8 +107,7 @@ pub fn write_run_files(
     sub: &Path,
     res: &SimResult,
     summary: &SummaryReport,
-    heat_limit_w_m2: f64,
-    g_limit: f64,
+    limits: &PlotLimits,
 ) -> Result<(), ReportError> {
     rd.write(
         sub.join("trajectory.csv"),
@@ -125,7 +116,7 @@ pub fn write_run_files(
     let mut text = serde_json::to_string_pretty(summary)?;
     text.push('\n');
     rd.write(sub.join("summary.json"), text.as_bytes())?;
-    for (name, bytes) in standard_plots(res, heat_limit_w_m2, g_limit)? {
+    for (name, bytes) in standard_plots(res, limits)? {
         rd.write(sub.join(name), &bytes)?;
     }
     Ok(())

@@ -16,6 +16,7 @@ use plotters::style::{FontStyle, register_font};
 
 use super::ReportError;
 use crate::sim::{Sample, SimResult};
+use crate::vehicle::VehicleLimits;
 
 type PlotError = Box<dyn std::error::Error + Send + Sync>;
 
@@ -78,7 +79,12 @@ fn fmt_tick(v: f64, step: f64) -> String {
     } else {
         (-step.log10().floor()) as usize
     };
-    format!("{v:.decimals$}")
+    let text = format!("{v:.decimals$}");
+    // A tick that rounds to zero prints without a sign.
+    match text.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => text,
+    }
 }
 
 /// Axis range covering `lo..hi`, rounded out to multiples of a nice step for about `n`
@@ -156,8 +162,24 @@ where
         .label_style(("sans-serif", 12))
         .axis_desc_style(("sans-serif", 13))
         .draw()?;
-    for (i, ser) in series.iter().enumerate() {
-        let colour = COLOURS[i % COLOURS.len()];
+    // A series labelled "-NAME" is the mirror of series NAME (a lower limit): its colour, no
+    // legend entry of its own; "NAME limit" takes the colour of series NAME; the other series
+    // take the colours in turn.
+    let mut legend_index = 0;
+    let mut colour_of: Vec<(String, RGBColor)> = Vec::new();
+    for ser in series {
+        let mirror_of = ser.label.strip_prefix('-');
+        let parent = mirror_of.or_else(|| ser.label.strip_suffix(" limit"));
+        let colour = match parent.and_then(|m| colour_of.iter().find(|(l, _)| l == m)) {
+            Some((_, c)) => *c,
+            None => {
+                let c = COLOURS[legend_index % COLOURS.len()];
+                legend_index += 1;
+                c
+            }
+        };
+        colour_of.push((ser.label.clone(), colour));
+        let in_legend = mirror_of.is_none();
         let style = ShapeStyle {
             color: colour.to_rgba(),
             filled: false,
@@ -170,18 +192,29 @@ where
             .filter(|p| p.0.is_finite() && p.1.is_finite())
             .collect();
         let label = ser.label.as_str();
-        if ser.dashed {
-            chart
-                .draw_series(DashedLineSeries::new(points, 6, 4, style))?
-                .label(label)
-                .legend(move |(x, y)| {
+        if let [point] = points.as_slice() {
+            // A one-point series is a marker (entry, end, target of a ground track).
+            let marker = style.filled();
+            let drawn = chart.draw_series(std::iter::once(Circle::new(*point, 5, marker)))?;
+            if in_legend {
+                drawn
+                    .label(label)
+                    .legend(move |(x, y)| Circle::new((x + 12, y), 5, marker));
+            }
+        } else if ser.dashed {
+            let drawn = chart.draw_series(DashedLineSeries::new(points, 6, 4, style))?;
+            if in_legend {
+                drawn.label(label).legend(move |(x, y)| {
                     DashedPathElement::new(vec![(x, y), (x + 24, y)], 6, 4, style)
                 });
+            }
         } else {
-            chart
-                .draw_series(LineSeries::new(points, style))?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+            let drawn = chart.draw_series(LineSeries::new(points, style))?;
+            if in_legend {
+                drawn
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+            }
         }
     }
     if !series.is_empty() {
@@ -271,14 +304,75 @@ fn svg_and_png(
     ])
 }
 
-/// The four standard plots of a run, each as SVG and PNG: `(file name, bytes)`.
+/// What the standard plots draw besides the trajectory: the limits (dashed) and the target.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlotLimits {
+    /// Heat-flux limit \[W/m^2\].
+    pub heat_flux_w_m2: f64,
+    /// g-load limit \[-\].
+    pub g_load: f64,
+    /// g-load-rate limit \[1/s\] (drawn at plus and minus).
+    pub g_load_rate_per_s: f64,
+    /// Angle-of-attack rate limit \[rad/s\] (the guidance's rate limiter).
+    pub alpha_rate_rad_s: f64,
+    /// Bank rate limit \[rad/s\].
+    pub sigma_rate_rad_s: f64,
+    /// Target point (geocentric latitude, longitude) \[rad\], if the run aims at one.
+    pub target: Option<(f64, f64)>,
+}
+
+impl PlotLimits {
+    /// The vehicle's limits, no target.
+    #[must_use]
+    pub fn of_vehicle(l: &VehicleLimits) -> Self {
+        Self {
+            heat_flux_w_m2: l.heat_flux_w_m2,
+            g_load: l.g_load,
+            g_load_rate_per_s: l.g_load_rate_per_s,
+            alpha_rate_rad_s: l.alpha_rate_rad_s,
+            sigma_rate_rad_s: l.sigma_rate_rad_s,
+            target: None,
+        }
+    }
+}
+
+/// Time derivative of `f` between consecutive samples: `(t_mid, df/dt)` \[s, unit/s\].
+fn difference_rate(smp: &[Sample], f: &dyn Fn(&Sample) -> f64) -> Vec<(f64, f64)> {
+    smp.windows(2)
+        .filter_map(|w| match w {
+            [a, b] if b.time_s - a.time_s > 1e-9 => Some((
+                0.5 * (a.time_s + b.time_s),
+                (f(b) - f(a)) / (b.time_s - a.time_s),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Longitude \[deg\] unwrapped along the track (no jump at +-180 deg).
+fn unwrapped_longitudes_deg(smp: &[Sample]) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::with_capacity(smp.len());
+    for s in smp {
+        let lon = s.state.longitude_rad.to_degrees();
+        let v = match out.last() {
+            Some(&prev) => prev + (lon - prev + 180.0).rem_euclid(360.0) - 180.0,
+            None => lon,
+        };
+        out.push(v);
+    }
+    out
+}
+
+/// The standard plots of a run, each as SVG and PNG: `(file name, bytes)`: altitude against
+/// speed; heat flux, g-load and g-load rate against time with their limits; the ground track
+/// (latitude against longitude, with the entry, the end and the target); the angle of attack
+/// and the bank angle; their rates against the guidance's rate limits.
 ///
 /// # Errors
 /// [`ReportError::Plot`] if a plot cannot be drawn.
 pub fn standard_plots(
     res: &SimResult,
-    heat_limit_w_m2: f64,
-    g_limit: f64,
+    limits: &PlotLimits,
 ) -> Result<Vec<(String, Vec<u8>)>, ReportError> {
     let smp = &res.samples;
     let t_end = smp.last().map_or(1.0, |s| s.time_s);
@@ -292,6 +386,34 @@ pub fn standard_plots(
         points: vec![(0.0, v), (t_end, v)],
         dashed: true,
     };
+    let lons = unwrapped_longitudes_deg(smp);
+    let track: Vec<(f64, f64)> = lons
+        .iter()
+        .zip(smp.iter())
+        .map(|(&lon, s)| (lon, s.state.latitude_rad.to_degrees()))
+        .collect();
+    let point = |label: &str, p: Option<&(f64, f64)>| Series {
+        label: label.into(),
+        points: p.copied().into_iter().collect(),
+        dashed: false,
+    };
+    let mut ground = vec![
+        Series {
+            label: "track".into(),
+            points: track.clone(),
+            dashed: false,
+        },
+        point("entry", track.first()),
+        point("end", track.last()),
+    ];
+    if let Some((lat, lon)) = limits.target {
+        // The target's longitude unwrapped next to the track's end (no jump of 360 deg).
+        let near = lons.last().copied().unwrap_or(0.0);
+        let lon = near + (lon.to_degrees() - near + 180.0).rem_euclid(360.0) - 180.0;
+        ground.push(point("target", Some(&(lon, lat.to_degrees()))));
+    }
+    let deg = f64::to_degrees;
+    let g_rate = limits.g_load_rate_per_s;
     let charts = [
         svg_and_png(
             "altitude_velocity",
@@ -311,7 +433,7 @@ pub fn standard_plots(
                 series("heat flux", &|s| {
                     (s.time_s, s.conditions.heat_flux_w_m2 / 1e3)
                 }),
-                limit("limit", heat_limit_w_m2 / 1e3),
+                limit("limit", limits.heat_flux_w_m2 / 1e3),
             ],
         )?,
         svg_and_png(
@@ -321,8 +443,30 @@ pub fn standard_plots(
             "g-load [-]",
             &[
                 series("g-load", &|s| (s.time_s, s.conditions.g_load)),
-                limit("limit", g_limit),
+                limit("limit", limits.g_load),
             ],
+        )?,
+        svg_and_png(
+            "g_load_rate",
+            "g-load rate (between output samples)",
+            "time [s]",
+            "g-load rate [1/s]",
+            &[
+                Series {
+                    label: "g-load rate".into(),
+                    points: difference_rate(smp, &|s| s.conditions.g_load),
+                    dashed: false,
+                },
+                limit("limit", g_rate),
+                limit("-limit", -g_rate),
+            ],
+        )?,
+        svg_and_png(
+            "ground_track",
+            "Ground track",
+            "longitude [deg]",
+            "geocentric latitude [deg]",
+            &ground,
         )?,
         svg_and_png(
             "attitude",
@@ -330,8 +474,30 @@ pub fn standard_plots(
             "time [s]",
             "angle [deg]",
             &[
-                series("alpha", &|s| (s.time_s, s.attitude.alpha_rad.to_degrees())),
-                series("sigma", &|s| (s.time_s, s.attitude.sigma_rad.to_degrees())),
+                series("alpha", &|s| (s.time_s, deg(s.attitude.alpha_rad))),
+                series("sigma", &|s| (s.time_s, deg(s.attitude.sigma_rad))),
+            ],
+        )?,
+        svg_and_png(
+            "attitude_rate",
+            "Attitude rates (between output samples) and the rate limits",
+            "time [s]",
+            "rate [deg/s]",
+            &[
+                Series {
+                    label: "alpha rate".into(),
+                    points: difference_rate(smp, &|s| deg(s.attitude.alpha_rad)),
+                    dashed: false,
+                },
+                Series {
+                    label: "sigma rate".into(),
+                    points: difference_rate(smp, &|s| deg(s.attitude.sigma_rad)),
+                    dashed: false,
+                },
+                limit("alpha rate limit", deg(limits.alpha_rate_rad_s)),
+                limit("-alpha rate limit", -deg(limits.alpha_rate_rad_s)),
+                limit("sigma rate limit", deg(limits.sigma_rate_rad_s)),
+                limit("-sigma rate limit", -deg(limits.sigma_rate_rad_s)),
             ],
         )?,
     ];
@@ -403,5 +569,60 @@ mod tests {
         }
         // Nice axis range: 0..200 s in steps of 20 s, 0..500 kW/m^2 in steps of 100.
         assert!(s.contains(">\n200\n<") && s.contains(">\n500\n<"));
+    }
+
+    /// The run's plots: the limits drawn (both signs of the rates), the ground track with its
+    /// entry, end and target markers.
+    #[test]
+    fn standard_plots_draw_limits_and_the_ground_track() {
+        let sc = crate::scenario::Scenario::srm_glide();
+        let flight = crate::scenario::fly(&sc, "srm", &mut |_| {}).unwrap();
+        let mut limits = PlotLimits::of_vehicle(&flight.vehicle.limits);
+        limits.target = Some((0.01, 1.0));
+        let files = standard_plots(&flight.result, &limits).unwrap();
+        let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+        for stem in [
+            "altitude_velocity",
+            "heat_flux",
+            "g_load",
+            "g_load_rate",
+            "ground_track",
+            "attitude",
+            "attitude_rate",
+        ] {
+            assert!(names.contains(&format!("{stem}.svg").as_str()), "{names:?}");
+            assert!(names.contains(&format!("{stem}.png").as_str()), "{names:?}");
+        }
+        let svg = |stem: &str| {
+            let (_, bytes) = files
+                .iter()
+                .find(|(n, _)| n == &format!("{stem}.svg"))
+                .unwrap();
+            String::from_utf8(bytes.clone()).unwrap()
+        };
+        for stem in ["heat_flux", "g_load", "g_load_rate"] {
+            assert!(svg(stem).contains(">\nlimit\n<"), "{stem} has its limit");
+        }
+        let track = svg("ground_track");
+        for label in ["track", "entry", "end", "target"] {
+            assert!(
+                track.contains(&format!(">\n{label}\n<")),
+                "ground track: {label}"
+            );
+        }
+        let rates = svg("attitude_rate");
+        assert!(
+            rates.contains(">\nalpha rate limit\n<") && rates.contains(">\nsigma rate limit\n<")
+        );
+        assert!(
+            !rates.contains("-sigma rate limit"),
+            "mirrored limits have no legend entry"
+        );
+        // The rates between samples respect the guidance's rate limiter.
+        let rate = difference_rate(&flight.result.samples, &|s| s.attitude.sigma_rad);
+        assert!(
+            rate.iter()
+                .all(|(_, r)| r.abs() <= sc.guidance.sigma_rate_rad_s * (1.0 + 1e-9))
+        );
     }
 }

@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use guidance_core::replan::RangeTarget;
+
 use super::{Scenario, ScenarioError, build_guidance, build_replanning_guidance};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
@@ -45,6 +47,18 @@ impl std::fmt::Debug for Flight {
 ///
 /// # Errors
 /// [`ScenarioError`] for vehicle, guidance or simulation failures.
+///
+/// ```
+/// use host_sim::scenario::{Scenario, fly};
+/// use host_sim::sim::TerminationReason;
+/// // The HORUS-2B reference mission (full environment), ended at 25 km altitude.
+/// let flight = fly(&Scenario::default(), "(built-in)", &mut |_| {})?;
+/// let s = &flight.result.summary;
+/// assert_eq!(s.termination, TerminationReason::Altitude);
+/// assert!(s.range_angle_rad.to_degrees() > 10.0);
+/// assert!(s.peak_heat_flux_w_m2.value > 0.0);
+/// # Ok::<(), host_sim::scenario::ScenarioError>(())
+/// ```
 pub fn fly(
     sc: &Scenario,
     file: &str,
@@ -109,13 +123,18 @@ pub fn write_flight(
         env.planet.radius_m,
     );
     summary.pil = pil;
-    let files = report::write_run(
-        out_dir,
-        &result,
-        &summary,
-        veh.limits.heat_flux_w_m2,
-        veh.limits.g_load,
-    )?;
+    // The rate limits drawn are the guidance's (what its rate limiter flies), the target the
+    // re-planner's point if it aims at one.
+    let limits = report::PlotLimits {
+        alpha_rate_rad_s: sc.guidance.alpha_rate_rad_s,
+        sigma_rate_rad_s: sc.guidance.sigma_rate_rad_s,
+        target: sc.replanning.as_ref().and_then(|r| match r.target {
+            RangeTarget::Point(p) => Some((p.latitude_rad, p.longitude_rad)),
+            RangeTarget::FlownRangeAngle { .. } => None,
+        }),
+        ..report::PlotLimits::of_vehicle(&veh.limits)
+    };
+    let files = report::write_run(out_dir, &result, &summary, &limits)?;
     Ok(RunOutput {
         result,
         summary,

@@ -113,6 +113,7 @@
 //! time limit at the largest step; an event is located well within one guidance period; a
 //! run records at most 10 million samples.
 
+mod annotate;
 mod builtin;
 mod error;
 pub mod file;

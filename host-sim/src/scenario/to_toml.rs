@@ -17,9 +17,27 @@ impl Round10 for f64 {
     }
 }
 
-/// The scenario as TOML text (parses back to the same scenario, angles to 1e-10 deg).
+/// The scenario as annotated TOML text: every key with a comment giving its meaning, unit,
+/// range and default, under a header naming the vehicle keys (the template that `host-sim
+/// simulate --print-scenario` prints). It parses back to the same scenario (angles to
+/// 1e-10 deg) wherever it is saved: file paths (`vehicle_file`, the atmosphere table) are
+/// printed absolute.
 #[must_use]
 pub fn scenario_to_toml(sc: &Scenario) -> String {
+    super::annotate::annotate(&plain_toml(sc), &plain_toml(&Scenario::default()))
+}
+
+/// `path` absolute (against the current directory, where the scenario's relative paths were
+/// resolved), as printed; the path itself if the current directory is unknown.
+fn absolute(path: &std::path::Path) -> String {
+    std::path::absolute(path)
+        .unwrap_or_else(|_| path.to_path_buf())
+        .display()
+        .to_string()
+}
+
+/// The scenario as plain TOML text, without comments.
+fn plain_toml(sc: &Scenario) -> String {
     use std::fmt::Write as _;
     let mut s = String::new();
     let r = sc.environment.planet.radius_m;
@@ -29,7 +47,7 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
             let _ = writeln!(s, "vehicle = {n:?}");
         }
         VehicleSpec::File(p) => {
-            let _ = writeln!(s, "vehicle_file = {:?}", p.display().to_string());
+            let _ = writeln!(s, "vehicle_file = {:?}", absolute(p));
         }
     }
     let e = &sc.environment;
@@ -60,7 +78,7 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
             let _ = writeln!(
                 s,
                 "\n[environment.table]\nfile = {:?}\ngas_constant_j_kg_k = {:?}\nheat_capacity_ratio = {:?}",
-                t.file.display().to_string(),
+                absolute(&t.file),
                 t.model.gas_constant_j_kg_k(),
                 t.model.heat_capacity_ratio()
             );
@@ -201,4 +219,48 @@ fn replanning(s: &mut String, rp: &ReplanningSpec, r: f64) {
         rp.apply_out_of_reach,
         rp.polar_mach
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::parse_scenario;
+
+    /// Every key the printout can hold has a note (a new key needs one in `annotate.rs`).
+    #[test]
+    fn every_printed_key_is_annotated() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../examples/srm-glide-replanning.toml"
+        ))
+        .unwrap();
+        let replanning = parse_scenario(&text, "x.toml", std::path::Path::new(".")).unwrap();
+        let exponential = parse_scenario(
+            "[environment]\natmosphere = \"exponential\"\n[guidance]\nindependent = \"energy\"\ninterpolation = \"hermite\"\ntension = 0.5\nnodes = [[1.0, 40.0, 0.0], [0.5, 30.0, 50.0], [0.0, 10.0, 0.0]]\n[termination]\nmach = 3.0\nnormalized_energy = 0.01\n[replanning]\ntarget_latitude_deg = 1.0\ntarget_longitude_deg = 2.0\nfinal_speed_m_s = 2000.0\nheat_flux_limit_kw_m2 = 400.0\ng_load_limit = 2.5\n",
+            "x.toml",
+            std::path::Path::new("."),
+        )
+        .unwrap();
+        let scenarios = [
+            Scenario::default(),
+            Scenario::srm_glide(),
+            replanning,
+            exponential,
+        ];
+        for sc in &scenarios {
+            let missing = super::super::annotate::keys_without_notes(&plain_toml(sc));
+            assert!(
+                missing.is_empty(),
+                "{}: keys without a note: {missing:?}",
+                sc.name
+            );
+            let annotated = scenario_to_toml(sc);
+            assert!(
+                annotated.contains("vehicle_file"),
+                "the header names vehicle_file"
+            );
+            let back = parse_scenario(&annotated, "x.toml", std::path::Path::new(".")).unwrap();
+            assert_eq!(plain_toml(&back), plain_toml(sc));
+        }
+    }
 }

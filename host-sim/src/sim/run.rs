@@ -148,6 +148,24 @@ fn nav_of(
 ///
 /// # Errors
 /// [`SimError`] for bad settings, integrator failure or a guidance error.
+///
+/// The closed loop by hand: the scenario's vehicle, environment and guidance, flown by
+/// `guidance-core`'s `Guidance` as an [`AttitudeSource`] (what [`crate::scenario::fly`] does):
+///
+/// ```
+/// use host_sim::dynamics::Dynamics;
+/// use host_sim::scenario::{Scenario, build_guidance};
+/// use host_sim::sim::{CoreGuidance, simulate};
+/// let sc = Scenario::srm_glide();
+/// let vehicle = sc.load_vehicle()?;
+/// let env = sc.environment.build();
+/// let guidance = CoreGuidance::new(build_guidance(&sc, &env.planet, "(built-in)")?);
+/// let dynamics = Dynamics::from_environment(&env, &vehicle);
+/// let (result, _guidance) = simulate(dynamics, guidance, &sc.sim_config(), &mut |_| {})?;
+/// let last = result.samples.last().expect("samples");
+/// assert!(result.summary.flight_time_s > 100.0 && last.state.speed_m_s < 7658.34);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn simulate<A: AttitudeSource>(
     dynm: Dynamics<'_>,
     source: A,

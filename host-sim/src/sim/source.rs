@@ -195,7 +195,7 @@ pub enum TickError {
 /// and the onboard aerodynamic estimate (with a whole solve per tick,
 /// `ReplanningConfig::steps_per_tick = 0`, these are the solve's inputs: the predictor's state
 /// and the scales applied to its model). Kept so a run's predictions can be recomputed and
-/// checked (docs/VINH.md, the re-planning domain).
+/// checked (docs/validation/vinh-numerical.md, the re-planning domain).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReportContext {
     /// Navigation state of the tick \[SI, rad\].

@@ -254,7 +254,7 @@ fn validate_host_sim_aero_schedule_range_from_mid_flight() {
 /// misses that (measured 2.3-5.8 % short). Printed, not asserted: the effective planet of
 /// `PredictorModel::effective_planet` (the solver's default) is closer on this reference
 /// (measured -0.45 % to +0.43 %): holding the heading of a flight that turns without reversal
-/// over-states the Coriolis lift. docs/DISPERSIONS.md, "The vehicle's aerodynamics along the
+/// over-states the Coriolis lift. docs/reference/campaigns.md, "The vehicle's aerodynamics along the
 /// flight".
 #[test]
 fn validate_host_sim_rotating_range_from_mid_flight() {

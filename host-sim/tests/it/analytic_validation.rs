@@ -7,7 +7,7 @@
 //! central gravity, the same exponential atmosphere as the closed forms), flying the same polar
 //! at constant lift and bank. Bounds: the thesis' fig. 8.5 claim (glide final range angle
 //! <= 3 % in that environment) where it makes one, otherwise the closed forms' accuracy envelope
-//! measured by guidance-core against an independent exact integration (docs/VINH.md, bounds of
+//! measured by guidance-core against an independent exact integration (docs/validation/vinh-numerical.md, bounds of
 //! `validate_vinh_skip_srm_against_exact_integration`): an error in this crate's conversion
 //! (atmosphere reference, lift/bank mapping, units) would break them.
 //!
@@ -93,7 +93,7 @@ fn rel(a: f64, n: f64) -> f64 {
 /// flux and range angle to the exit against the simplified numerical run. Bounds: guidance-core's
 /// closed-form envelope (exit speed 0.6 %, exit angle 0.4 deg, deepest altitude 0.3 km, peak
 /// heat flux 2 %); range angle 5 % (that envelope is 12 %; measured here at most 3.9 % over the
-/// 5 x 5 grid of docs/ANALYTIC.md, 2.7 % at these points).
+/// 5 x 5 grid of docs/validation/analytic-vs-numerical.md, 2.7 % at these points).
 #[test]
 fn validate_vinh_vs_numerical_srm_skip() {
     for (v_e, clv) in [(7500.0, 1.0), (8000.0, 1.0), (9000.0, 0.6)] {
@@ -150,7 +150,7 @@ fn altitude_at_range(res: &SimResult, theta: f64) -> Option<f64> {
 /// the imposed entry speed): final range angle within the thesis' 3 % (sec. 8.1.4); peak heat
 /// flux within guidance-core's 2 %; the altitude profile against range angle within 0.5 km of
 /// the numerical one (which oscillates about it) and the final altitude within 0.5 km.
-/// Measured: range <= 1.1 %, heat <= 0.4 %, profile <= 0.2 km (docs/ANALYTIC.md).
+/// Measured: range <= 1.1 %, heat <= 0.4 %, profile <= 0.2 km (docs/validation/analytic-vs-numerical.md).
 #[test]
 fn validate_vinh_vs_numerical_srm_glide_fig_8_5_region() {
     for (h_km, clv) in [(70.0, 0.6), (70.0, 1.2786), (90.0, 0.6), (90.0, 1.2786)] {
@@ -470,7 +470,7 @@ fn print_grid(grid: &CompareGrid) {
 
 /// Thesis fig. 8.5: SRM glide, entry altitude 70-110 km x vertical C_L 0.4-1.2786, final range
 /// angle error against the simplified numerical model (thesis: <= 3 %), plus the full
-/// environment. Prints the grid (numbers in docs/ANALYTIC.md). About 6 s in debug.
+/// environment. Prints the grid (numbers in docs/validation/analytic-vs-numerical.md). About 6 s in debug.
 /// `END=altitude` ends the glides at 40 km instead of half the entry speed; `OUT=dir` writes
 /// the CSV and heat maps there.
 #[test]
@@ -503,7 +503,7 @@ fn fig_8_5_srm_glide_error_map() {
 }
 
 /// SRM skip from 100 km at -3 deg: entry speed 7000-10000 m/s x vertical C_L 0.4-1.2786.
-/// Prints the grid (numbers in docs/ANALYTIC.md).
+/// Prints the grid (numbers in docs/validation/analytic-vs-numerical.md).
 #[test]
 #[ignore = "5 x 5 grid in two environments; run with --ignored --nocapture"]
 fn srm_skip_error_map() {
@@ -528,7 +528,7 @@ fn srm_skip_error_map() {
 
 /// HORUS-2B (Mach-20 polar, C_L* = 0.206): skip from 122 km at -2 deg over entry speeds, and
 /// glide over entry altitudes, lift coefficient 0.5, 1 and 1.5 C_L* (lift up). Prints the grids
-/// (numbers in docs/ANALYTIC.md).
+/// (numbers in docs/validation/analytic-vs-numerical.md).
 #[test]
 #[ignore = "3 x 3 grids in two environments; run with --ignored --nocapture"]
 fn horus_error_maps() {

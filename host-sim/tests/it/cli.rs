@@ -97,6 +97,9 @@ fn simulate_tiny_scenario_writes_csv_json_svg() {
         "heat_flux.svg",
         "g_load.svg",
         "attitude.svg",
+        "g_load_rate.svg",
+        "ground_track.svg",
+        "attitude_rate.svg",
     ] {
         let text = std::fs::read_to_string(out.join(svg)).unwrap();
         assert!(

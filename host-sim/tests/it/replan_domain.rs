@@ -1,4 +1,4 @@
-//! The domain where re-planning is used (issue 10 items 5-6, docs/VINH.md "The re-planning
+//! The domain where re-planning is used (issue 10 items 5-6, docs/validation/vinh-numerical.md "The re-planning
 //! domain"): every re-plan the re-planner applies in host-sim's closed-loop scenarios and
 //! dispersion campaigns, recomputed from the state and model of its tick, and the range its
 //! predictor gave at the solved vertical lift fraction compared with numerical integration of
@@ -501,7 +501,7 @@ fn dump(points: &[Point]) {
     }
 }
 
-/// Measurement for docs/VINH.md ("The re-planning domain"):
+/// Measurement for docs/validation/vinh-numerical.md ("The re-planning domain"):
 /// `cargo test -p host-sim --test it replan_domain::print_replanning_domain -- --ignored --nocapture`
 #[test]
 #[ignore]
@@ -577,7 +577,7 @@ const IN_DOMAIN_BOUND_PCT: f64 = 3.0;
 /// 10 % thinner atmosphere than the predictor's; full environment heading west with a -0.2 deg
 /// entry, which holds states below their glide start radius): every prediction classed
 /// `InDomain` is within 3 % of the integrated range, and `InDomain` covers at least two thirds
-/// of the glide-mode re-plans with more than 500 km to go. Measured (docs/VINH.md): in-domain maximum 2.49 % over the whole
+/// of the glide-mode re-plans with more than 500 km to go. Measured (docs/validation/vinh-numerical.md): in-domain maximum 2.49 % over the whole
 /// domain (6 333 re-plans, scenarios and 20 + 20 campaign flights); 5.8 % before states more
 /// than 1 km below their glide start radius were classed `Extrapolated(GlideBelowEquilibrium)`.
 #[test]
@@ -643,7 +643,7 @@ fn validate_integration_replanning_domain_in_domain_is_within_3_percent() {
 /// would have flown the numerical prediction). Two `replan_loop` set-ups (SRM simplified with a
 /// 10 % thinner atmosphere than the predictor's; full environment heading west, -0.2 deg) and
 /// two dispersed flights of each built-in campaign in both re-planning modes. The whole domain
-/// is measured by [`print_replanning_domain`] (docs/VINH.md).
+/// is measured by [`print_replanning_domain`] (docs/validation/vinh-numerical.md).
 #[test]
 fn validate_integration_replanning_domain_hybrid_is_within_3_percent() {
     let total = rl::fly_stored(&rl::setup(1.0, 0.0))

@@ -235,7 +235,7 @@ pub(crate) const EVERY: u16 = 5;
 /// flight with the stored profile, at the final speed. With an entry dispersion (flight-path
 /// angle 0.2 deg steeper; atmosphere 10 % denser than the predictor's model) the stored profile
 /// misses it by tens to hundreds of km; re-planning every 5 ticks (10 s) must cut the miss to
-/// less than a quarter. Measured (docs/VINH.md): -423 km -> 1.5 km and -28 km -> 2.8 km.
+/// less than a quarter. Measured (docs/validation/vinh-numerical.md): -423 km -> 1.5 km and -28 km -> 2.8 km.
 #[test]
 fn replanning_cuts_the_range_error_of_entry_dispersions() {
     let nominal = fly_stored(&setup(1.0, 0.0));
@@ -273,7 +273,7 @@ fn replanning_cuts_the_range_error_of_entry_dispersions() {
     }
 }
 
-/// Measurement for docs/VINH.md: simplified environment, all dispersions.
+/// Measurement for docs/validation/vinh-numerical.md: simplified environment, all dispersions.
 /// `cargo test -p host-sim --test it replan_loop::print_simplified_environment -- --ignored --nocapture`
 #[test]
 #[ignore]
@@ -451,7 +451,7 @@ pub(crate) fn full_environment_runs_with(
 
 /// SIL, full environment, heading north from the equator: entry 0.2 deg steeper; re-planning
 /// must cut the flown-range miss of the stored profile to less than a quarter (measured:
-/// -430 km -> 12 km, docs/VINH.md).
+/// -430 km -> 12 km, docs/validation/vinh-numerical.md).
 #[test]
 fn replanning_cuts_the_range_error_in_the_full_environment() {
     let out = full_environment(0.0, &[-0.2]);
@@ -468,7 +468,7 @@ fn replanning_cuts_the_range_error_in_the_full_environment() {
     );
 }
 
-/// Measurement for docs/VINH.md: full environment, headings 0/90/270 deg, flight-path-angle
+/// Measurement for docs/validation/vinh-numerical.md: full environment, headings 0/90/270 deg, flight-path-angle
 /// dispersions -0.2 and +0.1 deg.
 /// `cargo test -p host-sim --test it replan_loop::print_full_environment -- --ignored --nocapture`
 #[test]
@@ -495,7 +495,7 @@ fn print_full_environment() {
 /// Measurement: a *point* target (the nominal end point) with the same dispersions in the
 /// simplified environment. The SRM (L/D 2.27, bank only, no reversals) turns by tens of degrees,
 /// so the great-circle range to go is not what the planar predictor models; printed for
-/// docs/VINH.md, not asserted.
+/// docs/validation/vinh-numerical.md, not asserted.
 /// `cargo test -p host-sim --test it replan_loop::print_point_target -- --ignored --nocapture`
 #[test]
 #[ignore]

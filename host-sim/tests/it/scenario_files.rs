@@ -419,7 +419,7 @@ fn replanning_predictor_names_parse_and_round_trip() {
 }
 
 /// Without a `predictor` line `[replanning]` flies the hybrid predictor (the closed forms where
-/// the prediction is `InDomain`, else the numerical one: docs/VINH.md, issue 10 item 5); `auto`
+/// the prediction is `InDomain`, else the numerical one: docs/validation/vinh-numerical.md, issue 10 item 5); `auto`
 /// stays selectable.
 #[test]
 fn replanning_predictor_defaults_to_hybrid() {

@@ -107,7 +107,7 @@ pub fn planet(rotating: bool) -> Planet {
 /// nodes (clamped outside), zero-order hold at a fixed period, the change per tick limited
 /// to `rate * period`, and between ticks a ramp from the attitude at the tick towards the
 /// held command at the rate limits. It mirrors the contract of `guidance-core`'s `Guidance`
-/// (docs/guidance-api.md) for linear interpolation and serves as an independent
+/// (docs/reference/guidance-api.md) for linear interpolation and serves as an independent
 /// cross-check of it.
 #[derive(Clone, Debug)]
 pub struct HostSchedule {

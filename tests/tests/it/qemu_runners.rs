@@ -7,10 +7,12 @@ use std::path::Path;
 use onboard_spec::machines::{MACHINES, by_target, runner};
 
 fn cargo_config() -> toml::Table {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join(".cargo")
-        .join("config.toml");
+    config_in(&Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
+}
+
+/// `DIR/.cargo/config.toml`, parsed.
+fn config_in(dir: &Path) -> toml::Table {
+    let path = dir.join(".cargo").join("config.toml");
     let text = std::fs::read_to_string(&path).expect(".cargo/config.toml is readable");
     text.parse().expect(".cargo/config.toml is valid TOML")
 }
@@ -49,6 +51,20 @@ fn cargo_runners_match_the_qemu_machine_table() {
             );
         }
     }
+}
+
+/// The board example (a crate of its own, `examples/board-firmware/`) runs on the Cortex-M4F
+/// machine of the table too.
+#[test]
+fn board_example_runner_matches_the_qemu_machine_table() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join("examples")
+        .join("board-firmware");
+    let config = config_in(&dir);
+    let m = onboard_spec::machines::CORTEX_M4F;
+    let want: Vec<String> = runner(&m).iter().map(|w| (*w).to_owned()).collect();
+    assert_eq!(runner_words(&config, m.target), Some(want));
 }
 
 /// The check fails on a runner that disagrees (so the test above can fail).

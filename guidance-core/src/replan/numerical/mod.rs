@@ -49,7 +49,7 @@
 //! 0.5 rad per step (about 12 steps per period). The 20 s cap bounds the step on a long glide
 //! near circular speed, where all three are loose. Measured accuracy against the same equations
 //! integrated with 1/16 of this step: `validate_integration_numerical_predictor_*`
-//! (docs/VINH.md, "Numerical predictor").
+//! (docs/reference/vinh.md, "Numerical predictor").
 //!
 //! The last step, which takes the speed below the final speed, is redone from its start with
 //! the step interpolated linearly in speed, and the small remainder is closed with the rates at
@@ -107,7 +107,7 @@ pub const SPEED_STEP_FRACTION: f64 = 0.05;
 pub const PHUGOID_STEP_RAD: f64 = 0.5;
 /// Integration steps per [`super::ReplanSolver::step`] of a numerical prediction: a converged
 /// SRM glide re-plan then stays within the per-tick instruction budget of the Cortex-M4F with
-/// one solver step per tick (docs/PERFORMANCE.md).
+/// one solver step per tick (docs/reference/performance.md).
 pub const STEPS_PER_SOLVER_STEP: u16 = 64;
 /// Drag acceleration below which an ascending state above escape energy is taken as escaping
 /// \[m/s^2\].

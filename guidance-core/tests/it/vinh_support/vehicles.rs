@@ -5,7 +5,7 @@ pub const MU: f64 = 3.986_004_418e14;
 /// Earth radius [m] (thesis, spherical).
 pub const R_EARTH: f64 = 6_378_137.0;
 /// Exponential atmosphere: sea-level density [kg/m^3] and scale height [m]. The thesis does not
-/// state H_s; 7200 m is the value used throughout the validation (see docs/VINH.md).
+/// state H_s; 7200 m is the value used throughout the validation (see docs/validation/vinh-numerical.md).
 pub const RHO0: f64 = 1.225;
 pub const H_S: f64 = 7200.0;
 

@@ -12,7 +12,7 @@
 //!   differs from the reference point's are [`HypervolumeError`]s naming the point and
 //!   coordinate. Nothing panics and no NaN is returned.
 //!
-//! Algorithms (see docs/HYPERVOLUME.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
+//! Algorithms (see docs/reference/hypervolume.md): 1-D and 2-D by sorting (O(n log n)); 3-D by the HV3D
 //! dimension sweep with a bit-set staircase (O(n log n)); 4-D by sweeping the fourth
 //! coordinate and adding each point's exclusive 3-D contribution, computed locally (O(n^2));
 //! 5-D and more by WFG slicing the last objective down to the 4-D case. Exclusive
@@ -38,6 +38,15 @@ pub use error::HypervolumeError;
 /// # Errors
 /// [`HypervolumeError`] for a zero-dimensional or non-finite reference point, a point with
 /// the wrong number of coordinates or a non-finite coordinate, or a volume overflowing `f64`.
+///
+/// ```
+/// use host_sim::optim::hypervolume::hypervolume;
+/// // Two points in 2-D w.r.t. (4, 4): the union of [1, 4] x [3, 4] (area 3) and
+/// // [2, 4] x [1, 4] (area 6), which overlap in [2, 4] x [3, 4] (area 2).
+/// let hv = hypervolume(&[[1.0, 3.0], [2.0, 1.0]], &[4.0, 4.0])?;
+/// assert_eq!(hv, 3.0 + 6.0 - 2.0);
+/// # Ok::<(), host_sim::optim::hypervolume::HypervolumeError>(())
+/// ```
 pub fn hypervolume<P: AsRef<[f64]>>(
     points: &[P],
     reference: &[f64],

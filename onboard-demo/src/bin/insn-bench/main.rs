@@ -120,7 +120,7 @@ mod firmware {
         ok
     }
 
-    /// SRM capsule (thesis table 2.3) with the drag polar back-derived in docs/VINH.md.
+    /// SRM capsule (thesis table 2.3) with the drag polar back-derived in docs/reference/vinh.md.
     pub(crate) fn srm() -> VehicleParams<f32> {
         VehicleParams {
             mass_kg: 38.77,

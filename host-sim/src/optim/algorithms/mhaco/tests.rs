@@ -1,6 +1,6 @@
 //! MHACO tests: bad settings, determinism (tell order, threads), checkpoint/resume, non-finite
 //! objectives, `evalstop`, both constraint modes, and convergence with fixed seeds (thresholds
-//! from measured runs, docs/OPTIMISERS.md; the heavy runs are `#[ignore]`d).
+//! from measured runs, docs/reference/optimisers.md; the heavy runs are `#[ignore]`d).
 
 use std::sync::Arc;
 
@@ -24,7 +24,7 @@ fn mhaco(population: usize, ker: usize, seed: u64) -> Mhaco {
     )
 }
 
-/// The settings used for the convergence figures (docs/OPTIMISERS.md): pagmo's defaults with
+/// The settings used for the convergence figures (docs/reference/optimisers.md): pagmo's defaults with
 /// a longer standard-deviation period, n_gen_mark 15.
 pub(crate) fn recommended(population: usize, ker: usize, seed: u64) -> Mhaco {
     Mhaco::new(
@@ -212,7 +212,7 @@ fn mhaco_checkpoint_and_resume_give_the_bit_identical_run() {
 }
 
 /// ZDT1 whose objectives turn NaN or infinite in part of the space (issue 9 reports pygmo's
-/// `maco` crashing on such values; see docs/OPTIMISERS.md for what a check found).
+/// `maco` crashing on such values; see docs/reference/optimisers.md for what a check found).
 struct Holes(Zdt);
 impl Problem for Holes {
     type Decision = Vec<f64>;
@@ -347,7 +347,7 @@ fn mhaco_constraints_as_objectives_on_constr_trail_feasibility_first() {
     assert!(r < constr_ratio(ConstraintHandling::FeasibilityFirst));
 }
 
-// Thresholds: the measured ratio of these seeds (docs/OPTIMISERS.md) less about 2 %.
+// Thresholds: the measured ratio of these seeds (docs/reference/optimisers.md) less about 2 %.
 const MHACO_CONSTR_FEASIBILITY_FIRST: f64 = 0.93;
 const MHACO_CONSTR_AS_OBJECTIVES: f64 = 0.17;
 const MHACO_ZDT1: f64 = 0.96;

@@ -1,7 +1,7 @@
 //! SCEA tests: bad settings, determinism (tell order, threads), checkpoint/resume, free and
 //! dictated chromosome lengths, convergence with fixed seeds on the variable-length problems
 //! and on ZDT1/DTLZ2 as fixed-length chromosomes (thresholds from measured runs,
-//! docs/OPTIMISERS.md; heavy runs `#[ignore]`d).
+//! docs/reference/optimisers.md; heavy runs `#[ignore]`d).
 
 use std::sync::Arc;
 
@@ -221,7 +221,7 @@ fn scea_finds_every_length_of_the_free_count_problem() {
 }
 
 // Thresholds of the ratios: the smallest ratio measured over seeds 1..=8 with these settings
-// (`scea_threshold_survey`, docs/OPTIMISERS.md) less about 2 %, rounded down; the tests run
+// (`scea_threshold_survey`, docs/reference/optimisers.md) less about 2 %, rounded down; the tests run
 // seed 1. Free-count problem (seed 3's measured lengths): 10-11 nodes (three legs) are not
 // reached in 100 generations.
 const SCEA_NODES_LENGTHS: [usize; 2] = [9, 8];

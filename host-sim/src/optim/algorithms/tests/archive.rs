@@ -2,7 +2,7 @@
 //! changes the population, it holds exactly the non-dominated set of everything evaluated
 //! (below capacity), it is bounded, it checkpoints and is independent of the thread count and
 //! tell order, and it is what observers and `result` report. Convergence thresholds come from
-//! `archive_threshold_survey` (docs/OPTIMISERS.md).
+//! `archive_threshold_survey` (docs/reference/optimisers.md).
 
 use super::*;
 use crate::optim::archive::ParetoArchive;
@@ -222,7 +222,7 @@ fn archive_ratio<A: Algorithm<TestProblem>>(alg: &A, p: &TestProblem) -> f64 {
 }
 
 // Thresholds: the smallest ratio over seeds 1..=8 measured by `archive_threshold_survey`
-// (docs/OPTIMISERS.md) less about 1 %.
+// (docs/reference/optimisers.md) less about 1 %.
 const MOEAD_ARCHIVE_ZDT1: f64 = 0.92;
 const NSGA2_ARCHIVE_ZDT1: f64 = 0.985;
 

@@ -1,5 +1,5 @@
 //! Convergence with fixed seeds (hypervolume ratio to the true front after a fixed budget) and
-//! constraint handling; thresholds from measured runs (docs/OPTIMISERS.md).
+//! constraint handling; thresholds from measured runs (docs/reference/optimisers.md).
 
 use super::*;
 
@@ -22,7 +22,7 @@ fn constrained_runs_end_feasible_and_close_to_the_constr_front() {
 }
 
 // Thresholds: the smallest ratio measured over seeds 1..=8 (`threshold_survey`,
-// docs/OPTIMISERS.md) less about 1 %.
+// docs/reference/optimisers.md) less about 1 %.
 const MOEAD_CONSTR: f64 = 0.93;
 const NSGA2_CONSTR: f64 = 0.86;
 const MOEAD_ZDT1: f64 = 0.92;
@@ -32,7 +32,7 @@ const NSGA2_ZDT3: f64 = 0.985;
 const NSGA2_DTLZ2: f64 = 0.845;
 
 // ---------------------------------------------------------------------------------------
-// Convergence (fixed seeds; thresholds from measured runs, see docs/OPTIMISERS.md)
+// Convergence (fixed seeds; thresholds from measured runs, see docs/reference/optimisers.md)
 
 #[test]
 fn moead_converges_on_zdt1_and_dtlz2() {

@@ -1,6 +1,6 @@
 //! Algorithm tests: bad settings, determinism across tell order and thread count,
 //! checkpoint/resume, constraint handling, and fast convergence checks with fixed seeds.
-//! Thresholds come from measured runs (see docs/OPTIMISERS.md); heavier runs are `#[ignore]`.
+//! Thresholds come from measured runs (see docs/reference/optimisers.md); heavier runs are `#[ignore]`.
 
 use std::sync::Arc;
 

@@ -2,7 +2,7 @@
 //! `resource_allocation: Some(..)`) and Zhang & Li's (2007) SBX variation (`MoeadSbx`). They
 //! keep every guarantee of the default (same run for any thread count and tell order,
 //! bit-identical resume, observer, typed errors) and the default stays pagmo's. Convergence
-//! thresholds come from `variant_threshold_survey` (docs/OPTIMISERS.md).
+//! thresholds come from `variant_threshold_survey` (docs/reference/optimisers.md).
 
 use super::*;
 use crate::optim::observe::GenerationReport;
@@ -188,7 +188,7 @@ fn bad_variant_settings_are_typed_errors_naming_the_field() {
 }
 
 // Thresholds: the smallest ratio over seeds 1..=8 measured by `variant_threshold_survey`
-// (docs/OPTIMISERS.md) less about 1 %. Budget 25,100 evaluations: DRA makes 100 / 5 = 20
+// (docs/reference/optimisers.md) less about 1 %. Budget 25,100 evaluations: DRA makes 100 / 5 = 20
 // children per generation, so 1250 generations; SBX without DRA 250.
 const DRA_ZDT1: f64 = 0.935;
 const SBX_ZDT1: f64 = 0.98;

@@ -1,0 +1,417 @@
+//! Comments for the scenario TOML that [`scenario_to_toml`](super::scenario_to_toml) prints:
+//! each key's meaning, unit, range and default, and a header naming the vehicle keys, so the
+//! printout is the annotated template (`host-sim simulate --print-scenario`,
+//! docs/reference/scenario.md). Defaults are read from the printout of
+//! [`Scenario::default`](super::Scenario) itself, so they cannot drift from it; the ranges are
+//! those the reader checks (`resolve*.rs`).
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use guidance_core::replan::{
+    DEFAULT_EVERY_N_TICKS, DEFAULT_LAMBDA, DEFAULT_MAX_ITERATIONS, DEFAULT_MAX_SKIPS,
+    DEFAULT_MAX_VERTICAL_FRACTION, DEFAULT_MIN_VERTICAL_FRACTION, DEFAULT_TOLERANCE_M,
+};
+
+/// The file's header comment.
+const HEADER: &str = "\
+# host-sim scenario file (docs/reference/scenario.md). Every section and key is optional: a
+# missing one takes the default given beside it (the HORUS-2B reference mission). Units are in
+# the key names (SI; degrees and km at this edge); ranges are checked before the run.
+# The vehicle: `vehicle` names a built-in one (horus-2b, srm; `host-sim vehicles`), or
+# `vehicle_file = \"my-vehicle.toml\"` reads a vehicle file (mass, area, nose radius, limits,
+# aerodynamics; docs/reference/scenario.md, \"Vehicle file\"), a relative path being relative
+# to the folder of this file.
+";
+
+/// Comment after a section header.
+const SECTIONS: &[(&str, &str)] = &[
+    (
+        "environment",
+        "preset = \"full\" (US76, J2, rotating) or \"simplified\" (exponential, central, still) sets all three",
+    ),
+    (
+        "environment.planet",
+        "or preset = \"earth\" | \"mars\"; the constants below override it",
+    ),
+    (
+        "environment.exponential",
+        "with atmosphere = \"exponential\"",
+    ),
+    (
+        "environment.table",
+        "with atmosphere = \"table\": CSV of altitude, density, temperature or speed of sound",
+    ),
+    (
+        "heat_flux",
+        "Chapman: q = c* / sqrt(R_N) sqrt(rho / rho_ref) (V / V_ref)^m",
+    ),
+    ("entry", "the entry-interface state, planet-relative"),
+    (
+        "guidance",
+        "guidance-core's node table, interpolation, period and rate limits",
+    ),
+    (
+        "termination",
+        "the first of altitude_km, mach, normalized_energy or max_time_s ends the flight",
+    ),
+    ("integrator", "RKF4(5), adaptive"),
+    ("monitors", ""),
+    ("output", ""),
+    (
+        "replanning",
+        "onboard re-planning (guidance_core::replan::ReplanningGuidance); needs independent = \"energy\"",
+    ),
+];
+
+/// `(section, key, note)`: what the key is, its unit and range; the default is added from the
+/// default scenario where it sets the key, else it is in the note.
+const KEYS: &[(&str, &str, &str)] = &[
+    (
+        "",
+        "name",
+        "run name (runs/<name>/): 1-100 characters, no control characters, / or \\",
+    ),
+    (
+        "",
+        "vehicle",
+        "built-in vehicle: horus-2b or srm (or vehicle_file, header)",
+    ),
+    (
+        "",
+        "vehicle_file",
+        "vehicle file, relative to this file's folder (header)",
+    ),
+    (
+        "environment",
+        "atmosphere",
+        "\"us76\", \"exponential\" or \"table\"",
+    ),
+    ("environment", "gravity", "\"j2\" or \"central\""),
+    (
+        "environment",
+        "rotating",
+        "planet rotation on (true) or off",
+    ),
+    ("environment.planet", "radius_m", "sphere radius [m], > 0"),
+    (
+        "environment.planet",
+        "mu_m3_s2",
+        "gravitational parameter [m^3/s^2], > 0",
+    ),
+    (
+        "environment.planet",
+        "j2",
+        "second zonal harmonic [-], (-0.1, 0.1)",
+    ),
+    (
+        "environment.planet",
+        "rotation_rate_rad_s",
+        "[rad/s], (-0.1, 0.1); used when rotating = true",
+    ),
+    (
+        "environment.exponential",
+        "rho0_kg_m3",
+        "density at altitude 0 [kg/m^3], > 0; default 1.225",
+    ),
+    (
+        "environment.exponential",
+        "scale_height_m",
+        "[m], > 0; default 7200",
+    ),
+    (
+        "environment.table",
+        "file",
+        "CSV file, relative to this file's folder (env::TabulatedAtmosphere)",
+    ),
+    (
+        "environment.table",
+        "gas_constant_j_kg_k",
+        "[J/(kg K)], > 0; default 287.05",
+    ),
+    (
+        "environment.table",
+        "heat_capacity_ratio",
+        "[-], > 0; default 1.4",
+    ),
+    ("heat_flux", "coefficient", "c* [W/m^2 m^0.5], > 0"),
+    (
+        "heat_flux",
+        "reference_density_kg_m3",
+        "rho_ref [kg/m^3], > 0",
+    ),
+    ("heat_flux", "reference_speed_m_s", "V_ref [m/s], > 0"),
+    ("heat_flux", "speed_exponent", "m [-], > 0"),
+    (
+        "heat_flux",
+        "nose_radius_m",
+        "[m], > 0; default: the vehicle's",
+    ),
+    ("entry", "altitude_km", "[km], (0, 10000)"),
+    ("entry", "longitude_deg", "[deg], [-360, 360]"),
+    ("entry", "latitude_deg", "geocentric [deg], (-90, 90)"),
+    ("entry", "speed_m_s", "planet-relative [m/s], (0, 20000)"),
+    ("entry", "flight_path_angle_deg", "[deg], [-90, 90]"),
+    (
+        "entry",
+        "heading_deg",
+        "clockwise from north [deg], [-360, 360]",
+    ),
+    (
+        "guidance",
+        "independent",
+        "node x: \"time\" [s] or \"energy\" (normalised energy, 1 at entry)",
+    ),
+    (
+        "guidance",
+        "interpolation",
+        "\"linear\", \"natural-cubic\" or \"hermite\" (with tension)",
+    ),
+    (
+        "guidance",
+        "tension",
+        "cardinal-Hermite tension [-], [0, 1]; default 0",
+    ),
+    ("guidance", "period_s", "guidance period [s], [0.01, 100]"),
+    (
+        "guidance",
+        "alpha_rate_deg_s",
+        "angle-of-attack rate limit [deg/s], [0.001, 1000]",
+    ),
+    (
+        "guidance",
+        "sigma_rate_deg_s",
+        "bank rate limit [deg/s], [0.001, 1000]",
+    ),
+    (
+        "guidance",
+        "initial_alpha_deg",
+        "attitude at entry [deg], [0, 45]",
+    ),
+    (
+        "guidance",
+        "initial_sigma_deg",
+        "attitude at entry [deg], [-90, 90]",
+    ),
+    (
+        "guidance",
+        "nodes",
+        "rows [x, alpha_deg, sigma_deg]: alpha in [0, 45], sigma in [-90, 90] deg",
+    ),
+    (
+        "termination",
+        "altitude_km",
+        "[km], [0, 10000), below the entry altitude",
+    ),
+    ("termination", "mach", "[-], > 0; default: none"),
+    (
+        "termination",
+        "normalized_energy",
+        "[-], [0, 1); default: none",
+    ),
+    ("termination", "max_time_s", "time limit [s], (0, 1e6]"),
+    (
+        "integrator",
+        "rtol",
+        "relative tolerance [-], [1e-14, 1e-2]",
+    ),
+    ("integrator", "h_init_s", "first step [s], (0, 1e4]"),
+    ("integrator", "h_min_s", "[s], (0, 1e4], <= h_max_s"),
+    (
+        "integrator",
+        "h_max_s",
+        "[s], (0, 1e4], >= termination.max_time_s / max_steps",
+    ),
+    ("integrator", "max_steps", "integer in [1, 1e8]"),
+    (
+        "integrator",
+        "event_time_tol_s",
+        "event-location tolerance [s], (0, 0.01], < period_s",
+    ),
+    (
+        "monitors",
+        "interface_altitude_km",
+        "exit/re-entry (skip) detection [km], (0, 10000)",
+    ),
+    (
+        "monitors",
+        "g_rate_window_s",
+        "window of the g-load-rate difference [s], (0, 100]",
+    ),
+    (
+        "output",
+        "interval_s",
+        "[s]: 0 = one sample per guidance tick, else [0.001, 1e6]",
+    ),
+    (
+        "replanning",
+        "target_latitude_deg",
+        "target point [deg], [-90, 90] (with target_longitude_deg; or range_km)",
+    ),
+    (
+        "replanning",
+        "target_longitude_deg",
+        "target point [deg], [-360, 360]",
+    ),
+    (
+        "replanning",
+        "range_km",
+        "total flown range from the entry [km], (0, 1e5] (or a target point)",
+    ),
+    (
+        "replanning",
+        "final_speed_m_s",
+        "required: the predictor's end [m/s], (0, entry speed)",
+    ),
+    (
+        "replanning",
+        "heat_flux_limit_kw_m2",
+        "[kW/m^2], > 0; default: the vehicle's",
+    ),
+    (
+        "replanning",
+        "g_load_limit",
+        "[-], > 0; default: the vehicle's",
+    ),
+    ("replanning", "max_skips", "integer in [0, 8]"),
+    (
+        "replanning",
+        "predictor",
+        "\"chain\", \"glide\", \"auto\", \"auto-sink\", \"numerical\", \"hybrid\" or \"hybrid-sink\"; default \"hybrid\"",
+    ),
+    (
+        "replanning",
+        "apply_out_of_reach",
+        "apply the nearest end when out of reach; default true",
+    ),
+    (
+        "replanning",
+        "polar_mach",
+        "Mach number of the vehicle's polar [-], (0, 100]; default 20",
+    ),
+];
+
+/// The re-planning keys whose defaults are the core's constants.
+fn replanning_default_note(key: &str) -> Option<String> {
+    Some(match key {
+        "every_n_ticks" => {
+            format!("re-plan every N ticks, integer in [1, 65535]; default {DEFAULT_EVERY_N_TICKS}")
+        }
+        "steps_per_tick" => {
+            "predictor steps per tick, [0, 255]; 0 = the whole solve in its tick; default 0".into()
+        }
+        "lambda" => {
+            format!("total lift parameter C_L/C_L* [-], [0, 10]; default {DEFAULT_LAMBDA:?}")
+        }
+        "min_vertical_fraction" => format!(
+            "smallest cos(bank) [-], (0, 1], <= max_vertical_fraction; default {DEFAULT_MIN_VERTICAL_FRACTION:?}"
+        ),
+        "max_vertical_fraction" => {
+            format!("largest cos(bank) [-], (0, 1]; default {DEFAULT_MAX_VERTICAL_FRACTION:?}")
+        }
+        "tolerance_m" => format!("accepted range miss [m], > 0; default {DEFAULT_TOLERANCE_M:?}"),
+        "max_iterations" => {
+            format!(
+                "predictions per range search, integer in [1, 40]; default {DEFAULT_MAX_ITERATIONS}"
+            )
+        }
+        "max_skips" => format!("integer in [0, 8]; default {DEFAULT_MAX_SKIPS}"),
+        _ => return None,
+    })
+}
+
+/// `section.key -> value` of the plain (unannotated) TOML `text` (first line of arrays).
+fn values(text: &str) -> HashMap<String, String> {
+    let mut out = HashMap::new();
+    let mut section = String::new();
+    for line in text.lines() {
+        if let Some(s) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            section = s.to_string();
+        } else if let Some((k, v)) = line.split_once(" = ")
+            && !line.starts_with(' ')
+            && !line.starts_with('#')
+        {
+            out.insert(format!("{section}.{k}"), v.to_string());
+        }
+    }
+    out
+}
+
+/// The note of `key` in `section`, with the default scenario's value where it sets it.
+fn note(section: &str, key: &str, defaults: &HashMap<String, String>) -> Option<String> {
+    if section == "replanning"
+        && let Some(n) = replanning_default_note(key)
+    {
+        return Some(n);
+    }
+    let (_, _, text) = KEYS.iter().find(|(s, k, _)| *s == section && *k == key)?;
+    let default = defaults
+        .get(&format!("{section}.{key}"))
+        .filter(|_| key != "nodes" && key != "vehicle_file");
+    Some(match default {
+        Some(d) if !text.contains("default") => format!("{text}; default {d}"),
+        _ => (*text).to_string(),
+    })
+}
+
+/// Append `# note` to `line`, aligned at column 40 where the line is shorter.
+fn with_note(out: &mut String, line: &str, note: &str) {
+    if note.is_empty() {
+        let _ = writeln!(out, "{line}");
+    } else {
+        let _ = writeln!(out, "{line:<39} # {note}");
+    }
+}
+
+/// `plain` (a printed scenario) with the header and a note on every section and key;
+/// `default_plain` is the printout of the default scenario (the defaults).
+pub(super) fn annotate(plain: &str, default_plain: &str) -> String {
+    let defaults = values(default_plain);
+    let mut out = String::from(HEADER);
+    out.push('\n');
+    let mut section = String::new();
+    let mut has_replanning = false;
+    for line in plain.lines() {
+        if let Some(s) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            section = s.to_string();
+            has_replanning |= s == "replanning";
+            let n = SECTIONS
+                .iter()
+                .find(|(k, _)| *k == s)
+                .map_or("", |(_, n)| n);
+            with_note(&mut out, line, n);
+        } else if let Some((k, _)) = line
+            .split_once(" = ")
+            .filter(|_| !line.starts_with(' ') && !line.starts_with('#'))
+        {
+            let n = note(&section, k, &defaults).unwrap_or_default();
+            with_note(&mut out, line, &n);
+        } else {
+            let _ = writeln!(out, "{line}");
+        }
+    }
+    if !has_replanning {
+        out.push_str(
+            "\n# [replanning]                          # optional: onboard re-planning to a range or a point;\n\
+             # range_km = 8000.0                     #   its keys: docs/reference/scenario.md\n\
+             # final_speed_m_s = 2500.0\n",
+        );
+    }
+    out
+}
+
+/// Keys of `plain` that have no note (a key added to the printout needs one here).
+#[cfg(test)]
+pub(super) fn keys_without_notes(plain: &str) -> Vec<String> {
+    let defaults = values(plain);
+    let mut missing: Vec<String> = defaults
+        .keys()
+        .filter(|full| {
+            let (section, key) = full.rsplit_once('.').unwrap_or(("", full));
+            note(section, key, &defaults).is_none()
+        })
+        .cloned()
+        .collect();
+    missing.sort();
+    missing
+}
