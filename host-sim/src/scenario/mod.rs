@@ -122,6 +122,7 @@ mod resolve;
 mod resolve_environment;
 mod resolve_guidance;
 mod resolve_replanning;
+mod required;
 mod to_toml;
 
 use std::path::PathBuf;
