@@ -23,6 +23,17 @@ pub(super) fn environment(
     sc: &mut Scenario,
 ) -> Result<(), ScenarioError> {
     let old_radius = sc.environment.planet.radius_m;
+    if let Some(p) = t.preset
+        && t.atmosphere.is_some()
+        && t.gravity.is_some()
+        && t.rotating.is_some()
+    {
+        return Err(f.err(
+            "environment.preset",
+            &format!("{:?}", p.name()),
+            "has no effect: atmosphere, gravity and rotating are all given (remove one or the preset)",
+        ));
+    }
     if let Some(p) = t.preset {
         sc.environment = EnvSpec::preset(p);
     }
@@ -82,6 +93,18 @@ pub(super) fn environment(
 
 /// `[environment.planet]`: a preset, then single constants.
 fn planet(f: &Fields<'_>, t: PlanetFile) -> Result<Planet, ScenarioError> {
+    if let Some(preset) = t.preset
+        && t.radius_m.is_some()
+        && t.mu_m3_s2.is_some()
+        && t.j2.is_some()
+        && t.rotation_rate_rad_s.is_some()
+    {
+        return Err(f.err(
+            "environment.planet.preset",
+            &format!("{preset:?}").to_lowercase(),
+            "has no effect: every planet constant is given (remove one or the preset)",
+        ));
+    }
     let mut p = match t.preset {
         None | Some(PlanetPreset::Earth) => Planet::earth(),
         Some(PlanetPreset::Mars) => Planet::mars(),

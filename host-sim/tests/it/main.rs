@@ -10,6 +10,7 @@ mod env_validation;
 mod hypervolume;
 mod hypervolume_cli;
 mod hypervolume_pagmo2;
+mod input_keys;
 mod input_ranges;
 mod integrator_reuse;
 mod layering;

@@ -215,8 +215,7 @@ fn heat_flux_constants_reach_the_dynamics() {
         ) < 1e-12
     );
     let text = "vehicle = \"srm\"\n[heat_flux]\nnose_radius_m = 4.0\n";
-    let mut big_nose =
-        parse_scenario(&complete_scenario(text), "n.toml", Path::new(".")).unwrap();
+    let mut big_nose = parse_scenario(&complete_scenario(text), "n.toml", Path::new(".")).unwrap();
     big_nose.entry = base.entry;
     big_nose.guidance = base.guidance.clone();
     big_nose.termination = base.termination;

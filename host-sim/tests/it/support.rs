@@ -311,8 +311,7 @@ pub fn complete_scenario(snippet: &str) -> String {
             }
         }
     }
-    let printed =
-        host_sim::scenario::scenario_to_toml(&host_sim::scenario::Scenario::default());
+    let printed = host_sim::scenario::scenario_to_toml(&host_sim::scenario::Scenario::default());
     let mut base: toml::Table = printed.parse().expect("the printed scenario parses");
     let over: toml::Table = snippet.parse().expect("the snippet is valid TOML");
     merge(&mut base, over);
