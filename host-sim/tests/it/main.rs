@@ -14,6 +14,7 @@ mod input_keys;
 mod input_ranges;
 mod integrator_reuse;
 mod layering;
+mod lift_down;
 mod navconv;
 mod pil;
 mod pil_faults;
