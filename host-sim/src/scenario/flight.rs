@@ -19,6 +19,9 @@ pub struct RunOutput {
     pub summary: report::SummaryReport,
     /// Files written.
     pub files: Vec<PathBuf>,
+    /// What the user should know: likely unit mistakes in the inputs, then each vehicle limit
+    /// the flight exceeded ([`super::Warning`]).
+    pub warnings: Vec<super::Warning>,
 }
 
 /// A flown scenario with the models it used.
@@ -29,6 +32,17 @@ pub struct Flight {
     pub vehicle: Vehicle,
     /// The environment flown in.
     pub environment: Environment,
+}
+
+impl Flight {
+    /// The warnings of this flight of `sc`: likely unit mistakes in its inputs, then each
+    /// vehicle limit the flight exceeded.
+    #[must_use]
+    pub fn warnings(&self, sc: &Scenario) -> Vec<super::Warning> {
+        let mut w = super::input_warnings(sc);
+        w.extend(super::flight_warnings(&self.result, &self.vehicle.limits));
+        w
+    }
 }
 
 impl std::fmt::Debug for Flight {
@@ -116,9 +130,12 @@ pub fn write_flight(
         veh.limits.heat_flux_w_m2,
         veh.limits.g_load,
     )?;
+    let mut warnings = super::input_warnings(sc);
+    warnings.extend(super::flight_warnings(&result, &veh.limits));
     Ok(RunOutput {
         result,
         summary,
         files,
+        warnings,
     })
 }

@@ -124,6 +124,7 @@ mod resolve_environment;
 mod resolve_guidance;
 mod resolve_replanning;
 mod to_toml;
+pub mod warnings;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -148,6 +149,7 @@ pub use guidance::{
 };
 pub use resolve::{parse_scenario, read_scenario};
 pub use to_toml::scenario_to_toml;
+pub use warnings::{Limit, Warning, flight_warnings, input_warnings};
 
 /// Interpolation between nodes.
 #[derive(Clone, Copy, Debug, PartialEq)]

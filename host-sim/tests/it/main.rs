@@ -27,3 +27,4 @@ mod replan_loop;
 mod run_dir_kill;
 mod scenario_files;
 mod support;
+mod warnings;
