@@ -72,7 +72,7 @@ pub enum ScenarioError {
         source: crate::analytic::AnalyticError,
     },
     /// The entry state does not define a normalised energy.
-    #[error("{file}: entry state: {source}")]
+    #[error("{file}: field `entry` (with `environment.planet`): no normalised energy: {source}")]
     Entry {
         /// File name (or built-in scenario).
         file: String,

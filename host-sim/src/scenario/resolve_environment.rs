@@ -109,20 +109,21 @@ fn planet(f: &Fields<'_>, t: PlanetFile) -> Result<Planet, ScenarioError> {
         None | Some(PlanetPreset::Earth) => Planet::earth(),
         Some(PlanetPreset::Mars) => Planet::mars(),
     };
-    let pos = |v: f64| v > 0.0;
+    // From an asteroid (1 km, mu 1e3) to beyond the Sun (1e9 m, 1e21 m^3/s^2): outside, the
+    // normalised energy and the closed forms' scales do not exist.
     if let Some(v) = f.checked(
         "environment.planet.radius_m",
         t.radius_m,
-        pos,
-        "must be > 0",
+        |v| (1e3..=1e9).contains(&v),
+        "must be > 0 and in [1e3, 1e9] m",
     )? {
         p.radius_m = v;
     }
     if let Some(v) = f.checked(
         "environment.planet.mu_m3_s2",
         t.mu_m3_s2,
-        pos,
-        "must be > 0",
+        |v| (1e3..=1e21).contains(&v),
+        "must be > 0 and in [1e3, 1e21] m^3/s^2",
     )? {
         p.mu_m3_s2 = v;
     }
