@@ -70,7 +70,10 @@ def test_dataframe_columns_and_units():
 
 def test_errors_carry_host_sim_messages(host_sim, tmp_path):
     bad = tmp_path / "bad.toml"
-    bad.write_text("[entry]\naltitude_km = -5.0\n")
+    # A complete scenario (scenarios state what they fly) with one bad value.
+    text = reentry.scenario_toml()
+    assert "altitude_km = 122.0" in text
+    bad.write_text(text.replace("altitude_km = 122.0", "altitude_km = -5.0", 1))
     cli = host_sim("simulate", "--scenario", bad, "--out", tmp_path / "x", check=False)
     assert cli.returncode != 0
     with pytest.raises(reentry.ScenarioError) as e:

@@ -4,6 +4,7 @@ mod estimate;
 mod guidance_props;
 mod lateral;
 mod lateral_terminal;
+mod lift_down;
 mod lift_schedule;
 mod navconv;
 mod node_capacity;

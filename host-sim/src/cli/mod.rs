@@ -31,7 +31,7 @@ pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
 pub use dispersions_cmd::DispersionsArgs;
 pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
-pub use optimize_reentry::{ReentryError, ReentryRunConfig};
+pub use optimize_reentry::{ReentryError, ReentryRunConfig, check_run_config};
 pub use sample_cmd::SampleArgs;
 pub use simulate_cmd::SimulateArgs;
 

@@ -194,8 +194,13 @@ fn read_text(path: &Path) -> Result<String, ReentryError> {
 /// A run configuration file, read through host-sim's one TOML reading path
 /// ([`crate::toml_input`]): errors name the file, the field and the value as written.
 fn parse_toml(path: &Path) -> Result<ReentryRunConfig, ReentryError> {
+    parse_text(&read_text(path)?, path)
+}
+
+/// [`parse_toml`] of the text of `path`.
+fn parse_text(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError> {
     use crate::toml_input::TomlInputError;
-    match crate::toml_input::parse(&read_text(path)?) {
+    match crate::toml_input::parse(text) {
         Ok((c, _)) => Ok(c),
         Err(TomlInputError::Syntax(source)) => Err(ReentryError::Toml {
             path: path.to_path_buf(),
@@ -212,6 +217,19 @@ fn parse_toml(path: &Path) -> Result<ReentryRunConfig, ReentryError> {
             reason,
         }),
     }
+}
+
+/// A run configuration as `optimize --config FILE` reads it before its run: `text` parsed as
+/// the file `path`, its settings checked, its design problem built (a base scenario file
+/// relative to `path`'s folder). The input fuzzer's entry point (`host-sim/examples/fuzz_inputs.rs`).
+///
+/// # Errors
+/// [`ReentryError`] naming the file, the field and the value.
+pub fn check_run_config(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError> {
+    let c = parse_text(text, path)?;
+    check(&c, &path.display().to_string())?;
+    c.problem.problem(path.parent().unwrap_or(Path::new(".")))?;
+    Ok(c)
 }
 
 /// `--FLAG VALUE` given for a re-entry problem, which fixes it.
@@ -279,6 +297,15 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
     }
     if c.threads == 0 {
         return bad("threads", "0".into(), "use at least 1".into());
+    }
+    if let Some(p) = c.mutation_probability
+        && !(p > 0.0 && p <= 1.0)
+    {
+        return bad(
+            "mutation_probability",
+            crate::num_fmt::compact(p),
+            "use a probability in (0, 1]".into(),
+        );
     }
     match c.archive {
         Some(0) => {

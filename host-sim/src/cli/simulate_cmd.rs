@@ -177,6 +177,10 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         out.write_all(scenario_to_toml(&sc).as_bytes())?;
         return Ok(());
     }
+    // Before the flight, so they are seen even if it fails.
+    for w in crate::scenario::input_warnings(&sc) {
+        writeln!(out, "warning: {w}")?;
+    }
     let dir = a.out.clone().unwrap_or_else(|| {
         let suffix = if a.pil.is_some() { "-pil" } else { "" };
         Path::new("runs").join(format!("{}{suffix}", sc.name))
@@ -236,6 +240,14 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         s.skips,
         s.rhs_evals
     )?;
+    // The input warnings were printed before the flight.
+    for w in run
+        .warnings
+        .iter()
+        .filter(|w| matches!(w, crate::scenario::Warning::LimitExceeded { .. }))
+    {
+        writeln!(out, "warning: {w}")?;
+    }
     writeln!(out, "wrote {}", dir.display())?;
     Ok(())
 }

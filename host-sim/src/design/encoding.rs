@@ -119,6 +119,22 @@ impl Encoding {
                 );
             }
         }
+        for (field, n) in [("encoding.first", self.first), ("encoding.last", self.last)] {
+            let ok = n.energy.is_finite()
+                && (0.0..=45.0).contains(&n.alpha_deg)
+                && n.sigma_deg > -180.0
+                && n.sigma_deg <= 180.0;
+            if !ok {
+                return bad(
+                    field,
+                    format!(
+                        "{{ energy = {}, alpha_deg = {}, sigma_deg = {} }}",
+                        n.energy, n.alpha_deg, n.sigma_deg
+                    ),
+                    "use a finite energy, alpha_deg in [0, 45] and sigma_deg in (-180, 180]",
+                );
+            }
+        }
         let [e0, e1] = self.energy;
         if !(self.last.energy < e0 && e1 < self.first.energy) {
             return bad(

@@ -173,7 +173,8 @@ mod tests {
         assert_eq!(sc.entry.speed_m_s, 7435.5);
         assert_eq!(sc.entry.radius_m, Planet::earth().radius_m + 122_000.0);
         assert_eq!(Scenario::srm_glide().guidance.bounds, guidance_bounds());
-        let parsed = super::super::parse_scenario("", "empty.toml", std::path::Path::new("."));
+        let printed = super::super::scenario_to_toml(&sc);
+        let parsed = super::super::parse_scenario(&printed, "p.toml", std::path::Path::new("."));
         assert_eq!(parsed.unwrap().guidance.bounds, guidance_bounds());
     }
 }

@@ -72,7 +72,7 @@ pub enum ScenarioError {
         source: crate::analytic::AnalyticError,
     },
     /// The entry state does not define a normalised energy.
-    #[error("{file}: entry state: {source}")]
+    #[error("{file}: field `entry` (with `environment.planet`): no normalised energy: {source}")]
     Entry {
         /// File name (or built-in scenario).
         file: String,
@@ -86,6 +86,27 @@ pub enum ScenarioError {
         file: String,
         /// The table's error (names the CSV file, line and value).
         source: crate::env::TableAtmosphereError,
+    },
+    /// A guidance attitude-rate limit exceeds the vehicle's (the vehicle's `[limits]` bound
+    /// the guidance's rate limiter).
+    #[error(
+        "scenario `{scenario}`: field `guidance.{axis}_rate_deg_s` = {}: exceeds the vehicle's \
+         `limits.{axis}_rate_deg_s` = {} deg/s ({vehicle}); the vehicle's rate limits bound \
+         the guidance's",
+        crate::num_fmt::compact(*guidance_deg_s),
+        crate::num_fmt::compact(*vehicle_deg_s)
+    )]
+    RateLimit {
+        /// Scenario name.
+        scenario: String,
+        /// The vehicle as the scenario names it.
+        vehicle: String,
+        /// `alpha` or `sigma`.
+        axis: &'static str,
+        /// The guidance's rate limit \[deg/s\].
+        guidance_deg_s: f64,
+        /// The vehicle's rate limit \[deg/s\].
+        vehicle_deg_s: f64,
     },
     /// The vehicle could not be loaded.
     #[error(transparent)]

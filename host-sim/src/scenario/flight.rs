@@ -21,6 +21,9 @@ pub struct RunOutput {
     pub summary: report::SummaryReport,
     /// Files written.
     pub files: Vec<PathBuf>,
+    /// What the user should know: likely unit mistakes in the inputs, then each vehicle limit
+    /// the flight exceeded ([`super::Warning`]).
+    pub warnings: Vec<super::Warning>,
 }
 
 /// A flown scenario with the models it used.
@@ -31,6 +34,17 @@ pub struct Flight {
     pub vehicle: Vehicle,
     /// The environment flown in.
     pub environment: Environment,
+}
+
+impl Flight {
+    /// The warnings of this flight of `sc`: likely unit mistakes in its inputs, then each
+    /// vehicle limit the flight exceeded.
+    #[must_use]
+    pub fn warnings(&self, sc: &Scenario) -> Vec<super::Warning> {
+        let mut w = super::input_warnings(sc);
+        w.extend(super::flight_warnings(&self.result, &self.vehicle.limits));
+        w
+    }
 }
 
 impl std::fmt::Debug for Flight {
@@ -135,9 +149,12 @@ pub fn write_flight(
         ..report::PlotLimits::of_vehicle(&veh.limits)
     };
     let files = report::write_run(out_dir, &result, &summary, &limits)?;
+    let mut warnings = super::input_warnings(sc);
+    warnings.extend(super::flight_warnings(&result, &veh.limits));
     Ok(RunOutput {
         result,
         summary,
         files,
+        warnings,
     })
 }

@@ -180,15 +180,19 @@ pub fn build_replanning_guidance(
     })
 }
 
-/// Angle bounds of scenario guidance: alpha 0..45 deg (thesis sec. 4.2.1), sigma -90..90 deg
-/// (the thesis' 0..90 deg with banking to either side allowed in 3-D).
+/// Angle bounds of scenario guidance: alpha 0..45 deg (thesis sec. 4.2.1), sigma -180..180 deg
+/// (banking to either side, lift down included: |sigma| > 90 deg points the lift's vertical
+/// component down, as an Apollo-style capsule flies). Files give banks in (-180, 180] deg; the
+/// bound -180 deg is reached only by reversing a 180 deg bank (the same attitude). A bank
+/// change is a rate-limited ramp in sigma, not wrapped through 180 deg: a reversal of a
+/// lift-down bank rolls through lift up (0 deg).
 #[must_use]
 pub fn guidance_bounds() -> AngleBounds<f64> {
     let d = std::f64::consts::PI / 180.0;
     AngleBounds {
         alpha_min_rad: 0.0,
         alpha_max_rad: 45.0 * d,
-        sigma_min_rad: -90.0 * d,
-        sigma_max_rad: 90.0 * d,
+        sigma_min_rad: -180.0 * d,
+        sigma_max_rad: 180.0 * d,
     }
 }

@@ -119,11 +119,13 @@ mod error;
 pub mod file;
 mod flight;
 mod guidance;
+mod required;
 mod resolve;
 mod resolve_environment;
 mod resolve_guidance;
 mod resolve_replanning;
 mod to_toml;
+pub mod warnings;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -148,6 +150,7 @@ pub use guidance::{
 };
 pub use resolve::{parse_scenario, read_scenario};
 pub use to_toml::scenario_to_toml;
+pub use warnings::{Limit, Warning, flight_warnings, input_warnings};
 
 /// Interpolation between nodes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -358,6 +361,15 @@ pub enum VehicleSpec {
 }
 
 impl VehicleSpec {
+    /// The vehicle for messages: `vehicle "srm"` or `vehicle_file "capsule.toml"`.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        match self {
+            Self::Name(n) => format!("vehicle {n:?}"),
+            Self::File(p) => format!("vehicle_file {:?}", p.display().to_string()),
+        }
+    }
+
     /// Load the vehicle (the vehicle module's one loader).
     ///
     /// # Errors
@@ -439,16 +451,34 @@ pub struct ReplanningSpec {
 
 impl Scenario {
     /// The scenario's vehicle: loaded through [`VehicleSpec::load`], with the scenario's
-    /// nose radius if it sets one.
+    /// nose radius if it sets one, and checked against the scenario's guidance: the vehicle's
+    /// attitude-rate limits (`[limits] alpha_rate_deg_s`, `sigma_rate_deg_s`) bound the
+    /// guidance's rate limiter (`[guidance] alpha_rate_deg_s`, `sigma_rate_deg_s`). Every
+    /// flight of a scenario (SIL, PIL, campaigns, design problems) loads its vehicle here.
     ///
     /// # Errors
-    /// [`crate::vehicle::VehicleFileError`] naming the file or name.
-    pub fn load_vehicle(
-        &self,
-    ) -> Result<crate::vehicle::Vehicle, crate::vehicle::VehicleFileError> {
+    /// [`ScenarioError::Vehicle`] naming the file or name; [`ScenarioError::RateLimit`] when a
+    /// guidance rate exceeds the vehicle's.
+    pub fn load_vehicle(&self) -> Result<crate::vehicle::Vehicle, ScenarioError> {
         let mut v = self.vehicle.load()?;
         if let Some(rn) = self.nose_radius_m {
             v.nose_radius_m = rn;
+        }
+        let g = &self.guidance;
+        for (axis, guidance, vehicle) in [
+            ("alpha", g.alpha_rate_rad_s, v.limits.alpha_rate_rad_s),
+            ("sigma", g.sigma_rate_rad_s, v.limits.sigma_rate_rad_s),
+        ] {
+            // 1e-12 relative: the same deg/s value converted to rad/s by two routes.
+            if guidance > vehicle * (1.0 + 1e-12) {
+                return Err(ScenarioError::RateLimit {
+                    scenario: self.name.clone(),
+                    vehicle: self.vehicle.describe(),
+                    axis,
+                    guidance_deg_s: guidance.to_degrees(),
+                    vehicle_deg_s: vehicle.to_degrees(),
+                });
+            }
         }
         Ok(v)
     }

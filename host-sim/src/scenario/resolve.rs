@@ -96,22 +96,21 @@ pub fn read_scenario(path: &Path) -> Result<Scenario, ScenarioError> {
 pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
     let sf = read_file(text, file)?;
     let f = Fields { file };
+    super::required::check(&f, &sf)?;
+    // The generic defaults (integrator, monitors, output, environment preset, heat-flux
+    // constants); every key describing the vehicle, the entry, the guidance or the run's end
+    // is present (checked above) and replaces its value below.
     let mut sc = Scenario::default();
     // Files may bank to either side (3-D); the built-in mission keeps the thesis bounds.
     sc.guidance.bounds = super::guidance_bounds();
-    if let Some(n) = sf.name {
-        if let Err(reason) = crate::toml_input::check_name(&n) {
-            return Err(f.err("name", &format!("{n:?}"), reason));
-        }
-        if n.contains(['/', '\\']) || n == "." || n == ".." {
-            return Err(f.err(
-                "name",
-                &format!("{n:?}"),
-                "must be a name without path separators (it names the run directory)",
-            ));
-        }
-        sc.name = n;
-    }
+    // The run ends where the file says (max_time_s, required) and on the ground.
+    sc.termination = crate::sim::Termination {
+        altitude_m: None,
+        mach: None,
+        normalized_energy: None,
+        max_time_s: sc.termination.max_time_s,
+    };
+    sc.name = run_name(&f, sf.name)?;
     match (sf.vehicle, sf.vehicle_file) {
         (Some(_), Some(p)) => {
             return Err(f.err(
@@ -172,6 +171,31 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     }
     cross_checks(&f, &sc)?;
     Ok(sc)
+}
+
+/// The run name: `name` as written, or the file's stem (`capsule.toml` -> `capsule`).
+fn run_name(f: &Fields<'_>, name: Option<String>) -> Result<String, ScenarioError> {
+    let (n, shown_as) = match name {
+        Some(n) => (n.clone(), format!("{n:?}")),
+        None => {
+            let stem = Path::new(f.file)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            (stem.clone(), format!("(missing; file stem {stem:?})"))
+        }
+    };
+    if let Err(reason) = crate::toml_input::check_name(&n) {
+        return Err(f.err("name", &shown_as, reason));
+    }
+    if n.contains(['/', '\\']) || n == "." || n == ".." {
+        return Err(f.err(
+            "name",
+            &shown_as,
+            "must be a name without path separators (it names the run directory)",
+        ));
+    }
+    Ok(n)
 }
 
 /// The `[entry]` section: the entry state (km and degrees in the file).

@@ -23,6 +23,17 @@ pub(super) fn environment(
     sc: &mut Scenario,
 ) -> Result<(), ScenarioError> {
     let old_radius = sc.environment.planet.radius_m;
+    if let Some(p) = t.preset
+        && t.atmosphere.is_some()
+        && t.gravity.is_some()
+        && t.rotating.is_some()
+    {
+        return Err(f.err(
+            "environment.preset",
+            &format!("{:?}", p.name()),
+            "has no effect: atmosphere, gravity and rotating are all given (remove one or the preset)",
+        ));
+    }
     if let Some(p) = t.preset {
         sc.environment = EnvSpec::preset(p);
     }
@@ -82,24 +93,37 @@ pub(super) fn environment(
 
 /// `[environment.planet]`: a preset, then single constants.
 fn planet(f: &Fields<'_>, t: PlanetFile) -> Result<Planet, ScenarioError> {
+    if let Some(preset) = t.preset
+        && t.radius_m.is_some()
+        && t.mu_m3_s2.is_some()
+        && t.j2.is_some()
+        && t.rotation_rate_rad_s.is_some()
+    {
+        return Err(f.err(
+            "environment.planet.preset",
+            &format!("{preset:?}").to_lowercase(),
+            "has no effect: every planet constant is given (remove one or the preset)",
+        ));
+    }
     let mut p = match t.preset {
         None | Some(PlanetPreset::Earth) => Planet::earth(),
         Some(PlanetPreset::Mars) => Planet::mars(),
     };
-    let pos = |v: f64| v > 0.0;
+    // From an asteroid (1 km, mu 1e3) to beyond the Sun (1e9 m, 1e21 m^3/s^2): outside, the
+    // normalised energy and the closed forms' scales do not exist.
     if let Some(v) = f.checked(
         "environment.planet.radius_m",
         t.radius_m,
-        pos,
-        "must be > 0",
+        |v| (1e3..=1e9).contains(&v),
+        "must be > 0 and in [1e3, 1e9] m",
     )? {
         p.radius_m = v;
     }
     if let Some(v) = f.checked(
         "environment.planet.mu_m3_s2",
         t.mu_m3_s2,
-        pos,
-        "must be > 0",
+        |v| (1e3..=1e21).contains(&v),
+        "must be > 0 and in [1e3, 1e21] m^3/s^2",
     )? {
         p.mu_m3_s2 = v;
     }

@@ -82,8 +82,8 @@ pub(super) fn guidance(
     if let Some(v) = f.checked(
         "guidance.initial_sigma_deg",
         t.initial_sigma_deg,
-        |v| (-90.0..=90.0).contains(&v),
-        "must be within [-90, 90] deg",
+        |v| v > -180.0 && v <= 180.0,
+        "must be within (-180, 180] deg",
     )? {
         g.initial.sigma_rad = v.to_radians();
     }
@@ -140,8 +140,8 @@ fn nodes(
                 "alpha must be within [0, 45] deg (thesis 4.2.1)",
             ));
         }
-        if !(-90.0..=90.0).contains(&n[2]) {
-            return Err(f.err(&fi, &shown, "sigma must be within [-90, 90] deg"));
+        if !(n[2] > -180.0 && n[2] <= 180.0) {
+            return Err(f.err(&fi, &shown, "sigma must be within (-180, 180] deg"));
         }
         if let Some(prev) = out.last() {
             let ok = match ind {

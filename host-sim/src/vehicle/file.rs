@@ -234,6 +234,37 @@ impl Ctx<'_> {
         Ok(())
     }
 
+    /// A lift polynomial must be finite over its declared alpha range (the clamps, or the
+    /// guidance range 0..45 deg without them), and so must the drag polar built on it
+    /// (`k`: its induced-drag factor, 0 for a polynomial drag).
+    fn finite_lift_poly(
+        &self,
+        cl: &[f64],
+        k: f64,
+        (lo, hi): (Option<f64>, Option<f64>),
+    ) -> Result<(), VehicleFileError> {
+        let (lo, hi) = (lo.unwrap_or(0.0), hi.unwrap_or(45.0));
+        let n = 1000;
+        for i in 0..=n {
+            let a = lo + (hi - lo) * f64::from(i) / f64::from(n);
+            let v = cl.iter().rev().fold(0.0, |acc, c| acc * a + c);
+            if !(v.is_finite() && (k * v * v).is_finite()) {
+                return Err(self.bad(
+                    "aero.cl",
+                    format!(
+                        "lift coefficient must be finite over alpha in [{}, {}] deg: \
+                         C_L({} deg) = {}",
+                        compact(lo),
+                        compact(hi),
+                        compact(a),
+                        compact(v)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     fn non_negative(&self, field: &str, v: Option<Num>) -> Result<f64, VehicleFileError> {
         let x = self.number(field, v)?;
         if x >= 0.0 {
@@ -390,8 +421,10 @@ fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFil
             let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(a)?;
             let cd = ctx.coef_list("aero.cd", a.cd.as_ref())?;
             ctx.positive_drag_poly(&cd, (alpha_min_deg, alpha_max_deg))?;
+            let cl = ctx.coef_list("aero.cl", a.cl.as_ref())?;
+            ctx.finite_lift_poly(&cl, 0.0, (alpha_min_deg, alpha_max_deg))?;
             Ok(Box::new(PolynomialAerodynamics {
-                cl: ctx.coef_list("aero.cl", a.cl.as_ref())?,
+                cl,
                 cd,
                 alpha_min_deg,
                 alpha_max_deg,
@@ -404,12 +437,15 @@ fn aero(ctx: &Ctx<'_>, a: &AeroFile) -> Result<Box<dyn Aerodynamics>, VehicleFil
                 &["kind", "cd0", "k", "cl", "alpha_min_deg", "alpha_max_deg"],
             )?;
             let (alpha_min_deg, alpha_max_deg) = ctx.alpha_clamps(a)?;
+            let polar = DragPolar {
+                cd0: ctx.positive("aero.cd0", a.cd0)?,
+                k: ctx.non_negative("aero.k", a.k)?,
+            };
+            let cl = ctx.coef_list("aero.cl", a.cl.as_ref())?;
+            ctx.finite_lift_poly(&cl, polar.k, (alpha_min_deg, alpha_max_deg))?;
             Ok(Box::new(PolarAerodynamics {
-                polar: DragPolar {
-                    cd0: ctx.positive("aero.cd0", a.cd0)?,
-                    k: ctx.non_negative("aero.k", a.k)?,
-                },
-                cl: ctx.coef_list("aero.cl", a.cl.as_ref())?,
+                polar,
+                cl,
                 alpha_min_deg,
                 alpha_max_deg,
             }))

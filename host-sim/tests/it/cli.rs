@@ -7,6 +7,8 @@ use std::process::Command;
 use host_sim::cli::run;
 use host_sim::scenario::{Scenario, parse_scenario, scenario_to_toml};
 
+use crate::support::complete_scenario;
+
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_host-sim"))
 }
@@ -37,6 +39,11 @@ heading_deg = 90.0
 independent = "energy"
 interpolation = "hermite"
 tension = 0.5
+period_s = 2.0
+alpha_rate_deg_s = 5.0
+sigma_rate_deg_s = 15.0
+initial_alpha_deg = 40.0
+initial_sigma_deg = 0.0
 nodes = [[1.0, 40, 0], [0.9, 35, 45], [0.5, 20, 60]]
 
 [termination]
@@ -179,6 +186,12 @@ fn bad_scenarios_name_file_field_and_value() {
     ];
     for (name, text, needles) in cases {
         let p = dir.join(name);
+        // Each case changes one thing of a complete scenario.
+        let text = match *name {
+            "syntax.toml" => (*text).to_string(),
+            "vfile.toml" => complete_scenario(text).replace("vehicle = \"horus-2b\"\n", ""),
+            _ => complete_scenario(text),
+        };
         std::fs::write(&p, text).unwrap();
         let o = bin()
             .args(["simulate", "--quiet", "--scenario"])
@@ -366,7 +379,7 @@ proptest::proptest! {
             "[entry]\naltitude_km = {alt:?}\nspeed_m_s = {speed:?}\nflight_path_angle_deg = {gamma:?}\nlatitude_deg = {lat:?}\n\
              [guidance]\nnodes = [[0, 40, 0], [{x2:?}, {a2:?}, 30]]\n[integrator]\nrtol = {rtol:?}\n[termination]\nmax_time_s = 4.0\n# {junk}\n"
         );
-        let text = text.replace("NaN", "nan");
+        let text = complete_scenario(&text.replace("NaN", "nan"));
         match parse_scenario(&text, "p.toml", std::path::Path::new(".")) {
             Err(e) => {
                 let m = e.to_string();

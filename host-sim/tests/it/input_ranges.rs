@@ -7,9 +7,11 @@ use std::path::Path;
 use host_sim::scenario::parse_scenario;
 use host_sim::vehicle::from_toml_str;
 
-/// The error of a scenario made of `toml` (the default mission otherwise).
+use crate::support::complete_scenario;
+
+/// The error of a scenario made of `toml` (the reference mission's keys otherwise).
 fn scenario_err(toml: &str) -> String {
-    match parse_scenario(toml, "s.toml", Path::new(".")) {
+    match parse_scenario(&complete_scenario(toml), "s.toml", Path::new(".")) {
         Ok(_) => panic!("accepted:\n{toml}"),
         Err(e) => e.to_string(),
     }
@@ -86,7 +88,7 @@ fn tiny_periods_intervals_and_steps_are_rejected_before_the_run() {
         "[output]\ninterval_s = 0.0",
         "[integrator]\nevent_time_tol_s = 0.01",
     ] {
-        parse_scenario(ok, "s.toml", Path::new(".")).unwrap();
+        parse_scenario(&complete_scenario(ok), "s.toml", Path::new(".")).unwrap();
     }
 }
 
@@ -131,7 +133,7 @@ fn names_with_control_characters_or_300_characters_are_rejected_up_front() {
         assert_names(&e, &["s.toml", "`name`", why]);
     }
     parse_scenario(
-        &format!("name = \"{}\"", "y".repeat(100)),
+        &complete_scenario(&format!("name = \"{}\"", "y".repeat(100))),
         "s.toml",
         Path::new("."),
     )

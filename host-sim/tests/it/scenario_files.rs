@@ -7,6 +7,8 @@ use host_sim::env::Atmosphere;
 use host_sim::scenario::{AtmosphereSpec, Scenario, fly, parse_scenario, read_scenario};
 use host_sim::sim::TerminationReason;
 
+use crate::support::complete_scenario;
+
 const FT: f64 = 0.3048;
 const SLUG_PER_FT3: f64 = 0.453_592_37 * 9.806_65 / FT / (FT * FT * FT);
 const BTU_FT2_S: f64 = 1_055.055_852_62 / (FT * FT);
@@ -91,8 +93,11 @@ fn table_atmosphere_and_planet_preset() {
     let text = "vehicle = \"srm\"\n[environment]\natmosphere = \"table\"\ngravity = \"central\"\n\
                 [environment.planet]\npreset = \"mars\"\n\
                 [environment.table]\nfile = \"mars.csv\"\ngas_constant_j_kg_k = 188.9\nheat_capacity_ratio = 1.29\n\
-                [guidance]\nindependent = \"energy\"\nnodes = [[1, 0, 0], [0, 0, 30]]\n\
+                [guidance]\nindependent = \"energy\"\ninterpolation = \"linear\"\nperiod_s = 2.0\n\
+                alpha_rate_deg_s = 5.0\nsigma_rate_deg_s = 15.0\ninitial_alpha_deg = 0.0\n\
+                initial_sigma_deg = 0.0\nnodes = [[1, 0, 0], [0, 0, 30]]\n\
                 [entry]\naltitude_km = 125\nspeed_m_s = 3300\nflight_path_angle_deg = -15\n\
+                latitude_deg = -22.3\nlongitude_deg = -106.7\nheading_deg = 70.75\n\
                 [termination]\naltitude_km = 10\nmax_time_s = 3000\n";
     let sc = parse_scenario(text, "mars.toml", &d).unwrap();
     let e = &sc.environment;
@@ -175,7 +180,9 @@ fn bad_environment_settings_are_named() {
         ),
     ];
     for (text, needles) in cases {
-        let e = parse_scenario(text, "s.toml", &d).unwrap_err().to_string();
+        let e = parse_scenario(&complete_scenario(text), "s.toml", &d)
+            .unwrap_err()
+            .to_string();
         for n in *needles {
             assert!(e.contains(n), "`{n}` not in: {e}\n(for {text})");
         }
@@ -188,7 +195,7 @@ fn bad_environment_settings_are_named() {
 fn heat_flux_constants_reach_the_dynamics() {
     let base = Scenario::srm_glide();
     let text = "vehicle = \"srm\"\n[heat_flux]\ncoefficient = 2.2194e8\n";
-    let mut doubled = parse_scenario(text, "h.toml", Path::new(".")).unwrap();
+    let mut doubled = parse_scenario(&complete_scenario(text), "h.toml", Path::new(".")).unwrap();
     doubled.entry = base.entry;
     doubled.guidance = base.guidance.clone();
     doubled.termination = base.termination;
@@ -208,7 +215,7 @@ fn heat_flux_constants_reach_the_dynamics() {
         ) < 1e-12
     );
     let text = "vehicle = \"srm\"\n[heat_flux]\nnose_radius_m = 4.0\n";
-    let mut big_nose = parse_scenario(text, "n.toml", Path::new(".")).unwrap();
+    let mut big_nose = parse_scenario(&complete_scenario(text), "n.toml", Path::new(".")).unwrap();
     big_nose.entry = base.entry;
     big_nose.guidance = base.guidance.clone();
     big_nose.termination = base.termination;
@@ -247,8 +254,10 @@ fn host_scenarios_take_256_nodes() {
             "name = \"srm-{n}\"\nvehicle = \"srm\"\n[environment]\npreset = \"simplified\"\n\
              [entry]\naltitude_km = 100.0\nspeed_m_s = 7658.34\nflight_path_angle_deg = -0.056\n\
              heading_deg = 90.0\nlatitude_deg = 0.0\nlongitude_deg = 0.0\n\
-             [guidance]\nindependent = \"energy\"\ninitial_alpha_deg = 0.0\n\
-             nodes = [{}]\n",
+             [guidance]\nindependent = \"energy\"\ninterpolation = \"linear\"\nperiod_s = 2.0\n\
+             alpha_rate_deg_s = 5.0\nsigma_rate_deg_s = 15.0\ninitial_alpha_deg = 0.0\n\
+             initial_sigma_deg = 0.0\nnodes = [{}]\n\
+             [termination]\naltitude_km = 25.0\nmax_time_s = 2500.0\n",
             rows(n)
         )
     };
@@ -356,7 +365,7 @@ fn bad_replanning_settings_are_named() {
         ),
     ];
     for (text, words) in cases {
-        let e = parse_scenario(text, "s.toml", Path::new("."))
+        let e = parse_scenario(&complete_scenario(text), "s.toml", Path::new("."))
             .expect_err(text)
             .to_string();
         for w in *words {

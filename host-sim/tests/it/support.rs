@@ -295,3 +295,25 @@ fn ramp_kinks() {
     assert!((k - 10.3).abs() < 1e-12);
     assert!(ramp_kink(10.5, 10.0, a(0.0, 0.0), a(0.1, -0.3), (0.5, 1.0)).is_infinite());
 }
+
+/// A complete scenario file: the built-in HORUS-2B reference mission as printed by
+/// `simulate --print-scenario`, with the tables and keys of `snippet` merged over it (tables
+/// merged key by key, other values replaced). Scenario files state what they fly; tests that
+/// change a few keys start from this.
+pub fn complete_scenario(snippet: &str) -> String {
+    fn merge(base: &mut toml::Table, over: toml::Table) {
+        for (k, v) in over {
+            match (base.get_mut(&k), v) {
+                (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge(b, o),
+                (_, v) => {
+                    base.insert(k, v);
+                }
+            }
+        }
+    }
+    let printed = host_sim::scenario::scenario_to_toml(&host_sim::scenario::Scenario::default());
+    let mut base: toml::Table = printed.parse().expect("the printed scenario parses");
+    let over: toml::Table = snippet.parse().expect("the snippet is valid TOML");
+    merge(&mut base, over);
+    toml::to_string(&base).expect("a TOML table serialises")
+}
