@@ -7,6 +7,7 @@ mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
+mod event_accuracy;
 mod hypervolume;
 mod hypervolume_cli;
 mod hypervolume_pagmo2;
