@@ -35,15 +35,17 @@
 //! of the two end states and derivatives (one right-hand-side evaluation for the end
 //! derivative, none per iteration), until the bracket is at most
 //! [`Tolerances::event_time_tol_s`] wide and short enough that no state component changes
-//! across it by more than its integration tolerance (`atol_i + rtol * |y_i|`), so the state at
-//! an event is as accurate as the integration and follows `rtol`. Both ends of that bracket are then checked with fresh
-//! Fehlberg steps from the step start (so the states have the full integrator order, not that
-//! of the interpolant): the upper end must be past the crossing, the lower end not. The state
-//! at the upper end is returned, so integration resumed from it does not see the same
-//! crossing again. Should the check fail (the interpolant's error exceeding the bracket: long
-//! steps, fast-changing forces), the search goes on from the bracket the check left (between
-//! the failed end and the interpolant's bracket) with a fresh Fehlberg step per trial, as
-//! before the dense output.
+//! across it by more than its integration tolerance (`atol_i + rtol * |y_i|`): the state at
+//! an event is then as accurate as the integration and follows `rtol`. Both ends of that
+//! bracket are checked with fresh Fehlberg steps from the step start (so the states have the
+//! full integrator order, not that of the interpolant): the upper end must be past the
+//! crossing, the lower end not. The state at the upper end is returned, so integration
+//! resumed from it does not see the same crossing again. Should a check fail (the
+//! interpolant's error exceeding the bracket: long steps, fast-changing forces, tight
+//! tolerances), fresh trial points step away from the failed end, the first offset twice the
+//! time its event value takes at the step's mean event rate, each next one four times longer,
+//! until one is on the other side; the Illinois method then narrows that bracket with a fresh
+//! Fehlberg step per trial.
 
 use std::fmt;
 
