@@ -696,7 +696,7 @@ impl<const N: usize> Rkf45<N> {
         limit: (f64, f64),
         rate: f64,
         tol: f64,
-    ) -> Result<((f64, f64), (f64, f64)), IntegrateError> {
+    ) -> Result<(Probe, Probe), IntegrateError> {
         let m = p.event_count().min(MAX_EVENTS);
         let later = limit.0 > from.0;
         let order =
@@ -845,6 +845,9 @@ impl<const N: usize> Rkf45<N> {
         })
     }
 }
+
+/// A trial point of an event search: its offset into the step \[s\] and the event value there.
+type Probe = (f64, f64);
 
 /// An accepted step: start, first stage, length, end and the derivative there.
 struct Step<const N: usize> {
