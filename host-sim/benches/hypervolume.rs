@@ -1,8 +1,10 @@
 //! Exact hypervolume benchmarks (issue 9): random fronts with every point on the unit sphere
 //! (non-negative orthant) or on the unit simplex, reference point 1.1 in every objective,
-//! the sizes of the issue's peer measurements (3-D n = 2000, 4-D and 5-D n = 1000), plus all
-//! exclusive contributions in 2-D and 3-D. The side-by-side comparison with moocore and pygmo
-//! on identical fronts is scripts/compare_hypervolume.py (docs/reference/performance.md).
+//! the sizes of the issue's peer measurements (3-D n = 2000, 4-D and 5-D n = 1000; 6-D
+//! n = 300, 7-D n = 100 and 8-D n = 50, sizes at which moocore takes well under a second), plus
+//! all exclusive contributions in 2-D and 3-D (n = 2000), 4-D (n = 1000) and 5-D (n = 300).
+//! The side-by-side comparison with moocore and pygmo on identical fronts is
+//! scripts/compare_hypervolume.py (docs/validation/hypervolume.md).
 
 use std::hint::black_box;
 
@@ -49,7 +51,7 @@ fn front(kind: &str, d: usize, n: usize, seed: u64) -> Vec<Vec<f64>> {
 }
 
 fn hypervolumes(c: &mut Criterion) {
-    for (d, n) in [(3, 2000), (4, 1000), (5, 1000)] {
+    for (d, n) in [(3, 2000), (4, 1000), (5, 1000), (6, 300), (7, 100), (8, 50)] {
         for kind in ["sphere", "simplex"] {
             let pts = front(kind, d, n, 42);
             let r = vec![1.1; d];
@@ -58,12 +60,14 @@ fn hypervolumes(c: &mut Criterion) {
             });
         }
     }
-    for (d, n) in [(2, 2000), (3, 2000)] {
-        let pts = front("sphere", d, n, 7);
-        let r = vec![1.1; d];
-        c.bench_function(&format!("contributions/{d}d/sphere/n{n}"), |b| {
-            b.iter(|| contributions(black_box(&pts), black_box(&r)).expect("valid front"));
-        });
+    for (d, n) in [(2, 2000), (3, 2000), (4, 1000), (5, 300)] {
+        for kind in ["sphere", "simplex"] {
+            let pts = front(kind, d, n, 7);
+            let r = vec![1.1; d];
+            c.bench_function(&format!("contributions/{d}d/{kind}/n{n}"), |b| {
+                b.iter(|| contributions(black_box(&pts), black_box(&r)).expect("valid front"));
+            });
+        }
     }
 }
 

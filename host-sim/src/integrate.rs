@@ -33,15 +33,19 @@
 //! sign change in the requested direction the crossing time is located by the Illinois
 //! (modified regula falsi) method on the step's dense output, the cubic Hermite interpolant
 //! of the two end states and derivatives (one right-hand-side evaluation for the end
-//! derivative, none per iteration), until the bracket is shorter than
-//! [`Tolerances::event_time_tol_s`]. Both ends of that bracket are then checked with fresh
-//! Fehlberg steps from the step start (so the states have the full integrator order, not that
-//! of the interpolant): the upper end must be past the crossing, the lower end not. The state
-//! at the upper end is returned, so integration resumed from it does not see the same
-//! crossing again. Should the check fail (the interpolant's error exceeding the bracket: long
-//! steps, fast-changing forces), the search goes on from the bracket the check left (between
-//! the failed end and the interpolant's bracket) with a fresh Fehlberg step per trial, as
-//! before the dense output.
+//! derivative, none per iteration), until the bracket is at most
+//! [`Tolerances::event_time_tol_s`] wide and short enough that no state component changes
+//! across it by more than its integration tolerance (`atol_i + rtol * |y_i|`): the state at
+//! an event is then as accurate as the integration and follows `rtol`. Both ends of that
+//! bracket are checked with fresh Fehlberg steps from the step start (so the states have the
+//! full integrator order, not that of the interpolant): the upper end must be past the
+//! crossing, the lower end not. The state at the upper end is returned, so integration
+//! resumed from it does not see the same crossing again. Should a check fail (the
+//! interpolant's error exceeding the bracket: long steps, fast-changing forces, tight
+//! tolerances), fresh trial points step away from the failed end, the first offset twice the
+//! time its event value takes at the step's mean event rate, each next one four times longer,
+//! until one is on the other side; the Illinois method then narrows that bracket with a fresh
+//! Fehlberg step per trial.
 
 use std::fmt;
 
@@ -148,7 +152,8 @@ pub struct Tolerances {
     pub h_max: f64,
     /// Maximum number of step attempts over the life of the integrator.
     pub max_steps: u64,
-    /// Width of the final bracket of an event crossing \[s\].
+    /// Largest width of the final bracket of an event crossing \[s\]; the bracket is also
+    /// narrowed until the state changes across it by less than the integration tolerance.
     pub event_time_tol_s: f64,
 }
 
@@ -636,7 +641,8 @@ impl<const N: usize> Rkf45<N> {
                 th / step.h,
             ))
         };
-        let Some(hit) = self.bracket(p, step, g0, g1, dense)? else {
+        let tol = self.event_bracket_tol(step);
+        let Some(hit) = self.bracket(p, step, g0, g1, tol, dense)? else {
             return Ok(None);
         };
         // Check the bracket with fresh steps at both ends: the upper one past the crossing,
@@ -645,9 +651,11 @@ impl<const N: usize> Rkf45<N> {
         let th_hi = hit.time - step.t0;
         let th_lo = th_hi - hit.bracket;
         let (yh, g_hi) = self.fresh_event(p, step, th_hi, i, g0.len())?;
+        // The event's mean rate over the step, to turn an event value into a time offset.
+        let rate = (g1[i] - a) / step.h;
         let fresh_bracket = if !past(a, g_hi) {
             // The crossing is later than the interpolant says.
-            ((th_hi, g_hi), (step.h, g1[i]))
+            self.widen(p, step, i, a, (th_hi, g_hi), (step.h, g1[i]), rate, tol)?
         } else if th_lo <= 0.0 {
             return Ok(Some((hit, yh)));
         } else {
@@ -656,7 +664,7 @@ impl<const N: usize> Rkf45<N> {
                 return Ok(Some((hit, yh)));
             }
             // Earlier than the interpolant says.
-            ((0.0, a), (th_lo, g_lo))
+            self.widen(p, step, i, a, (th_lo, g_lo), (0.0, a), rate, tol)?
         };
         // The interpolant was not close enough: the search goes on from the bracket the
         // checks left, with a fresh step for every trial.
@@ -666,9 +674,71 @@ impl<const N: usize> Rkf45<N> {
             all_finite(&yt).then_some(yt)
         };
         let (lo, hi) = fresh_bracket;
-        let hit = self.illinois(p, step, i, a, lo, hi, &mut fresh)?;
+        let hit = self.illinois(p, step, i, a, lo, hi, tol, &mut fresh)?;
         let (yh, _) = self.fresh_event(p, step, hit.time - step.t0, i, g0.len())?;
         Ok(Some((hit, yh)))
+    }
+
+    /// A fresh bracket of event `i`'s crossing next to `from`, a checked end of the
+    /// interpolant's bracket that is on the wrong side: trial points step away from it
+    /// towards `limit` (the step's end on the other side of the crossing), the first offset
+    /// twice the time `from`'s event value takes at the step's mean `rate`, each next one
+    /// four times longer. Returns `(lo, hi)` (offsets with event values), `lo` before the
+    /// crossing and `hi` past it, as short as the trials found.
+    #[allow(clippy::too_many_arguments)]
+    fn widen<P: OdeProblem<N> + ?Sized>(
+        &mut self,
+        p: &mut P,
+        step: &Step<N>,
+        i: usize,
+        a: f64,
+        from: (f64, f64),
+        limit: (f64, f64),
+        rate: f64,
+        tol: f64,
+    ) -> Result<(Probe, Probe), IntegrateError> {
+        let m = p.event_count().min(MAX_EVENTS);
+        let later = limit.0 > from.0;
+        let order =
+            |near: (f64, f64), far: (f64, f64)| if later { (near, far) } else { (far, near) };
+        let mut d = if rate != 0.0 && rate.is_finite() {
+            (2.0 * from.1 / rate).abs().max(tol)
+        } else {
+            tol
+        };
+        let mut near = from;
+        loop {
+            let th = if later { near.0 + d } else { near.0 - d };
+            if !(th > 0.0 && th < step.h) || (later && th >= limit.0) || (!later && th <= limit.0) {
+                return Ok(order(near, limit));
+            }
+            let (_, g) = self.fresh_event(p, step, th, i, m)?;
+            // Later: `near` is before the crossing; earlier: past it.
+            if past(a, g) == later {
+                return Ok(order(near, (th, g)));
+            }
+            near = (th, g);
+            d *= 4.0;
+        }
+    }
+
+    /// The width to which an event crossing in `step` is bracketed \[s\]: at most
+    /// [`Tolerances::event_time_tol_s`], and short enough that no state component changes
+    /// across it by more than its integration tolerance `atol_i + rtol * |y_i|` (the rate
+    /// bounded by the larger of the step's end derivatives). The state returned at the
+    /// bracket's upper end is then within the integration tolerance of the state at the
+    /// crossing, so the final state's error follows `rtol`. Floored at a few rounding units
+    /// of the time, below which the bracket cannot shrink.
+    fn event_bracket_tol(&self, step: &Step<N>) -> f64 {
+        let mut tol = self.tol.event_time_tol_s;
+        for i in 0..N {
+            let scale = self.atol[i] + self.tol.rtol * step.y0[i].abs().max(step.y1[i].abs());
+            let rate = step.f0[i].abs().max(step.f1[i].abs());
+            if rate * tol > scale {
+                tol = scale / rate;
+            }
+        }
+        tol.max(8.0 * f64::EPSILON * (step.t0.abs() + step.h))
     }
 
     /// The state a fresh Fehlberg step reaches at fraction `th` of the step and event `i`
@@ -699,6 +769,7 @@ impl<const N: usize> Rkf45<N> {
         step: &Step<N>,
         g0: &[f64],
         g1: &[f64],
+        tol: f64,
         mut state_at: impl FnMut(&mut P, &mut Stats, f64) -> Option<[f64; N]>,
     ) -> Result<Option<EventHit>, IntegrateError> {
         let mut best: Option<EventHit> = None;
@@ -707,7 +778,7 @@ impl<const N: usize> Rkf45<N> {
             if !triggered(p.event_direction(i), a, b) {
                 continue;
             }
-            let hit = self.illinois(p, step, i, a, (0.0, a), (step.h, b), &mut state_at)?;
+            let hit = self.illinois(p, step, i, a, (0.0, a), (step.h, b), tol, &mut state_at)?;
             if best.is_none_or(|b| hit.time < b.time) {
                 best = Some(hit);
             }
@@ -716,8 +787,8 @@ impl<const N: usize> Rkf45<N> {
     }
 
     /// The Illinois method on event `i` (value `a` at the step start) from the bracket
-    /// `[lo, hi]` (fractions of the step with their event values, `lo` on the old side)
-    /// until it is shorter than the tolerance.
+    /// `[lo, hi]` (offsets into the step with their event values, `lo` on the old side)
+    /// until it is at most `tol` wide.
     #[allow(clippy::too_many_arguments)]
     fn illinois<P: OdeProblem<N> + ?Sized>(
         &mut self,
@@ -727,13 +798,14 @@ impl<const N: usize> Rkf45<N> {
         a: f64,
         (mut lo, mut glo): (f64, f64),
         (mut hi, mut ghi): (f64, f64),
+        tol: f64,
         state_at: &mut impl FnMut(&mut P, &mut Stats, f64) -> Option<[f64; N]>,
     ) -> Result<EventHit, IntegrateError> {
         let m = p.event_count().min(MAX_EVENTS);
         let mut buf = [0.0; MAX_EVENTS];
         let mut side = 0i8;
         let mut iter = 0;
-        while hi - lo > self.tol.event_time_tol_s && iter < 200 {
+        while hi - lo > tol && iter < 200 {
             iter += 1;
             let mut th = if ghi != glo {
                 hi - ghi * (hi - lo) / (ghi - glo)
@@ -773,6 +845,9 @@ impl<const N: usize> Rkf45<N> {
         })
     }
 }
+
+/// A trial point of an event search: its offset into the step \[s\] and the event value there.
+type Probe = (f64, f64);
 
 /// An accepted step: start, first stage, length, end and the derivative there.
 struct Step<const N: usize> {

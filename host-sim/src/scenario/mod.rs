@@ -68,7 +68,7 @@
 //! h_min_s = 1e-9                  # <= h_max_s
 //! h_max_s = 20.0                  # >= termination.max_time_s / max_steps
 //! max_steps = 2000000             # integer in [1, 1e8]
-//! event_time_tol_s = 1e-6         # event-location time tolerance: (0, 0.01] s and < period_s
+//! event_time_tol_s = 1e-6         # largest event bracket (narrowed to rtol): (0, 0.01] s, < period_s
 //!
 //! [monitors]
 //! interface_altitude_km = 100.0   # exit/re-entry (skip) detection

@@ -9,6 +9,7 @@ mod core_defaults;
 mod doc_reference;
 mod dynamics_validation;
 mod env_validation;
+mod event_accuracy;
 mod hypervolume;
 mod hypervolume_cli;
 mod hypervolume_pagmo2;
