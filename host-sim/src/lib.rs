@@ -19,7 +19,7 @@ pub mod design;
 pub mod dynamics;
 pub mod env;
 pub mod integrate;
-pub mod lateral_loop;
+pub mod stack_loop;
 pub mod num_fmt;
 pub mod optim;
 pub mod pil;

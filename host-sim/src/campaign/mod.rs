@@ -29,6 +29,7 @@ pub mod settings;
 pub mod setup;
 pub mod stats;
 
+use guidance_core::stack::Layers;
 use serde::{Deserialize, Serialize};
 
 pub use flight::CaseResult;
@@ -60,6 +61,24 @@ impl Mode {
         Mode::ReplanReversals,
         Mode::ReplanEstimation,
     ];
+
+    /// The layers of the campaign's stack this mode flies (a mask over the one stack:
+    /// `guidance_core::stack::StackConfig::masked`).
+    #[must_use]
+    pub fn layers(self) -> Layers {
+        match self {
+            Mode::Stored => Layers::PROFILE,
+            Mode::StoredReversals => Layers {
+                lateral: true,
+                ..Layers::PROFILE
+            },
+            Mode::ReplanReversals => Layers {
+                estimator: false,
+                ..Layers::ALL
+            },
+            Mode::ReplanEstimation => Layers::ALL,
+        }
+    }
 
     /// Short name (file and directory names).
     #[must_use]
@@ -113,6 +132,14 @@ pub enum CampaignError {
         field: &'static str,
         /// The core's error.
         source: guidance_core::GuidanceError,
+    },
+    /// The onboard stack could not be built.
+    #[error("{file}: guidance stack: {source}")]
+    Stack {
+        /// Scenario file.
+        file: String,
+        /// The core's error.
+        source: guidance_core::stack::StackBuildError,
     },
     /// The predictor model could not be built.
     #[error("{file}: predictor model: {source}")]

@@ -3,15 +3,17 @@
 //! the lateral logic and of the re-planner. Built once from a scenario by flying it nominally.
 
 use guidance_core::energy::EnergyNormalizer;
-use guidance_core::estimate::EstimatorConfig;
 use guidance_core::geo::central_angle;
-use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
+use guidance_core::guidance::{GuidanceConfig, RateLimits};
 use guidance_core::interp::Interpolation;
-use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig, TerminalLateral};
+use guidance_core::lateral::{Corridor, CorridorAxis, TerminalLateral};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig,
-    SCHEDULE_NODES, ScheduleNode, TargetPoint,
+    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, SCHEDULE_NODES,
+    ScheduleNode, TargetPoint,
+};
+use guidance_core::stack::{
+    BarrierLayer, HostStackConfig, LateralLayer, ProfileLayer, ReplanLayer, StackConfig,
 };
 use guidance_core::vinh::PredictorConfig;
 
@@ -38,8 +40,6 @@ pub struct CampaignSetup {
     pub scenario: Scenario,
     /// Name of the scenario file (for messages).
     pub file: String,
-    /// Energy normaliser of the nominal entry (onboard constant of every case).
-    pub energy: EnergyNormalizer<f64>,
     /// Terminal interface: specific energy `V^2/2 - mu/r` \[J/kg\] of the nominal end.
     pub interface_energy_j_kg: f64,
     /// Speed at the nominal end \[m/s\] (the predictor's final speed).
@@ -48,30 +48,14 @@ pub struct CampaignSetup {
     pub floor_altitude_m: f64,
     /// Planet radius \[m\].
     pub planet_radius_m: f64,
-    /// The target point at the terminal interface.
-    pub target: TargetPoint<f64>,
     /// Downrange of the target along the nominal entry great circle \[rad\].
     pub target_downrange_rad: f64,
-    /// Energy-indexed stored profile with two-sided bank bounds.
-    pub table: HostNodeTable<f64>,
-    /// Guidance period and rate limits.
-    pub guidance_config: GuidanceConfig<f64>,
-    /// Lateral logic settings.
-    pub lateral: LateralConfig<f64>,
-    /// The lateral logic's terminal crossrange law (`terminal_lateral_km`; `None`: off).
-    pub lateral_terminal: Option<TerminalLateral<f64>>,
-    /// Re-planner settings.
-    pub replanning: ReplanningConfig<f64>,
-    /// Onboard estimation settings ([`super::Mode::ReplanEstimation`]).
-    pub estimator: EstimatorConfig<f64>,
+    /// The full onboard stack (every layer a mode may fly; [`CampaignSetup::stack_of`] masks
+    /// it): the energy-indexed stored profile with two-sided bank bounds, the re-planner, the
+    /// lateral logic, the estimator, the path bound, and the target point.
+    pub stack: HostStackConfig<f64>,
     /// The guidance settings these were built from.
     pub guidance: CampaignGuidance,
-    /// The numerical predictor's lift parameter against speed (`predictor_lift_profile`).
-    pub lift_schedule: Option<LiftSchedule<f64>>,
-    /// No re-plan above this E-hat (`replan_start_normalized_energy`).
-    pub replan_start_normalized_energy: Option<f64>,
-    /// The limit-driven bound on the re-planned bank (`path_bound_limit_scale`).
-    pub path_bound: Option<PathBound<f64>>,
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -380,8 +364,8 @@ impl CampaignSetup {
         };
         let v_e = sc.entry.speed_m_s;
         let v_f = end.speed_m_s;
-        let lateral = LateralConfig {
-            target: along_heading(&sc.entry, nominal.summary.range_angle_rad),
+        let target = along_heading(&sc.entry, nominal.summary.range_angle_rad);
+        let lateral = LateralLayer {
             corridor: Corridor {
                 axis: CorridorAxis::Speed,
                 x_high: v_e,
@@ -392,6 +376,11 @@ impl CampaignSetup {
             hysteresis_rad: gs.hysteresis_deg * DEG,
             max_reversals: gs.max_reversals,
             freeze_angle_rad: gs.freeze_km * 1e3 / planet.radius_m,
+            terminal: gs.terminal_lateral_km.map(|k| TerminalLateral {
+                start_angle_rad: k * 1e3 / planet.radius_m,
+                tolerance_rad: gs.terminal_tolerance_km * 1e3 / planet.radius_m,
+                reversal_lead_s: gs.terminal_reversal_lead_s,
+            }),
         };
         let fit = ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3).map_err(
             |e| CampaignError::Predictor {
@@ -406,9 +395,8 @@ impl CampaignSetup {
                     source,
                 }
             })?;
-        let replanning = ReplanningConfig {
+        let replan = ReplanLayer {
             every_n_ticks: gs.replan_every_n_ticks,
-            target: RangeTarget::Point(lateral.target),
             limits: ReplanLimits {
                 heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * gs.replan_limit_scale[0],
                 g_load: vehicle.limits.g_load * gs.replan_limit_scale[1],
@@ -428,43 +416,23 @@ impl CampaignSetup {
                     final_speed_m_s: v_f + gs.final_speed_offset_m_s(),
                     max_skips: 4,
                 },
-                // The mode of `replan-estimation`; `flight::replanning_of` drops the sink for
-                // the other re-planning mode.
+                // The mode of `replan-estimation`; masking the estimator off drops the sink
+                // (`StackConfig::masked`).
                 mode: gs.predictor.mode(gs.glide_sink),
             },
             model,
             apply_out_of_reach: true,
             steps_per_tick: 0,
-        };
-        let r_f = end.radius_m;
-        let mut setup = Self {
-            scenario: sc.clone(),
-            file: file.into(),
-            energy,
-            interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
-            interface_speed_m_s: v_f,
-            floor_altitude_m: (r_f - planet.radius_m - 10e3).max(1e3),
-            planet_radius_m: planet.radius_m,
-            target: lateral.target,
-            target_downrange_rad: nominal.summary.range_angle_rad,
-            table,
-            guidance_config,
-            lateral,
-            lateral_terminal: gs.terminal_lateral_km.map(|k| TerminalLateral {
-                start_angle_rad: k * 1e3 / planet.radius_m,
-                tolerance_rad: gs.terminal_tolerance_km * 1e3 / planet.radius_m,
-                reversal_lead_s: gs.terminal_reversal_lead_s,
-            }),
-            replanning,
-            estimator: gs.estimator(),
-            guidance: gs.clone(),
             lift_schedule: match (gs.predictor_lift_profile, gs.predictor_aero_mach) {
                 (true, true) => profile_aero_schedule(&vehicle, &model, &nominal, v_f),
                 (true, false) => profile_lift_schedule(&vehicle, &model, &nominal, v_f),
                 (false, _) => None,
             },
-            replan_start_normalized_energy: gs.replan_start_normalized_energy,
-            path_bound: gs.path_bound_limit_scale.map(|[q, g]| PathBound {
+            start_normalized_energy: gs.replan_start_normalized_energy,
+            numerical_rotation: gs.predictor_rotation,
+        };
+        let barrier = gs.path_bound_limit_scale.map(|[q, g]| BarrierLayer {
+            bound: PathBound {
                 limits: ReplanLimits {
                     heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * q,
                     g_load: vehicle.limits.g_load * g,
@@ -472,7 +440,34 @@ impl CampaignSetup {
                 descent_time_s: gs.path_bound_descent_time_s,
                 barrier_frequency_rad_s: gs.path_bound_barrier.map_or(0.0, |[w, _]| w),
                 barrier_damping: gs.path_bound_barrier.map_or(0.0, |[_, z]| z),
-            }),
+            },
+            predicted: gs.path_bound_predicted,
+        });
+        let stack = StackConfig {
+            profile: ProfileLayer {
+                guidance: guidance_config,
+                table,
+                interpolation: Interpolation::Linear,
+                energy,
+                initial: sc.guidance.initial,
+            },
+            replan: Some(replan),
+            lateral: Some(lateral),
+            estimator: Some(gs.estimator()),
+            barrier,
+            target: Some(RangeTarget::Point(target)),
+        };
+        let r_f = end.radius_m;
+        let mut setup = Self {
+            scenario: sc.clone(),
+            file: file.into(),
+            interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
+            interface_speed_m_s: v_f,
+            floor_altitude_m: (r_f - planet.radius_m - 10e3).max(1e3),
+            planet_radius_m: planet.radius_m,
+            target_downrange_rad: nominal.summary.range_angle_rad,
+            stack,
+            guidance: gs.clone(),
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).
@@ -494,41 +489,38 @@ impl CampaignSetup {
 
     /// Put the target `downrange_rad` along the entry great circle.
     pub fn retarget(&mut self, downrange_rad: f64) {
-        let t = along_heading(&self.scenario.entry, downrange_rad);
-        self.target = t;
+        self.stack.target = Some(RangeTarget::Point(along_heading(
+            &self.scenario.entry,
+            downrange_rad,
+        )));
         self.target_downrange_rad = downrange_rad;
-        self.lateral.target = t;
-        self.replanning.target = RangeTarget::Point(t);
+    }
+
+    /// The target point at the terminal interface (the stack's; NaN if it had none, which a
+    /// setup this module built always has).
+    #[must_use]
+    pub fn target(&self) -> TargetPoint<f64> {
+        match self.stack.target {
+            Some(RangeTarget::Point(p)) => p,
+            _ => TargetPoint {
+                latitude_rad: f64::NAN,
+                longitude_rad: f64::NAN,
+            },
+        }
+    }
+
+    /// The stack `mode` flies: the full stack with the layers off that the mode leaves out
+    /// ([`super::Mode::layers`], [`StackConfig::masked`]).
+    #[must_use]
+    pub fn stack_of(&self, mode: super::Mode) -> HostStackConfig<f64> {
+        self.stack.masked(mode.layers())
     }
 
     /// Great-circle distance \[m\] from (lat, lon) to the target.
     #[must_use]
     pub fn distance_to_target_m(&self, lat: f64, lon: f64, radius_m: f64) -> f64 {
-        central_angle(
-            lat,
-            lon,
-            self.target.latitude_rad,
-            self.target.longitude_rad,
-        )
-        .map_or(f64::INFINITY, |a| a * radius_m)
-    }
-
-    /// The guidance of the stored profile (energy-indexed, two-sided bounds).
-    ///
-    /// # Errors
-    /// [`CampaignError::Guidance`] (cannot happen for a table this setup built).
-    pub fn stored_guidance(&self) -> Result<HostGuidance<f64>, CampaignError> {
-        Guidance::new(
-            self.guidance_config,
-            self.table.clone(),
-            Interpolation::Linear,
-            self.energy,
-            self.scenario.guidance.initial,
-        )
-        .map_err(|source| CampaignError::Guidance {
-            file: self.file.clone(),
-            field: "guidance",
-            source,
-        })
+        let t = self.target();
+        central_angle(lat, lon, t.latitude_rad, t.longitude_rad)
+            .map_or(f64::INFINITY, |a| a * radius_m)
     }
 }

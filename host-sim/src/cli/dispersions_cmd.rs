@@ -128,8 +128,8 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         opts.modes.len(),
         res.resumed,
         flown as f64 / wall.max(1e-9),
-        setup.target.latitude_rad.to_degrees(),
-        setup.target.longitude_rad.to_degrees(),
+        setup.target().latitude_rad.to_degrees(),
+        setup.target().longitude_rad.to_degrees(),
         setup.target_downrange_rad * setup.planet_radius_m / 1e3
     )?;
     writeln!(

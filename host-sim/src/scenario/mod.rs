@@ -142,7 +142,7 @@ use crate::sim::{SimConfig, Termination};
 pub use error::ScenarioError;
 pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
 pub use guidance::{
-    PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
+    PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance, build_stack,
     guidance_bounds,
 };
 pub use resolve::{parse_scenario, read_scenario};

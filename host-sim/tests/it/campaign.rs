@@ -347,7 +347,6 @@ fn guidance_settings_are_configurable_and_checked() {
 fn campaign_predictor_setting_picks_the_replanner_mode() {
     use guidance_core::replan::PredictorMode as P;
     use host_sim::campaign::CampaignPredictor;
-    use host_sim::campaign::flight::replanning_of;
     let parse = |text: &str| {
         parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml")
             .unwrap()
@@ -408,15 +407,15 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
     )
     .unwrap();
     assert_eq!(
-        replanning_of(&setup, Mode::ReplanEstimation).solver.mode,
+        setup.stack_of(Mode::ReplanEstimation).replan.unwrap().solver.mode,
         P::HybridSink
     );
     assert_eq!(
-        replanning_of(&setup, Mode::ReplanReversals).solver.mode,
+        setup.stack_of(Mode::ReplanReversals).replan.unwrap().solver.mode,
         P::Hybrid
     );
     assert_eq!(
-        replanning_of(&setup, Mode::ReplanReversals)
+        setup.stack_of(Mode::ReplanReversals).replan.unwrap()
             .solver
             .predictor
             .final_speed_m_s,
@@ -615,8 +614,8 @@ fn predictor_lift_parameter_of_the_stored_profile() {
         &g,
     )
     .unwrap();
-    assert_eq!(setup.replanning.solver.lambda, 3.5);
-    assert_eq!(srm_setup().replanning.solver.lambda, 1.0);
+    assert_eq!(setup.stack.replan.unwrap().solver.lambda, 3.5);
+    assert_eq!(srm_setup().stack.replan.unwrap().solver.lambda, 1.0);
     for v in ["0.0", "-1.0", "25.0", "nan"] {
         let e = parse(&format!("predictor_lift_parameter = {v}")).unwrap_err();
         assert_eq!(
@@ -633,7 +632,7 @@ fn predictor_lift_parameter_of_the_stored_profile() {
 #[test]
 fn path_bound_settings_reach_the_setup() {
     let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
-    assert_eq!(srm_setup().path_bound, None);
+    assert_eq!(srm_setup().stack.barrier, None);
     let g = parse("path_bound_limit_scale = [100, 0.9]\npath_bound_descent_time_s = 20")
         .unwrap()
         .guidance;
@@ -644,7 +643,7 @@ fn path_bound_settings_reach_the_setup() {
         &g,
     )
     .unwrap();
-    let b = setup.path_bound.unwrap();
+    let b = setup.stack.barrier.unwrap().bound;
     let own = setup.scenario.load_vehicle().unwrap().limits;
     assert_eq!(b.limits.heat_flux_w_m2, own.heat_flux_w_m2 * 100.0);
     assert_eq!(b.limits.g_load, own.g_load * 0.9);
@@ -677,7 +676,7 @@ fn path_bound_settings_reach_the_setup() {
         &g,
     )
     .unwrap();
-    let b = setup.path_bound.unwrap();
+    let b = setup.stack.barrier.unwrap().bound;
     assert!(b.is_barrier());
     assert_eq!((b.barrier_frequency_rad_s, b.barrier_damping), (0.15, 0.8));
     for v in [
@@ -737,7 +736,7 @@ fn terminal_lateral_settings_are_read_and_checked() {
         &g,
     )
     .unwrap();
-    let t = setup.lateral_terminal.unwrap();
+    let t = setup.stack.lateral.unwrap().terminal.unwrap();
     let r = setup.planet_radius_m;
     assert!((t.start_angle_rad * r - 200e3).abs() < 1e-6);
     assert!((t.tolerance_rad * r - 500.0).abs() < 1e-9);

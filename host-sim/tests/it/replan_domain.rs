@@ -360,7 +360,7 @@ pub fn campaign(
             let (_, log) = fly_case_logged(&setup, Some(&draw), mode).unwrap();
             out.extend(recompute(
                 &format!("{name} campaign {mode:?}{label}"),
-                &host_sim::campaign::flight::replanning_of(&setup, mode),
+                &setup.stack_of(mode).replanning_config().unwrap(),
                 &log,
             ));
         }
