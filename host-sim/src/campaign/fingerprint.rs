@@ -128,6 +128,7 @@ impl Fields {
             g_rate_window_s,
             nose_radius_m,
             replanning,
+            layers,
         } = sc;
         let EnvSpec {
             planet,
@@ -153,6 +154,7 @@ impl Fields {
         self.debug("scenario.g_rate_window_s", g_rate_window_s);
         self.debug("scenario.nose_radius_m", nose_radius_m);
         self.debug("scenario.replanning", replanning);
+        self.debug("scenario.layers", layers);
     }
 
     /// The vehicle as loaded (its name is not an input).

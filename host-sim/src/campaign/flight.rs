@@ -9,7 +9,7 @@ use guidance_core::stack::FlightStack;
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
-use super::guidance_settings::CampaignGuidance;
+use crate::scenario::guidance_layers::CampaignGuidance;
 use super::imu::{ImuModel, ImuSource};
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;

@@ -3,8 +3,6 @@
 //! cases, with statistics, a footprint and histograms (docs/DISPERSIONS.md).
 //!
 //! * [`settings`]: the `[dispersions]` TOML section, defaults, validation naming the field;
-//! * [`guidance_settings`]: its `[dispersions.guidance]` table (corridor, re-planner, onboard
-//!   estimation);
 //! * [`draw`]: the dispersed values of case `i`, from a generator seeded by (seed, i) only;
 //! * [`models`]: the dispersed atmosphere (altitude-varying, bounded density scale) and aero;
 //! * [`setup`]: what the cases share (terminal interface, target, stored profile, settings of
@@ -19,7 +17,6 @@
 pub mod draw;
 pub mod fingerprint;
 pub mod flight;
-pub mod guidance_settings;
 pub mod imu;
 pub mod models;
 pub mod output;
@@ -33,7 +30,7 @@ use guidance_core::stack::Layers;
 use serde::{Deserialize, Serialize};
 
 pub use flight::CaseResult;
-pub use guidance_settings::{CampaignGuidance, CampaignPredictor};
+pub use crate::scenario::guidance_layers::{CampaignGuidance, CampaignPredictor};
 pub use run::{CampaignOutput, run_campaign};
 pub use settings::{Dispersion, DispersionSettings, parse_settings};
 pub use setup::CampaignSetup;
@@ -78,6 +75,17 @@ impl Mode {
             },
             Mode::ReplanEstimation => Layers::ALL,
         }
+    }
+
+    /// Whether a stack with `layers` can fly this mode: it has the layers that make the mode
+    /// (the barrier is flown where present, not required).
+    #[must_use]
+    pub fn flies_with(self, layers: Layers) -> bool {
+        let need = Layers {
+            barrier: false,
+            ..self.layers()
+        };
+        need.and(layers) == need
     }
 
     /// Short name (file and directory names).

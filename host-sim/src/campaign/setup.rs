@@ -13,12 +13,12 @@ use guidance_core::replan::{
     ScheduleNode, TargetPoint,
 };
 use guidance_core::stack::{
-    BarrierLayer, HostStackConfig, LateralLayer, ProfileLayer, ReplanLayer, StackConfig,
+    BarrierLayer, HostStackConfig, LateralLayer, Layers, ProfileLayer, ReplanLayer, StackConfig,
 };
 use guidance_core::vinh::PredictorConfig;
 
 use super::CampaignError;
-use super::guidance_settings::CampaignGuidance;
+use crate::scenario::guidance_layers::CampaignGuidance;
 use crate::dynamics::SphericalState;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
@@ -273,7 +273,8 @@ pub fn profile_aero_schedule(
 }
 
 impl CampaignSetup {
-    /// Build from `sc`: fly it nominally with its own guidance (the stored profile), take the
+    /// Build from `sc` with the scenario's layers ([`Scenario::layers`]; none: the stored
+    /// profile alone): fly it nominally with its own guidance (the stored profile), take the
     /// end as the terminal interface, build the energy-indexed two-sided table, then place the
     /// target on the entry great circle at the downrange that the stored profile flown with
     /// bank reversals reaches (at most [`RETARGET_ITERATIONS`] nominal flights, until the
@@ -288,11 +289,50 @@ impl CampaignSetup {
         file: &str,
         interface_speed_m_s: Option<f64>,
     ) -> Result<Self, CampaignError> {
-        Self::with_guidance(sc, file, interface_speed_m_s, &CampaignGuidance::default())
+        let Some(l) = &sc.layers else {
+            let mut s =
+                Self::with_guidance(sc, file, interface_speed_m_s, &CampaignGuidance::default())?;
+            s.stack = s.stack.masked(Layers::PROFILE);
+            return Ok(s);
+        };
+        let mut s = Self::with_guidance(sc, file, interface_speed_m_s, &l.settings)?;
+        s.stack = s.stack.masked(l.layers);
+        Ok(s)
     }
 
-    /// [`CampaignSetup::new`] with the corridor, re-planner and estimator of `gs`
-    /// (`[dispersions.guidance]`).
+    /// The modes this campaign's stack can fly ([`super::Mode::flies_with`]), in report order.
+    #[must_use]
+    pub fn modes(&self) -> Vec<super::Mode> {
+        let l = self.stack.layers();
+        super::Mode::ALL
+            .into_iter()
+            .filter(|m| m.flies_with(l))
+            .collect()
+    }
+
+    /// Check that the stack can fly every mode of `modes`.
+    ///
+    /// # Errors
+    /// [`CampaignError::Setting`] naming the first mode whose layers the scenario does not
+    /// define.
+    pub fn check_modes(&self, modes: &[super::Mode]) -> Result<(), CampaignError> {
+        let l = self.stack.layers();
+        match modes.iter().find(|m| !m.flies_with(l)) {
+            None => Ok(()),
+            Some(m) => Err(CampaignError::Setting {
+                file: self.file.clone(),
+                field: "modes".into(),
+                value: m.name().into(),
+                reason: format!(
+                    "the scenario's guidance has no layer for it (it defines {l:?}; add the \
+                     [guidance.lateral] / [guidance.replanning] / [guidance.estimator] sections)"
+                ),
+            }),
+        }
+    }
+
+    /// [`CampaignSetup::new`] with every layer on, with the settings `gs` (whatever the
+    /// scenario's own layers).
     ///
     /// # Errors
     /// As [`CampaignSetup::new`]; [`CampaignError::Setting`] for a bad `gs`.

@@ -93,9 +93,6 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             })?;
         modes.push(mode);
     }
-    if modes.is_empty() {
-        modes = Mode::ALL.to_vec();
-    }
     if a.threads == Some(0) {
         return Err(CliError::Argument {
             field: "threads",
@@ -108,8 +105,11 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("dispersions-{}", sc.name)));
     let started = std::time::Instant::now();
-    let setup =
-        CampaignSetup::with_guidance(&sc, &file, settings.interface_speed_m_s, &settings.guidance)?;
+    let setup = CampaignSetup::new(&sc, &file, settings.interface_speed_m_s)?;
+    if modes.is_empty() {
+        modes = setup.modes();
+    }
+    setup.check_modes(&modes)?;
     let opts = RunOptions {
         modes,
         out_dir: Some(dir.clone()),

@@ -118,9 +118,11 @@ mod error;
 pub mod file;
 mod flight;
 mod guidance;
+pub mod guidance_layers;
 mod resolve;
 mod resolve_environment;
 mod resolve_guidance;
+mod resolve_layers;
 mod resolve_replanning;
 mod to_toml;
 
@@ -139,6 +141,7 @@ use crate::env::{
 use crate::integrate::Tolerances;
 use crate::sim::{SimConfig, Termination};
 
+pub use builtin::{horus_stack, srm_stack};
 pub use error::ScenarioError;
 pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
 pub use guidance::{
@@ -396,6 +399,20 @@ pub struct Scenario {
     pub nose_radius_m: Option<f64>,
     /// Onboard re-planning (`[replanning]`; `None`: the stored profile is flown as is).
     pub replanning: Option<ReplanningSpec>,
+    /// The onboard layers beyond the stored profile that campaigns fly
+    /// (`[guidance.lateral]`, `[guidance.replanning]`, `[guidance.estimator]`,
+    /// `[guidance.barrier]`; `None`: the stored profile alone).
+    pub layers: Option<GuidanceLayers>,
+}
+
+/// The scenario's layers beyond the stored profile: which are on, and their settings (the
+/// defaults for a layer written without keys; a layer off keeps the defaults, unused).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GuidanceLayers {
+    /// The settings of every layer.
+    pub settings: guidance_layers::CampaignGuidance,
+    /// The layers on (a mask over the campaigns' full stack).
+    pub layers: guidance_core::stack::Layers,
 }
 
 /// The `[replanning]` section, resolved (SI units, radians): the settings of

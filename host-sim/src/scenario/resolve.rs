@@ -96,7 +96,11 @@ pub fn read_scenario(path: &Path) -> Result<Scenario, ScenarioError> {
 pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
     let sf = read_file(text, file)?;
     let f = Fields { file };
-    let mut sc = Scenario::default();
+    // A file's layers are the ones it writes (a layer absent is off).
+    let mut sc = Scenario {
+        layers: None,
+        ..Scenario::default()
+    };
     // Files may bank to either side (3-D); the built-in mission keeps the thesis bounds.
     sc.guidance.bounds = super::guidance_bounds();
     if let Some(n) = sf.name {

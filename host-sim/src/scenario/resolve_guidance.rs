@@ -23,6 +23,16 @@ pub(super) fn guidance(
     t: GuidanceFile,
     sc: &mut Scenario,
 ) -> Result<(), ScenarioError> {
+    let mut t = t;
+    sc.layers = super::resolve_layers::layers(
+        f,
+        super::resolve_layers::LayerFiles {
+            lateral: t.lateral.take(),
+            replanning: t.replanning.take(),
+            estimator: t.estimator.take(),
+            barrier: t.barrier.take(),
+        },
+    )?;
     let g = &mut sc.guidance;
     if let Some(s) = t.independent {
         g.independent = match s {

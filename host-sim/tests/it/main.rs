@@ -3,6 +3,7 @@
 mod aero_schedule;
 mod analytic_validation;
 mod campaign;
+mod guidance_layers;
 mod cli;
 mod closed_loop;
 mod dynamics_validation;

@@ -1,0 +1,206 @@
+//! The scenario's guidance layers (`[guidance.lateral]`, `[guidance.replanning]`,
+//! `[guidance.estimator]`, `[guidance.barrier]`): a layer absent is off, the built-ins carry
+//! their stacks and round-trip through the printed scenario, errors name file, field, value
+//! and range, an old `[dispersions.guidance]` gets the new key of each setting, and the key
+//! list, the printed template and the docs' key table agree key by key.
+
+use guidance_core::stack::Layers;
+use host_sim::campaign::{CampaignSetup, Mode, parse_settings};
+use host_sim::scenario::guidance_layers::LAYER_KEYS;
+use host_sim::scenario::{Scenario, ScenarioError, parse_scenario, scenario_to_toml};
+
+fn parse(text: &str) -> Result<Scenario, ScenarioError> {
+    parse_scenario(text, "s.toml", std::path::Path::new("."))
+}
+
+/// A file's layers are the sections it writes; none: the stored profile alone (even though
+/// the built-in mission it starts from has every layer).
+#[test]
+fn a_layer_absent_is_off() {
+    assert_eq!(parse("").unwrap().layers, None);
+    let sc = parse("[guidance.lateral]\n").unwrap();
+    let l = sc.layers.unwrap();
+    assert_eq!(
+        l.layers,
+        Layers {
+            lateral: true,
+            ..Layers::PROFILE
+        }
+    );
+    assert_eq!(l.settings, host_sim::campaign::CampaignGuidance::default());
+    let sc = parse("[guidance.replanning]\n[guidance.estimator]\n[guidance.lateral]\n").unwrap();
+    assert_eq!(
+        sc.layers.unwrap().layers,
+        Layers {
+            barrier: false,
+            ..Layers::ALL
+        }
+    );
+    assert_eq!(Scenario::default().layers.unwrap().layers, Layers::ALL);
+    assert_eq!(Scenario::horus_2b_stored().layers, None);
+}
+
+/// The built-ins print with their layers and parse back to themselves; the example file is
+/// the built-in reference mission's stack.
+#[test]
+fn builtin_stacks_round_trip_and_match_the_example() {
+    for name in Scenario::BUILTIN {
+        let sc = Scenario::try_builtin(name).unwrap();
+        let back = parse(&scenario_to_toml(&sc)).unwrap();
+        assert_eq!(back.layers, sc.layers, "{name}");
+    }
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/horus-2b-stack.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    assert_eq!(parse(&text).unwrap().layers, Scenario::default().layers);
+}
+
+/// Bad values name the file, the scenario key, the value and the range; layers that are parts
+/// of the re-planner need it.
+#[test]
+fn bad_layer_settings_name_file_field_value_and_range() {
+    for (text, field, words) in [
+        (
+            "[guidance.replanning]\nevery_n_ticks = 0\n",
+            "guidance.replanning.every_n_ticks",
+            &["0", ">= 1"][..],
+        ),
+        (
+            "[guidance.replanning]\nevery_n_ticks = 2.5\n",
+            "guidance.replanning.every_n_ticks",
+            &["2.5", "integer"],
+        ),
+        (
+            "[guidance.lateral]\nterminal_start_km = 5000\n",
+            "guidance.lateral.terminal_start_km",
+            &["5000", "2000"],
+        ),
+        (
+            "[guidance.replanning]\n[guidance.estimator]\ndrag_gain = 1.5\n",
+            "guidance.estimator.drag_gain",
+            &["1.5", "(0, 1]"],
+        ),
+        (
+            "[guidance.replanning]\n[guidance.barrier]\nfrequency_rad_s = 0.2\n",
+            "guidance.barrier.frequency_rad_s",
+            &["0.2", "damping"],
+        ),
+        (
+            "[guidance.replanning]\n[guidance.barrier]\nfrequency_rad_s = 2\ndamping = 1\n",
+            "guidance.barrier.frequency_rad_s",
+            &["2", "(0, 1]"],
+        ),
+        (
+            "[guidance.estimator]\n",
+            "guidance.estimator",
+            &["[guidance.replanning]"],
+        ),
+        (
+            "[guidance.replanning]\nreplan_every_n_ticks = 3\n",
+            "guidance.replanning.replan_every_n_ticks",
+            &["unknown"],
+        ),
+    ] {
+        match parse(text) {
+            Err(e @ ScenarioError::Field { .. }) => {
+                let msg = e.to_string();
+                let ScenarioError::Field { field: f, .. } = e else {
+                    unreachable!()
+                };
+                assert_eq!(f, field, "{text}");
+                for w in words.iter().chain(&["s.toml"]) {
+                    assert!(msg.contains(w), "{text}: `{msg}` lacks `{w}`");
+                }
+            }
+            r => panic!("{text}: {r:?}"),
+        }
+    }
+}
+
+/// A campaign flies the modes its scenario's layers make, refuses the others, and a settings
+/// file's old `[dispersions.guidance]` names the new key of each setting.
+#[test]
+fn campaign_modes_are_masks_of_the_scenario_layers() {
+    let sc = parse(
+        "[guidance]\nindependent = \"energy\"\nnodes = [[1, 0, 0], [0.8, 0, 40], [0.4, 0, 60], \
+         [0, 0, 0]]\n[guidance.lateral]\n",
+    );
+    // The reference mission's time-indexed nodes replaced by an energy table: lateral only.
+    let sc = sc.unwrap();
+    let setup = CampaignSetup::new(&sc, "s.toml", None).unwrap();
+    assert_eq!(setup.modes(), vec![Mode::Stored, Mode::StoredReversals]);
+    assert!(setup.check_modes(&[Mode::StoredReversals]).is_ok());
+    let e = setup
+        .check_modes(&[Mode::ReplanReversals])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("replan-reversals") && e.contains("s.toml"), "{e}");
+    let e = parse_settings(
+        "[dispersions.guidance]\nterminal_lateral_km = 250.0\npredictor_aero_mach = true\n",
+        "d.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    for w in [
+        "d.toml",
+        "terminal_lateral_km -> [guidance.lateral] terminal_start_km",
+        "predictor_aero_mach -> [guidance.replanning] lift_profile_mach",
+    ] {
+        assert!(e.contains(w), "`{e}` lacks `{w}`");
+    }
+}
+
+/// One name per setting: every key of [`LAYER_KEYS`] is in the printed template of the
+/// reference mission (which has every layer) under its section, parses, and has a row in the
+/// docs' key table (docs/reference/guidance-stack.md); the template and the table have no
+/// other layer key.
+#[test]
+fn key_list_template_and_docs_agree() {
+    let template = scenario_to_toml(&Scenario::default());
+    let doc = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/reference/guidance-stack.md"
+    ))
+    .unwrap();
+    let mut listed = std::collections::BTreeSet::new();
+    for (_, section, key) in LAYER_KEYS {
+        listed.insert(format!("{section}.{key}"));
+    }
+    // The template: keys under each [guidance.<section>] header.
+    let mut in_template = std::collections::BTreeSet::new();
+    let mut section = None;
+    for line in template.lines() {
+        if let Some(s) = line
+            .strip_prefix("[guidance.")
+            .and_then(|r| r.strip_suffix(']'))
+        {
+            section = Some(s.to_string());
+        } else if line.starts_with('[') {
+            section = None;
+        } else if let (Some(s), Some((k, _))) = (&section, line.split_once(" = ")) {
+            in_template.insert(format!("{s}.{k}"));
+        }
+    }
+    // The reference mission leaves the estimator's and terminal law's optional keys at their
+    // defaults; every key with a value is printed, the optional ones unset are not.
+    for k in &in_template {
+        assert!(listed.contains(k), "template key {k} not in LAYER_KEYS");
+    }
+    let unset = ["replanning.lift_parameter"];
+    for k in &listed {
+        assert!(
+            in_template.contains(k) || unset.contains(&k.as_str()),
+            "{k} not in the template"
+        );
+    }
+    // The docs: a row `| \`[guidance.<section>] <key>\` |` per key.
+    let mut in_doc = std::collections::BTreeSet::new();
+    for line in doc.lines() {
+        if let Some(r) = line.strip_prefix("| `[guidance.")
+            && let Some((s, rest)) = r.split_once("] ")
+            && let Some((k, _)) = rest.split_once('`')
+        {
+            in_doc.insert(format!("{s}.{k}"));
+        }
+    }
+    assert_eq!(in_doc, listed, "docs key table vs LAYER_KEYS");
+}
