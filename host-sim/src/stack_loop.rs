@@ -96,8 +96,6 @@ impl AttitudeSource for StackSource {
         self.stack.next_tick_s()
     }
     fn next_kink_s(&self, time_s: f64) -> f64 {
-        self.stack
-            .next_ramp_kink_s(time_s)
-            .unwrap_or(f64::INFINITY)
+        self.stack.next_ramp_kink_s(time_s).unwrap_or(f64::INFINITY)
     }
 }

@@ -246,8 +246,8 @@ impl PyCampaign {
     fn target(&self) -> (f64, f64, f64) {
         let s = &self.setup;
         (
-            s.target.latitude_rad,
-            s.target.longitude_rad,
+            s.target().latitude_rad,
+            s.target().longitude_rad,
             s.target_downrange_rad * s.planet_radius_m,
         )
     }

@@ -203,16 +203,28 @@ impl<S: Scalar, const N: usize, P: Real> FlightStack<S, N, P> {
         let p = &config.profile;
         let core = match &config.replan {
             None => Core::Profile(
-                Guidance::new(p.guidance, p.table.clone(), p.interpolation, p.energy, p.initial)
-                    .map_err(rejected(Layer::Profile))?,
+                Guidance::new(
+                    p.guidance,
+                    p.table.clone(),
+                    p.interpolation,
+                    p.energy,
+                    p.initial,
+                )
+                .map_err(rejected(Layer::Profile))?,
             ),
             Some(r) => {
                 let replanning = config
                     .replanning_config()
                     .ok_or(StackBuildError::NeedsTarget(Layer::Replan))?;
                 // The profile's own check first, so that its errors name it.
-                Guidance::new(p.guidance, p.table.clone(), p.interpolation, p.energy, p.initial)
-                    .map_err(rejected(Layer::Profile))?;
+                Guidance::new(
+                    p.guidance,
+                    p.table.clone(),
+                    p.interpolation,
+                    p.energy,
+                    p.initial,
+                )
+                .map_err(rejected(Layer::Profile))?;
                 let mut g = ReplanningGuidance::new(
                     p.guidance,
                     p.table.clone(),
@@ -223,9 +235,8 @@ impl<S: Scalar, const N: usize, P: Real> FlightStack<S, N, P> {
                 )
                 .map_err(rejected(Layer::Replan))?;
                 if let Some(e) = config.estimator {
-                    g = g.with_estimator(
-                        AeroEstimator::new(e).map_err(rejected(Layer::Estimator))?,
-                    );
+                    g = g
+                        .with_estimator(AeroEstimator::new(e).map_err(rejected(Layer::Estimator))?);
                 }
                 if let Some(s) = r.lift_schedule {
                     g = g.with_lift_schedule(s).map_err(rejected(Layer::Replan))?;
@@ -350,7 +361,9 @@ impl<S: Scalar, const N: usize, P: Real> FlightStack<S, N, P> {
     /// Bank reversals made (0 without the lateral layer).
     #[must_use]
     pub fn reversals(&self) -> u8 {
-        self.lateral.as_ref().map_or(0, BankReversalLogic::reversals)
+        self.lateral
+            .as_ref()
+            .map_or(0, BankReversalLogic::reversals)
     }
 
     /// Re-plan outcome counts (`None` without the re-planner).

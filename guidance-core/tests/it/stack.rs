@@ -192,7 +192,10 @@ fn profile_only_stack_is_the_stored_guidance() {
     for n in samples() {
         let out = stack.tick(&n, Some(&sensed(&n))).unwrap();
         assert_eq!(out.command, g.update(&n).unwrap().command);
-        assert_eq!((out.replan, out.lateral, out.aero_scales), (None, None, None));
+        assert_eq!(
+            (out.replan, out.lateral, out.aero_scales),
+            (None, None, None)
+        );
     }
 }
 
@@ -259,7 +262,10 @@ fn bad_configurations_name_the_layer() {
         Some(StackBuildError::NeedsTarget(Layer::Lateral))
     );
     c.lateral = None;
-    assert!(FlightStack::new(&c).is_ok(), "the re-planner alone flies a range");
+    assert!(
+        FlightStack::new(&c).is_ok(),
+        "the re-planner alone flies a range"
+    );
     c.target = None;
     assert_eq!(
         FlightStack::new(&c).err(),

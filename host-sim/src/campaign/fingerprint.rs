@@ -15,11 +15,11 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::setup::CampaignSetup;
-use guidance_core::stack::StackConfig;
 use super::{CampaignError, CaseResult, DispersionSettings};
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::{AtmosphereSpec, EnvSpec, Scenario};
 use crate::vehicle::Vehicle;
+use guidance_core::stack::StackConfig;
 
 /// File name of the fingerprint in a campaign's output directory.
 pub const FINGERPRINT_FILE: &str = "fingerprint.json";

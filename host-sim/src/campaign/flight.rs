@@ -9,7 +9,6 @@ use guidance_core::stack::FlightStack;
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
-use crate::scenario::guidance_layers::CampaignGuidance;
 use super::imu::{ImuModel, ImuSource};
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;
@@ -17,7 +16,10 @@ use super::{CampaignError, Mode};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
 use crate::scenario::Scenario;
-use crate::sim::{GuidanceSource, ReportContext, SimConfig, SimResult, TerminationReason, simulate};
+use crate::scenario::guidance_layers::CampaignGuidance;
+use crate::sim::{
+    GuidanceSource, ReportContext, SimConfig, SimResult, TerminationReason, simulate,
+};
 use crate::stack_loop::StackSource;
 use crate::vehicle::Vehicle;
 

@@ -29,8 +29,8 @@ pub mod stats;
 use guidance_core::stack::Layers;
 use serde::{Deserialize, Serialize};
 
-pub use flight::CaseResult;
 pub use crate::scenario::guidance_layers::{CampaignGuidance, CampaignPredictor};
+pub use flight::CaseResult;
 pub use run::{CampaignOutput, run_campaign};
 pub use settings::{Dispersion, DispersionSettings, parse_settings};
 pub use setup::CampaignSetup;

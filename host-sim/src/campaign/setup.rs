@@ -9,8 +9,8 @@ use guidance_core::interp::Interpolation;
 use guidance_core::lateral::{Corridor, CorridorAxis, TerminalLateral};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, SCHEDULE_NODES,
-    ScheduleNode, TargetPoint,
+    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, SCHEDULE_NODES, ScheduleNode,
+    TargetPoint,
 };
 use guidance_core::stack::{
     BarrierLayer, HostStackConfig, LateralLayer, Layers, ProfileLayer, ReplanLayer, StackConfig,
@@ -18,10 +18,10 @@ use guidance_core::stack::{
 use guidance_core::vinh::PredictorConfig;
 
 use super::CampaignError;
-use crate::scenario::guidance_layers::CampaignGuidance;
 use crate::dynamics::SphericalState;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
+use crate::scenario::guidance_layers::CampaignGuidance;
 use crate::scenario::{Scenario, build_guidance};
 use crate::sim::SimResult;
 

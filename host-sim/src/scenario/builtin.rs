@@ -10,8 +10,8 @@ use guidance_core::stack::Layers;
 
 use super::guidance_layers::{CampaignGuidance, CampaignPredictor};
 use super::{
-    EnvSpec, GuidanceLayers, GuidanceSpec, InterpolationKind, Scenario, ScenarioError,
-    VehicleSpec, guidance_bounds,
+    EnvSpec, GuidanceLayers, GuidanceSpec, InterpolationKind, Scenario, ScenarioError, VehicleSpec,
+    guidance_bounds,
 };
 use crate::dynamics::SphericalState;
 use crate::env::{Planet, Preset};

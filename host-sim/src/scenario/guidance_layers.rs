@@ -193,26 +193,58 @@ pub struct CampaignGuidance {
 /// the key written as `[guidance.<section>] <key>` (the one list of these names: the parser,
 /// the template and the docs' key table are checked against it).
 pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
-    ("corridor_width_entry_deg", "lateral", "corridor_width_entry_deg"),
-    ("corridor_width_final_deg", "lateral", "corridor_width_final_deg"),
-    ("corridor_low_speed_fraction", "lateral", "corridor_low_speed_fraction"),
+    (
+        "corridor_width_entry_deg",
+        "lateral",
+        "corridor_width_entry_deg",
+    ),
+    (
+        "corridor_width_final_deg",
+        "lateral",
+        "corridor_width_final_deg",
+    ),
+    (
+        "corridor_low_speed_fraction",
+        "lateral",
+        "corridor_low_speed_fraction",
+    ),
     ("hysteresis_deg", "lateral", "hysteresis_deg"),
     ("max_reversals", "lateral", "max_reversals"),
     ("freeze_km", "lateral", "freeze_km"),
     ("terminal_lateral_km", "lateral", "terminal_start_km"),
     ("terminal_tolerance_km", "lateral", "terminal_tolerance_km"),
-    ("terminal_reversal_lead_s", "lateral", "terminal_reversal_lead_s"),
+    (
+        "terminal_reversal_lead_s",
+        "lateral",
+        "terminal_reversal_lead_s",
+    ),
     ("replan_every_n_ticks", "replanning", "every_n_ticks"),
     ("replan_tolerance_km", "replanning", "tolerance_km"),
-    ("min_vertical_fraction", "replanning", "min_vertical_fraction"),
-    ("max_vertical_fraction", "replanning", "max_vertical_fraction"),
+    (
+        "min_vertical_fraction",
+        "replanning",
+        "min_vertical_fraction",
+    ),
+    (
+        "max_vertical_fraction",
+        "replanning",
+        "max_vertical_fraction",
+    ),
     ("glide_sink", "replanning", "glide_sink"),
     ("predictor", "replanning", "predictor"),
-    ("predictor_final_speed_offset_m_s", "replanning", "final_speed_offset_m_s"),
+    (
+        "predictor_final_speed_offset_m_s",
+        "replanning",
+        "final_speed_offset_m_s",
+    ),
     ("predictor_lift_parameter", "replanning", "lift_parameter"),
     ("predictor_lift_profile", "replanning", "lift_profile"),
     ("predictor_aero_mach", "replanning", "lift_profile_mach"),
-    ("replan_start_normalized_energy", "replanning", "start_normalized_energy"),
+    (
+        "replan_start_normalized_energy",
+        "replanning",
+        "start_normalized_energy",
+    ),
     ("replan_limit_scale", "replanning", "limit_scale"),
     ("predictor_rotation", "replanning", "numerical_rotation"),
     ("path_bound_limit_scale", "barrier", "limit_scale"),
@@ -220,9 +252,17 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
     ("path_bound_barrier", "barrier", "frequency_rad_s"),
     ("path_bound_barrier", "barrier", "damping"),
     ("path_bound_predicted", "barrier", "predicted"),
-    ("estimator_lift_to_drag_gain", "estimator", "lift_to_drag_gain"),
+    (
+        "estimator_lift_to_drag_gain",
+        "estimator",
+        "lift_to_drag_gain",
+    ),
     ("estimator_drag_gain", "estimator", "drag_gain"),
-    ("estimator_lift_to_drag_bounds", "estimator", "lift_to_drag_bounds"),
+    (
+        "estimator_lift_to_drag_bounds",
+        "estimator",
+        "lift_to_drag_bounds",
+    ),
     ("estimator_drag_bounds", "estimator", "drag_bounds"),
     ("estimator_min_drag_m_s2", "estimator", "min_drag_m_s2"),
 ];
@@ -232,10 +272,10 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
 /// `damping`; its errors name the first.
 #[must_use]
 pub fn scenario_key(field: &str) -> String {
-    LAYER_KEYS
-        .iter()
-        .find(|(f, _, _)| *f == field)
-        .map_or_else(|| field.to_string(), |(_, s, k)| format!("guidance.{s}.{k}"))
+    LAYER_KEYS.iter().find(|(f, _, _)| *f == field).map_or_else(
+        || field.to_string(),
+        |(_, s, k)| format!("guidance.{s}.{k}"),
+    )
 }
 
 /// Whether `x` is 0 (the default: not written).

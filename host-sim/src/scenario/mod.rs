@@ -145,8 +145,8 @@ pub use builtin::{horus_stack, srm_stack};
 pub use error::ScenarioError;
 pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
 pub use guidance::{
-    PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance, build_stack,
-    guidance_bounds,
+    PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
+    build_stack, guidance_bounds,
 };
 pub use resolve::{parse_scenario, read_scenario};
 pub use to_toml::scenario_to_toml;

@@ -122,7 +122,10 @@ pub(super) fn layers(
     if let Some(l) = t.lateral {
         set(&mut g.corridor_width_entry_deg, l.corridor_width_entry_deg);
         set(&mut g.corridor_width_final_deg, l.corridor_width_final_deg);
-        set(&mut g.corridor_low_speed_fraction, l.corridor_low_speed_fraction);
+        set(
+            &mut g.corridor_low_speed_fraction,
+            l.corridor_low_speed_fraction,
+        );
         set(&mut g.hysteresis_deg, l.hysteresis_deg);
         if let Some(v) = l.max_reversals {
             g.max_reversals = whole(f, "guidance.lateral.max_reversals", v, 255.0)? as u8;

@@ -166,13 +166,34 @@ fn layers(s: &mut String, l: &super::GuidanceLayers) {
     // shows every key; only an unset optional one is left out).
     let g = &l.settings;
     for (field, v) in [
-        ("predictor_aero_mach", toml::Value::Boolean(g.predictor_aero_mach)),
-        ("predictor_rotation", toml::Value::Boolean(g.predictor_rotation)),
-        ("predictor_lift_profile", toml::Value::Boolean(g.predictor_lift_profile)),
-        ("path_bound_predicted", toml::Value::Boolean(g.path_bound_predicted)),
-        ("path_bound_descent_time_s", toml::Value::Float(g.path_bound_descent_time_s)),
-        ("terminal_tolerance_km", toml::Value::Float(g.terminal_tolerance_km)),
-        ("terminal_reversal_lead_s", toml::Value::Float(g.terminal_reversal_lead_s)),
+        (
+            "predictor_aero_mach",
+            toml::Value::Boolean(g.predictor_aero_mach),
+        ),
+        (
+            "predictor_rotation",
+            toml::Value::Boolean(g.predictor_rotation),
+        ),
+        (
+            "predictor_lift_profile",
+            toml::Value::Boolean(g.predictor_lift_profile),
+        ),
+        (
+            "path_bound_predicted",
+            toml::Value::Boolean(g.path_bound_predicted),
+        ),
+        (
+            "path_bound_descent_time_s",
+            toml::Value::Float(g.path_bound_descent_time_s),
+        ),
+        (
+            "terminal_tolerance_km",
+            toml::Value::Float(g.terminal_tolerance_km),
+        ),
+        (
+            "terminal_reversal_lead_s",
+            toml::Value::Float(g.terminal_reversal_lead_s),
+        ),
         (
             "replan_limit_scale",
             toml::Value::Array(g.replan_limit_scale.map(toml::Value::Float).to_vec()),

@@ -20,7 +20,10 @@ fn parse_layers(flat: &str, file: &str) -> Result<Layered, CampaignError> {
         let (field, value) = (field.trim(), value.trim());
         let keys: Vec<_> = LAYER_KEYS.iter().filter(|(f, _, _)| *f == field).collect();
         match keys.as_slice() {
-            [] => sections.entry("replanning").or_default().push_str(&format!("{line}\n")),
+            [] => sections
+                .entry("replanning")
+                .or_default()
+                .push_str(&format!("{line}\n")),
             [(_, sec, key)] => sections
                 .entry(sec)
                 .or_default()
@@ -29,10 +32,11 @@ fn parse_layers(flat: &str, file: &str) -> Result<Layered, CampaignError> {
             [(_, sec, k1), (_, _, k2)] => {
                 let v = value.trim_start_matches('[').trim_end_matches(']');
                 let (w, z) = v.split_once(',').unwrap();
-                sections
-                    .entry(sec)
-                    .or_default()
-                    .push_str(&format!("{k1} = {}\n{k2} = {}\n", w.trim(), z.trim()));
+                sections.entry(sec).or_default().push_str(&format!(
+                    "{k1} = {}\n{k2} = {}\n",
+                    w.trim(),
+                    z.trim()
+                ));
             }
             _ => unreachable!(),
         }
@@ -427,11 +431,7 @@ fn guidance_settings_are_configurable_and_checked() {
 fn campaign_predictor_setting_picks_the_replanner_mode() {
     use guidance_core::replan::PredictorMode as P;
     use host_sim::campaign::CampaignPredictor;
-    let parse = |text: &str| {
-        parse_layers(text, "p.toml")
-            .unwrap()
-            .guidance
-    };
+    let parse = |text: &str| parse_layers(text, "p.toml").unwrap().guidance;
     assert_eq!(parse("").predictor, CampaignPredictor::Hybrid, "default");
     for (text, predictor, estimation, reversals, offset) in [
         ("", CampaignPredictor::Hybrid, P::HybridSink, P::Hybrid, 6.0),
@@ -487,15 +487,28 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
     )
     .unwrap();
     assert_eq!(
-        setup.stack_of(Mode::ReplanEstimation).replan.unwrap().solver.mode,
+        setup
+            .stack_of(Mode::ReplanEstimation)
+            .replan
+            .unwrap()
+            .solver
+            .mode,
         P::HybridSink
     );
     assert_eq!(
-        setup.stack_of(Mode::ReplanReversals).replan.unwrap().solver.mode,
+        setup
+            .stack_of(Mode::ReplanReversals)
+            .replan
+            .unwrap()
+            .solver
+            .mode,
         P::Hybrid
     );
     assert_eq!(
-        setup.stack_of(Mode::ReplanReversals).replan.unwrap()
+        setup
+            .stack_of(Mode::ReplanReversals)
+            .replan
+            .unwrap()
             .solver
             .predictor
             .final_speed_m_s,
@@ -517,11 +530,7 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
     ] {
         let e = parse_layers(text, "p.toml").unwrap_err();
         let msg = e.to_string();
-        assert_eq!(
-            field_of(e),
-            scenario_key(field),
-            "{text}"
-        );
+        assert_eq!(field_of(e), scenario_key(field), "{text}");
         for w in ["p.toml", value] {
             assert!(msg.contains(w), "`{msg}` lacks `{w}`");
         }
@@ -698,11 +707,7 @@ fn predictor_lift_parameter_of_the_stored_profile() {
     assert_eq!(srm_setup().stack.replan.unwrap().solver.lambda, 1.0);
     for v in ["0.0", "-1.0", "25.0", "nan"] {
         let e = parse(&format!("predictor_lift_parameter = {v}")).unwrap_err();
-        assert_eq!(
-            field_of(e),
-            scenario_key("predictor_lift_parameter"),
-            "{v}"
-        );
+        assert_eq!(field_of(e), scenario_key("predictor_lift_parameter"), "{v}");
     }
 }
 
@@ -730,11 +735,7 @@ fn path_bound_settings_reach_the_setup() {
     assert_eq!(b.descent_time_s, 20.0);
     for v in ["[0, 1]", "[1, -1]", "[1, 101]", "[nan, 1]"] {
         let e = parse(&format!("path_bound_limit_scale = {v}")).unwrap_err();
-        assert_eq!(
-            field_of(e),
-            scenario_key("path_bound_limit_scale"),
-            "{v}"
-        );
+        assert_eq!(field_of(e), scenario_key("path_bound_limit_scale"), "{v}");
     }
     for v in ["-1.0", "1001.0", "nan"] {
         let e = parse(&format!("path_bound_descent_time_s = {v}")).unwrap_err();
@@ -768,11 +769,7 @@ fn path_bound_settings_reach_the_setup() {
         "[nan, 1]",
     ] {
         let e = parse(&format!("path_bound_barrier = {v}")).unwrap_err();
-        assert_eq!(
-            field_of(e),
-            scenario_key("path_bound_barrier"),
-            "{v}"
-        );
+        assert_eq!(field_of(e), scenario_key("path_bound_barrier"), "{v}");
     }
 }
 
@@ -852,10 +849,6 @@ fn terminal_lateral_settings_are_read_and_checked() {
             msg.contains("p.toml") && msg.contains(value),
             "{text}: {msg}"
         );
-        assert_eq!(
-            field_of(e),
-            scenario_key(field),
-            "{text}"
-        );
+        assert_eq!(field_of(e), scenario_key(field), "{text}");
     }
 }

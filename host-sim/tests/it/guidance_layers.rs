@@ -49,7 +49,10 @@ fn builtin_stacks_round_trip_and_match_the_example() {
         let back = parse(&scenario_to_toml(&sc)).unwrap();
         assert_eq!(back.layers, sc.layers, "{name}");
     }
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/horus-2b-stack.toml");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/horus-2b-stack.toml"
+    );
     let text = std::fs::read_to_string(path).unwrap();
     assert_eq!(parse(&text).unwrap().layers, Scenario::default().layers);
 }
@@ -133,7 +136,10 @@ fn campaign_modes_are_masks_of_the_scenario_layers() {
         .check_modes(&[Mode::ReplanReversals])
         .unwrap_err()
         .to_string();
-    assert!(e.contains("replan-reversals") && e.contains("s.toml"), "{e}");
+    assert!(
+        e.contains("replan-reversals") && e.contains("s.toml"),
+        "{e}"
+    );
     let e = parse_settings(
         "[dispersions.guidance]\nterminal_lateral_km = 250.0\npredictor_aero_mach = true\n",
         "d.toml",
@@ -203,4 +209,61 @@ fn key_list_template_and_docs_agree() {
         }
     }
     assert_eq!(in_doc, listed, "docs key table vs LAYER_KEYS");
+}
+
+/// A recorded case flown alone reproduces its record bit for bit (`host-sim dispersions ...
+/// --case ID`), and a changed record is reported as different (exit status non-zero).
+#[test]
+fn a_recorded_case_flown_alone_reproduces_its_record() {
+    let dir = std::env::temp_dir().join(format!("host-sim-it-replay-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args([
+                "dispersions",
+                "--builtin",
+                "srm-glide",
+                "-n",
+                "3",
+                "--seed",
+                "5",
+                "--interface-speed",
+                "2500",
+                "--modes",
+                "stored-reversals,replan-estimation",
+                "--threads",
+                "2",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&dir)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    assert!(run(&[]).status.success());
+    let o = run(&["--case", "2"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}");
+    assert_eq!(
+        text.matches("reproduces its record bit for bit").count(),
+        2,
+        "{text}"
+    );
+    // A record edited by one digit is not reproduced.
+    let p = dir.join("cases/replan-estimation/000002.json");
+    let json = std::fs::read_to_string(&p).unwrap();
+    let i = json.find("\"miss_m\": ").unwrap() + 10;
+    let mut edited = json.clone();
+    let d = if &json[i..=i] == "9" { "8" } else { "9" };
+    edited.replace_range(i..=i, d);
+    std::fs::write(&p, edited).unwrap();
+    let o = run(&["--case", "2"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(!o.status.success());
+    assert!(
+        text.contains("replan-estimation: miss") && text.contains("DIFFERS"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

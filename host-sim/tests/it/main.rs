@@ -3,11 +3,11 @@
 mod aero_schedule;
 mod analytic_validation;
 mod campaign;
-mod guidance_layers;
 mod cli;
 mod closed_loop;
 mod dynamics_validation;
 mod env_validation;
+mod guidance_layers;
 mod hypervolume;
 mod hypervolume_cli;
 mod hypervolume_pagmo2;
