@@ -22,7 +22,7 @@ use crate::dynamics::SphericalState;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
 use crate::scenario::guidance_layers::CampaignGuidance;
-use crate::scenario::{Scenario, build_guidance};
+use crate::scenario::{Scenario, TargetSpec, build_guidance};
 use crate::sim::SimResult;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -72,6 +72,33 @@ fn along_heading(e: &SphericalState, downrange_rad: f64) -> TargetPoint<f64> {
         latitude_rad: lat2,
         longitude_rad: lon2,
     }
+}
+
+/// The point `downrange_rad` along the entry heading's great circle from the entry point `e`
+/// and `crossrange_rad` off it, to the right of the direction of flight (great-circle angles).
+#[must_use]
+pub fn downrange_crossrange(
+    e: &SphericalState,
+    downrange_rad: f64,
+    crossrange_rad: f64,
+) -> TargetPoint<f64> {
+    let p = along_heading(e, downrange_rad);
+    // The course at `p`: the reverse of the bearing from `p` back to the entry.
+    let back = guidance_core::geo::initial_bearing(
+        p.latitude_rad,
+        p.longitude_rad,
+        e.latitude_rad,
+        e.longitude_rad,
+    )
+    .unwrap_or(f64::NAN);
+    let course = back + std::f64::consts::PI;
+    let at_p = SphericalState {
+        latitude_rad: p.latitude_rad,
+        longitude_rad: p.longitude_rad,
+        heading_rad: course + std::f64::consts::FRAC_PI_2,
+        ..*e
+    };
+    along_heading(&at_p, crossrange_rad)
 }
 
 /// Energy-indexed version of the scenario's table (a time-indexed table is mapped through the
@@ -274,7 +301,8 @@ pub fn profile_aero_schedule(
 
 impl CampaignSetup {
     /// Build from `sc` with the scenario's layers ([`Scenario::layers`]; none: the stored
-    /// profile alone): fly it nominally with its own guidance (the stored profile), take the
+    /// profile alone) aimed at the scenario's target (`TargetSpec::Nominal`: as below): fly it
+    /// nominally with its own guidance (the stored profile), take the
     /// end as the terminal interface, build the energy-indexed two-sided table, then place the
     /// target on the entry great circle at the downrange that the stored profile flown with
     /// bank reversals reaches (at most [`RETARGET_ITERATIONS`] nominal flights, until the
@@ -297,6 +325,24 @@ impl CampaignSetup {
         };
         let mut s = Self::with_guidance(sc, file, interface_speed_m_s, &l.settings)?;
         s.stack = s.stack.masked(l.layers);
+        match l.target {
+            TargetSpec::Nominal => {}
+            TargetSpec::Point {
+                latitude_rad,
+                longitude_rad,
+            } => s.aim_at(TargetPoint {
+                latitude_rad,
+                longitude_rad,
+            }),
+            TargetSpec::Range {
+                downrange_rad,
+                crossrange_rad,
+            } => s.aim_at(downrange_crossrange(
+                &sc.entry,
+                downrange_rad,
+                crossrange_rad,
+            )),
+        }
         Ok(s)
     }
 
@@ -525,6 +571,20 @@ impl CampaignSetup {
     #[must_use]
     pub fn guidance_key(&self) -> Option<CampaignGuidance> {
         (self.guidance != CampaignGuidance::default()).then(|| self.guidance.clone())
+    }
+
+    /// Aim at `target` (the scenario's own target; the downrange for the errors is its
+    /// great-circle angle from the entry point).
+    pub fn aim_at(&mut self, target: TargetPoint<f64>) {
+        let e = &self.scenario.entry;
+        self.stack.target = Some(RangeTarget::Point(target));
+        self.target_downrange_rad = central_angle(
+            e.latitude_rad,
+            e.longitude_rad,
+            target.latitude_rad,
+            target.longitude_rad,
+        )
+        .unwrap_or(f64::NAN);
     }
 
     /// Put the target `downrange_rad` along the entry great circle.

@@ -8,6 +8,7 @@ use guidance_core::nodes::Independent;
 
 use guidance_core::stack::Layers;
 
+use super::TargetSpec;
 use super::guidance_layers::{CampaignGuidance, CampaignPredictor};
 use super::{
     EnvSpec, GuidanceLayers, GuidanceSpec, InterpolationKind, Scenario, ScenarioError, VehicleSpec,
@@ -111,6 +112,7 @@ pub fn horus_stack() -> GuidanceLayers {
             ..CampaignGuidance::default()
         },
         layers: Layers::ALL,
+        target: TargetSpec::Nominal,
     }
 }
 
@@ -124,6 +126,7 @@ pub fn srm_stack() -> GuidanceLayers {
             barrier: false,
             ..Layers::ALL
         },
+        target: TargetSpec::Nominal,
     }
 }
 

@@ -194,6 +194,8 @@ pub struct GuidanceFile {
     pub estimator: Option<super::resolve_layers::EstimatorFile>,
     /// `[guidance.barrier]`: the path-limit bound (absent: off).
     pub barrier: Option<super::resolve_layers::BarrierFile>,
+    /// `[guidance.target]`: where the layers aim.
+    pub target: Option<super::resolve_layers::TargetFile>,
 }
 
 /// `[termination]`.

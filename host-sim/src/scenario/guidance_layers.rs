@@ -267,6 +267,16 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
     ("estimator_min_drag_m_s2", "estimator", "min_drag_m_s2"),
 ];
 
+/// The keys of `[guidance.target]` (one form: latitude and longitude, downrange and
+/// crossrange, or nominal).
+pub const TARGET_KEYS: [&str; 5] = [
+    "latitude_deg",
+    "longitude_deg",
+    "downrange_km",
+    "crossrange_km",
+    "nominal",
+];
+
 /// The scenario key (`guidance.<section>.<key>`) of a [`CampaignGuidance`] field (the field
 /// itself if it has none). `path_bound_barrier` is written as two keys, `frequency_rad_s` and
 /// `damping`; its errors name the first.

@@ -413,6 +413,31 @@ pub struct GuidanceLayers {
     pub settings: guidance_layers::CampaignGuidance,
     /// The layers on (a mask over the campaigns' full stack).
     pub layers: guidance_core::stack::Layers,
+    /// Where the re-planner and the lateral logic aim (`[guidance.target]`).
+    pub target: TargetSpec,
+}
+
+/// The target of the scenario's layers at the terminal interface (`[guidance.target]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TargetSpec {
+    /// Where the nominal stored profile flown with bank reversals ends, on the entry great
+    /// circle (the campaign set-up finds it by nominal flights; `nominal = true`).
+    Nominal,
+    /// A point: geocentric latitude and longitude \[rad\].
+    Point {
+        /// Latitude \[rad\].
+        latitude_rad: f64,
+        /// Longitude \[rad\].
+        longitude_rad: f64,
+    },
+    /// From the entry point: downrange along the entry heading's great circle and crossrange
+    /// off it (positive: right) \[rad\] (great-circle angles).
+    Range {
+        /// Downrange \[rad\], > 0.
+        downrange_rad: f64,
+        /// Crossrange \[rad\].
+        crossrange_rad: f64,
+    },
 }
 
 /// The `[replanning]` section, resolved (SI units, radians): the settings of

@@ -31,7 +31,9 @@ pub(super) fn guidance(
             replanning: t.replanning.take(),
             estimator: t.estimator.take(),
             barrier: t.barrier.take(),
+            target: t.target.take(),
         },
+        sc.environment.planet.radius_m,
     )?;
     let g = &mut sc.guidance;
     if let Some(s) = t.independent {

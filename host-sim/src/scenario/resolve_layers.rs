@@ -11,7 +11,7 @@ use serde::Deserialize;
 use super::file::Num;
 use super::guidance_layers::{CampaignGuidance, CampaignPredictor};
 use super::resolve::Fields;
-use super::{GuidanceLayers, ScenarioError};
+use super::{GuidanceLayers, ScenarioError, TargetSpec};
 use crate::campaign::CampaignError;
 
 /// `[guidance.lateral]`: bank reversals on a heading-error corridor, the terminal law.
@@ -70,7 +70,21 @@ pub struct BarrierFile {
     predicted: Option<bool>,
 }
 
-/// The four layer sections as written.
+/// `[guidance.target]`: where the re-planner and the lateral logic aim, at the terminal
+/// interface: `latitude_deg` and `longitude_deg`, or `downrange_km` and `crossrange_km` from
+/// the entry point (along and right of the entry heading's great circle), or
+/// `nominal = true` (where the nominal stored profile with reversals ends).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TargetFile {
+    latitude_deg: Option<Num>,
+    longitude_deg: Option<Num>,
+    downrange_km: Option<Num>,
+    crossrange_km: Option<Num>,
+    nominal: Option<bool>,
+}
+
+/// The four layer sections and the target as written.
 #[derive(Debug, Default)]
 pub struct LayerFiles {
     /// `[guidance.lateral]`.
@@ -81,6 +95,73 @@ pub struct LayerFiles {
     pub estimator: Option<EstimatorFile>,
     /// `[guidance.barrier]`.
     pub barrier: Option<BarrierFile>,
+    /// `[guidance.target]`.
+    pub target: Option<TargetFile>,
+}
+
+/// The target of `t` (planet radius `radius_m` \[m\] for the distances).
+fn target(
+    f: &Fields<'_>,
+    t: Option<TargetFile>,
+    radius_m: f64,
+) -> Result<TargetSpec, ScenarioError> {
+    const HOW: &str = "give latitude_deg and longitude_deg, or downrange_km and crossrange_km, \
+                       or nominal = true";
+    let Some(t) = t else {
+        return Err(f.err(
+            "guidance.target",
+            "(missing)",
+            &format!("required by the re-planning and lateral layers: {HOW}"),
+        ));
+    };
+    let lat = f.checked(
+        "guidance.target.latitude_deg",
+        t.latitude_deg,
+        |v| v.abs() <= 90.0,
+        "must be within [-90, 90] deg",
+    )?;
+    let lon = f.checked(
+        "guidance.target.longitude_deg",
+        t.longitude_deg,
+        |v| v.abs() <= 360.0,
+        "must be within [-360, 360] deg",
+    )?;
+    let half_circle_km = std::f64::consts::PI * radius_m / 1e3;
+    let down = f.checked(
+        "guidance.target.downrange_km",
+        t.downrange_km,
+        |v| v > 0.0 && v < half_circle_km,
+        &format!(
+            "must be in (0, {}) km (half the planet's circumference)",
+            half_circle_km.round()
+        ),
+    )?;
+    let cross = f.checked(
+        "guidance.target.crossrange_km",
+        t.crossrange_km,
+        |v| v.abs() < 0.5 * half_circle_km,
+        &format!(
+            "must be within +-{} km (a quarter circumference)",
+            (0.5 * half_circle_km).round()
+        ),
+    )?;
+    let nominal = t.nominal == Some(true);
+    match (lat, lon, down, cross, nominal) {
+        (Some(la), Some(lo), None, None, false) => Ok(TargetSpec::Point {
+            latitude_rad: la.to_radians(),
+            longitude_rad: lo.to_radians(),
+        }),
+        (None, None, Some(d), Some(c), false) => Ok(TargetSpec::Range {
+            downrange_rad: d * 1e3 / radius_m,
+            crossrange_rad: c * 1e3 / radius_m,
+        }),
+        (None, None, None, None, true) => Ok(TargetSpec::Nominal),
+        _ => Err(f.err(
+            "guidance.target",
+            "(keys)",
+            &format!("one form only: {HOW}"),
+        )),
+    }
 }
 
 fn pair(v: [Num; 2]) -> [f64; 2] {
@@ -108,6 +189,7 @@ fn whole(f: &Fields<'_>, field: &str, v: Num, max: f64) -> Result<f64, ScenarioE
 pub(super) fn layers(
     f: &Fields<'_>,
     t: LayerFiles,
+    radius_m: f64,
 ) -> Result<Option<GuidanceLayers>, ScenarioError> {
     let on = Layers {
         replan: t.replanning.is_some(),
@@ -116,8 +198,16 @@ pub(super) fn layers(
         barrier: t.barrier.is_some(),
     };
     if on == Layers::PROFILE {
+        if t.target.is_some() {
+            return Err(f.err(
+                "guidance.target",
+                "(section)",
+                "a target needs a layer that aims (add [guidance.replanning] or [guidance.lateral])",
+            ));
+        }
         return Ok(None);
     }
+    let aim_file = t.target;
     let mut g = CampaignGuidance::default();
     if let Some(l) = t.lateral {
         set(&mut g.corridor_width_entry_deg, l.corridor_width_entry_deg);
@@ -217,9 +307,11 @@ pub(super) fn layers(
         },
         other => f.err("guidance", "(layers)", &other.to_string()),
     })?;
+    let aim = target(f, aim_file, radius_m)?;
     Ok(Some(GuidanceLayers {
         settings: g,
         layers: on,
+        target: aim,
     }))
 }
 

@@ -151,8 +151,36 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
     }
     if let Some(l) = &sc.layers {
         layers(&mut s, l);
+        target(&mut s, l.target, r);
     }
     s
+}
+
+/// The `[guidance.target]` section (planet radius `r` \[m\]).
+fn target(s: &mut String, t: super::TargetSpec, r: f64) {
+    use std::fmt::Write as _;
+    let _ = writeln!(s, "\n[guidance.target]");
+    let _ = match t {
+        super::TargetSpec::Nominal => writeln!(s, "nominal = true"),
+        super::TargetSpec::Point {
+            latitude_rad,
+            longitude_rad,
+        } => writeln!(
+            s,
+            "latitude_deg = {:?}\nlongitude_deg = {:?}",
+            latitude_rad.to_degrees(),
+            longitude_rad.to_degrees()
+        ),
+        super::TargetSpec::Range {
+            downrange_rad,
+            crossrange_rad,
+        } => writeln!(
+            s,
+            "downrange_km = {:?}\ncrossrange_km = {:?}",
+            downrange_rad * r / 1e3,
+            crossrange_rad * r / 1e3
+        ),
+    };
 }
 
 /// The layer sections `[guidance.<layer>]` of the layers on, every key of each

@@ -42,7 +42,7 @@ fn parse_layers(flat: &str, file: &str) -> Result<Layered, CampaignError> {
         }
     }
     // Every layer on (the setting of a layer not written reaches the campaign's full stack).
-    let mut text = String::new();
+    let mut text = String::from("[guidance.target]\nnominal = true\n");
     for sec in ["lateral", "replanning", "estimator", "barrier"] {
         if sec == "barrier" && !sections.contains_key("barrier") {
             continue;

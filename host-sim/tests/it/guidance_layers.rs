@@ -6,7 +6,7 @@
 
 use guidance_core::stack::Layers;
 use host_sim::campaign::{CampaignSetup, Mode, parse_settings};
-use host_sim::scenario::guidance_layers::LAYER_KEYS;
+use host_sim::scenario::guidance_layers::{LAYER_KEYS, TARGET_KEYS};
 use host_sim::scenario::{Scenario, ScenarioError, parse_scenario, scenario_to_toml};
 
 fn parse(text: &str) -> Result<Scenario, ScenarioError> {
@@ -18,7 +18,7 @@ fn parse(text: &str) -> Result<Scenario, ScenarioError> {
 #[test]
 fn a_layer_absent_is_off() {
     assert_eq!(parse("").unwrap().layers, None);
-    let sc = parse("[guidance.lateral]\n").unwrap();
+    let sc = parse("[guidance.lateral]\n[guidance.target]\nnominal = true\n").unwrap();
     let l = sc.layers.unwrap();
     assert_eq!(
         l.layers,
@@ -28,7 +28,11 @@ fn a_layer_absent_is_off() {
         }
     );
     assert_eq!(l.settings, host_sim::campaign::CampaignGuidance::default());
-    let sc = parse("[guidance.replanning]\n[guidance.estimator]\n[guidance.lateral]\n").unwrap();
+    let sc = parse(
+        "[guidance.replanning]\n[guidance.estimator]\n[guidance.lateral]\n\
+         [guidance.target]\nnominal = true\n",
+    )
+    .unwrap();
     assert_eq!(
         sc.layers.unwrap().layers,
         Layers {
@@ -125,7 +129,7 @@ fn bad_layer_settings_name_file_field_value_and_range() {
 fn campaign_modes_are_masks_of_the_scenario_layers() {
     let sc = parse(
         "[guidance]\nindependent = \"energy\"\nnodes = [[1, 0, 0], [0.8, 0, 40], [0.4, 0, 60], \
-         [0, 0, 0]]\n[guidance.lateral]\n",
+         [0, 0, 0]]\n[guidance.lateral]\n[guidance.target]\nnominal = true\n",
     );
     // The reference mission's time-indexed nodes replaced by an energy table: lateral only.
     let sc = sc.unwrap();
@@ -171,6 +175,9 @@ fn key_list_template_and_docs_agree() {
     for (_, section, key) in LAYER_KEYS {
         listed.insert(format!("{section}.{key}"));
     }
+    for key in TARGET_KEYS {
+        listed.insert(format!("target.{key}"));
+    }
     // The template: keys under each [guidance.<section>] header.
     let mut in_template = std::collections::BTreeSet::new();
     let mut section = None;
@@ -191,7 +198,14 @@ fn key_list_template_and_docs_agree() {
     for k in &in_template {
         assert!(listed.contains(k), "template key {k} not in LAYER_KEYS");
     }
-    let unset = ["replanning.lift_parameter"];
+    // Unset optional keys, and the target's other forms (the reference aims at `nominal`).
+    let unset = [
+        "replanning.lift_parameter",
+        "target.latitude_deg",
+        "target.longitude_deg",
+        "target.downrange_km",
+        "target.crossrange_km",
+    ];
     for k in &listed {
         assert!(
             in_template.contains(k) || unset.contains(&k.as_str()),
@@ -266,4 +280,76 @@ fn a_recorded_case_flown_alone_reproduces_its_record() {
         "{text}"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The scenario's target: required by the aiming layers, one form only, checked; a campaign
+/// flies it (a point, or downrange and crossrange from the entry), `nominal` keeps the
+/// derived one.
+#[test]
+fn the_campaign_flies_the_scenarios_target() {
+    use host_sim::campaign::setup::downrange_crossrange;
+    use host_sim::scenario::TargetSpec;
+    for (text, field) in [
+        ("[guidance.lateral]\n", "guidance.target"),
+        (
+            "[guidance.lateral]\n[guidance.target]\nlatitude_deg = 10\n",
+            "guidance.target",
+        ),
+        (
+            "[guidance.lateral]\n[guidance.target]\nnominal = true\ndownrange_km = 100\ncrossrange_km = 0\n",
+            "guidance.target",
+        ),
+        (
+            "[guidance.lateral]\n[guidance.target]\nlatitude_deg = 95\nlongitude_deg = 0\n",
+            "guidance.target.latitude_deg",
+        ),
+        (
+            "[guidance.lateral]\n[guidance.target]\ndownrange_km = -5\ncrossrange_km = 0\n",
+            "guidance.target.downrange_km",
+        ),
+        ("[guidance.target]\nnominal = true\n", "guidance.target"),
+    ] {
+        match parse(text) {
+            Err(ScenarioError::Field { field: f, file, .. }) => {
+                assert_eq!((f.as_str(), file.as_str()), (field, "s.toml"), "{text}");
+            }
+            r => panic!("{text}: {r:?}"),
+        }
+    }
+    // Downrange and crossrange: the point's along- and cross-track on the entry heading's
+    // great circle are the values given.
+    let sc = Scenario::srm_glide();
+    let e = sc.entry;
+    let r = sc.environment.planet.radius_m;
+    let (d, c) = (2000e3 / r, -150e3 / r);
+    let t = downrange_crossrange(&e, d, c);
+    let ahead = downrange_crossrange(&e, 1.0, 0.0);
+    let (at, xt) = guidance_core::geo::along_cross_track(
+        (e.latitude_rad, e.longitude_rad),
+        (ahead.latitude_rad, ahead.longitude_rad),
+        (t.latitude_rad, t.longitude_rad),
+    )
+    .unwrap();
+    assert!(
+        (at - d).abs() * r < 1.0 && (xt - c).abs() * r < 1.0,
+        "{at} {xt}"
+    );
+    // The SRM campaign aimed at it: the set-up's target is that point, and the nominal
+    // flight with the full stack ends near it.
+    let mut sc = sc;
+    sc.layers.as_mut().unwrap().target = TargetSpec::Range {
+        downrange_rad: 17_500e3 / r,
+        crossrange_rad: 100e3 / r,
+    };
+    let setup = CampaignSetup::new(&sc, "s.toml", Some(2500.0)).unwrap();
+    let want = downrange_crossrange(&sc.entry, 17_500e3 / r, 100e3 / r);
+    assert_eq!(setup.target(), want);
+    let f = host_sim::campaign::flight::fly_case(&setup, None, Mode::ReplanEstimation).unwrap();
+    assert!(
+        f.reached_interface && f.miss_m < 20e3,
+        "miss {} km",
+        f.miss_m / 1e3
+    );
+    let nominal = CampaignSetup::new(&Scenario::srm_glide(), "s.toml", Some(2500.0)).unwrap();
+    assert_ne!(nominal.target(), want);
 }
