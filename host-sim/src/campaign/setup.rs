@@ -323,7 +323,8 @@ impl CampaignSetup {
             s.stack = s.stack.masked(Layers::PROFILE);
             return Ok(s);
         };
-        let mut s = Self::with_guidance(sc, file, interface_speed_m_s, &l.settings)?;
+        let interface = interface_speed_m_s.or(l.interface_speed_m_s);
+        let mut s = Self::with_guidance(sc, file, interface, &l.settings)?;
         s.stack = s.stack.masked(l.layers);
         match l.target {
             TargetSpec::Nominal => {}

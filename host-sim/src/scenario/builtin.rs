@@ -113,11 +113,13 @@ pub fn horus_stack() -> GuidanceLayers {
         },
         layers: Layers::ALL,
         target: TargetSpec::Nominal,
+        interface_speed_m_s: None,
     }
 }
 
 /// The SRM glide's onboard stack: the re-planner (hybrid predictor), bank reversals and the
-/// onboard estimator with the default settings, no path-limit bound.
+/// onboard estimator with the default settings, no path-limit bound; the terminal interface
+/// at 2.5 km/s (the start of the terminal area: the documented accuracy's interface).
 #[must_use]
 pub fn srm_stack() -> GuidanceLayers {
     GuidanceLayers {
@@ -127,6 +129,7 @@ pub fn srm_stack() -> GuidanceLayers {
             ..Layers::ALL
         },
         target: TargetSpec::Nominal,
+        interface_speed_m_s: Some(2500.0),
     }
 }
 

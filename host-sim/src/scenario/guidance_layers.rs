@@ -268,13 +268,14 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
 ];
 
 /// The keys of `[guidance.target]` (one form: latitude and longitude, downrange and
-/// crossrange, or nominal).
-pub const TARGET_KEYS: [&str; 5] = [
+/// crossrange, or nominal; and the terminal interface speed).
+pub const TARGET_KEYS: [&str; 6] = [
     "latitude_deg",
     "longitude_deg",
     "downrange_km",
     "crossrange_km",
     "nominal",
+    "interface_speed_m_s",
 ];
 
 /// The scenario key (`guidance.<section>.<key>`) of a [`CampaignGuidance`] field (the field

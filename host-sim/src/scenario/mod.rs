@@ -415,6 +415,10 @@ pub struct GuidanceLayers {
     pub layers: guidance_core::stack::Layers,
     /// Where the re-planner and the lateral logic aim (`[guidance.target]`).
     pub target: TargetSpec,
+    /// The terminal interface: the energy where the nominal flight slows to this speed
+    /// \[m/s\] (`[guidance.target] interface_speed_m_s`; `None`: the scenario's own end). A
+    /// campaign's `[dispersions] interface_speed_m_s` or `--interface-speed` overrides it.
+    pub interface_speed_m_s: Option<f64>,
 }
 
 /// The target of the scenario's layers at the terminal interface (`[guidance.target]`).

@@ -34,6 +34,7 @@ pub(super) fn guidance(
             target: t.target.take(),
         },
         sc.environment.planet.radius_m,
+        sc.entry.speed_m_s,
     )?;
     let g = &mut sc.guidance;
     if let Some(s) = t.independent {

@@ -73,7 +73,8 @@ pub struct BarrierFile {
 /// `[guidance.target]`: where the re-planner and the lateral logic aim, at the terminal
 /// interface: `latitude_deg` and `longitude_deg`, or `downrange_km` and `crossrange_km` from
 /// the entry point (along and right of the entry heading's great circle), or
-/// `nominal = true` (where the nominal stored profile with reversals ends).
+/// `nominal = true` (where the nominal stored profile with reversals ends); and the terminal
+/// interface `interface_speed_m_s` (absent: the scenario's end).
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TargetFile {
@@ -82,6 +83,7 @@ pub struct TargetFile {
     downrange_km: Option<Num>,
     crossrange_km: Option<Num>,
     nominal: Option<bool>,
+    interface_speed_m_s: Option<Num>,
 }
 
 /// The four layer sections and the target as written.
@@ -190,6 +192,7 @@ pub(super) fn layers(
     f: &Fields<'_>,
     t: LayerFiles,
     radius_m: f64,
+    entry_speed_m_s: f64,
 ) -> Result<Option<GuidanceLayers>, ScenarioError> {
     let on = Layers {
         replan: t.replanning.is_some(),
@@ -307,11 +310,18 @@ pub(super) fn layers(
         },
         other => f.err("guidance", "(layers)", &other.to_string()),
     })?;
+    let interface = f.checked(
+        "guidance.target.interface_speed_m_s",
+        aim_file.as_ref().and_then(|t| t.interface_speed_m_s),
+        |v| v > 0.0 && v < entry_speed_m_s,
+        "must be in (0, entry speed) m/s",
+    )?;
     let aim = target(f, aim_file, radius_m)?;
     Ok(Some(GuidanceLayers {
         settings: g,
         layers: on,
         target: aim,
+        interface_speed_m_s: interface,
     }))
 }
 

@@ -152,6 +152,9 @@ pub fn scenario_to_toml(sc: &Scenario) -> String {
     if let Some(l) = &sc.layers {
         layers(&mut s, l);
         target(&mut s, l.target, r);
+        if let Some(v) = l.interface_speed_m_s {
+            let _ = writeln!(s, "interface_speed_m_s = {v:?}");
+        }
     }
     s
 }

@@ -205,6 +205,7 @@ fn key_list_template_and_docs_agree() {
         "target.longitude_deg",
         "target.downrange_km",
         "target.crossrange_km",
+        "target.interface_speed_m_s",
     ];
     for k in &listed {
         assert!(
@@ -308,6 +309,10 @@ fn the_campaign_flies_the_scenarios_target() {
             "guidance.target.downrange_km",
         ),
         ("[guidance.target]\nnominal = true\n", "guidance.target"),
+        (
+            "[guidance.lateral]\n[guidance.target]\nnominal = true\ninterface_speed_m_s = 9000\n",
+            "guidance.target.interface_speed_m_s",
+        ),
     ] {
         match parse(text) {
             Err(ScenarioError::Field { field: f, file, .. }) => {
@@ -350,6 +355,8 @@ fn the_campaign_flies_the_scenarios_target() {
         "miss {} km",
         f.miss_m / 1e3
     );
-    let nominal = CampaignSetup::new(&Scenario::srm_glide(), "s.toml", Some(2500.0)).unwrap();
+    let nominal = CampaignSetup::new(&Scenario::srm_glide(), "s.toml", None).unwrap();
     assert_ne!(nominal.target(), want);
+    // The built-in's own terminal interface: 2.5 km/s.
+    assert_eq!(nominal.interface_speed_m_s, 2500.0);
 }
