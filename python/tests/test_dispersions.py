@@ -103,7 +103,7 @@ def test_guidance_settings_reach_the_flights_as_in_the_cli(host_sim, tmp_path):
         "--modes", "stored-reversals", "--quiet", "--out", cli_dir,
     )
     c = reentry.DispersionCampaign(
-        path=scenario, interface_speed_m_s=2500.0, cases=2, modes=["stored-reversals"]
+        scenario, interface_speed_m_s=2500.0, cases=2, modes=["stored-reversals"]
     )
     for (mode, index), text in zip(c.jobs(), c.run_local(threads=1)):
         case = json.loads(text)
