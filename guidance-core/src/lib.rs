@@ -48,6 +48,7 @@ pub mod rate;
 pub mod replan;
 pub mod scalar;
 pub mod setup;
+pub mod stack;
 pub mod vinh;
 
 pub use command::Command;

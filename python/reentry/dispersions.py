@@ -66,12 +66,15 @@ class DispersionCampaign(_native.DispersionCampaign):
     file or text with a ``[dispersions]`` section, or a dict of its fields (default:
     host-sim's documented defaults); ``cases``, ``seed``, ``interface_speed_m_s`` override
     them like the CLI's ``-n``, ``--seed``, ``--interface-speed``; ``modes``: names from
-    ``"stored"``, ``"stored-reversals"``, ``"replan-reversals"`` (default all). Building it
+    ``"stored"``, ``"stored-reversals"``, ``"replan-reversals"``, ``"replan-estimation"``
+    (default: those the scenario's guidance layers make). The campaign flies the scenario's
+    onboard stack (its ``[guidance.<layer>]`` sections and ``[guidance.target]``; a settings
+    file's former ``[dispersions.guidance]`` is refused). Building it
     flies the set-up (a few nominal flights). Raises :class:`reentry.CampaignError` /
     :class:`reentry.ScenarioError` with host-sim's messages. Pickles (rebuilt from its spec).
 
-    ``DispersionCampaign(builtin="srm-glide", cases=1000, interface_speed_m_s=2500)`` is
-    ``host-sim dispersions --builtin srm-glide -n 1000 --interface-speed 2500``."""
+    ``DispersionCampaign(builtin="srm-glide", cases=1000)`` is
+    ``host-sim dispersions --builtin srm-glide -n 1000``."""
 
     def __new__(
         cls,

@@ -642,7 +642,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     o.set_defaults(run=_cmd_optimize)
 
     def dispersion_args(sp, cases: bool):
-        sp.add_argument("--builtin", default="horus-2b-reference", help="built-in scenario (horus-2b-reference, srm-glide)")
+        sp.add_argument("--builtin", default="horus-2b-reference", help="built-in scenario (horus-2b-reference, horus-2b-stored, srm-glide)")
         sp.add_argument("--scenario", help="scenario TOML file (instead of --builtin)")
         if cases:
             sp.add_argument("--settings", help="TOML file with a [dispersions] section")

@@ -113,17 +113,15 @@ impl PyCampaign {
         for m in &spec.modes {
             modes.push(mode_of(m)?);
         }
+        // As the CLI: the scenario's guidance layers, the modes its stack can fly.
+        let setup = CampaignSetup::new(&sc, &file, spec.settings.interface_speed_m_s)
+            .map_err(|e| errors::campaign(&e))?;
         if modes.is_empty() {
-            modes = Mode::ALL.to_vec();
+            modes = setup.modes();
         }
-        // As the CLI: the corridor, re-planner and estimator of `[dispersions.guidance]`.
-        let setup = CampaignSetup::with_guidance(
-            &sc,
-            &file,
-            spec.settings.interface_speed_m_s,
-            &spec.settings.guidance,
-        )
-        .map_err(|e| errors::campaign(&e))?;
+        setup
+            .check_modes(&modes)
+            .map_err(|e| errors::campaign(&e))?;
         Ok((spec, setup, modes))
     }
 
@@ -248,8 +246,8 @@ impl PyCampaign {
     fn target(&self) -> (f64, f64, f64) {
         let s = &self.setup;
         (
-            s.target.latitude_rad,
-            s.target.longitude_rad,
+            s.target().latitude_rad,
+            s.target().longitude_rad,
             s.target_downrange_rad * s.planet_radius_m,
         )
     }

@@ -90,20 +90,29 @@ def test_errors_carry_host_sim_messages(host_sim, tmp_path):
 
 
 def test_guidance_settings_reach_the_flights_as_in_the_cli(host_sim, tmp_path):
-    """``[dispersions.guidance]`` of the settings sets the campaign's guidance, as in
-    ``host-sim dispersions`` (the bindings built the set-up with the default guidance)."""
-    settings = tmp_path / "disp.toml"
-    settings.write_text("[dispersions.guidance]\nmax_reversals = 1\n")
+    """The scenario's ``[guidance.lateral]`` sets the campaign's lateral logic, in the CLI and
+    in the bindings alike (both fly the scenario's layers); the former ``[dispersions.guidance]``
+    table is refused naming the new key."""
+    text = host_sim("simulate", "--builtin", "srm-glide", "--print-scenario").stdout
+    assert "max_reversals = 12" in text
+    scenario = tmp_path / "srm.toml"
+    scenario.write_text(text.replace("max_reversals = 12", "max_reversals = 1"))
     cli_dir = tmp_path / "cli"
     host_sim(
-        "dispersions", "--builtin", "srm-glide", "-n", "2", "--interface-speed", "2500",
-        "--settings", settings, "--modes", "stored-reversals", "--quiet", "--out", cli_dir,
+        "dispersions", "--scenario", scenario, "-n", "2", "--interface-speed", "2500",
+        "--modes", "stored-reversals", "--quiet", "--out", cli_dir,
     )
-    c = reentry.DispersionCampaign(settings=settings, cases=2, modes=["stored-reversals"], **SRM)
+    c = reentry.DispersionCampaign(
+        scenario, interface_speed_m_s=2500.0, cases=2, modes=["stored-reversals"]
+    )
     for (mode, index), text in zip(c.jobs(), c.run_local(threads=1)):
         case = json.loads(text)
         assert case["guidance"]["max_reversals"] == 1 and case["reversals"] <= 1
         assert json.loads((cli_dir / "cases" / mode / f"{index:06d}.json").read_text()) == case
+    old = tmp_path / "disp.toml"
+    old.write_text("[dispersions.guidance]\nmax_reversals = 1\n")
+    with pytest.raises(reentry.CampaignError, match=r"\[guidance.lateral\] max_reversals"):
+        reentry.DispersionCampaign(settings=old, cases=2, **SRM)
 
 
 def test_dispersions_on_dask_equal_local_table(client, small, tmp_path):

@@ -54,7 +54,7 @@ def test_builtin_and_its_scenario_dict(host_sim, tmp_path):
     host_sim("simulate", "--quiet", "--builtin", "srm-glide", "--out", tmp_path / "srm")
     expected = json.loads((tmp_path / "srm" / "summary.json").read_text())
     assert reentry.fly(builtin="srm-glide").summary == expected
-    assert set(reentry.builtin_scenarios()) == {"horus-2b-reference", "srm-glide"}
+    assert set(reentry.builtin_scenarios()) == {"horus-2b-reference", "horus-2b-stored", "srm-glide"}
     assert reentry.scenario_toml() == host_sim("simulate", "--print-scenario").stdout
 
 

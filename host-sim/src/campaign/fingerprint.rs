@@ -19,6 +19,7 @@ use super::{CampaignError, CaseResult, DispersionSettings};
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::{AtmosphereSpec, EnvSpec, Scenario};
 use crate::vehicle::Vehicle;
+use guidance_core::stack::StackConfig;
 
 /// File name of the fingerprint in a campaign's output directory.
 pub const FINGERPRINT_FILE: &str = "fingerprint.json";
@@ -127,6 +128,7 @@ impl Fields {
             g_rate_window_s,
             nose_radius_m,
             replanning,
+            layers,
         } = sc;
         let EnvSpec {
             planet,
@@ -152,6 +154,7 @@ impl Fields {
         self.debug("scenario.g_rate_window_s", g_rate_window_s);
         self.debug("scenario.nose_radius_m", nose_radius_m);
         self.debug("scenario.replanning", replanning);
+        self.debug("scenario.layers", layers);
     }
 
     /// The vehicle as loaded (its name is not an input).
@@ -177,50 +180,34 @@ impl Fields {
         let CampaignSetup {
             scenario: _,
             file: _,
-            energy,
             interface_energy_j_kg,
             interface_speed_m_s,
             floor_altitude_m,
             planet_radius_m,
-            target,
             target_downrange_rad,
-            table,
-            guidance_config,
-            lateral,
-            lateral_terminal,
-            replanning,
-            estimator,
+            stack,
             guidance,
-            lift_schedule,
-            replan_start_normalized_energy,
-            path_bound,
         } = s;
-        self.debug("setup.energy", energy);
         self.debug("setup.interface_energy_j_kg", interface_energy_j_kg);
         self.debug("setup.interface_speed_m_s", interface_speed_m_s);
         self.debug("setup.floor_altitude_m", floor_altitude_m);
         self.debug("setup.planet_radius_m", planet_radius_m);
-        self.debug("setup.target", target);
         self.debug("setup.target_downrange_rad", target_downrange_rad);
-        self.debug("setup.table", table);
-        self.debug("setup.guidance_config", guidance_config);
-        self.debug("setup.lateral", lateral);
-        self.debug("setup.replanning", replanning);
-        self.debug("setup.estimator", estimator);
         self.debug("setup.guidance", guidance);
-        self.debug("setup.lift_schedule", lift_schedule);
-        self.debug(
-            "setup.replan_start_normalized_energy",
-            replan_start_normalized_energy,
-        );
-        // Absent without a bound: the fingerprints of campaigns before it are unchanged.
-        if let Some(b) = path_bound {
-            self.debug("setup.path_bound", &b);
-        }
-        // Absent without the terminal law, likewise.
-        if let Some(t) = lateral_terminal {
-            self.debug("setup.lateral_terminal", &t);
-        }
+        let StackConfig {
+            profile,
+            replan,
+            lateral,
+            estimator,
+            barrier,
+            target,
+        } = stack;
+        self.debug("setup.stack.profile", profile);
+        self.debug("setup.stack.replan", replan);
+        self.debug("setup.stack.lateral", lateral);
+        self.debug("setup.stack.estimator", estimator);
+        self.debug("setup.stack.barrier", barrier);
+        self.debug("setup.stack.target", target);
     }
 }
 

@@ -2,31 +2,25 @@
 //! gives at the terminal interface.
 
 use guidance_core::energy::EnergyNormalizer;
-use guidance_core::estimate::AeroEstimator;
 use guidance_core::geo::along_cross_track;
 use guidance_core::guidance::HostGuidance;
-use guidance_core::interp::Interpolation;
-use guidance_core::lateral::BankReversalLogic;
-use guidance_core::replan::{
-    HostReplanningGuidance, PredictorMode, ReplanCase, ReplanReport, ReplanningConfig,
-    ReplanningGuidance,
-};
+use guidance_core::replan::{ReplanCase, ReplanReport};
+use guidance_core::stack::FlightStack;
 use serde::{Deserialize, Serialize};
 
 use super::draw::CaseDraw;
-use super::guidance_settings::CampaignGuidance;
 use super::imu::{ImuModel, ImuSource};
 use super::models::{DispersedAero, DispersedAtmosphere};
 use super::setup::CampaignSetup;
 use super::{CampaignError, Mode};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
-use crate::lateral_loop::LateralSource;
 use crate::scenario::Scenario;
+use crate::scenario::guidance_layers::CampaignGuidance;
 use crate::sim::{
-    AttitudeSource, GuidanceSource, ReportContext, SimConfig, SimResult, TerminationReason,
-    simulate,
+    GuidanceSource, ReportContext, SimConfig, SimResult, TerminationReason, simulate,
 };
+use crate::stack_loop::StackSource;
 use crate::vehicle::Vehicle;
 
 /// What one flight gives (SI units, radians).
@@ -226,88 +220,32 @@ pub fn fly_case_logged(
     cfg.termination.normalized_energy = Some(e_hat_f);
     cfg.termination.altitude_m = Some(setup.floor_altitude_m);
     cfg.termination.mach = None;
-    let gerr = |source| CampaignError::Guidance {
+    let stack = FlightStack::new(&setup.stack_of(mode)).map_err(|source| CampaignError::Stack {
         file: setup.file.clone(),
-        field: "guidance",
         source,
-    };
-    let logic = || {
-        let l = BankReversalLogic::new(setup.lateral).map_err(gerr)?;
-        match setup.lateral_terminal {
-            Some(t) => l.with_terminal(t).map_err(gerr),
-            None => Ok(l),
-        }
-    };
-    let run = |src: &mut dyn FnMut() -> Result<Flown, CampaignError>| src();
-    let (result, reversals, replans, fall_backs, estimated_scales, log) = match mode {
-        Mode::Stored => run(&mut || {
-            let s = LateralSource::new(setup.stored_guidance()?, None);
-            finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |_| {
-                (0, 0, 0, None, Vec::new())
-            })
-        })?,
-        Mode::StoredReversals => run(&mut || {
-            let s = LateralSource::new(setup.stored_guidance()?, Some(logic()?));
-            finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
-                (u32::from(s.reversals()), 0, 0, None, Vec::new())
-            })
-        })?,
-        Mode::ReplanReversals | Mode::ReplanEstimation => run(&mut || {
-            let mut g: HostReplanningGuidance<f64> = ReplanningGuidance::new(
-                setup.guidance_config,
-                setup.table.clone(),
-                Interpolation::Linear,
-                setup.energy,
-                sc.guidance.initial,
-                replanning_of(setup, mode),
-            )
-            .map_err(gerr)?;
-            if mode == Mode::ReplanEstimation {
-                g = g.with_estimator(AeroEstimator::new(setup.estimator).map_err(gerr)?);
-            }
-            if let Some(s) = setup.lift_schedule {
-                g = g.with_lift_schedule(s).map_err(gerr)?;
-            }
-            if let Some(e) = setup.replan_start_normalized_energy {
-                g = g.with_start_energy(e).map_err(gerr)?;
-            }
-            if let Some(b) = setup.path_bound {
-                g = g
-                    .with_path_bound(b, setup.guidance.path_bound_predicted)
-                    .map_err(gerr)?;
-            }
-            g = g.with_numerical_rotation(setup.guidance.predictor_rotation);
-            let s = ImuSource::new(LateralSource::new(g, Some(logic()?)), ImuModel::of(&d));
-            finish(simulate(dynm, s, &cfg, &mut |_| {}), d.index, |s| {
-                let s = &s.source;
-                let fb = s
-                    .inner
-                    .reports
-                    .iter()
-                    .filter(|r| matches!(r.case, ReplanCase::FallBack(_)))
-                    .count();
-                let est = s
-                    .inner
-                    .guidance
-                    .aero_scales()
-                    .map(|a| [a.lift_to_drag, a.drag]);
-                let log = s
-                    .inner
-                    .reports
-                    .iter()
-                    .copied()
-                    .zip(s.inner.contexts.iter().copied())
-                    .collect();
-                (
-                    u32::from(s.reversals()),
-                    s.inner.guidance.counts().replans,
-                    u32::try_from(fb).unwrap_or(u32::MAX),
-                    est,
-                    log,
-                )
-            })
-        })?,
-    };
+    })?;
+    let source = ImuSource::new(StackSource::new(stack), ImuModel::of(&d));
+    let (result, src) =
+        simulate(dynm, source, &cfg, &mut |_| {}).map_err(|source| CampaignError::Sim {
+            index: Some(d.index),
+            source,
+        })?;
+    let s = &src.source;
+    let fall_backs = s
+        .reports
+        .iter()
+        .filter(|r| matches!(r.case, ReplanCase::FallBack(_)))
+        .count();
+    let log: ReplanLog = s
+        .reports
+        .iter()
+        .copied()
+        .zip(s.contexts.iter().copied())
+        .collect();
+    let reversals = u32::from(s.reversals());
+    let replans = s.stack.replan_counts().map_or(0, |c| c.replans);
+    let fall_backs = u32::try_from(fall_backs).unwrap_or(u32::MAX);
+    let estimated_scales = s.stack.aero_scales().map(|a| [a.lift_to_drag, a.drag]);
     let end = result
         .samples
         .last()
@@ -315,7 +253,8 @@ pub fn fly_case_logged(
         .ok_or(CampaignError::EmptyFlight)?;
     let radius = env.planet.radius_m;
     let e0 = (sc.entry.latitude_rad, sc.entry.longitude_rad);
-    let t = (setup.target.latitude_rad, setup.target.longitude_rad);
+    let target = setup.target();
+    let t = (target.latitude_rad, target.longitude_rad);
     let (at, xt) =
         along_cross_track(e0, t, (end.latitude_rad, end.longitude_rad)).unwrap_or((0.0, 0.0));
     let s = &result.summary;
@@ -351,41 +290,4 @@ pub fn fly_case_logged(
         final_longitude_rad: end.longitude_rad,
     };
     Ok((case, log))
-}
-
-/// The re-planner settings of `mode`: the sink to the equilibrium
-/// (`PredictorMode::AutoSink` or `HybridSink`, `glide_sink`) only with onboard estimation, whose
-/// density scale makes an offset from the equilibrium a transient rather than model error;
-/// without it the same predictor without the sink (`Auto`, `Hybrid`; `Numerical` unchanged).
-#[must_use]
-pub fn replanning_of(setup: &CampaignSetup, mode: Mode) -> ReplanningConfig<f64> {
-    let mut r = setup.replanning;
-    if mode != Mode::ReplanEstimation {
-        r.solver.mode = match r.solver.mode {
-            PredictorMode::AutoSink => PredictorMode::Auto,
-            PredictorMode::HybridSink => PredictorMode::Hybrid,
-            m => m,
-        };
-    }
-    r
-}
-
-/// What a source kept: reversals, re-plans, fall-backs, final onboard estimate, re-plan log.
-type Counts = (u32, u32, u32, Option<[f64; 2]>, ReplanLog);
-
-/// A flight and its [`Counts`].
-type Flown = (SimResult, u32, u32, u32, Option<[f64; 2]>, ReplanLog);
-
-/// The result of a run and the counts its source kept.
-fn finish<A: AttitudeSource>(
-    r: Result<(SimResult, A), crate::sim::SimError>,
-    index: u32,
-    counts: impl Fn(&A) -> Counts,
-) -> Result<Flown, CampaignError> {
-    let (res, src) = r.map_err(|source| CampaignError::Sim {
-        index: Some(index),
-        source,
-    })?;
-    let (a, b, c, e, l) = counts(&src);
-    Ok((res, a, b, c, e, l))
 }

@@ -3,8 +3,6 @@
 //! cases, with statistics, a footprint and histograms (docs/reference/campaigns.md).
 //!
 //! * [`settings`]: the `[dispersions]` TOML section, defaults, validation naming the field;
-//! * [`guidance_settings`]: its `[dispersions.guidance]` table (corridor, re-planner, onboard
-//!   estimation);
 //! * [`draw`]: the dispersed values of case `i`, from a generator seeded by (seed, i) only;
 //! * [`models`]: the dispersed atmosphere (altitude-varying, bounded density scale) and aero;
 //! * [`setup`]: what the cases share (terminal interface, target, stored profile, settings of
@@ -19,7 +17,6 @@
 pub mod draw;
 pub mod fingerprint;
 pub mod flight;
-pub mod guidance_settings;
 pub mod imu;
 pub mod models;
 pub mod output;
@@ -29,10 +26,11 @@ pub mod settings;
 pub mod setup;
 pub mod stats;
 
+use guidance_core::stack::Layers;
 use serde::{Deserialize, Serialize};
 
+pub use crate::scenario::guidance_layers::{CampaignGuidance, CampaignPredictor};
 pub use flight::CaseResult;
-pub use guidance_settings::{CampaignGuidance, CampaignPredictor};
 pub use run::{CampaignOutput, run_campaign};
 pub use settings::{Dispersion, DispersionSettings, parse_settings};
 pub use setup::CampaignSetup;
@@ -60,6 +58,35 @@ impl Mode {
         Mode::ReplanReversals,
         Mode::ReplanEstimation,
     ];
+
+    /// The layers of the campaign's stack this mode flies (a mask over the one stack:
+    /// `guidance_core::stack::StackConfig::masked`).
+    #[must_use]
+    pub fn layers(self) -> Layers {
+        match self {
+            Mode::Stored => Layers::PROFILE,
+            Mode::StoredReversals => Layers {
+                lateral: true,
+                ..Layers::PROFILE
+            },
+            Mode::ReplanReversals => Layers {
+                estimator: false,
+                ..Layers::ALL
+            },
+            Mode::ReplanEstimation => Layers::ALL,
+        }
+    }
+
+    /// Whether a stack with `layers` can fly this mode: it has the layers that make the mode
+    /// (the barrier is flown where present, not required).
+    #[must_use]
+    pub fn flies_with(self, layers: Layers) -> bool {
+        let need = Layers {
+            barrier: false,
+            ..self.layers()
+        };
+        need.and(layers) == need
+    }
 
     /// Short name (file and directory names).
     #[must_use]
@@ -113,6 +140,14 @@ pub enum CampaignError {
         field: &'static str,
         /// The core's error.
         source: guidance_core::GuidanceError,
+    },
+    /// The onboard stack could not be built.
+    #[error("{file}: guidance stack: {source}")]
+    Stack {
+        /// Scenario file.
+        file: String,
+        /// The core's error.
+        source: guidance_core::stack::StackBuildError,
     },
     /// The predictor model could not be built.
     #[error("{file}: predictor model: {source}")]

@@ -43,8 +43,8 @@ pub fn write_campaign(
     let s = Summary {
         scenario: &setup.scenario.name,
         settings,
-        target_latitude_deg: setup.target.latitude_rad.to_degrees(),
-        target_longitude_deg: setup.target.longitude_rad.to_degrees(),
+        target_latitude_deg: setup.target().latitude_rad.to_degrees(),
+        target_longitude_deg: setup.target().longitude_rad.to_degrees(),
         target_downrange_km: setup.target_downrange_rad * r / 1e3,
         interface_speed_m_s: setup.interface_speed_m_s,
         nominal: &out.nominal,

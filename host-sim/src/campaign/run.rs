@@ -123,6 +123,41 @@ fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
         .join(format!("{index:06}.json"))
 }
 
+/// What replaying one recorded case found ([`replay_case`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Replay {
+    /// The directory holds no record of the case.
+    NoRecord,
+    /// The flight's record is the stored one byte for byte.
+    Same,
+    /// The stored record differs (other inputs, or a change in the code).
+    Differs,
+}
+
+/// Fly case `index` of the campaign (`setup`, `settings`) in `mode` alone, from its own draw
+/// ([`draw_case`]: the seed and the index only), and compare its record with the one a
+/// campaign wrote into `dir` (`dir/cases/<mode>/<index>.json`, the same serialisation).
+///
+/// # Errors
+/// [`CampaignError`] if the flight fails or the record cannot be serialised.
+pub fn replay_case(
+    setup: &CampaignSetup,
+    settings: &DispersionSettings,
+    mode: Mode,
+    index: u32,
+    dir: Option<&Path>,
+) -> Result<(CaseResult, Replay), CampaignError> {
+    let draw = draw_case(settings, index);
+    let r = fly_case(setup, Some(&draw), mode)?;
+    let json = serde_json::to_vec_pretty(&r).map_err(crate::report::ReportError::from)?;
+    let replay = match dir.map(|d| std::fs::read(case_path(d, mode, index))) {
+        Some(Ok(stored)) if stored == json => Replay::Same,
+        Some(Ok(_)) => Replay::Differs,
+        _ => Replay::NoRecord,
+    };
+    Ok((r, replay))
+}
+
 /// Run the campaign.
 ///
 /// # Errors

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::CampaignError;
-use super::guidance_settings::CampaignGuidance;
+use crate::scenario::guidance_layers::scenario_key;
 use crate::toml_input::TomlInputError;
 
 /// One dispersed quantity: a distribution and its 3-sigma value (in the field's unit).
@@ -74,9 +74,6 @@ pub struct DispersionSettings {
     /// Terminal interface \[m/s\]: the energy where the nominal flight slows to this speed
     /// (e.g. the start of the terminal area); absent: the scenario's own end.
     pub interface_speed_m_s: Option<f64>,
-    /// The guidance of the cases (`[dispersions.guidance]`: corridor, re-planner, onboard
-    /// estimation).
-    pub guidance: CampaignGuidance,
 }
 
 impl Default for DispersionSettings {
@@ -100,7 +97,6 @@ impl Default for DispersionSettings {
             imu_scale_factor: Dispersion::normal(0.001),
             imu_noise_m_s2: 0.005,
             interface_speed_m_s: None,
-            guidance: CampaignGuidance::default(),
         }
     }
 }
@@ -218,7 +214,7 @@ impl DispersionSettings {
                 "must be finite and > 0",
             ));
         }
-        self.guidance.validate(file)
+        Ok(())
     }
 }
 
@@ -252,6 +248,14 @@ struct SettingsFile {
 /// [`CampaignError::Toml`] for bad TOML, [`CampaignError::Setting`] for an unknown or
 /// mistyped field or a bad value (naming it).
 pub fn parse_settings(text: &str, file: &str) -> Result<DispersionSettings, CampaignError> {
+    if let Ok(doc) = text.parse::<toml::Table>()
+        && let Some(old) = doc
+            .get("dispersions")
+            .and_then(|d| d.get("guidance"))
+            .and_then(toml::Value::as_table)
+    {
+        return Err(moved_guidance(old, file));
+    }
     let (f, _): (SettingsFile, _) = crate::toml_input::parse(text).map_err(|e| match e {
         TomlInputError::Syntax(source) => CampaignError::Toml {
             file: file.into(),
@@ -270,4 +274,34 @@ pub fn parse_settings(text: &str, file: &str) -> Result<DispersionSettings, Camp
     })?;
     f.dispersions.validate(file)?;
     Ok(f.dispersions)
+}
+
+/// The error for a `[dispersions.guidance]` table (the guidance is the scenario's now): each
+/// key it holds with its scenario key.
+fn moved_guidance(old: &toml::Table, file: &str) -> CampaignError {
+    let moved: Vec<String> = old
+        .keys()
+        .map(|k| {
+            let new = scenario_key(k);
+            if new == *k {
+                format!("{k}: no such setting")
+            } else {
+                let (section, key) = new
+                    .strip_prefix("guidance.")
+                    .and_then(|r| r.split_once('.'))
+                    .unwrap_or(("?", k));
+                format!("{k} -> [guidance.{section}] {key}")
+            }
+        })
+        .collect();
+    CampaignError::Setting {
+        file: file.into(),
+        field: "dispersions.guidance".into(),
+        value: format!("{{{}}}", old.keys().cloned().collect::<Vec<_>>().join(", ")),
+        reason: format!(
+            "the guidance is written in the scenario now, one section per layer (a layer \
+             absent is off; docs/reference/guidance-stack.md): {}",
+            moved.join("; ")
+        ),
+    }
 }

@@ -3,24 +3,26 @@
 //! the lateral logic and of the re-planner. Built once from a scenario by flying it nominally.
 
 use guidance_core::energy::EnergyNormalizer;
-use guidance_core::estimate::EstimatorConfig;
 use guidance_core::geo::central_angle;
-use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
+use guidance_core::guidance::{GuidanceConfig, RateLimits};
 use guidance_core::interp::Interpolation;
-use guidance_core::lateral::{Corridor, CorridorAxis, LateralConfig, TerminalLateral};
+use guidance_core::lateral::{Corridor, CorridorAxis, TerminalLateral};
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Independent, Node};
 use guidance_core::replan::{
-    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig,
-    SCHEDULE_NODES, ScheduleNode, TargetPoint,
+    LiftSchedule, PathBound, RangeTarget, ReplanConfig, ReplanLimits, SCHEDULE_NODES, ScheduleNode,
+    TargetPoint,
+};
+use guidance_core::stack::{
+    BarrierLayer, HostStackConfig, LateralLayer, Layers, ProfileLayer, ReplanLayer, StackConfig,
 };
 use guidance_core::vinh::PredictorConfig;
 
 use super::CampaignError;
-use super::guidance_settings::CampaignGuidance;
 use crate::dynamics::SphericalState;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
-use crate::scenario::{Scenario, build_guidance};
+use crate::scenario::guidance_layers::CampaignGuidance;
+use crate::scenario::{Scenario, TargetSpec, build_guidance};
 use crate::sim::SimResult;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -38,8 +40,6 @@ pub struct CampaignSetup {
     pub scenario: Scenario,
     /// Name of the scenario file (for messages).
     pub file: String,
-    /// Energy normaliser of the nominal entry (onboard constant of every case).
-    pub energy: EnergyNormalizer<f64>,
     /// Terminal interface: specific energy `V^2/2 - mu/r` \[J/kg\] of the nominal end.
     pub interface_energy_j_kg: f64,
     /// Speed at the nominal end \[m/s\] (the predictor's final speed).
@@ -48,30 +48,14 @@ pub struct CampaignSetup {
     pub floor_altitude_m: f64,
     /// Planet radius \[m\].
     pub planet_radius_m: f64,
-    /// The target point at the terminal interface.
-    pub target: TargetPoint<f64>,
     /// Downrange of the target along the nominal entry great circle \[rad\].
     pub target_downrange_rad: f64,
-    /// Energy-indexed stored profile with two-sided bank bounds.
-    pub table: HostNodeTable<f64>,
-    /// Guidance period and rate limits.
-    pub guidance_config: GuidanceConfig<f64>,
-    /// Lateral logic settings.
-    pub lateral: LateralConfig<f64>,
-    /// The lateral logic's terminal crossrange law (`terminal_lateral_km`; `None`: off).
-    pub lateral_terminal: Option<TerminalLateral<f64>>,
-    /// Re-planner settings.
-    pub replanning: ReplanningConfig<f64>,
-    /// Onboard estimation settings ([`super::Mode::ReplanEstimation`]).
-    pub estimator: EstimatorConfig<f64>,
+    /// The full onboard stack (every layer a mode may fly; [`CampaignSetup::stack_of`] masks
+    /// it): the energy-indexed stored profile with two-sided bank bounds, the re-planner, the
+    /// lateral logic, the estimator, the path bound, and the target point.
+    pub stack: HostStackConfig<f64>,
     /// The guidance settings these were built from.
     pub guidance: CampaignGuidance,
-    /// The numerical predictor's lift parameter against speed (`predictor_lift_profile`).
-    pub lift_schedule: Option<LiftSchedule<f64>>,
-    /// No re-plan above this E-hat (`replan_start_normalized_energy`).
-    pub replan_start_normalized_energy: Option<f64>,
-    /// The limit-driven bound on the re-planned bank (`path_bound_limit_scale`).
-    pub path_bound: Option<PathBound<f64>>,
 }
 
 /// The entry great circle's second point: `downrange` \[rad\] from the entry along its heading.
@@ -88,6 +72,33 @@ fn along_heading(e: &SphericalState, downrange_rad: f64) -> TargetPoint<f64> {
         latitude_rad: lat2,
         longitude_rad: lon2,
     }
+}
+
+/// The point `downrange_rad` along the entry heading's great circle from the entry point `e`
+/// and `crossrange_rad` off it, to the right of the direction of flight (great-circle angles).
+#[must_use]
+pub fn downrange_crossrange(
+    e: &SphericalState,
+    downrange_rad: f64,
+    crossrange_rad: f64,
+) -> TargetPoint<f64> {
+    let p = along_heading(e, downrange_rad);
+    // The course at `p`: the reverse of the bearing from `p` back to the entry.
+    let back = guidance_core::geo::initial_bearing(
+        p.latitude_rad,
+        p.longitude_rad,
+        e.latitude_rad,
+        e.longitude_rad,
+    )
+    .unwrap_or(f64::NAN);
+    let course = back + std::f64::consts::PI;
+    let at_p = SphericalState {
+        latitude_rad: p.latitude_rad,
+        longitude_rad: p.longitude_rad,
+        heading_rad: course + std::f64::consts::FRAC_PI_2,
+        ..*e
+    };
+    along_heading(&at_p, crossrange_rad)
 }
 
 /// Energy-indexed version of the scenario's table (a time-indexed table is mapped through the
@@ -289,7 +300,9 @@ pub fn profile_aero_schedule(
 }
 
 impl CampaignSetup {
-    /// Build from `sc`: fly it nominally with its own guidance (the stored profile), take the
+    /// Build from `sc` with the scenario's layers ([`Scenario::layers`]; none: the stored
+    /// profile alone) aimed at the scenario's target (`TargetSpec::Nominal`: as below): fly it
+    /// nominally with its own guidance (the stored profile), take the
     /// end as the terminal interface, build the energy-indexed two-sided table, then place the
     /// target on the entry great circle at the downrange that the stored profile flown with
     /// bank reversals reaches (at most [`RETARGET_ITERATIONS`] nominal flights, until the
@@ -304,11 +317,69 @@ impl CampaignSetup {
         file: &str,
         interface_speed_m_s: Option<f64>,
     ) -> Result<Self, CampaignError> {
-        Self::with_guidance(sc, file, interface_speed_m_s, &CampaignGuidance::default())
+        let Some(l) = &sc.layers else {
+            let mut s =
+                Self::with_guidance(sc, file, interface_speed_m_s, &CampaignGuidance::default())?;
+            s.stack = s.stack.masked(Layers::PROFILE);
+            return Ok(s);
+        };
+        let interface = interface_speed_m_s.or(l.interface_speed_m_s);
+        let mut s = Self::with_guidance(sc, file, interface, &l.settings)?;
+        s.stack = s.stack.masked(l.layers);
+        match l.target {
+            TargetSpec::Nominal => {}
+            TargetSpec::Point {
+                latitude_rad,
+                longitude_rad,
+            } => s.aim_at(TargetPoint {
+                latitude_rad,
+                longitude_rad,
+            }),
+            TargetSpec::Range {
+                downrange_rad,
+                crossrange_rad,
+            } => s.aim_at(downrange_crossrange(
+                &sc.entry,
+                downrange_rad,
+                crossrange_rad,
+            )),
+        }
+        Ok(s)
     }
 
-    /// [`CampaignSetup::new`] with the corridor, re-planner and estimator of `gs`
-    /// (`[dispersions.guidance]`).
+    /// The modes this campaign's stack can fly ([`super::Mode::flies_with`]), in report order.
+    #[must_use]
+    pub fn modes(&self) -> Vec<super::Mode> {
+        let l = self.stack.layers();
+        super::Mode::ALL
+            .into_iter()
+            .filter(|m| m.flies_with(l))
+            .collect()
+    }
+
+    /// Check that the stack can fly every mode of `modes`.
+    ///
+    /// # Errors
+    /// [`CampaignError::Setting`] naming the first mode whose layers the scenario does not
+    /// define.
+    pub fn check_modes(&self, modes: &[super::Mode]) -> Result<(), CampaignError> {
+        let l = self.stack.layers();
+        match modes.iter().find(|m| !m.flies_with(l)) {
+            None => Ok(()),
+            Some(m) => Err(CampaignError::Setting {
+                file: self.file.clone(),
+                field: "modes".into(),
+                value: m.name().into(),
+                reason: format!(
+                    "the scenario's guidance has no layer for it (it defines {l:?}; add the \
+                     [guidance.lateral] / [guidance.replanning] / [guidance.estimator] sections)"
+                ),
+            }),
+        }
+    }
+
+    /// [`CampaignSetup::new`] with every layer on, with the settings `gs` (whatever the
+    /// scenario's own layers).
     ///
     /// # Errors
     /// As [`CampaignSetup::new`]; [`CampaignError::Setting`] for a bad `gs`.
@@ -380,8 +451,8 @@ impl CampaignSetup {
         };
         let v_e = sc.entry.speed_m_s;
         let v_f = end.speed_m_s;
-        let lateral = LateralConfig {
-            target: along_heading(&sc.entry, nominal.summary.range_angle_rad),
+        let target = along_heading(&sc.entry, nominal.summary.range_angle_rad);
+        let lateral = LateralLayer {
             corridor: Corridor {
                 axis: CorridorAxis::Speed,
                 x_high: v_e,
@@ -392,6 +463,11 @@ impl CampaignSetup {
             hysteresis_rad: gs.hysteresis_deg * DEG,
             max_reversals: gs.max_reversals,
             freeze_angle_rad: gs.freeze_km * 1e3 / planet.radius_m,
+            terminal: gs.terminal_lateral_km.map(|k| TerminalLateral {
+                start_angle_rad: k * 1e3 / planet.radius_m,
+                tolerance_rad: gs.terminal_tolerance_km * 1e3 / planet.radius_m,
+                reversal_lead_s: gs.terminal_reversal_lead_s,
+            }),
         };
         let fit = ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3).map_err(
             |e| CampaignError::Predictor {
@@ -406,9 +482,8 @@ impl CampaignSetup {
                     source,
                 }
             })?;
-        let replanning = ReplanningConfig {
+        let replan = ReplanLayer {
             every_n_ticks: gs.replan_every_n_ticks,
-            target: RangeTarget::Point(lateral.target),
             limits: ReplanLimits {
                 heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * gs.replan_limit_scale[0],
                 g_load: vehicle.limits.g_load * gs.replan_limit_scale[1],
@@ -428,43 +503,23 @@ impl CampaignSetup {
                     final_speed_m_s: v_f + gs.final_speed_offset_m_s(),
                     max_skips: 4,
                 },
-                // The mode of `replan-estimation`; `flight::replanning_of` drops the sink for
-                // the other re-planning mode.
+                // The mode of `replan-estimation`; masking the estimator off drops the sink
+                // (`StackConfig::masked`).
                 mode: gs.predictor.mode(gs.glide_sink),
             },
             model,
             apply_out_of_reach: true,
             steps_per_tick: 0,
-        };
-        let r_f = end.radius_m;
-        let mut setup = Self {
-            scenario: sc.clone(),
-            file: file.into(),
-            energy,
-            interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
-            interface_speed_m_s: v_f,
-            floor_altitude_m: (r_f - planet.radius_m - 10e3).max(1e3),
-            planet_radius_m: planet.radius_m,
-            target: lateral.target,
-            target_downrange_rad: nominal.summary.range_angle_rad,
-            table,
-            guidance_config,
-            lateral,
-            lateral_terminal: gs.terminal_lateral_km.map(|k| TerminalLateral {
-                start_angle_rad: k * 1e3 / planet.radius_m,
-                tolerance_rad: gs.terminal_tolerance_km * 1e3 / planet.radius_m,
-                reversal_lead_s: gs.terminal_reversal_lead_s,
-            }),
-            replanning,
-            estimator: gs.estimator(),
-            guidance: gs.clone(),
             lift_schedule: match (gs.predictor_lift_profile, gs.predictor_aero_mach) {
                 (true, true) => profile_aero_schedule(&vehicle, &model, &nominal, v_f),
                 (true, false) => profile_lift_schedule(&vehicle, &model, &nominal, v_f),
                 (false, _) => None,
             },
-            replan_start_normalized_energy: gs.replan_start_normalized_energy,
-            path_bound: gs.path_bound_limit_scale.map(|[q, g]| PathBound {
+            start_normalized_energy: gs.replan_start_normalized_energy,
+            numerical_rotation: gs.predictor_rotation,
+        };
+        let barrier = gs.path_bound_limit_scale.map(|[q, g]| BarrierLayer {
+            bound: PathBound {
                 limits: ReplanLimits {
                     heat_flux_w_m2: vehicle.limits.heat_flux_w_m2 * q,
                     g_load: vehicle.limits.g_load * g,
@@ -472,7 +527,34 @@ impl CampaignSetup {
                 descent_time_s: gs.path_bound_descent_time_s,
                 barrier_frequency_rad_s: gs.path_bound_barrier.map_or(0.0, |[w, _]| w),
                 barrier_damping: gs.path_bound_barrier.map_or(0.0, |[_, z]| z),
-            }),
+            },
+            predicted: gs.path_bound_predicted,
+        });
+        let stack = StackConfig {
+            profile: ProfileLayer {
+                guidance: guidance_config,
+                table,
+                interpolation: Interpolation::Linear,
+                energy,
+                initial: sc.guidance.initial,
+            },
+            replan: Some(replan),
+            lateral: Some(lateral),
+            estimator: Some(gs.estimator()),
+            barrier,
+            target: Some(RangeTarget::Point(target)),
+        };
+        let r_f = end.radius_m;
+        let mut setup = Self {
+            scenario: sc.clone(),
+            file: file.into(),
+            interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
+            interface_speed_m_s: v_f,
+            floor_altitude_m: (r_f - planet.radius_m - 10e3).max(1e3),
+            planet_radius_m: planet.radius_m,
+            target_downrange_rad: nominal.summary.range_angle_rad,
+            stack,
+            guidance: gs.clone(),
         };
         // Re-aim at where the stored profile with reversals ends, on the entry great circle
         // (a fixed-point iteration: the reversals depend on the target).
@@ -492,43 +574,54 @@ impl CampaignSetup {
         (self.guidance != CampaignGuidance::default()).then(|| self.guidance.clone())
     }
 
+    /// Aim at `target` (the scenario's own target; the downrange for the errors is its
+    /// great-circle angle from the entry point).
+    pub fn aim_at(&mut self, target: TargetPoint<f64>) {
+        let e = &self.scenario.entry;
+        self.stack.target = Some(RangeTarget::Point(target));
+        self.target_downrange_rad = central_angle(
+            e.latitude_rad,
+            e.longitude_rad,
+            target.latitude_rad,
+            target.longitude_rad,
+        )
+        .unwrap_or(f64::NAN);
+    }
+
     /// Put the target `downrange_rad` along the entry great circle.
     pub fn retarget(&mut self, downrange_rad: f64) {
-        let t = along_heading(&self.scenario.entry, downrange_rad);
-        self.target = t;
+        self.stack.target = Some(RangeTarget::Point(along_heading(
+            &self.scenario.entry,
+            downrange_rad,
+        )));
         self.target_downrange_rad = downrange_rad;
-        self.lateral.target = t;
-        self.replanning.target = RangeTarget::Point(t);
+    }
+
+    /// The target point at the terminal interface (the stack's; NaN if it had none, which a
+    /// setup this module built always has).
+    #[must_use]
+    pub fn target(&self) -> TargetPoint<f64> {
+        match self.stack.target {
+            Some(RangeTarget::Point(p)) => p,
+            _ => TargetPoint {
+                latitude_rad: f64::NAN,
+                longitude_rad: f64::NAN,
+            },
+        }
+    }
+
+    /// The stack `mode` flies: the full stack with the layers off that the mode leaves out
+    /// ([`super::Mode::layers`], [`StackConfig::masked`]).
+    #[must_use]
+    pub fn stack_of(&self, mode: super::Mode) -> HostStackConfig<f64> {
+        self.stack.masked(mode.layers())
     }
 
     /// Great-circle distance \[m\] from (lat, lon) to the target.
     #[must_use]
     pub fn distance_to_target_m(&self, lat: f64, lon: f64, radius_m: f64) -> f64 {
-        central_angle(
-            lat,
-            lon,
-            self.target.latitude_rad,
-            self.target.longitude_rad,
-        )
-        .map_or(f64::INFINITY, |a| a * radius_m)
-    }
-
-    /// The guidance of the stored profile (energy-indexed, two-sided bounds).
-    ///
-    /// # Errors
-    /// [`CampaignError::Guidance`] (cannot happen for a table this setup built).
-    pub fn stored_guidance(&self) -> Result<HostGuidance<f64>, CampaignError> {
-        Guidance::new(
-            self.guidance_config,
-            self.table.clone(),
-            Interpolation::Linear,
-            self.energy,
-            self.scenario.guidance.initial,
-        )
-        .map_err(|source| CampaignError::Guidance {
-            file: self.file.clone(),
-            field: "guidance",
-            source,
-        })
+        let t = self.target();
+        central_angle(lat, lon, t.latitude_rad, t.longitude_rad)
+            .map_or(f64::INFINITY, |a| a * radius_m)
     }
 }

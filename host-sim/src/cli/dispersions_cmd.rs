@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use super::CliError;
 use crate::campaign::output::write_campaign;
-use crate::campaign::run::RunOptions;
+use crate::campaign::run::{Replay, RunOptions, replay_case};
 use crate::campaign::{CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign};
 use crate::scenario::{Scenario, read_scenario};
 
@@ -44,12 +44,59 @@ pub struct DispersionsArgs {
     /// Do not show a progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Fly only case ID (from 0) of the campaign, in each mode, and compare each record with
+    /// the one in the output directory (`--out`): "reproduces" when byte for byte equal.
+    #[arg(long, value_name = "ID")]
+    pub case: Option<u32>,
 }
 
 /// Wrap a campaign error for the CLI.
 impl From<crate::campaign::CampaignError> for CliError {
     fn from(e: crate::campaign::CampaignError) -> Self {
         CliError::Campaign(Box::new(e))
+    }
+}
+
+/// `--case ID`: fly the case alone in each mode, print its record and whether it reproduces
+/// the one in `dir`.
+fn replay(
+    setup: &CampaignSetup,
+    settings: &DispersionSettings,
+    modes: &[Mode],
+    index: u32,
+    dir: &std::path::Path,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let mut differ = Vec::new();
+    for &mode in modes {
+        let (r, found) = replay_case(setup, settings, mode, index, Some(dir))?;
+        writeln!(
+            out,
+            "{}: case {index} {}: miss {:.3} km, {} reversals, {} re-plans: {}",
+            setup.scenario.name,
+            mode.name(),
+            r.miss_m / 1e3,
+            r.reversals,
+            r.replans,
+            match found {
+                Replay::Same => "reproduces its record bit for bit",
+                Replay::Differs => "DIFFERS from its record",
+                Replay::NoRecord => "no record in the output directory",
+            }
+        )?;
+        if found == Replay::Differs {
+            differ.push(mode.name());
+        }
+    }
+    if differ.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::Argument {
+            field: "case",
+            value: index.to_string(),
+            reason: "the replayed flight differs from the record in the output directory \
+                     (other inputs, or other code)",
+        })
     }
 }
 
@@ -93,9 +140,6 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             })?;
         modes.push(mode);
     }
-    if modes.is_empty() {
-        modes = Mode::ALL.to_vec();
-    }
     if a.threads == Some(0) {
         return Err(CliError::Argument {
             field: "threads",
@@ -108,8 +152,14 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("dispersions-{}", sc.name)));
     let started = std::time::Instant::now();
-    let setup =
-        CampaignSetup::with_guidance(&sc, &file, settings.interface_speed_m_s, &settings.guidance)?;
+    let setup = CampaignSetup::new(&sc, &file, settings.interface_speed_m_s)?;
+    if modes.is_empty() {
+        modes = setup.modes();
+    }
+    setup.check_modes(&modes)?;
+    if let Some(index) = a.case {
+        return replay(&setup, &settings, &modes, index, &dir, out);
+    }
     let opts = RunOptions {
         modes,
         out_dir: Some(dir.clone()),
@@ -128,8 +178,8 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         opts.modes.len(),
         res.resumed,
         flown as f64 / wall.max(1e-9),
-        setup.target.latitude_rad.to_degrees(),
-        setup.target.longitude_rad.to_degrees(),
+        setup.target().latitude_rad.to_degrees(),
+        setup.target().longitude_rad.to_degrees(),
         setup.target_downrange_rad * setup.planet_radius_m / 1e3
     )?;
     writeln!(

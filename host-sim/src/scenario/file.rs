@@ -186,6 +186,16 @@ pub struct GuidanceFile {
     pub initial_sigma_deg: Option<Num>,
     /// Nodes `[x, alpha_deg, sigma_deg]` in flight order.
     pub nodes: Option<Vec<Vec<Num>>>,
+    /// `[guidance.lateral]`: bank reversals (absent: off).
+    pub lateral: Option<super::resolve_layers::LateralFile>,
+    /// `[guidance.replanning]`: the re-planner of the campaigns' stack (absent: off).
+    pub replanning: Option<super::resolve_layers::ReplanFile>,
+    /// `[guidance.estimator]`: onboard estimation (absent: off).
+    pub estimator: Option<super::resolve_layers::EstimatorFile>,
+    /// `[guidance.barrier]`: the path-limit bound (absent: off).
+    pub barrier: Option<super::resolve_layers::BarrierFile>,
+    /// `[guidance.target]`: where the layers aim.
+    pub target: Option<super::resolve_layers::TargetFile>,
 }
 
 /// `[termination]`.

@@ -4,12 +4,14 @@
 use std::path::{Path, PathBuf};
 
 use guidance_core::replan::RangeTarget;
+use guidance_core::stack::{FlightStack, Layer, StackBuildError};
 
-use super::{Scenario, ScenarioError, build_guidance, build_replanning_guidance};
+use super::{Scenario, ScenarioError, build_stack};
 use crate::dynamics::Dynamics;
 use crate::env::Environment;
 use crate::report;
 use crate::sim;
+use crate::stack_loop::StackSource;
 use crate::vehicle::Vehicle;
 
 /// Result of [`simulate_scenario`].
@@ -56,8 +58,8 @@ impl std::fmt::Debug for Flight {
     }
 }
 
-/// Fly a scenario closed-loop with `guidance-core`'s guidance (no files written): its
-/// `Guidance`, or its `ReplanningGuidance` when the scenario has a `[replanning]` section.
+/// Fly a scenario closed-loop with `guidance-core`'s flight stack (no files written): the
+/// scenario's stack ([`build_stack`]) through `guidance_core::stack::FlightStack::tick`.
 ///
 /// # Errors
 /// [`ScenarioError`] for vehicle, guidance or simulation failures.
@@ -81,21 +83,40 @@ pub fn fly(
     let vehicle = sc.load_vehicle()?;
     let environment = sc.environment.build();
     let dynm = Dynamics::from_environment(&environment, &vehicle);
-    let result = match build_replanning_guidance(sc, &environment, &vehicle, file)? {
-        Some(g) => {
-            let source = sim::GuidanceSource::new(g);
-            sim::simulate(dynm, source, &sc.sim_config(), progress)?.0
-        }
-        None => {
-            let source = sim::CoreGuidance::new(build_guidance(sc, &environment.planet, file)?);
-            sim::simulate(dynm, source, &sc.sim_config(), progress)?.0
-        }
-    };
+    let config = build_stack(sc, &environment, &vehicle, file)?;
+    let stack = FlightStack::new(&config).map_err(|e| stack_error(e, file))?;
+    let source = StackSource::new(stack);
+    let result = sim::simulate(dynm, source, &sc.sim_config(), progress)?.0;
     Ok(Flight {
         result,
         vehicle,
         environment,
     })
+}
+
+/// The scenario error of a stack the core refuses: the profile's as a `[guidance]` error, any
+/// other layer's as a `[replanning]` error.
+fn stack_error(e: StackBuildError, file: &str) -> ScenarioError {
+    match e {
+        StackBuildError::Rejected {
+            layer: Layer::Profile,
+            source,
+        } => ScenarioError::Guidance {
+            file: file.to_string(),
+            field: "interpolation",
+            source,
+        },
+        StackBuildError::Rejected { source, .. } => ScenarioError::Replanning {
+            file: file.to_string(),
+            source,
+        },
+        StackBuildError::NeedsReplan(_) | StackBuildError::NeedsTarget(_) => {
+            ScenarioError::Replanning {
+                file: file.to_string(),
+                source: guidance_core::GuidanceError::InvalidConfig,
+            }
+        }
+    }
 }
 
 /// Fly a scenario and write its run directory.

@@ -9,6 +9,7 @@ use guidance_core::nodes::{AngleBounds, HostNodeTable, Node};
 use guidance_core::replan::{
     HostReplanningGuidance, ReplanConfig, ReplanLimits, ReplanningConfig, ReplanningGuidance,
 };
+use guidance_core::stack::{HostStackConfig, ProfileLayer, ReplanLayer, StackConfig};
 use guidance_core::vinh::PredictorConfig;
 
 use super::{InterpolationKind, Scenario, ScenarioError};
@@ -177,6 +178,46 @@ pub fn build_replanning_guidance(
     .map_err(|source| ScenarioError::Replanning {
         file: file.to_string(),
         source,
+    })
+}
+
+/// The onboard stack of a scenario (`guidance_core::stack::StackConfig`, the one description
+/// every flight of the scenario flies): its stored profile and, with a `[replanning]` section,
+/// the re-planner ([`build_replanning`]) aimed at the section's target.
+///
+/// # Errors
+/// As [`build_guidance`] and [`build_replanning`].
+pub fn build_stack(
+    sc: &Scenario,
+    env: &Environment,
+    vehicle: &Vehicle,
+    file: &str,
+) -> Result<HostStackConfig<f64>, ScenarioError> {
+    let p = parts(sc, &env.planet, file)?;
+    let replan = build_replanning(sc, env, vehicle, file)?;
+    Ok(StackConfig {
+        profile: ProfileLayer {
+            guidance: p.config,
+            table: p.table,
+            interpolation: p.kind,
+            energy: p.energy,
+            initial: sc.guidance.initial,
+        },
+        target: replan.map(|r| r.target),
+        replan: replan.map(|r| ReplanLayer {
+            every_n_ticks: r.every_n_ticks,
+            limits: r.limits,
+            solver: r.solver,
+            model: r.model,
+            apply_out_of_reach: r.apply_out_of_reach,
+            steps_per_tick: r.steps_per_tick,
+            lift_schedule: None,
+            start_normalized_energy: None,
+            numerical_rotation: false,
+        }),
+        lateral: None,
+        estimator: None,
+        barrier: None,
     })
 }
 

@@ -119,10 +119,12 @@ mod error;
 pub mod file;
 mod flight;
 mod guidance;
+pub mod guidance_layers;
 mod required;
 mod resolve;
 mod resolve_environment;
 mod resolve_guidance;
+mod resolve_layers;
 mod resolve_replanning;
 mod to_toml;
 pub mod warnings;
@@ -142,11 +144,12 @@ use crate::env::{
 use crate::integrate::Tolerances;
 use crate::sim::{SimConfig, Termination};
 
+pub use builtin::{horus_stack, srm_stack};
 pub use error::ScenarioError;
 pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
 pub use guidance::{
     PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
-    guidance_bounds,
+    build_stack, guidance_bounds,
 };
 pub use resolve::{parse_scenario, read_scenario};
 pub use to_toml::scenario_to_toml;
@@ -409,6 +412,49 @@ pub struct Scenario {
     pub nose_radius_m: Option<f64>,
     /// Onboard re-planning (`[replanning]`; `None`: the stored profile is flown as is).
     pub replanning: Option<ReplanningSpec>,
+    /// The onboard layers beyond the stored profile that campaigns fly
+    /// (`[guidance.lateral]`, `[guidance.replanning]`, `[guidance.estimator]`,
+    /// `[guidance.barrier]`; `None`: the stored profile alone).
+    pub layers: Option<GuidanceLayers>,
+}
+
+/// The scenario's layers beyond the stored profile: which are on, and their settings (the
+/// defaults for a layer written without keys; a layer off keeps the defaults, unused).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GuidanceLayers {
+    /// The settings of every layer.
+    pub settings: guidance_layers::CampaignGuidance,
+    /// The layers on (a mask over the campaigns' full stack).
+    pub layers: guidance_core::stack::Layers,
+    /// Where the re-planner and the lateral logic aim (`[guidance.target]`).
+    pub target: TargetSpec,
+    /// The terminal interface: the energy where the nominal flight slows to this speed
+    /// \[m/s\] (`[guidance.target] interface_speed_m_s`; `None`: the scenario's own end). A
+    /// campaign's `[dispersions] interface_speed_m_s` or `--interface-speed` overrides it.
+    pub interface_speed_m_s: Option<f64>,
+}
+
+/// The target of the scenario's layers at the terminal interface (`[guidance.target]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TargetSpec {
+    /// Where the nominal stored profile flown with bank reversals ends, on the entry great
+    /// circle (the campaign set-up finds it by nominal flights; `nominal = true`).
+    Nominal,
+    /// A point: geocentric latitude and longitude \[rad\].
+    Point {
+        /// Latitude \[rad\].
+        latitude_rad: f64,
+        /// Longitude \[rad\].
+        longitude_rad: f64,
+    },
+    /// From the entry point: downrange along the entry heading's great circle and crossrange
+    /// off it (positive: right) \[rad\] (great-circle angles).
+    Range {
+        /// Downrange \[rad\], > 0.
+        downrange_rad: f64,
+        /// Crossrange \[rad\].
+        crossrange_rad: f64,
+    },
 }
 
 /// The `[replanning]` section, resolved (SI units, radians): the settings of

@@ -99,8 +99,12 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     super::required::check(&f, &sf)?;
     // The generic defaults (integrator, monitors, output, environment preset, heat-flux
     // constants); every key describing the vehicle, the entry, the guidance or the run's end
-    // is present (checked above) and replaces its value below.
-    let mut sc = Scenario::default();
+    // is present (checked above) and replaces its value below. A file's layers are the ones
+    // it writes (a layer absent is off).
+    let mut sc = Scenario {
+        layers: None,
+        ..Scenario::default()
+    };
     // Files may bank to either side (3-D); the built-in mission keeps the thesis bounds.
     sc.guidance.bounds = super::guidance_bounds();
     // The run ends where the file says (max_time_s, required) and on the ground.

@@ -23,6 +23,19 @@ pub(super) fn guidance(
     t: GuidanceFile,
     sc: &mut Scenario,
 ) -> Result<(), ScenarioError> {
+    let mut t = t;
+    sc.layers = super::resolve_layers::layers(
+        f,
+        super::resolve_layers::LayerFiles {
+            lateral: t.lateral.take(),
+            replanning: t.replanning.take(),
+            estimator: t.estimator.take(),
+            barrier: t.barrier.take(),
+            target: t.target.take(),
+        },
+        sc.environment.planet.radius_m,
+        sc.entry.speed_m_s,
+    )?;
     let g = &mut sc.guidance;
     if let Some(s) = t.independent {
         g.independent = match s {

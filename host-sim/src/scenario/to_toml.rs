@@ -167,7 +167,115 @@ fn plain_toml(sc: &Scenario) -> String {
     if let Some(rp) = &sc.replanning {
         replanning(&mut s, rp, r);
     }
+    if let Some(l) = &sc.layers {
+        layers(&mut s, l);
+        target(&mut s, l.target, r);
+        if let Some(v) = l.interface_speed_m_s {
+            let _ = writeln!(s, "interface_speed_m_s = {v:?}");
+        }
+    }
     s
+}
+
+/// The `[guidance.target]` section (planet radius `r` \[m\]).
+fn target(s: &mut String, t: super::TargetSpec, r: f64) {
+    use std::fmt::Write as _;
+    let _ = writeln!(s, "\n[guidance.target]");
+    let _ = match t {
+        super::TargetSpec::Nominal => writeln!(s, "nominal = true"),
+        super::TargetSpec::Point {
+            latitude_rad,
+            longitude_rad,
+        } => writeln!(
+            s,
+            "latitude_deg = {:?}\nlongitude_deg = {:?}",
+            latitude_rad.to_degrees(),
+            longitude_rad.to_degrees()
+        ),
+        super::TargetSpec::Range {
+            downrange_rad,
+            crossrange_rad,
+        } => writeln!(
+            s,
+            "downrange_km = {:?}\ncrossrange_km = {:?}",
+            downrange_rad * r / 1e3,
+            crossrange_rad * r / 1e3
+        ),
+    };
+}
+
+/// The layer sections `[guidance.<layer>]` of the layers on, every key of each
+/// ([`super::guidance_layers::LAYER_KEYS`]; an unset optional setting is left out).
+fn layers(s: &mut String, l: &super::GuidanceLayers) {
+    use std::fmt::Write as _;
+    let Ok(toml::Value::Table(mut t)) = toml::Value::try_from(&l.settings) else {
+        return;
+    };
+    // The settings a case record leaves out at their defaults: printed here (the template
+    // shows every key; only an unset optional one is left out).
+    let g = &l.settings;
+    for (field, v) in [
+        (
+            "predictor_aero_mach",
+            toml::Value::Boolean(g.predictor_aero_mach),
+        ),
+        (
+            "predictor_rotation",
+            toml::Value::Boolean(g.predictor_rotation),
+        ),
+        (
+            "predictor_lift_profile",
+            toml::Value::Boolean(g.predictor_lift_profile),
+        ),
+        (
+            "path_bound_predicted",
+            toml::Value::Boolean(g.path_bound_predicted),
+        ),
+        (
+            "path_bound_descent_time_s",
+            toml::Value::Float(g.path_bound_descent_time_s),
+        ),
+        (
+            "terminal_tolerance_km",
+            toml::Value::Float(g.terminal_tolerance_km),
+        ),
+        (
+            "terminal_reversal_lead_s",
+            toml::Value::Float(g.terminal_reversal_lead_s),
+        ),
+        (
+            "replan_limit_scale",
+            toml::Value::Array(g.replan_limit_scale.map(toml::Value::Float).to_vec()),
+        ),
+    ] {
+        t.entry(field).or_insert(v);
+    }
+    let on = l.layers;
+    for (section, enabled) in [
+        ("lateral", on.lateral),
+        ("replanning", on.replan),
+        ("estimator", on.estimator),
+        ("barrier", on.barrier),
+    ] {
+        if !enabled {
+            continue;
+        }
+        let _ = writeln!(s, "\n[guidance.{section}]");
+        let keys = super::guidance_layers::LAYER_KEYS
+            .iter()
+            .filter(|(_, sec, _)| *sec == section);
+        for (field, _, key) in keys {
+            let Some(v) = t.get(*field) else { continue };
+            let v = match (*field, *key, v) {
+                ("path_bound_barrier", "frequency_rad_s", toml::Value::Array(a)) => a.first(),
+                ("path_bound_barrier", _, toml::Value::Array(a)) => a.get(1),
+                _ => Some(v),
+            };
+            if let Some(v) = v {
+                let _ = writeln!(s, "{key} = {v}");
+            }
+        }
+    }
 }
 
 /// The `[replanning]` section (planet radius `r` \[m\] for a range target).

@@ -7,6 +7,75 @@ use host_sim::campaign::{
     CampaignError, CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign,
 };
 use host_sim::scenario::Scenario;
+use host_sim::scenario::guidance_layers::{LAYER_KEYS, scenario_key};
+
+/// The guidance layers' settings of `flat` (lines `field = value` in the settings' field names,
+/// [`LAYER_KEYS`]) written as a scenario's `[guidance.<layer>]` sections (an unknown field
+/// goes to `[guidance.replanning]`), parsed as a scenario file `file`; a scenario error as a
+/// [`CampaignError::Setting`] (field, value, reason), so `field_of` reads both.
+fn parse_layers(flat: &str, file: &str) -> Result<Layered, CampaignError> {
+    let mut sections: std::collections::BTreeMap<&str, String> = std::collections::BTreeMap::new();
+    for line in flat.lines().filter(|l| !l.trim().is_empty()) {
+        let (field, value) = line.split_once('=').unwrap();
+        let (field, value) = (field.trim(), value.trim());
+        let keys: Vec<_> = LAYER_KEYS.iter().filter(|(f, _, _)| *f == field).collect();
+        match keys.as_slice() {
+            [] => sections
+                .entry("replanning")
+                .or_default()
+                .push_str(&format!("{line}\n")),
+            [(_, sec, key)] => sections
+                .entry(sec)
+                .or_default()
+                .push_str(&format!("{key} = {value}\n")),
+            // path_bound_barrier = [w, z]: two keys.
+            [(_, sec, k1), (_, _, k2)] => {
+                let v = value.trim_start_matches('[').trim_end_matches(']');
+                let (w, z) = v.split_once(',').unwrap();
+                sections.entry(sec).or_default().push_str(&format!(
+                    "{k1} = {}\n{k2} = {}\n",
+                    w.trim(),
+                    z.trim()
+                ));
+            }
+            _ => unreachable!(),
+        }
+    }
+    // Every layer on (the setting of a layer not written reaches the campaign's full stack).
+    let mut text = String::from("[guidance.target]\nnominal = true\n");
+    for sec in ["lateral", "replanning", "estimator", "barrier"] {
+        if sec == "barrier" && !sections.contains_key("barrier") {
+            continue;
+        }
+        text.push_str(&format!(
+            "[guidance.{sec}]\n{}",
+            sections.get(sec).cloned().unwrap_or_default()
+        ));
+    }
+    match host_sim::scenario::parse_scenario(&text, file, std::path::Path::new(".")) {
+        Ok(sc) => Ok(Layered {
+            guidance: sc.layers.unwrap().settings,
+        }),
+        Err(host_sim::scenario::ScenarioError::Field {
+            file,
+            field,
+            value,
+            reason,
+        }) => Err(CampaignError::Setting {
+            file,
+            field,
+            value,
+            reason,
+        }),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// What [`parse_layers`] gives.
+#[derive(Debug)]
+struct Layered {
+    guidance: host_sim::campaign::CampaignGuidance,
+}
 
 /// The SRM glide with its terminal interface at 2.5 km/s (start of the terminal area).
 fn srm_setup() -> CampaignSetup {
@@ -270,41 +339,54 @@ fn imu_noise_is_seeded_and_reaches_the_estimate() {
     }
 }
 
-/// `[dispersions.guidance]`: bad values name the field; other settings change the flights, and
+/// The scenario's `[guidance.<layer>]` settings: bad values name the field; other settings
+/// change the flights, and
 /// cases stored by a run with other settings are not reused.
 #[test]
 fn guidance_settings_are_configurable_and_checked() {
-    let bad = |text: &str| field_of(parse_settings(text, "g.toml").unwrap_err());
     assert_eq!(
-        bad("[dispersions.guidance]\nreplan_every_n_ticks = 0\n"),
-        "dispersions.guidance.replan_every_n_ticks"
+        field_of(parse_layers("replan_every_n_ticks = 0", "d.toml").unwrap_err()),
+        scenario_key("replan_every_n_ticks")
     );
     assert_eq!(
-        bad("[dispersions.guidance]\nestimator_drag_gain = 1.5\n"),
-        "dispersions.guidance.estimator_drag_gain"
+        field_of(parse_layers("estimator_drag_gain = 1.5", "d.toml").unwrap_err()),
+        scenario_key("estimator_drag_gain")
     );
     assert_eq!(
-        bad("[dispersions.guidance]\nestimator_lift_to_drag_bounds = [1.2, 2.0]\n"),
-        "dispersions.guidance.estimator_lift_to_drag_bounds"
+        field_of(parse_layers("estimator_lift_to_drag_bounds = [1.2, 2.0]", "d.toml").unwrap_err()),
+        scenario_key("estimator_lift_to_drag_bounds")
     );
     assert_eq!(
-        bad("[dispersions.guidance]\ncorridor_width_final_deg = -3\n"),
-        "dispersions.guidance.corridor_width_final_deg"
+        field_of(parse_layers("corridor_width_final_deg = -3", "d.toml").unwrap_err()),
+        scenario_key("corridor_width_final_deg")
     );
     assert_eq!(
-        bad("[dispersions.guidance]\nreplan_every = 2\n"),
-        "dispersions.guidance.replan_every"
+        field_of(parse_layers("replan_every = 2", "d.toml").unwrap_err()),
+        "guidance.replanning.replan_every"
     );
+    // The old settings table is refused, naming the new key of each of its settings.
+    let e = parse_settings(
+        "[dispersions.guidance]\nmax_reversals = 2\npath_bound_barrier = [0.2, 1.0]\n",
+        "g.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    for w in [
+        "g.toml",
+        "dispersions.guidance",
+        "max_reversals -> [guidance.lateral] max_reversals",
+        "path_bound_barrier -> [guidance.barrier] frequency_rad_s",
+    ] {
+        assert!(e.contains(w), "`{e}` lacks `{w}`");
+    }
     let s = parse_settings(
-        "[dispersions]\ncases = 3\nseed = 7\ninterface_speed_m_s = 2500.0\n\
-         [dispersions.guidance]\nmax_reversals = 2\n",
+        "[dispersions]\ncases = 3\nseed = 7\ninterface_speed_m_s = 2500.0\n",
         "g.toml",
     )
     .unwrap();
-    assert_eq!(s.guidance.max_reversals, 2);
-    let sc = Scenario::srm_glide();
-    let other =
-        CampaignSetup::with_guidance(&sc, "builtin:srm-glide", Some(2500.0), &s.guidance).unwrap();
+    let mut sc = Scenario::srm_glide();
+    sc.layers.as_mut().unwrap().settings.max_reversals = 2;
+    let other = CampaignSetup::new(&sc, "builtin:srm-glide", Some(2500.0)).unwrap();
     let default = srm_setup();
     let dir = std::env::temp_dir().join(format!("host-sim-campaign-g-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -319,9 +401,11 @@ fn guidance_settings_are_configurable_and_checked() {
     match run_campaign(&other, &s, &opts) {
         Err(CampaignError::ResumeMismatch {
             field, old, new, ..
-        }) => assert_eq!(
-            (field.as_str(), old.as_str(), new.as_str()),
-            ("dispersions.guidance.max_reversals", "12", "2")
+        }) => assert!(
+            field == "scenario.layers"
+                && old.contains("max_reversals: 12")
+                && new.contains("max_reversals: 2"),
+            "{field}: {old} -> {new}"
         ),
         r => panic!("resumed into a directory of other settings: {r:?}"),
     }
@@ -347,12 +431,7 @@ fn guidance_settings_are_configurable_and_checked() {
 fn campaign_predictor_setting_picks_the_replanner_mode() {
     use guidance_core::replan::PredictorMode as P;
     use host_sim::campaign::CampaignPredictor;
-    use host_sim::campaign::flight::replanning_of;
-    let parse = |text: &str| {
-        parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml")
-            .unwrap()
-            .guidance
-    };
+    let parse = |text: &str| parse_layers(text, "p.toml").unwrap().guidance;
     assert_eq!(parse("").predictor, CampaignPredictor::Hybrid, "default");
     for (text, predictor, estimation, reversals, offset) in [
         ("", CampaignPredictor::Hybrid, P::HybridSink, P::Hybrid, 6.0),
@@ -408,15 +487,28 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
     )
     .unwrap();
     assert_eq!(
-        replanning_of(&setup, Mode::ReplanEstimation).solver.mode,
+        setup
+            .stack_of(Mode::ReplanEstimation)
+            .replan
+            .unwrap()
+            .solver
+            .mode,
         P::HybridSink
     );
     assert_eq!(
-        replanning_of(&setup, Mode::ReplanReversals).solver.mode,
+        setup
+            .stack_of(Mode::ReplanReversals)
+            .replan
+            .unwrap()
+            .solver
+            .mode,
         P::Hybrid
     );
     assert_eq!(
-        replanning_of(&setup, Mode::ReplanReversals)
+        setup
+            .stack_of(Mode::ReplanReversals)
+            .replan
+            .unwrap()
             .solver
             .predictor
             .final_speed_m_s,
@@ -436,13 +528,9 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
             "NaN",
         ),
     ] {
-        let e = parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml").unwrap_err();
+        let e = parse_layers(text, "p.toml").unwrap_err();
         let msg = e.to_string();
-        assert_eq!(
-            field_of(e),
-            format!("dispersions.guidance.{field}"),
-            "{text}"
-        );
+        assert_eq!(field_of(e), scenario_key(field), "{text}");
         for w in ["p.toml", value] {
             assert!(msg.contains(w), "`{msg}` lacks `{w}`");
         }
@@ -605,7 +693,7 @@ fn predictor_lift_parameter_of_the_stored_profile() {
     assert!((lo.lambda - 0.552).abs() < 0.01, "{s:?}");
     assert!((3500.0..4500.0).contains(&hi.speed_m_s), "{s:?}");
     assert!((700.0..900.0).contains(&lo.speed_m_s), "{s:?}");
-    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "l.toml");
+    let parse = |text: &str| parse_layers(text, "l.toml");
     assert_eq!(parse("").unwrap().guidance.predictor_lift_parameter, None);
     let g = parse("predictor_lift_parameter = 3.5").unwrap().guidance;
     let setup = CampaignSetup::with_guidance(
@@ -615,15 +703,11 @@ fn predictor_lift_parameter_of_the_stored_profile() {
         &g,
     )
     .unwrap();
-    assert_eq!(setup.replanning.solver.lambda, 3.5);
-    assert_eq!(srm_setup().replanning.solver.lambda, 1.0);
+    assert_eq!(setup.stack.replan.unwrap().solver.lambda, 3.5);
+    assert_eq!(srm_setup().stack.replan.unwrap().solver.lambda, 1.0);
     for v in ["0.0", "-1.0", "25.0", "nan"] {
         let e = parse(&format!("predictor_lift_parameter = {v}")).unwrap_err();
-        assert_eq!(
-            field_of(e),
-            "dispersions.guidance.predictor_lift_parameter",
-            "{v}"
-        );
+        assert_eq!(field_of(e), scenario_key("predictor_lift_parameter"), "{v}");
     }
 }
 
@@ -632,8 +716,8 @@ fn predictor_lift_parameter_of_the_stored_profile() {
 /// default); bad values name the field.
 #[test]
 fn path_bound_settings_reach_the_setup() {
-    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
-    assert_eq!(srm_setup().path_bound, None);
+    let parse = |text: &str| parse_layers(text, "p.toml");
+    assert_eq!(srm_setup().stack.barrier, None);
     let g = parse("path_bound_limit_scale = [100, 0.9]\npath_bound_descent_time_s = 20")
         .unwrap()
         .guidance;
@@ -644,24 +728,20 @@ fn path_bound_settings_reach_the_setup() {
         &g,
     )
     .unwrap();
-    let b = setup.path_bound.unwrap();
+    let b = setup.stack.barrier.unwrap().bound;
     let own = setup.scenario.load_vehicle().unwrap().limits;
     assert_eq!(b.limits.heat_flux_w_m2, own.heat_flux_w_m2 * 100.0);
     assert_eq!(b.limits.g_load, own.g_load * 0.9);
     assert_eq!(b.descent_time_s, 20.0);
     for v in ["[0, 1]", "[1, -1]", "[1, 101]", "[nan, 1]"] {
         let e = parse(&format!("path_bound_limit_scale = {v}")).unwrap_err();
-        assert_eq!(
-            field_of(e),
-            "dispersions.guidance.path_bound_limit_scale",
-            "{v}"
-        );
+        assert_eq!(field_of(e), scenario_key("path_bound_limit_scale"), "{v}");
     }
     for v in ["-1.0", "1001.0", "nan"] {
         let e = parse(&format!("path_bound_descent_time_s = {v}")).unwrap_err();
         assert_eq!(
             field_of(e),
-            "dispersions.guidance.path_bound_descent_time_s",
+            scenario_key("path_bound_descent_time_s"),
             "{v}"
         );
     }
@@ -677,7 +757,7 @@ fn path_bound_settings_reach_the_setup() {
         &g,
     )
     .unwrap();
-    let b = setup.path_bound.unwrap();
+    let b = setup.stack.barrier.unwrap().bound;
     assert!(b.is_barrier());
     assert_eq!((b.barrier_frequency_rad_s, b.barrier_damping), (0.15, 0.8));
     for v in [
@@ -689,11 +769,7 @@ fn path_bound_settings_reach_the_setup() {
         "[nan, 1]",
     ] {
         let e = parse(&format!("path_bound_barrier = {v}")).unwrap_err();
-        assert_eq!(
-            field_of(e),
-            "dispersions.guidance.path_bound_barrier",
-            "{v}"
-        );
+        assert_eq!(field_of(e), scenario_key("path_bound_barrier"), "{v}");
     }
 }
 
@@ -701,7 +777,7 @@ fn path_bound_settings_reach_the_setup() {
 /// predictor and refused, naming the file, field and value, with the closed forms.
 #[test]
 fn predictor_rotation_setting_needs_numerical_predictions() {
-    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
+    let parse = |text: &str| parse_layers(text, "p.toml");
     assert!(!parse("").unwrap().guidance.predictor_rotation);
     for p in ["numerical", "hybrid"] {
         let g = parse(&format!("predictor = \"{p}\"\npredictor_rotation = true"))
@@ -712,7 +788,7 @@ fn predictor_rotation_setting_needs_numerical_predictions() {
     let e = parse("predictor = \"closed-form\"\npredictor_rotation = true").unwrap_err();
     let text = e.to_string();
     assert!(text.contains("p.toml") && text.contains("true"), "{text}");
-    assert_eq!(field_of(e), "dispersions.guidance.predictor_rotation");
+    assert_eq!(field_of(e), scenario_key("predictor_rotation"));
 }
 
 /// `[dispersions.guidance] terminal_lateral_km` (default off) builds the lateral logic's
@@ -720,7 +796,7 @@ fn predictor_rotation_setting_needs_numerical_predictions() {
 /// the file, field and value.
 #[test]
 fn terminal_lateral_settings_are_read_and_checked() {
-    let parse = |text: &str| parse_settings(&format!("[dispersions.guidance]\n{text}\n"), "p.toml");
+    let parse = |text: &str| parse_layers(text, "p.toml");
     let g = parse("").unwrap().guidance;
     assert_eq!(g.terminal_lateral_km, None);
     assert_eq!(
@@ -737,7 +813,7 @@ fn terminal_lateral_settings_are_read_and_checked() {
         &g,
     )
     .unwrap();
-    let t = setup.lateral_terminal.unwrap();
+    let t = setup.stack.lateral.unwrap().terminal.unwrap();
     let r = setup.planet_radius_m;
     assert!((t.start_angle_rad * r - 200e3).abs() < 1e-6);
     assert!((t.tolerance_rad * r - 500.0).abs() < 1e-9);
@@ -773,10 +849,6 @@ fn terminal_lateral_settings_are_read_and_checked() {
             msg.contains("p.toml") && msg.contains(value),
             "{text}: {msg}"
         );
-        assert_eq!(
-            field_of(e),
-            format!("dispersions.guidance.{field}"),
-            "{text}"
-        );
+        assert_eq!(field_of(e), scenario_key(field), "{text}");
     }
 }

@@ -333,8 +333,8 @@ pub fn srm_full(mode: PredictorMode) -> Vec<Point> {
 }
 
 /// `cases` dispersed flights (default dispersions, seed of the defaults) of the built-in
-/// scenario `sc` in both re-planning modes, with the campaign's `[dispersions.guidance]`
-/// predictor `predictor` (`"closed-form"`, `"numerical"`, `"hybrid"`).
+/// scenario `sc` in both re-planning modes, with the default layer settings and the
+/// re-planner's predictor `predictor` (`"closed-form"`, `"numerical"`, `"hybrid"`).
 pub fn campaign(
     name: &str,
     sc: &Scenario,
@@ -342,12 +342,16 @@ pub fn campaign(
     cases: u32,
     predictor: &str,
 ) -> Vec<Point> {
-    let settings = parse_settings(
-        &format!("[dispersions.guidance]\npredictor = \"{predictor}\"\n"),
-        "(harness)",
-    )
-    .unwrap();
-    let setup = CampaignSetup::with_guidance(sc, name, interface, &settings.guidance).unwrap();
+    let settings = parse_settings("", "(harness)").unwrap();
+    let layers = host_sim::campaign::CampaignGuidance {
+        predictor: match predictor {
+            "closed-form" => host_sim::campaign::CampaignPredictor::ClosedForm,
+            "numerical" => host_sim::campaign::CampaignPredictor::Numerical,
+            _ => host_sim::campaign::CampaignPredictor::Hybrid,
+        },
+        ..Default::default()
+    };
+    let setup = CampaignSetup::with_guidance(sc, name, interface, &layers).unwrap();
     let label = if predictor == "closed-form" {
         String::new()
     } else {
@@ -360,7 +364,7 @@ pub fn campaign(
             let (_, log) = fly_case_logged(&setup, Some(&draw), mode).unwrap();
             out.extend(recompute(
                 &format!("{name} campaign {mode:?}{label}"),
-                &host_sim::campaign::flight::replanning_of(&setup, mode),
+                &setup.stack_of(mode).replanning_config().unwrap(),
                 &log,
             ));
         }

@@ -1,15 +1,18 @@
-//! The campaign's guidance settings: the `[dispersions.guidance]` TOML table (lateral
-//! corridor, re-planner, onboard estimation), every field optional with the documented
-//! defaults, validated with errors that name the field.
+//! The settings of the scenario's onboard layers beyond the stored profile (lateral corridor
+//! and terminal law, re-planner, onboard estimation, path-limit bound): [`CampaignGuidance`]
+//! with the documented defaults, written in the scenario's `[guidance.lateral]`,
+//! `[guidance.replanning]`, `[guidance.estimator]` and `[guidance.barrier]` sections
+//! ([`super::resolve_layers`], key names in [`LAYER_KEYS`]) and validated with errors that
+//! name the field.
 
 use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
 use guidance_core::replan::PredictorMode;
 use serde::{Deserialize, Serialize};
 
-use super::CampaignError;
+use crate::campaign::CampaignError;
 
 /// The re-planner's predictor family in the re-planning campaign modes
-/// (`[dispersions.guidance] predictor`).
+/// (`[guidance.replanning] predictor`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum CampaignPredictor {
@@ -53,7 +56,8 @@ impl CampaignPredictor {
     }
 }
 
-/// `[dispersions.guidance]`. Units are those of the field name (deg, km, m/s^2, ticks).
+/// The layers' settings (one flat set; the scenario's key for each field: [`LAYER_KEYS`]).
+/// Units are those of the field name (deg, km, m/s^2, ticks).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CampaignGuidance {
@@ -101,19 +105,19 @@ pub struct CampaignGuidance {
     /// Lift parameter `lambda = C_L / C_L*` of the re-planner's predictor \[-\] (constant over
     /// a prediction), in `(0, 20]`. Default (absent): 1, the polar's maximum L/D (the trim
     /// point of a trim vehicle such as the SRM capsule). The value of a vehicle flying an
-    /// angle-of-attack profile: [`super::setup::profile_lift_parameter`] (HORUS-2B: 3.58).
+    /// angle-of-attack profile: [`crate::campaign::setup::profile_lift_parameter`] (HORUS-2B: 3.58).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub predictor_lift_parameter: Option<f64>,
     /// The predictor flies the lift of the stored angle-of-attack profile (default false):
     /// the constant lift parameter (closed forms) becomes
-    /// [`super::setup::profile_lift_parameter`] unless `predictor_lift_parameter` is set, and
+    /// [`crate::campaign::setup::profile_lift_parameter`] unless `predictor_lift_parameter` is set, and
     /// numerical predictions and the onboard estimator's model follow
-    /// [`super::setup::profile_lift_schedule`] against speed. No effect on a trim vehicle.
+    /// [`crate::campaign::setup::profile_lift_schedule`] against speed. No effect on a trim vehicle.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_lift_profile: bool,
     /// With `predictor_lift_profile`: the schedule carries the lift AND drag of the stored
     /// profile's angle of attack at the Mach number of the nominal flight at each speed
-    /// ([`super::setup::profile_aero_schedule`]) instead of the lift at the polar's Mach 20
+    /// ([`crate::campaign::setup::profile_aero_schedule`]) instead of the lift at the polar's Mach 20
     /// (default false).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_aero_mach: bool,
@@ -179,6 +183,106 @@ pub struct CampaignGuidance {
     /// Smallest sensed drag acceleration that updates the estimate \[m/s^2\] (default 0.5,
     /// about 0.05 g).
     pub estimator_min_drag_m_s2: f64,
+}
+
+/// The scenario key of every field of [`CampaignGuidance`]: `(field, layer section, key)`,
+/// the key written as `[guidance.<section>] <key>` (the one list of these names: the parser,
+/// the template and the docs' key table are checked against it).
+pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
+    (
+        "corridor_width_entry_deg",
+        "lateral",
+        "corridor_width_entry_deg",
+    ),
+    (
+        "corridor_width_final_deg",
+        "lateral",
+        "corridor_width_final_deg",
+    ),
+    (
+        "corridor_low_speed_fraction",
+        "lateral",
+        "corridor_low_speed_fraction",
+    ),
+    ("hysteresis_deg", "lateral", "hysteresis_deg"),
+    ("max_reversals", "lateral", "max_reversals"),
+    ("freeze_km", "lateral", "freeze_km"),
+    ("terminal_lateral_km", "lateral", "terminal_start_km"),
+    ("terminal_tolerance_km", "lateral", "terminal_tolerance_km"),
+    (
+        "terminal_reversal_lead_s",
+        "lateral",
+        "terminal_reversal_lead_s",
+    ),
+    ("replan_every_n_ticks", "replanning", "every_n_ticks"),
+    ("replan_tolerance_km", "replanning", "tolerance_km"),
+    (
+        "min_vertical_fraction",
+        "replanning",
+        "min_vertical_fraction",
+    ),
+    (
+        "max_vertical_fraction",
+        "replanning",
+        "max_vertical_fraction",
+    ),
+    ("glide_sink", "replanning", "glide_sink"),
+    ("predictor", "replanning", "predictor"),
+    (
+        "predictor_final_speed_offset_m_s",
+        "replanning",
+        "final_speed_offset_m_s",
+    ),
+    ("predictor_lift_parameter", "replanning", "lift_parameter"),
+    ("predictor_lift_profile", "replanning", "lift_profile"),
+    ("predictor_aero_mach", "replanning", "lift_profile_mach"),
+    (
+        "replan_start_normalized_energy",
+        "replanning",
+        "start_normalized_energy",
+    ),
+    ("replan_limit_scale", "replanning", "limit_scale"),
+    ("predictor_rotation", "replanning", "numerical_rotation"),
+    ("path_bound_limit_scale", "barrier", "limit_scale"),
+    ("path_bound_descent_time_s", "barrier", "descent_time_s"),
+    ("path_bound_barrier", "barrier", "frequency_rad_s"),
+    ("path_bound_barrier", "barrier", "damping"),
+    ("path_bound_predicted", "barrier", "predicted"),
+    (
+        "estimator_lift_to_drag_gain",
+        "estimator",
+        "lift_to_drag_gain",
+    ),
+    ("estimator_drag_gain", "estimator", "drag_gain"),
+    (
+        "estimator_lift_to_drag_bounds",
+        "estimator",
+        "lift_to_drag_bounds",
+    ),
+    ("estimator_drag_bounds", "estimator", "drag_bounds"),
+    ("estimator_min_drag_m_s2", "estimator", "min_drag_m_s2"),
+];
+
+/// The keys of `[guidance.target]` (one form: latitude and longitude, downrange and
+/// crossrange, or nominal; and the terminal interface speed).
+pub const TARGET_KEYS: [&str; 6] = [
+    "latitude_deg",
+    "longitude_deg",
+    "downrange_km",
+    "crossrange_km",
+    "nominal",
+    "interface_speed_m_s",
+];
+
+/// The scenario key (`guidance.<section>.<key>`) of a [`CampaignGuidance`] field (the field
+/// itself if it has none). `path_bound_barrier` is written as two keys, `frequency_rad_s` and
+/// `damping`; its errors name the first.
+#[must_use]
+pub fn scenario_key(field: &str) -> String {
+    LAYER_KEYS.iter().find(|(f, _, _)| *f == field).map_or_else(
+        || field.to_string(),
+        |(_, s, k)| format!("guidance.{s}.{k}"),
+    )
 }
 
 /// Whether `x` is 0 (the default: not written).
@@ -267,11 +371,12 @@ impl CampaignGuidance {
     /// Check every field (the core checks the built configurations again).
     ///
     /// # Errors
-    /// [`CampaignError::Setting`] naming `dispersions.guidance.<field>` and the value.
+    /// [`CampaignError::Setting`] naming the scenario key (`guidance.<layer>.<key>`,
+    /// [`scenario_key`]) and the value.
     pub fn validate(&self, file: &str) -> Result<(), CampaignError> {
         let bad = |field: &str, value: String, reason: &str| CampaignError::Setting {
             file: file.to_string(),
-            field: format!("dispersions.guidance.{field}"),
+            field: scenario_key(field),
             value,
             reason: reason.into(),
         };
