@@ -15,9 +15,12 @@ use guidance_core::replan::{
 
 /// The file's header comment.
 const HEADER: &str = "\
-# host-sim scenario file (docs/reference/scenario.md). Every section and key is optional: a
-# missing one takes the default given beside it (the HORUS-2B reference mission). Units are in
-# the key names (SI; degrees and km at this edge); ranges are checked before the run.
+# host-sim scenario file (docs/reference/scenario.md, docs/reference/inputs.md). A file states
+# what it flies: the vehicle, every [entry] and [guidance] key and termination.max_time_s are
+# required (marked \"required\"); the other keys have the generic default given beside them. A
+# [guidance.<layer>] section turns that onboard layer on (absent: off; its keys, units and
+# ranges: docs/reference/guidance-stack.md). Units are in the key names (SI; degrees and km at
+# this edge); ranges are checked before the run.
 # The vehicle: `vehicle` names a built-in one (horus-2b, srm; `host-sim vehicles`), or
 # `vehicle_file = \"my-vehicle.toml\"` reads a vehicle file (mass, area, nose radius, limits,
 # aerodynamics; docs/reference/scenario.md, \"Vehicle file\"), a relative path being relative
@@ -61,6 +64,26 @@ const SECTIONS: &[(&str, &str)] = &[
     (
         "replanning",
         "onboard re-planning (guidance_core::replan::ReplanningGuidance); needs independent = \"energy\"",
+    ),
+    (
+        "guidance.lateral",
+        "layer on: bank reversals in a heading corridor, terminal crossrange law",
+    ),
+    (
+        "guidance.replanning",
+        "layer on: the stack's re-planner (predictor-corrector)",
+    ),
+    (
+        "guidance.estimator",
+        "layer on: onboard L/D and drag-scale estimation",
+    ),
+    (
+        "guidance.barrier",
+        "layer on: the path limits as a barrier on the bank",
+    ),
+    (
+        "guidance.target",
+        "where the layers aim, and the terminal interface speed",
     ),
 ];
 
@@ -191,12 +214,12 @@ const KEYS: &[(&str, &str, &str)] = &[
     (
         "guidance",
         "initial_sigma_deg",
-        "attitude at entry [deg], [-90, 90]",
+        "attitude at entry [deg], (-180, 180]",
     ),
     (
         "guidance",
         "nodes",
-        "rows [x, alpha_deg, sigma_deg]: alpha in [0, 45], sigma in [-90, 90] deg",
+        "rows [x, alpha_deg, sigma_deg]: alpha in [0, 45], sigma in (-180, 180] deg",
     ),
     (
         "termination",
@@ -344,7 +367,23 @@ fn note(section: &str, key: &str, defaults: &HashMap<String, String>) -> Option<
     {
         return Some(n);
     }
+    if let Some(layer) = section.strip_prefix("guidance.") {
+        // The layers' keys: one table of names, units and ranges (docs/reference/guidance-stack.md).
+        let known = crate::scenario::guidance_layers::LAYER_KEYS
+            .iter()
+            .any(|(_, s, k)| *s == layer && *k == key)
+            || layer == "target";
+        return known.then(|| {
+            let d = defaults
+                .get(&format!("{section}.{key}"))
+                .map_or(String::new(), |d| format!("; built-in value {d}"));
+            format!("[guidance.{layer}] key (docs/reference/guidance-stack.md){d}")
+        });
+    }
     let (_, _, text) = KEYS.iter().find(|(s, k, _)| *s == section && *k == key)?;
+    if super::required::is_required(section, key) {
+        return Some(format!("{text}; required"));
+    }
     let default = defaults
         .get(&format!("{section}.{key}"))
         .filter(|_| key != "nodes" && key != "vehicle_file");

@@ -11,6 +11,39 @@ use super::resolve::Fields;
 /// Why a required key is required, for the message.
 const WHY: &str = "required: a scenario states what it flies (no default)";
 
+/// The required keys of `[entry]`.
+pub(super) const ENTRY_KEYS: [&str; 6] = [
+    "altitude_km",
+    "longitude_deg",
+    "latitude_deg",
+    "speed_m_s",
+    "flight_path_angle_deg",
+    "heading_deg",
+];
+
+/// The required keys of `[guidance]` (and `tension` with `interpolation = "hermite"`).
+pub(super) const GUIDANCE_KEYS: [&str; 8] = [
+    "independent",
+    "interpolation",
+    "period_s",
+    "alpha_rate_deg_s",
+    "sigma_rate_deg_s",
+    "initial_alpha_deg",
+    "initial_sigma_deg",
+    "nodes",
+];
+
+/// Is `section.key` a key every scenario file must state (the vehicle keys aside)?
+pub(super) fn is_required(section: &str, key: &str) -> bool {
+    match section {
+        "" => key == "vehicle",
+        "entry" => ENTRY_KEYS.contains(&key),
+        "guidance" => GUIDANCE_KEYS.contains(&key) || key == "tension",
+        "termination" => key == "max_time_s",
+        _ => false,
+    }
+}
+
 /// The first required key `sf` lacks, as an error naming the file and the key.
 pub(super) fn check(f: &Fields<'_>, sf: &ScenarioFile) -> Result<(), ScenarioError> {
     let missing = |field: &str, what: &str| f.err(field, "(missing)", &format!("{WHY}: {what}"));
@@ -23,14 +56,14 @@ pub(super) fn check(f: &Fields<'_>, sf: &ScenarioFile) -> Result<(), ScenarioErr
     let Some(e) = &sf.entry else {
         return Err(missing("entry", "the entry state section `[entry]`"));
     };
-    for (key, there) in [
-        ("altitude_km", e.altitude_km.is_some()),
-        ("longitude_deg", e.longitude_deg.is_some()),
-        ("latitude_deg", e.latitude_deg.is_some()),
-        ("speed_m_s", e.speed_m_s.is_some()),
-        ("flight_path_angle_deg", e.flight_path_angle_deg.is_some()),
-        ("heading_deg", e.heading_deg.is_some()),
-    ] {
+    for (key, there) in ENTRY_KEYS.into_iter().zip([
+        e.altitude_km.is_some(),
+        e.longitude_deg.is_some(),
+        e.latitude_deg.is_some(),
+        e.speed_m_s.is_some(),
+        e.flight_path_angle_deg.is_some(),
+        e.heading_deg.is_some(),
+    ]) {
         if !there {
             return Err(missing(&format!("entry.{key}"), "the entry state"));
         }
@@ -38,16 +71,16 @@ pub(super) fn check(f: &Fields<'_>, sf: &ScenarioFile) -> Result<(), ScenarioErr
     let Some(g) = &sf.guidance else {
         return Err(missing("guidance", "the guidance section `[guidance]`"));
     };
-    for (key, there) in [
-        ("independent", g.independent.is_some()),
-        ("interpolation", g.interpolation.is_some()),
-        ("period_s", g.period_s.is_some()),
-        ("alpha_rate_deg_s", g.alpha_rate_deg_s.is_some()),
-        ("sigma_rate_deg_s", g.sigma_rate_deg_s.is_some()),
-        ("initial_alpha_deg", g.initial_alpha_deg.is_some()),
-        ("initial_sigma_deg", g.initial_sigma_deg.is_some()),
-        ("nodes", g.nodes.is_some()),
-    ] {
+    for (key, there) in GUIDANCE_KEYS.into_iter().zip([
+        g.independent.is_some(),
+        g.interpolation.is_some(),
+        g.period_s.is_some(),
+        g.alpha_rate_deg_s.is_some(),
+        g.sigma_rate_deg_s.is_some(),
+        g.initial_alpha_deg.is_some(),
+        g.initial_sigma_deg.is_some(),
+        g.nodes.is_some(),
+    ]) {
         if !there {
             return Err(missing(&format!("guidance.{key}"), "the guidance"));
         }

@@ -344,7 +344,7 @@ mod tests {
         .unwrap();
         let replanning = parse_scenario(&text, "x.toml", std::path::Path::new(".")).unwrap();
         let exponential = parse_scenario(
-            "[environment]\natmosphere = \"exponential\"\n[guidance]\nindependent = \"energy\"\ninterpolation = \"hermite\"\ntension = 0.5\nnodes = [[1.0, 40.0, 0.0], [0.5, 30.0, 50.0], [0.0, 10.0, 0.0]]\n[termination]\nmach = 3.0\nnormalized_energy = 0.01\n[replanning]\ntarget_latitude_deg = 1.0\ntarget_longitude_deg = 2.0\nfinal_speed_m_s = 2000.0\nheat_flux_limit_kw_m2 = 400.0\ng_load_limit = 2.5\n",
+            "vehicle = \"horus-2b\"\n[environment]\natmosphere = \"exponential\"\n[entry]\naltitude_km = 122.0\nlongitude_deg = -106.7\nlatitude_deg = -22.3\nspeed_m_s = 7435.5\nflight_path_angle_deg = -1.43\nheading_deg = 70.75\n[guidance]\nindependent = \"energy\"\ninterpolation = \"hermite\"\ntension = 0.5\nperiod_s = 2.0\nalpha_rate_deg_s = 5.0\nsigma_rate_deg_s = 15.0\ninitial_alpha_deg = 40.0\ninitial_sigma_deg = 0.0\nnodes = [[1.0, 40.0, 0.0], [0.5, 30.0, 50.0], [0.0, 10.0, 0.0]]\n[termination]\nmax_time_s = 2500.0\nmach = 3.0\nnormalized_energy = 0.01\n[replanning]\ntarget_latitude_deg = 1.0\ntarget_longitude_deg = 2.0\nfinal_speed_m_s = 2000.0\nheat_flux_limit_kw_m2 = 400.0\ng_load_limit = 2.5\n",
             "x.toml",
             std::path::Path::new("."),
         )
