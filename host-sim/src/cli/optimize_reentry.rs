@@ -174,6 +174,18 @@ pub enum ReentryError {
     /// The console could not be written.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
+    /// Ctrl-C: the run stopped at a generation boundary without a final file.
+    #[error(
+        "stopped before generation {generation} (Ctrl-C); the checkpoint of the last complete \
+         generation is kept in {}: continue with --resume",
+        dir.display()
+    )]
+    Interrupted {
+        /// The generation that was not completed.
+        generation: u64,
+        /// The run directory.
+        dir: PathBuf,
+    },
 }
 
 /// Whether `optimize` arguments ask for a re-entry run.
@@ -368,6 +380,11 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         .unwrap_or(Path::new("."))
         .to_path_buf();
     let problem = c.problem.problem(&base_dir)?;
+    if !resume {
+        // A new run: never into a directory that is not a run; a previous run there is
+        // removed whole (no population or front file of it is left beside the new run's).
+        crate::report::begin_in_place(&dir)?;
+    }
     std::fs::create_dir_all(dir.join("population")).map_err(|source| ReentryError::RunDir {
         path: dir.clone(),
         source,
@@ -582,13 +599,31 @@ where
         write_atomic(&ck_path, json.as_bytes())?;
         Ok(())
     };
+    // Ctrl-C asks the run to stop (it does not exit the process while this lives): a flight
+    // it interrupts is no evaluation (`EvalError::Interrupted`), and the run stops at the next
+    // generation boundary with the last complete generation's checkpoint and no final file.
+    let _active = crate::sim::ActiveRun::start();
+    let interrupted = |alg: &A| ReentryError::Interrupted {
+        generation: alg.generation() + u64::from(alg.is_initialised()),
+        dir: ctx.dir.to_path_buf(),
+    };
+    let stepped = |alg: &mut A, g: u64| match step(ctx, alg, g) {
+        Err(_) if crate::sim::stop_requested() => Err(interrupted(alg)),
+        r => r.map_err(ReentryError::from),
+    };
     if !alg.is_initialised() {
-        step(ctx, &mut alg, 0)?;
+        stepped(&mut alg, 0)?;
         save(&alg, &mut records)?;
     }
     while alg.generation() < total {
-        step(ctx, &mut alg, 1)?;
+        if crate::sim::stop_requested() {
+            return Err(interrupted(&alg));
+        }
+        stepped(&mut alg, 1)?;
         save(&alg, &mut records)?;
+    }
+    if crate::sim::stop_requested() {
+        return Err(interrupted(&alg));
     }
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();

@@ -145,6 +145,10 @@ pub enum EvalError {
     /// The problem's own failure (e.g. a simulation that did not finish), with its cause.
     #[error("evaluation failed: {0}")]
     Failed(#[source] Box<dyn std::error::Error + Send + Sync>),
+    /// The evaluation was stopped on request (Ctrl-C): it is no result, and the run stops
+    /// without telling it.
+    #[error("evaluation interrupted (stop requested): not a result")]
+    Interrupted,
 }
 
 /// Misuse of the ask/tell protocol.

@@ -14,7 +14,8 @@
 //!   serialisable generator of a run;
 //! * [`archive`]: [`ParetoArchive`], the bounded external archive of non-dominated solutions
 //!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
-//! * [`hypervolume`]: exact hypervolume, contributions, least contributor.
+//! * [`hypervolume`]: exact hypervolume, contributions, least contributor;
+//! * [`nonfinite`]: serde of `f64`s that may be NaN or infinite (checkpoints, records).
 //!
 //! See docs/OPTIMISERS.md for the semantics and the measured convergence.
 
@@ -25,6 +26,7 @@ pub mod chromosome;
 pub mod error;
 pub mod evaluate;
 pub mod hypervolume;
+pub mod nonfinite;
 pub mod observe;
 pub mod operators;
 pub mod pareto;

@@ -47,6 +47,9 @@ pub struct Series {
     pub dashed: bool,
 }
 
+/// Series of at most this many points are drawn with a marker at every point.
+const MAX_MARKED: usize = 200;
+
 /// Series colours (matplotlib's first four).
 const COLOURS: [RGBColor; 4] = [
     RGBColor(0x1f, 0x77, 0xb4),
@@ -178,10 +181,18 @@ where
                     DashedPathElement::new(vec![(x, y), (x + 24, y)], 6, 4, style)
                 });
         } else {
+            // A marker at every point of a short series, so a single point (a 1-member
+            // front) or a few are visible, not an empty line.
+            let dots = if points.len() <= MAX_MARKED {
+                points.clone()
+            } else {
+                Vec::new()
+            };
             chart
                 .draw_series(LineSeries::new(points, style))?
                 .label(label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+            chart.draw_series(dots.into_iter().map(|p| Circle::new(p, 3, style.filled())))?;
         }
     }
     if !series.is_empty() {
@@ -368,6 +379,28 @@ mod tests {
         )
         .unwrap();
         assert!(!s.contains("NaN") && s.contains("flat"), "{s}");
+    }
+
+    /// A series of one point (a 1-member front) is drawn as a marker, not an empty line;
+    /// long series (trajectories) have none.
+    #[test]
+    fn short_series_have_markers() {
+        let one = |n: usize| {
+            line_plot_svg(
+                "front",
+                "x",
+                "y",
+                &[Series {
+                    label: "generation 0".into(),
+                    points: (0..n).map(|i| (i as f64, 1.0 / (1.0 + i as f64))).collect(),
+                    dashed: false,
+                }],
+            )
+            .unwrap()
+        };
+        assert_eq!(one(1).matches("<circle").count(), 1);
+        assert_eq!(one(5).matches("<circle").count(), 5);
+        assert_eq!(one(MAX_MARKED + 1).matches("<circle").count(), 0);
     }
 
     #[test]

@@ -97,10 +97,13 @@ impl ResourceAllocation {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub(super) struct DraState {
     /// Utility `pi_i` per subproblem.
+    #[serde(with = "crate::optim::nonfinite::vec")]
     pub(super) utility: Vec<f64>,
     /// Objectives of each subproblem's member at the last update.
+    #[serde(with = "crate::optim::nonfinite::vec2")]
     saved_objectives: Vec<Vec<f64>>,
     /// Violation of each subproblem's member at the last update.
+    #[serde(with = "crate::optim::nonfinite::vec")]
     saved_violation: Vec<f64>,
 }
 

@@ -264,6 +264,7 @@ pub struct MoeadWith<D, V> {
     population: Vec<Individual<D>>,
     weights: Vec<Vec<f64>>,
     neighbourhoods: Vec<Vec<usize>>,
+    #[serde(with = "crate::optim::nonfinite::vec")]
     ideal: Vec<f64>,
     /// Subproblem order of the current generation and the next position in it.
     order: Vec<usize>,

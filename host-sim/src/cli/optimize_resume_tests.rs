@@ -1,0 +1,198 @@
+//! Resume and run-directory robustness of re-entry `optimize` (issue 24 item 5): generations
+//! with no feasible member (NaN best and mean), the front directory written whole, fronts
+//! without repeated members, the run marker.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use crate::cli::run as cli_run;
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("host-sim-resume-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn optimize(extra: &[&str]) -> Result<String, crate::cli::CliError> {
+    let mut args = vec!["host-sim", "optimize"];
+    args.extend_from_slice(extra);
+    let mut out = Vec::new();
+    cli_run(args, &mut out)?;
+    Ok(String::from_utf8(out).unwrap_or_default())
+}
+
+/// Every file under `dir` (relative path -> contents), the checkpoint and config aside.
+fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    fn walk(root: &Path, d: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
+        for e in std::fs::read_dir(d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                walk(root, &p, out);
+            } else {
+                let rel = p.strip_prefix(root).unwrap().display().to_string();
+                out.insert(rel, std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    let mut m = BTreeMap::new();
+    walk(dir, dir, &mut m);
+    m.remove("checkpoint.json");
+    m.remove("config.toml");
+    m
+}
+
+/// The SRM analytical problem (fast) with a g-load limit of 1.2: with seed 3 (SCEA: 8) no
+/// member of generations 0 and 1 is feasible (best and mean NaN), later ones are.
+fn infeasible_start_config(dir: &Path, algorithm: &str, generations: u64) -> PathBuf {
+    let mut c = super::optimize_reentry::ReentryRunConfig::thesis("srm-analytical").unwrap();
+    c.algorithm = algorithm.into();
+    c.population = 8;
+    c.generations = generations;
+    c.seed = if algorithm == "scea" { 8 } else { 3 };
+    c.neighbours = 4;
+    c.mutation_probability = None;
+    c.problem.limits.g_load = 1.2;
+    std::fs::create_dir_all(dir).unwrap();
+    let p = dir.join(format!("{algorithm}-{generations}.toml"));
+    std::fs::write(&p, toml::to_string(&c).unwrap()).unwrap();
+    p
+}
+
+/// Every algorithm: a run whose first generations have no feasible member, interrupted after
+/// generation 1 and resumed to 5, writes the uninterrupted run's files, byte for byte,
+/// and no other file (the front directory of the 1-generation run is replaced whole).
+#[test]
+fn resume_after_infeasible_generations_gives_the_uninterrupted_run() {
+    let base = tmp("nan");
+    for algorithm in ["moead", "nsga2", "mhaco", "mhaco-objectives", "scea"] {
+        let (a, b) = (
+            base.join(format!("{algorithm}-a")),
+            base.join(format!("{algorithm}-b")),
+        );
+        let full = infeasible_start_config(&base, algorithm, 5);
+        let short = infeasible_start_config(&base, algorithm, 1);
+        optimize(&[
+            "--config",
+            full.to_str().unwrap(),
+            "--out",
+            a.to_str().unwrap(),
+        ])
+        .unwrap();
+        optimize(&[
+            "--config",
+            short.to_str().unwrap(),
+            "--out",
+            b.to_str().unwrap(),
+        ])
+        .unwrap();
+        let first = std::fs::read_to_string(b.join("generations.csv")).unwrap();
+        assert!(
+            first.contains("NaN"),
+            "{algorithm}: no infeasible generation:\n{first}"
+        );
+        optimize(&["--resume", b.to_str().unwrap(), "--generations", "5"])
+            .unwrap_or_else(|e| panic!("{algorithm}: resume failed: {e}"));
+        let (ta, tb) = (tree(&a), tree(&b));
+        assert_eq!(
+            ta.keys().collect::<Vec<_>>(),
+            tb.keys().collect::<Vec<_>>(),
+            "{algorithm}: the resumed run's files"
+        );
+        for (k, v) in &ta {
+            assert!(tb[k] == *v, "{algorithm}: {k} differs");
+        }
+        let json = std::fs::read_to_string(a.join("generations.json")).unwrap();
+        assert!(json.contains("\"NaN\""), "{algorithm}: {json}");
+    }
+    std::fs::remove_dir_all(&base).unwrap();
+}
+
+/// `optimize --out` on a re-entry problem keeps the run marker's promise: a directory that is
+/// not a run is refused and left as it was; a new run into an old run's directory leaves none
+/// of the old run's files (populations of later generations, front members).
+#[test]
+fn a_new_run_respects_the_marker_and_replaces_an_old_run_whole() {
+    let base = tmp("marker");
+    let foreign = base.join("mine");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "keep me").unwrap();
+    let cfg = infeasible_start_config(&base, "moead", 5);
+    let e = optimize(&[
+        "--config",
+        cfg.to_str().unwrap(),
+        "--out",
+        foreign.to_str().unwrap(),
+    ])
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("not a host-sim run directory"), "{e}");
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("notes.txt")).unwrap(),
+        "keep me"
+    );
+    assert_eq!(std::fs::read_dir(&foreign).unwrap().count(), 1);
+    let run = base.join("run");
+    optimize(&[
+        "--config",
+        cfg.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+    ])
+    .unwrap();
+    assert!(run.join("population/gen_0005.csv").is_file());
+    let short = infeasible_start_config(&base, "nsga2", 1);
+    optimize(&[
+        "--config",
+        short.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+    ])
+    .unwrap();
+    let fresh = base.join("fresh");
+    optimize(&[
+        "--config",
+        short.to_str().unwrap(),
+        "--out",
+        fresh.to_str().unwrap(),
+    ])
+    .unwrap();
+    let (t_run, t_fresh) = (tree(&run), tree(&fresh));
+    assert_eq!(
+        t_run.keys().collect::<Vec<_>>(),
+        t_fresh.keys().collect::<Vec<_>>()
+    );
+    std::fs::remove_dir_all(&base).unwrap();
+}
+
+/// front.csv and the recorded fronts hold each member once, even when the population holds
+/// copies of one individual.
+#[test]
+fn fronts_have_no_repeated_members() {
+    use crate::optim::Individual;
+    let ind = |x: f64, f: [f64; 2]| Individual {
+        decision: vec![x],
+        objectives: f.to_vec(),
+        constraints: vec![-1.0],
+        violation: 0.0,
+    };
+    let pop = vec![
+        ind(0.1, [0.0, 1.0]),
+        ind(0.1, [0.0, 1.0]),
+        ind(0.2, [1.0, 0.0]),
+        ind(0.3, [1.0, 0.0]),
+        ind(0.2, [1.0, 0.0]),
+    ];
+    let r = super::optimize_reentry_out::record_of(0, 5, &pop, &pop, &[2.0, 2.0]);
+    assert_eq!(r.front, vec![vec![0.0, 1.0], vec![1.0, 0.0]]);
+    let dir = tmp("dedup");
+    std::fs::create_dir_all(&dir).unwrap();
+    let c = super::optimize_reentry::ReentryRunConfig::thesis("srm-analytical").unwrap();
+    let scenarios = vec![None; pop.len()];
+    super::optimize_reentry_out::write_final(&dir, &scenarios, &pop, &pop, &[r], &c, None).unwrap();
+    let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();
+    let rows: Vec<&str> = front.lines().skip(1).collect();
+    assert_eq!(rows.len(), 3, "{front}");
+    let unique: std::collections::BTreeSet<&&str> = rows.iter().collect();
+    assert_eq!(unique.len(), rows.len(), "{front}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
