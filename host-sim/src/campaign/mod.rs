@@ -185,4 +185,17 @@ pub enum CampaignError {
     /// The thread pool could not be built.
     #[error("thread pool: {0}")]
     Pool(#[from] rayon::ThreadPoolBuildError),
+    /// A stop was requested (Ctrl-C): the flights completed so far are kept as case files
+    /// (a run into the same directory resumes them), and no statistics of the partial
+    /// campaign are made.
+    #[error(
+        "interrupted after {done} of {total} flights; no summary of a partial campaign \
+         (the finished cases are kept in the output directory: the same command resumes them)"
+    )]
+    Interrupted {
+        /// Flights finished (flown or reused).
+        done: usize,
+        /// Flights of the campaign.
+        total: usize,
+    },
 }

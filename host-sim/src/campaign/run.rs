@@ -117,6 +117,12 @@ impl CampaignOutput {
     }
 }
 
+/// The failure recorded for a case not flown after a stop request (never reported: the
+/// campaign then ends with [`CampaignError::Interrupted`]).
+#[derive(Debug, thiserror::Error)]
+#[error("not flown: stop requested")]
+struct Stopped;
+
 fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
     dir.join("cases")
         .join(mode.name())
@@ -196,6 +202,11 @@ pub fn run_campaign(
                         return Ok(Ok((stored, true)));
                     }
                 }
+                // After a stop request no flight starts (the campaign ends without a
+                // summary): this case is not done.
+                if crate::sim::stop_requested() {
+                    return Ok(Err(CaseFailure::new(mode, index, draw, &Stopped)));
+                }
                 // A failed flight is recorded with its error; the campaign goes on.
                 let r = match fly_case(setup, Some(&draw), mode) {
                     Ok(r) => r,
@@ -215,6 +226,15 @@ pub fn run_campaign(
             .collect()
     });
     bar.finish_and_clear();
+    if crate::sim::stop_requested() {
+        // A flight the stop interrupted is no result (it ended `Interrupted`, and would count
+        // as a failure): no statistics of a partial campaign.
+        let done = results.iter().filter(|r| matches!(r, Ok(Ok(_)))).count();
+        return Err(CampaignError::Interrupted {
+            done,
+            total: jobs.len(),
+        });
+    }
     let mut by_mode: Vec<(Mode, Vec<CaseResult>)> =
         opts.modes.iter().map(|&m| (m, Vec::new())).collect();
     let mut resumed = 0;

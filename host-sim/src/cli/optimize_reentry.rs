@@ -557,7 +557,15 @@ where
     A: Algorithm<P> + Serialize + DeserializeOwned,
 {
     let ck_path = ctx.dir.join("checkpoint.json");
-    let (mut alg, mut records) = if ctx.resume {
+    if ctx.resume {
+        // Leftovers of a killed run (temporary files of atomic writes, a staged front).
+        crate::report::clean_stale(ctx.dir);
+        crate::report::clean_stale(&ctx.dir.join("population"));
+    }
+    // A run stopped before its first checkpoint (during the initial population) resumes
+    // from the start.
+    let resume = ctx.resume && ck_path.exists();
+    let (mut alg, mut records) = if resume {
         let text = read_text(&ck_path)?;
         let ck: Checkpoint<A> = serde_json::from_str(&text).map_err(|e| ReentryError::Parse {
             path: ck_path.clone(),

@@ -12,6 +12,7 @@ mod hypervolume_cli;
 mod hypervolume_pagmo2;
 mod input_ranges;
 mod integrator_reuse;
+mod interrupt;
 mod layering;
 mod navconv;
 mod pil;
