@@ -526,6 +526,44 @@ fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f6
         .collect()
 }
 
+/// The records of a restored checkpoint: one per generation up to the state's, each with
+/// the objectives' count of values.
+fn check_records<P: Problem, A: Algorithm<P>>(
+    records: &[Record],
+    alg: &A,
+    c: &ReentryRunConfig,
+) -> Result<(), crate::optim::StateError> {
+    use crate::optim::restore::{bad, count};
+    let want = if alg.is_initialised() {
+        alg.generation() + 1
+    } else {
+        0
+    };
+    count(
+        "records.len()",
+        records.len(),
+        usize::try_from(want).unwrap_or(usize::MAX),
+    )?;
+    let m = c.reference.len();
+    for (i, r) in records.iter().enumerate() {
+        count(
+            &format!("records[{i}].generation"),
+            r.generation as usize,
+            i,
+        )?;
+        count(&format!("records[{i}].best.len()"), r.best.len(), m)?;
+        count(&format!("records[{i}].mean.len()"), r.mean.len(), m)?;
+        if let Some(k) = r.front.iter().position(|f| f.len() != m) {
+            return Err(bad(
+                format!("records[{i}].front[{k}].len()"),
+                r.front[k].len(),
+                format!("must be {m}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 struct Ctx<'a, P> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
@@ -567,10 +605,22 @@ where
     let resume = ctx.resume && ck_path.exists();
     let (mut alg, mut records) = if resume {
         let text = read_text(&ck_path)?;
-        let ck: Checkpoint<A> = serde_json::from_str(&text).map_err(|e| ReentryError::Parse {
+        let mut de = serde_json::Deserializer::from_str(&text);
+        let ck: Checkpoint<A> =
+            serde_path_to_error::deserialize(&mut de).map_err(|e| ReentryError::Parse {
+                path: ck_path.clone(),
+                message: format!("field `{}`: {}", e.path(), e.inner()),
+            })?;
+        // A checkpoint that was edited or corrupted must not panic or run forever: the state
+        // is checked against itself and the problem, and the records against the state.
+        let invalid = |e: &dyn std::fmt::Display| ReentryError::Parse {
             path: ck_path.clone(),
             message: e.to_string(),
-        })?;
+        };
+        ck.algorithm
+            .validate(ctx.problem)
+            .map_err(|e| invalid(&e))?;
+        check_records(&ck.records, &ck.algorithm, ctx.c).map_err(|e| invalid(&e))?;
         (ck.algorithm, ck.records)
     } else {
         (fresh, Vec::new())

@@ -196,3 +196,201 @@ fn fronts_have_no_repeated_members() {
     assert_eq!(unique.len(), rows.len(), "{front}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A seeded corruption of a JSON value: one leaf or container replaced by a hostile value,
+/// an array shortened or lengthened, or a key removed.
+fn corrupt(v: &mut serde_json::Value, rng: &mut u64) {
+    use serde_json::{Value, json};
+    let mut next = |n: usize| {
+        *rng ^= *rng << 13;
+        *rng ^= *rng >> 7;
+        *rng ^= *rng << 17;
+        (*rng % n as u64) as usize
+    };
+    // Collect the paths of every node, then pick one.
+    fn paths(v: &Value, at: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
+        out.push(at.clone());
+        match v {
+            Value::Object(m) => {
+                for (k, x) in m {
+                    at.push(k.clone());
+                    paths(x, at, out);
+                    at.pop();
+                }
+            }
+            Value::Array(a) => {
+                for (i, x) in a.iter().enumerate() {
+                    at.push(i.to_string());
+                    paths(x, at, out);
+                    at.pop();
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut all = Vec::new();
+    paths(v, &mut Vec::new(), &mut all);
+    let path = all[1 + next(all.len() - 1)].clone();
+    let (last, parent) = path.split_last().unwrap();
+    let mut p = &mut *v;
+    for k in parent {
+        p = match p {
+            Value::Object(m) => m.get_mut(k).unwrap(),
+            Value::Array(a) => &mut a[k.parse::<usize>().unwrap()],
+            _ => unreachable!(),
+        };
+    }
+    let hostile = [
+        json!(0),
+        json!(-1),
+        json!(999),
+        json!(1_000_000),
+        json!(1e300),
+        json!(-1e300),
+        json!(0.5),
+        json!("NaN"),
+        json!("inf"),
+        json!("x"),
+        Value::Null,
+        json!([]),
+        json!({}),
+        json!(true),
+    ];
+    let pick = next(hostile.len() + 3);
+    match p {
+        Value::Object(m) if pick == hostile.len() => {
+            m.remove(last);
+        }
+        Value::Array(a) if pick >= hostile.len() => {
+            let i: usize = last.parse().unwrap();
+            if pick == hostile.len() {
+                a.remove(i);
+            } else {
+                let x = a[i].clone();
+                a.insert(i, x);
+            }
+        }
+        Value::Object(m) => {
+            m.insert(last.clone(), hostile[pick % hostile.len()].clone());
+        }
+        Value::Array(a) => {
+            a[last.parse::<usize>().unwrap()] = hostile[pick % hostile.len()].clone();
+        }
+        _ => unreachable!(),
+    }
+}
+
+/// Integers too large for `serde_json::Value` (the generator's `u128` state) as strings
+/// `"BIG<digits>"`, so that a corruption elsewhere leaves them exact.
+fn protect_big(text: &str) -> String {
+    let mut out = String::new();
+    let mut digits = String::new();
+    let flush = |digits: &mut String, out: &mut String| {
+        if digits.len() > 18 {
+            out.push_str(&format!("\"BIG{digits}\""));
+        } else {
+            out.push_str(digits);
+        }
+        digits.clear();
+    };
+    let mut prev = ' ';
+    for ch in text.chars() {
+        if ch.is_ascii_digit() && (!digits.is_empty() || matches!(prev, ':' | ',' | '[')) {
+            digits.push(ch);
+        } else {
+            if !digits.is_empty() {
+                if matches!(ch, '.' | 'e' | 'E') {
+                    out.push_str(&digits);
+                    digits.clear();
+                } else {
+                    flush(&mut digits, &mut out);
+                }
+            }
+            out.push(ch);
+        }
+        prev = ch;
+    }
+    flush(&mut digits, &mut out);
+    out
+}
+
+/// The inverse of [`protect_big`].
+fn restore_big(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("\"BIG") {
+        out.push_str(&rest[..at]);
+        let tail = &rest[at + 4..];
+        let end = tail.find('"').unwrap();
+        out.push_str(&tail[..end]);
+        rest = &tail[end + 1..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// 100 seeded corruptions of real checkpoints (MOEA/D with batches of 3, NSGA-II, MHACO,
+/// SCEA): `--resume` never panics or hangs; it resumes, or its error names the checkpoint
+/// and a field.
+#[test]
+fn corrupt_checkpoints_give_an_error_naming_a_field_or_a_valid_resume() {
+    let base = tmp("corrupt");
+    let mut sources = Vec::new();
+    for algorithm in ["moead", "nsga2", "mhaco", "scea"] {
+        let cfg = infeasible_start_config(&base, algorithm, 1);
+        let mut text = std::fs::read_to_string(&cfg).unwrap();
+        if algorithm == "moead" {
+            text = text.replace("batch_size = 1", "batch_size = 3");
+            std::fs::write(&cfg, &text).unwrap();
+        }
+        let dir = base.join(format!("src-{algorithm}"));
+        optimize(&[
+            "--config",
+            cfg.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+        .unwrap();
+        let text = std::fs::read_to_string(dir.join("checkpoint.json")).unwrap();
+        let ck: serde_json::Value = serde_json::from_str(&protect_big(&text)).unwrap();
+        sources.push((dir, ck));
+    }
+    let (mut resumed, mut refused) = (0, 0);
+    let mut rng = 0x9E37_79B9_7F4A_7C15_u64;
+    for case in 0..100 {
+        let (src, ck) = &sources[case % sources.len()];
+        let mut bad = ck.clone();
+        corrupt(&mut bad, &mut rng);
+        let dir = base.join(format!("case{case}"));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::copy(src.join("config.toml"), dir.join("config.toml")).unwrap();
+        std::fs::write(dir.join("checkpoint.json"), restore_big(&bad.to_string())).unwrap();
+        let d = dir.clone();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let r = std::panic::catch_unwind(|| {
+                optimize(&["--resume", d.to_str().unwrap(), "--generations", "2"])
+                    .map_err(|e| e.to_string())
+            });
+            let _ = tx.send(r);
+        });
+        let r = rx
+            .recv_timeout(std::time::Duration::from_secs(120))
+            .unwrap_or_else(|_| panic!("case {case}: no answer in 120 s (hang)"));
+        match r {
+            Err(_) => panic!("case {case}: panicked"),
+            Ok(Ok(_)) => resumed += 1,
+            Ok(Err(e)) => {
+                assert!(
+                    e.contains("checkpoint.json") && e.contains("field `"),
+                    "case {case}: {e}"
+                );
+                refused += 1;
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    assert!(refused > 50, "{refused} refused, {resumed} resumed");
+    std::fs::remove_dir_all(&base).unwrap();
+}

@@ -216,4 +216,7 @@ pub enum OptimError {
         #[source]
         source: EvalError,
     },
+    /// A restored state that does not hold together (a corrupt or edited checkpoint).
+    #[error(transparent)]
+    State(#[from] super::restore::StateError),
 }

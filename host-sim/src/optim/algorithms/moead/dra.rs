@@ -107,6 +107,33 @@ pub(super) struct DraState {
     saved_violation: Vec<f64>,
 }
 
+impl DraState {
+    /// Check a restored state: one utility, saved objective vector and violation per
+    /// subproblem, not NaN.
+    pub(super) fn validate(&self, n: usize, m: usize) -> Result<(), crate::optim::StateError> {
+        use crate::optim::restore::{bad, count};
+        count("dra.utility.len()", self.utility.len(), n)?;
+        count("dra.saved_objectives.len()", self.saved_objectives.len(), n)?;
+        count("dra.saved_violation.len()", self.saved_violation.len(), n)?;
+        for (i, f) in self.saved_objectives.iter().enumerate() {
+            count(&format!("dra.saved_objectives[{i}].len()"), f.len(), m)?;
+        }
+        let all = self
+            .utility
+            .iter()
+            .chain(&self.saved_violation)
+            .chain(self.saved_objectives.iter().flatten());
+        if all.clone().any(|x| x.is_nan()) {
+            return Err(bad(
+                "dra",
+                "NaN",
+                "utilities and saved values must be numbers",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// Improvement above which a subproblem's utility is reset to 1 (the paper's 0.001).
 const IMPROVING: f64 = 0.001;
 

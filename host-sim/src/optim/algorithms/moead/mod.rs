@@ -51,6 +51,7 @@ use crate::optim::weights::{
 use super::check_range;
 
 mod dra;
+mod restore;
 mod sbx;
 
 pub use dra::ResourceAllocation;
@@ -200,6 +201,21 @@ pub trait MoeadVariation<P: Problem>:
     /// A random decision for the initial population.
     fn random(&self, problem: &P, rng: &mut OptimRng) -> P::Decision;
 
+    /// Check a restored decision (`field` names it) against the problem: its dimension and
+    /// finite values within the bounds. Default: accept any.
+    ///
+    /// # Errors
+    /// [`crate::optim::StateError`] naming the field.
+    fn check_decision(
+        &self,
+        problem: &P,
+        field: &str,
+        decision: &P::Decision,
+    ) -> Result<(), crate::optim::StateError> {
+        let _ = (problem, field, decision);
+        Ok(())
+    }
+
     /// The child of subproblem member `x` with parents `a` and `b`. `reuse` is a spent
     /// decision whose allocation may be recycled (its contents are meaningless).
     #[allow(clippy::too_many_arguments)] // the operator has exactly these inputs
@@ -224,6 +240,15 @@ pub struct DeVariation;
 impl<P: RealProblem> MoeadVariation<P> for DeVariation {
     fn random(&self, problem: &P, rng: &mut OptimRng) -> Vec<f64> {
         random_point(problem.bounds(), rng)
+    }
+
+    fn check_decision(
+        &self,
+        problem: &P,
+        field: &str,
+        decision: &Vec<f64>,
+    ) -> Result<(), crate::optim::StateError> {
+        crate::optim::restore::real_decision(field, decision, problem.bounds())
     }
 
     fn child(
@@ -693,6 +718,10 @@ where
 
     fn is_told(&self, index: usize) -> bool {
         self.batch.is_told(index)
+    }
+
+    fn validate(&self, problem: &P) -> Result<(), crate::optim::StateError> {
+        self.validate_state(problem)
     }
 }
 
