@@ -143,6 +143,16 @@ pub fn run_campaign(
 ) -> Result<CampaignOutput, CampaignError> {
     settings.validate(&setup.file)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = opts.threads
+        && !(1..=crate::optim::evaluate::MAX_THREADS).contains(&t)
+    {
+        return Err(CampaignError::Setting {
+            file: "(run options)".into(),
+            field: "threads".into(),
+            value: t.to_string(),
+            reason: "use 1 to 1024 threads".into(),
+        });
+    }
     if let Some(t) = opts.threads {
         pool = pool.num_threads(t);
     }

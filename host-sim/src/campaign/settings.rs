@@ -120,6 +120,9 @@ pub enum Distribution {
     },
 }
 
+/// Most flights per mode of one campaign.
+pub const MAX_CASES: u32 = 1_000_000;
+
 impl DispersionSettings {
     /// The dispersions by field name (for validation and drawing, in a fixed order).
     #[must_use]
@@ -158,6 +161,13 @@ impl DispersionSettings {
         };
         if self.cases == 0 {
             return Err(bad("cases", "0".into(), "at least one flight is needed"));
+        }
+        if self.cases > MAX_CASES {
+            return Err(bad(
+                "cases",
+                self.cases.to_string(),
+                "at most 1000000 flights per mode (-n)",
+            ));
         }
         for (name, d) in self.fields() {
             distribution_of(d).map_err(|reason| {

@@ -260,7 +260,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     c.seed = a.seed;
     c.threads = a.threads;
     c.batch_size = a.batch_size;
-    c.neighbours = a.neighbours;
+    c.neighbours = a.neighbours();
     c.mutation_probability = a.mutation_probability;
     c.scea_genes = a.scea_genes.new_genes();
     c.archive = a.archive;
@@ -289,8 +289,15 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             "use moead, nsga2, scea, mhaco or mhaco-objectives".into(),
         );
     }
-    if c.threads == 0 {
-        return bad("threads", "0".into(), "use at least 1".into());
+    if c.population > crate::optim::algorithms::MAX_POPULATION {
+        return bad(
+            "population",
+            c.population.to_string(),
+            "use at most 100000".into(),
+        );
+    }
+    if c.threads == 0 || c.threads > crate::optim::evaluate::MAX_THREADS {
+        return bad("threads", c.threads.to_string(), "use 1 to 1024".into());
     }
     match c.archive {
         Some(0) => {

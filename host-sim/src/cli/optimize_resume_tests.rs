@@ -394,3 +394,157 @@ fn corrupt_checkpoints_give_an_error_naming_a_field_or_a_valid_resume() {
     assert!(refused > 50, "{refused} refused, {resumed} resumed");
     std::fs::remove_dir_all(&base).unwrap();
 }
+
+fn cli(args: &[&str]) -> Result<String, String> {
+    let mut out = Vec::new();
+    cli_run(args.iter().copied(), &mut out).map_err(|e| e.to_string())?;
+    Ok(String::from_utf8(out).unwrap_or_default())
+}
+
+/// Sizes without bounds are refused with an error naming the option, before anything is
+/// allocated (they used to abort on allocation or hang building a thread pool), and a small
+/// MOEA/D population runs without `--neighbours` (the default adapts).
+#[test]
+fn sizes_without_bounds_are_refused_naming_the_option() {
+    let base = tmp("sizes");
+    let out = base.join("o");
+    let o = out.to_str().unwrap();
+    let csv = base.join("s.csv");
+    for (args, name) in [
+        (
+            vec![
+                "host-sim",
+                "optimize",
+                "--problem",
+                "srm-analytical",
+                "--population",
+                "1000000000",
+                "--out",
+                o,
+            ],
+            "population",
+        ),
+        (
+            vec![
+                "host-sim",
+                "optimize",
+                "--problem",
+                "zdt1",
+                "--population",
+                "1000000000",
+                "--out",
+                o,
+            ],
+            "population",
+        ),
+        (
+            vec![
+                "host-sim",
+                "optimize",
+                "--problem",
+                "zdt1",
+                "--threads",
+                "100000",
+                "--out",
+                o,
+            ],
+            "--threads",
+        ),
+        (
+            vec![
+                "host-sim",
+                "sample",
+                "--problem",
+                "srm",
+                "--threads",
+                "100000",
+                "--out",
+                csv.to_str().unwrap(),
+            ],
+            "--threads",
+        ),
+        (
+            vec![
+                "host-sim",
+                "sample",
+                "--problem",
+                "srm",
+                "--count",
+                "1000000000",
+                "--out",
+                csv.to_str().unwrap(),
+            ],
+            "--count",
+        ),
+        (
+            vec![
+                "host-sim",
+                "dispersions",
+                "--builtin",
+                "srm-glide",
+                "-n",
+                "1000000000",
+                "--quiet",
+                "--out",
+                o,
+            ],
+            "cases",
+        ),
+        (
+            vec![
+                "host-sim",
+                "dispersions",
+                "--builtin",
+                "srm-glide",
+                "-n",
+                "2",
+                "--threads",
+                "100000",
+                "--quiet",
+                "--out",
+                o,
+            ],
+            "threads",
+        ),
+    ] {
+        let e = cli(&args).unwrap_err();
+        assert!(e.contains(name), "{args:?}: {e}");
+        assert!(!csv.exists(), "{args:?}");
+    }
+    let said = cli(&[
+        "host-sim",
+        "optimize",
+        "--problem",
+        "srm-analytical",
+        "--population",
+        "8",
+        "--generations",
+        "1",
+        "--out",
+        o,
+    ])
+    .unwrap();
+    assert!(said.contains("generation 1"), "{said}");
+    assert!(
+        std::fs::read_to_string(out.join("config.toml"))
+            .unwrap()
+            .contains("neighbours = 7")
+    );
+    let e = cli(&[
+        "host-sim",
+        "optimize",
+        "--problem",
+        "srm-analytical",
+        "--population",
+        "8",
+        "--neighbours",
+        "20",
+        "--generations",
+        "1",
+        "--out",
+        o,
+    ])
+    .unwrap_err();
+    assert!(e.contains("--neighbours"), "{e}");
+    let _ = std::fs::remove_dir_all(&base);
+}

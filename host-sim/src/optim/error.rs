@@ -96,7 +96,9 @@ pub enum ConfigError {
     },
     /// More neighbours than other individuals.
     #[error(
-        "neighbours {neighbours} is too large for population {population}; use at most {max}",
+        "neighbours (MOEA/D neighbourhood size, --neighbours) {neighbours} is too large for \
+         population {population}; use at most {max}, or leave it out (default: \
+         min(20, population - 1))",
         max = population.saturating_sub(1)
     )]
     TooManyNeighbours {

@@ -61,6 +61,7 @@ impl Default for Nsga2Config {
 impl Nsga2Config {
     fn check(&self) -> Result<(), ConfigError> {
         let n = self.population;
+        super::check_size(NAME, "population", n)?;
         if n < 8 {
             return Err(ConfigError::PopulationTooSmall {
                 algorithm: NAME,

@@ -96,6 +96,7 @@ impl MhacoConfig {
                 objectives: ranked,
             });
         }
+        super::check_size(NAME, "population", self.population)?;
         if self.population < 2 {
             return Err(ConfigError::PopulationTooSmall {
                 algorithm: NAME,

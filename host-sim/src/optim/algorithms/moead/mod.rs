@@ -123,6 +123,13 @@ impl Default for MoeadConfig {
 }
 
 impl MoeadConfig {
+    /// The neighbourhood size used when none is given: the thesis' 20, or `population - 1`
+    /// for smaller populations (at least 2).
+    #[must_use]
+    pub fn default_neighbours(population: usize) -> usize {
+        20.min(population.saturating_sub(1)).max(2)
+    }
+
     fn check(&self, objectives: usize) -> Result<(), ConfigError> {
         if objectives < 2 {
             return Err(ConfigError::TooFewObjectives {
@@ -130,6 +137,7 @@ impl MoeadConfig {
                 objectives,
             });
         }
+        super::check_size(NAME, "population", self.population)?;
         if self.population < 3 {
             return Err(ConfigError::PopulationTooSmall {
                 algorithm: NAME,
