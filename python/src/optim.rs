@@ -336,6 +336,9 @@ fn merge(base: &mut serde_json::Value, over: &mut serde_json::Value) {
     }
 }
 
+/// Most points `pareto_front` samples (larger counts would fail on allocation).
+const MAX_FRONT_POINTS: usize = 10_000_000;
+
 /// A host-sim test problem (ZDT1-4, 6, DTLZ1-7, CONSTR) evaluated in Rust.
 #[pyclass(name = "TestProblem", module = "reentry._native", frozen, subclass)]
 pub struct PyTestProblem {
@@ -433,14 +436,24 @@ impl PyTestProblem {
     }
 
     /// About `n` points of the true front.
-    fn pareto_front(&self, n: usize) -> Vec<Vec<f64>> {
-        self.inner.pareto_front(n)
+    fn pareto_front(&self, n: usize) -> PyResult<Vec<Vec<f64>>> {
+        if n > MAX_FRONT_POINTS {
+            return Err(PyValueError::new_err(format!(
+                "pareto_front: n = {n}: use at most {MAX_FRONT_POINTS} points"
+            )));
+        }
+        Ok(self.inner.pareto_front(n))
     }
 
     /// Hypervolume of the true front (exact where known, else of `samples` front points).
     #[pyo3(signature = (reference, samples=10_000))]
-    fn front_hypervolume(&self, reference: Vec<f64>, samples: usize) -> Option<f64> {
-        self.inner.front_hypervolume(&reference, samples)
+    fn front_hypervolume(&self, reference: Vec<f64>, samples: usize) -> PyResult<Option<f64>> {
+        if samples > MAX_FRONT_POINTS {
+            return Err(PyValueError::new_err(format!(
+                "front_hypervolume: samples = {samples}: use at most {MAX_FRONT_POINTS}"
+            )));
+        }
+        Ok(self.inner.front_hypervolume(&reference, samples))
     }
 }
 
