@@ -345,6 +345,49 @@ struct Checkpoint<A> {
     records: Vec<Record>,
 }
 
+/// The flags given beside `--resume` (other than `--generations`), as `--flag`: the fields
+/// of `a` that differ from the defaults.
+fn flags_beside_resume(a: &OptimizeArgs) -> Vec<String> {
+    use clap::{CommandFactory, FromArgMatches};
+    #[derive(clap::Parser)]
+    struct Defaults {
+        #[command(flatten)]
+        a: OptimizeArgs,
+    }
+    let Ok(m) = Defaults::command().try_get_matches_from(["optimize"]) else {
+        return Vec::new();
+    };
+    let Ok(d) = Defaults::from_arg_matches(&m) else {
+        return Vec::new();
+    };
+    // One line per top-level field in the pretty Debug form ("    name: value,"); nested
+    // values are indented further and belong to the field above.
+    let fields = |x: &OptimizeArgs| -> Vec<(String, String)> {
+        let text = format!("{x:#?}");
+        let mut out: Vec<(String, String)> = Vec::new();
+        for line in text.lines().skip(1) {
+            match line.strip_prefix("    ") {
+                Some(l) if !l.starts_with(' ') => {
+                    let (k, v) = l.split_once(':').unwrap_or((l, ""));
+                    out.push((k.to_string(), v.to_string()));
+                }
+                _ => {
+                    if let Some(last) = out.last_mut() {
+                        last.1.push_str(line);
+                    }
+                }
+            }
+        }
+        out
+    };
+    fields(a)
+        .into_iter()
+        .zip(fields(&d.a))
+        .filter(|((k, v), (_, w))| v != w && k != "resume" && k != "generations")
+        .map(|((k, _), _)| format!("--{}", k.replace('_', "-")))
+        .collect()
+}
+
 /// Run `optimize` on a re-entry problem.
 ///
 /// # Errors
@@ -375,6 +418,20 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         (None, Some(p)) => p.display().to_string(),
         (None, None) => "command line".to_string(),
     };
+    if resume {
+        let ignored = flags_beside_resume(a);
+        if !ignored.is_empty() {
+            return Err(ReentryError::Setting {
+                source_name: "command line".into(),
+                field: "resume",
+                value: ignored.join(" "),
+                reason: format!(
+                    "a resumed run keeps the settings of {src}; only --generations may be given \
+                     (to extend the run): drop the other flags"
+                ),
+            });
+        }
+    }
     if resume && a.generations_given() {
         // Resuming may extend the run (an interrupted run resumes to its own target).
         c.generations = a.generations;
@@ -390,7 +447,10 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
     if !resume {
         // A new run: never into a directory that is not a run; a previous run there is
         // removed whole (no population or front file of it is left beside the new run's).
-        crate::report::begin_in_place(&dir)?;
+        crate::report::begin_in_place(&dir).map_err(|e| match e {
+            ReportError::Io { path, source } => ReentryError::RunDir { path, source },
+            e => e.into(),
+        })?;
     }
     std::fs::create_dir_all(dir.join("population")).map_err(|source| ReentryError::RunDir {
         path: dir.clone(),

@@ -548,3 +548,20 @@ fn sizes_without_bounds_are_refused_naming_the_option() {
     assert!(e.contains("--neighbours"), "{e}");
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// `--resume` with other flags is refused naming them (they used to be ignored silently);
+/// `--generations` extends the run.
+#[test]
+fn resume_with_other_flags_names_them() {
+    let base = tmp("resume-flags");
+    let cfg = infeasible_start_config(&base, "moead", 1);
+    let run = base.join("r");
+    let r = run.to_str().unwrap();
+    optimize(&["--config", cfg.to_str().unwrap(), "--out", r]).unwrap();
+    let e = optimize(&["--resume", r, "--population", "16", "--seed", "9"])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`resume` = --population --seed:"), "{e}");
+    optimize(&["--resume", r, "--generations", "2"]).unwrap();
+    std::fs::remove_dir_all(&base).unwrap();
+}
