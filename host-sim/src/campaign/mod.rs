@@ -144,6 +144,18 @@ pub enum CampaignError {
         /// The cause.
         source: serde_json::Error,
     },
+    /// A stored case file holds a value no flight gives (edited or corrupt): it is not reused.
+    #[error("{}: field `{field}` = {value}: {reason}; remove the file to fly the case again", path.display())]
+    CaseValue {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The field.
+        field: String,
+        /// Its value.
+        value: String,
+        /// What it must be.
+        reason: String,
+    },
     /// The output directory holds case results of a campaign with other inputs: resuming
     /// would mix them.
     #[error(

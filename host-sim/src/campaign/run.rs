@@ -117,6 +117,46 @@ impl CampaignOutput {
     }
 }
 
+/// A stored case's values before they are reused: finite, and within what a flight on a
+/// planet can give (distances below 1e8 m, peaks and ratios >= 0).
+fn check_stored(c: &CaseResult, path: &Path) -> Result<(), CampaignError> {
+    let bad = |field: &str, v: f64, reason: &str| CampaignError::CaseValue {
+        path: path.to_path_buf(),
+        field: field.to_string(),
+        value: crate::num_fmt::compact(v),
+        reason: reason.to_string(),
+    };
+    let distance = [
+        ("miss_m", c.miss_m, 0.0),
+        ("downrange_error_m", c.downrange_error_m, -1e8),
+        ("crossrange_error_m", c.crossrange_error_m, -1e8),
+    ];
+    for (name, v, lo) in distance {
+        if !(v.is_finite() && v >= lo && v <= 1e8) {
+            return Err(bad(
+                name,
+                v,
+                "must be a finite distance within [-1e8, 1e8] m (miss >= 0)",
+            ));
+        }
+    }
+    let positive = [
+        ("peak_heat_flux_w_m2", c.peak_heat_flux_w_m2),
+        ("peak_g_load", c.peak_g_load),
+        ("peak_g_load_rate_per_s", c.peak_g_load_rate_per_s),
+        ("limit_ratios[0]", c.limit_ratios[0]),
+        ("limit_ratios[1]", c.limit_ratios[1]),
+        ("limit_ratios[2]", c.limit_ratios[2]),
+        ("flight_time_s", c.flight_time_s),
+    ];
+    for (name, v) in positive {
+        if !(v.is_finite() && (0.0..1e30).contains(&v)) {
+            return Err(bad(name, v, "must be finite and >= 0"));
+        }
+    }
+    Ok(())
+}
+
 /// The failure recorded for a case not flown after a stop request (never reported: the
 /// campaign then ends with [`CampaignError::Interrupted`]).
 #[derive(Debug, thiserror::Error)]
@@ -204,6 +244,7 @@ pub fn run_campaign(
                             path: p.clone(),
                             source,
                         })?;
+                    check_stored(&stored, p)?;
                     if stored.draw == Some(draw)
                         && stored.mode == mode
                         && stored.guidance == setup.guidance_key()

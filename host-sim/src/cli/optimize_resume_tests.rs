@@ -565,3 +565,71 @@ fn resume_with_other_flags_names_them() {
     optimize(&["--resume", r, "--generations", "2"]).unwrap();
     std::fs::remove_dir_all(&base).unwrap();
 }
+
+/// `dispersions`: a stored case file with a value no flight gives is refused naming the file
+/// and the field (a miss of -1e300 gave `std: null`), and a settings file without
+/// `[dispersions]` is refused instead of running the defaults.
+#[test]
+fn dispersions_refuse_bad_stored_cases_and_settings_without_the_section() {
+    let base = tmp("disp");
+    let out = base.join("c");
+    let o = out.to_str().unwrap();
+    let args = [
+        "host-sim",
+        "dispersions",
+        "--builtin",
+        "srm-glide",
+        "-n",
+        "2",
+        "--interface-speed",
+        "2500",
+        "--modes",
+        "stored",
+        "--threads",
+        "1",
+        "--quiet",
+        "--out",
+        o,
+    ];
+    cli(&args).unwrap();
+    let case = out.join("cases/stored/000001.json");
+    let text = std::fs::read_to_string(&case).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["miss_m"] = serde_json::json!(-1e300);
+    std::fs::write(&case, v.to_string()).unwrap();
+    let e = cli(&args).unwrap_err();
+    assert!(
+        e.contains("000001.json") && e.contains("field `miss_m` = -1e300"),
+        "{e}"
+    );
+    let settings = base.join("s.toml");
+    std::fs::write(&settings, "[dispersion]\ncases = 3\n").unwrap();
+    let e = cli(&[
+        "host-sim",
+        "dispersions",
+        "--builtin",
+        "srm-glide",
+        "--settings",
+        settings.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        base.join("d").to_str().unwrap(),
+    ])
+    .unwrap_err();
+    assert!(e.contains("dispersion"), "{e}");
+    std::fs::write(&settings, "seed = 3\n").unwrap();
+    let e = cli(&[
+        "host-sim",
+        "dispersions",
+        "--builtin",
+        "srm-glide",
+        "--settings",
+        settings.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        base.join("d").to_str().unwrap(),
+    ])
+    .unwrap_err();
+    assert!(e.contains("no [dispersions] section"), "{e}");
+    let _ = std::fs::remove_dir_all(&base);
+}
