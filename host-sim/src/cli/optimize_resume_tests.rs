@@ -631,5 +631,28 @@ fn dispersions_refuse_bad_stored_cases_and_settings_without_the_section() {
     ])
     .unwrap_err();
     assert!(e.contains("no [dispersions] section"), "{e}");
+    // An absurd but finite spread is refused with its range, the value written compactly.
+    std::fs::write(
+        &settings,
+        "[dispersions.speed_m_s]\ndistribution = \"normal\"\nthree_sigma = 1e300\n",
+    )
+    .unwrap();
+    let e = cli(&[
+        "host-sim",
+        "dispersions",
+        "--builtin",
+        "srm-glide",
+        "--settings",
+        settings.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        base.join("d").to_str().unwrap(),
+    ])
+    .unwrap_err();
+    assert!(
+        e.contains("speed_m_s.three_sigma = 1e300") && e.contains("[0, 5000]"),
+        "{e}"
+    );
+    assert!(!e.contains("00000000000"), "{e}");
     let _ = std::fs::remove_dir_all(&base);
 }
