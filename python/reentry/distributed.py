@@ -274,6 +274,10 @@ def local_cluster(workers: int, threads_per_worker: int = 1, dashboard_address: 
     port 8787) on a free port of the loopback interface. An address turns the dashboard on
     there: ``":0"`` (a free port, see ``client.dashboard_link``), ``":8787"`` (Dask's usual
     port, with its fall-back to a free one and a warning when taken), ``"127.0.0.1:8790"``."""
+    if int(workers) < 1:
+        raise ValueError(f"local_cluster: workers = {workers}: use at least 1 (a cluster without workers never runs a task)")
+    if int(threads_per_worker) < 1:
+        raise ValueError(f"local_cluster: threads_per_worker = {threads_per_worker}: use at least 1")
     from dask.distributed import LocalCluster
 
     kwargs: Dict[str, Any] = dict(n_workers=workers, threads_per_worker=threads_per_worker, processes=True)
@@ -330,7 +334,12 @@ def _write_table(df, path: str) -> None:
 
 def _algorithm(a) -> Any:
     if a.algorithm == "moead":
-        return Moead(seed=a.seed, population=a.population, batch_size=a.batch_size or a.population)
+        return Moead(
+            seed=a.seed,
+            population=a.population,
+            batch_size=a.batch_size or a.population,
+            neighbours=a.neighbours,
+        )
     return Nsga2(seed=a.seed, population=a.population)
 
 
@@ -634,6 +643,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     o.add_argument("--objectives", type=int, default=3)
     o.add_argument("--algorithm", choices=["moead", "nsga2"], default="moead")
     o.add_argument("--population", type=int, default=100)
+    o.add_argument(
+        "--neighbours", type=int, default=None, help="MOEA/D neighbourhood size (default: 20, or population - 1 when smaller)"
+    )
     o.add_argument("--generations", type=int, default=100)
     o.add_argument("--seed", type=int, default=1)
     o.add_argument("--batch-size", type=int, default=None, help="MOEA/D offspring per ask (default: the population)")

@@ -216,7 +216,8 @@ class Moead(_Algorithm):
 
     ``weights``: ``"grid"``, ``"low-discrepancy"``, ``"random"``; ``decomposition``:
     ``"tchebycheff"``, ``"weighted"``, ``"pbi"``; ``batch_size`` offspring per ask (1:
-    pagmo's steady state). Bad settings raise :class:`OptimError` at the first ``ask``."""
+    pagmo's steady state); ``neighbours`` defaults to 20, or ``population - 1`` for smaller
+    populations. Bad settings raise :class:`OptimError` at the first ``ask``."""
 
     def __init__(
         self,
@@ -224,7 +225,7 @@ class Moead(_Algorithm):
         population: int = 100,
         weights: str = "grid",
         decomposition: str = "tchebycheff",
-        neighbours: int = 20,
+        neighbours: Optional[int] = None,
         cr: float = 1.0,
         f: float = 0.5,
         eta_m: float = 20.0,
@@ -234,6 +235,10 @@ class Moead(_Algorithm):
         mutation_probability: Optional[float] = None,
         batch_size: int = 1,
     ):
+        if neighbours is None:
+            # The thesis' 20, or population - 1 for small populations (host-sim's
+            # MoeadConfig::default_neighbours).
+            neighbours = max(2, min(20, int(population) - 1))
         config = dict(
             population=population,
             weights=weights,

@@ -295,8 +295,12 @@ impl PyCampaign {
     /// (`CaseFailure`s for failed flights).
     #[pyo3(signature = (threads=None))]
     fn run_local(&self, py: Python<'_>, threads: Option<usize>) -> PyResult<Vec<String>> {
-        if threads == Some(0) {
-            return Err(PyValueError::new_err("threads = 0: must be >= 1"));
+        if threads.is_some_and(|t| t == 0 || t > host_sim::optim::evaluate::MAX_THREADS) {
+            return Err(PyValueError::new_err(format!(
+                "threads = {}: use 1 to {}",
+                threads.unwrap_or(0),
+                host_sim::optim::evaluate::MAX_THREADS
+            )));
         }
         let opts = RunOptions {
             modes: self.modes.clone(),

@@ -129,6 +129,9 @@ impl Optimizer {
             )),
             Some(_) => Ok(()),
             None => {
+                // A state restored without a problem is checked against the first one.
+                with_algo!(&self.algo, a => Algorithm::<OpenProblem>::validate(a, &shape))
+                    .map_err(state_error)?;
                 self.problem = Some(shape);
                 Ok(())
             }
@@ -140,6 +143,10 @@ impl Optimizer {
             .as_ref()
             .ok_or_else(|| errors::optim(host_sim::optim::TellError::NoBatch))
     }
+}
+
+fn state_error(e: host_sim::optim::StateError) -> PyErr {
+    PyValueError::new_err(format!("checkpoint: {e}"))
 }
 
 fn config_error(e: &serde_json::Error) -> PyErr {
@@ -303,8 +310,16 @@ impl Optimizer {
     /// Rebuild from [`Optimizer::to_json`]'s text.
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let c: Checkpoint = serde_json::from_str(text)
-            .map_err(|e| PyValueError::new_err(format!("checkpoint: {e}")))?;
+        let mut de = serde_json::Deserializer::from_str(text);
+        let c: Checkpoint = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+            PyValueError::new_err(format!("checkpoint: field `{}`: {}", e.path(), e.inner()))
+        })?;
+        // A tampered or corrupt state must not panic or hang later: it is checked against
+        // itself and its problem (or, saved before the first ask, against the first problem).
+        if let Some(p) = &c.problem {
+            with_algo!(&c.algorithm, a => Algorithm::<OpenProblem>::validate(a, p))
+                .map_err(state_error)?;
+        }
         Ok(Self {
             algo: c.algorithm,
             problem: c.problem,
@@ -320,6 +335,9 @@ fn merge(base: &mut serde_json::Value, over: &mut serde_json::Value) {
         }
     }
 }
+
+/// Most points `pareto_front` samples (larger counts would fail on allocation).
+const MAX_FRONT_POINTS: usize = 10_000_000;
 
 /// A host-sim test problem (ZDT1-4, 6, DTLZ1-7, CONSTR) evaluated in Rust.
 #[pyclass(name = "TestProblem", module = "reentry._native", frozen, subclass)]
@@ -418,14 +436,24 @@ impl PyTestProblem {
     }
 
     /// About `n` points of the true front.
-    fn pareto_front(&self, n: usize) -> Vec<Vec<f64>> {
-        self.inner.pareto_front(n)
+    fn pareto_front(&self, n: usize) -> PyResult<Vec<Vec<f64>>> {
+        if n > MAX_FRONT_POINTS {
+            return Err(PyValueError::new_err(format!(
+                "pareto_front: n = {n}: use at most {MAX_FRONT_POINTS} points"
+            )));
+        }
+        Ok(self.inner.pareto_front(n))
     }
 
     /// Hypervolume of the true front (exact where known, else of `samples` front points).
     #[pyo3(signature = (reference, samples=10_000))]
-    fn front_hypervolume(&self, reference: Vec<f64>, samples: usize) -> Option<f64> {
-        self.inner.front_hypervolume(&reference, samples)
+    fn front_hypervolume(&self, reference: Vec<f64>, samples: usize) -> PyResult<Option<f64>> {
+        if samples > MAX_FRONT_POINTS {
+            return Err(PyValueError::new_err(format!(
+                "front_hypervolume: samples = {samples}: use at most {MAX_FRONT_POINTS}"
+            )));
+        }
+        Ok(self.inner.front_hypervolume(&reference, samples))
     }
 }
 

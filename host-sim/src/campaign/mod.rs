@@ -179,6 +179,18 @@ pub enum CampaignError {
         /// The cause.
         source: serde_json::Error,
     },
+    /// A stored case file holds a value no flight gives (edited or corrupt): it is not reused.
+    #[error("{}: field `{field}` = {value}: {reason}; remove the file to fly the case again", path.display())]
+    CaseValue {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The field.
+        field: String,
+        /// Its value.
+        value: String,
+        /// What it must be.
+        reason: String,
+    },
     /// The output directory holds case results of a campaign with other inputs: resuming
     /// would mix them.
     #[error(
@@ -220,4 +232,17 @@ pub enum CampaignError {
     /// The thread pool could not be built.
     #[error("thread pool: {0}")]
     Pool(#[from] rayon::ThreadPoolBuildError),
+    /// A stop was requested (Ctrl-C): the flights completed so far are kept as case files
+    /// (a run into the same directory resumes them), and no statistics of the partial
+    /// campaign are made.
+    #[error(
+        "interrupted after {done} of {total} flights; no summary of a partial campaign \
+         (the finished cases are kept in the output directory: the same command resumes them)"
+    )]
+    Interrupted {
+        /// Flights finished (flown or reused).
+        done: usize,
+        /// Flights of the campaign.
+        total: usize,
+    },
 }

@@ -117,6 +117,52 @@ impl CampaignOutput {
     }
 }
 
+/// A stored case's values before they are reused: finite, and within what a flight on a
+/// planet can give (distances below 1e8 m, peaks and ratios >= 0).
+fn check_stored(c: &CaseResult, path: &Path) -> Result<(), CampaignError> {
+    let bad = |field: &str, v: f64, reason: &str| CampaignError::CaseValue {
+        path: path.to_path_buf(),
+        field: field.to_string(),
+        value: crate::num_fmt::compact(v),
+        reason: reason.to_string(),
+    };
+    let distance = [
+        ("miss_m", c.miss_m, 0.0),
+        ("downrange_error_m", c.downrange_error_m, -1e8),
+        ("crossrange_error_m", c.crossrange_error_m, -1e8),
+    ];
+    for (name, v, lo) in distance {
+        if !(v.is_finite() && v >= lo && v <= 1e8) {
+            return Err(bad(
+                name,
+                v,
+                "must be a finite distance within [-1e8, 1e8] m (miss >= 0)",
+            ));
+        }
+    }
+    let positive = [
+        ("peak_heat_flux_w_m2", c.peak_heat_flux_w_m2),
+        ("peak_g_load", c.peak_g_load),
+        ("peak_g_load_rate_per_s", c.peak_g_load_rate_per_s),
+        ("limit_ratios[0]", c.limit_ratios[0]),
+        ("limit_ratios[1]", c.limit_ratios[1]),
+        ("limit_ratios[2]", c.limit_ratios[2]),
+        ("flight_time_s", c.flight_time_s),
+    ];
+    for (name, v) in positive {
+        if !(v.is_finite() && (0.0..1e30).contains(&v)) {
+            return Err(bad(name, v, "must be finite and >= 0"));
+        }
+    }
+    Ok(())
+}
+
+/// The failure recorded for a case not flown after a stop request (never reported: the
+/// campaign then ends with [`CampaignError::Interrupted`]).
+#[derive(Debug, thiserror::Error)]
+#[error("not flown: stop requested")]
+struct Stopped;
+
 fn case_path(dir: &Path, mode: Mode, index: u32) -> PathBuf {
     dir.join("cases")
         .join(mode.name())
@@ -172,6 +218,16 @@ pub fn run_campaign(
 ) -> Result<CampaignOutput, CampaignError> {
     settings.validate(&setup.file)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = opts.threads
+        && !(1..=crate::optim::evaluate::MAX_THREADS).contains(&t)
+    {
+        return Err(CampaignError::Setting {
+            file: "(run options)".into(),
+            field: "threads".into(),
+            value: t.to_string(),
+            reason: "use 1 to 1024 threads".into(),
+        });
+    }
     if let Some(t) = opts.threads {
         pool = pool.num_threads(t);
     }
@@ -223,6 +279,7 @@ pub fn run_campaign(
                             path: p.clone(),
                             source,
                         })?;
+                    check_stored(&stored, p)?;
                     if stored.draw == Some(draw)
                         && stored.mode == mode
                         && stored.guidance == setup.guidance_key()
@@ -230,6 +287,11 @@ pub fn run_campaign(
                         bar.inc(1);
                         return Ok(Ok((stored, true)));
                     }
+                }
+                // After a stop request no flight starts (the campaign ends without a
+                // summary): this case is not done.
+                if crate::sim::stop_requested() {
+                    return Ok(Err(CaseFailure::new(mode, index, draw, &Stopped)));
                 }
                 // A failed flight is recorded with its error; the campaign goes on.
                 let r = match fly_case(setup, Some(&draw), mode) {
@@ -250,6 +312,15 @@ pub fn run_campaign(
             .collect()
     });
     bar.finish_and_clear();
+    if crate::sim::stop_requested() {
+        // A flight the stop interrupted is no result (it ended `Interrupted`, and would count
+        // as a failure): no statistics of a partial campaign.
+        let done = results.iter().filter(|r| matches!(r, Ok(Ok(_)))).count();
+        return Err(CampaignError::Interrupted {
+            done,
+            total: jobs.len(),
+        });
+    }
     let mut by_mode: Vec<(Mode, Vec<CaseResult>)> =
         opts.modes.iter().map(|&m| (m, Vec::new())).collect();
     let mut resumed = 0;

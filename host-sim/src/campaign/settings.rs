@@ -116,6 +116,9 @@ pub enum Distribution {
     },
 }
 
+/// Most flights per mode of one campaign.
+pub const MAX_CASES: u32 = 1_000_000;
+
 impl DispersionSettings {
     /// The dispersions by field name (for validation and drawing, in a fixed order).
     #[must_use]
@@ -155,6 +158,13 @@ impl DispersionSettings {
         if self.cases == 0 {
             return Err(bad("cases", "0".into(), "at least one flight is needed"));
         }
+        if self.cases > MAX_CASES {
+            return Err(bad(
+                "cases",
+                self.cases.to_string(),
+                "at most 1000000 flights per mode (-n)",
+            ));
+        }
         for (name, d) in self.fields() {
             distribution_of(d).map_err(|reason| {
                 bad(
@@ -166,8 +176,17 @@ impl DispersionSettings {
             if !(d.three_sigma.is_finite() && d.three_sigma >= 0.0) {
                 return Err(bad(
                     &format!("{name}.three_sigma"),
-                    d.three_sigma.to_string(),
+                    crate::num_fmt::compact(d.three_sigma),
                     "must be finite and >= 0",
+                ));
+            }
+            // Absurd but finite spreads (a 3-sigma of 1e300 m/s) are refused with the range.
+            let max = max_three_sigma(name);
+            if d.three_sigma > max {
+                return Err(bad(
+                    &format!("{name}.three_sigma"),
+                    crate::num_fmt::compact(d.three_sigma),
+                    &format!("must be within [0, {}]", crate::num_fmt::compact(max)),
                 ));
             }
         }
@@ -179,7 +198,7 @@ impl DispersionSettings {
             if d.three_sigma >= 0.3 {
                 return Err(bad(
                     &format!("{name}.three_sigma"),
-                    d.three_sigma.to_string(),
+                    crate::num_fmt::compact(d.three_sigma),
                     "must be < 0.3 (30 %)",
                 ));
             }
@@ -189,32 +208,49 @@ impl DispersionSettings {
         {
             return Err(bad(
                 "interface_speed_m_s",
-                v.to_string(),
+                crate::num_fmt::compact(v),
                 "must be finite and > 0",
             ));
         }
         if !(self.imu_noise_m_s2.is_finite() && self.imu_noise_m_s2 >= 0.0) {
             return Err(bad(
                 "imu_noise_m_s2",
-                self.imu_noise_m_s2.to_string(),
+                crate::num_fmt::compact(self.imu_noise_m_s2),
                 "must be finite and >= 0",
             ));
         }
         if self.imu_scale_factor.three_sigma >= 0.3 {
             return Err(bad(
                 "imu_scale_factor.three_sigma",
-                self.imu_scale_factor.three_sigma.to_string(),
+                crate::num_fmt::compact(self.imu_scale_factor.three_sigma),
                 "must be < 0.3 (30 %)",
             ));
         }
         if !(self.density_wavelength_km.is_finite() && self.density_wavelength_km > 0.0) {
             return Err(bad(
                 "density_wavelength_km",
-                self.density_wavelength_km.to_string(),
+                crate::num_fmt::compact(self.density_wavelength_km),
                 "must be finite and > 0",
             ));
         }
         Ok(())
+    }
+}
+
+/// Largest 3-sigma value of each dispersion, in the field's unit: a bound on absurd spreads
+/// (a draw beyond it leaves any entry corridor or makes a coefficient negative), wide enough
+/// for campaigns that probe failures on purpose.
+fn max_three_sigma(name: &str) -> f64 {
+    match name {
+        "altitude_km" => 1000.0,
+        "speed_m_s" => 5000.0,
+        "flight_path_angle_deg" => 30.0,
+        "heading_deg" | "latitude_deg" => 90.0,
+        "longitude_deg" => 180.0,
+        "lift" | "drag" => 0.9,
+        "imu_bias_m_s2" => 10.0,
+        // The density, wave, mass and IMU scale-factor bounds (< 0.3) are checked below.
+        _ => 1.0,
     }
 }
 

@@ -114,7 +114,24 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Some(p) => {
             let f = p.display().to_string();
             let text = std::fs::read_to_string(p)?;
-            parse_settings(&text, &f)?
+            let settings = parse_settings(&text, &f)?;
+            // A settings file states its settings: without the section it would silently run
+            // the defaults (a misspelt or missing table).
+            if text
+                .parse::<toml::Table>()
+                .is_ok_and(|t| !t.contains_key("dispersions"))
+            {
+                return Err(crate::campaign::CampaignError::Setting {
+                    file: f,
+                    field: "dispersions".into(),
+                    value: "(missing)".into(),
+                    reason: "the file has no [dispersions] section; write the settings under \
+                             [dispersions] (or drop --settings for the documented defaults)"
+                        .into(),
+                }
+                .into());
+            }
+            settings
         }
         None => DispersionSettings::default(),
     };

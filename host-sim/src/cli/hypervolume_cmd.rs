@@ -4,7 +4,8 @@
 //! benchmarks against other tools, see scripts/compare_hypervolume.py).
 //!
 //! CSV: comma-separated numbers; blank lines and lines starting with `#` are skipped; a first
-//! line in which no field is a number is a header. Every other malformed line is an error
+//! line in which no field is a number is a header (without data lines after it, it must name
+//! one column per objective). Every other malformed line is an error
 //! naming the file and the line.
 
 use std::io::Write;
@@ -165,6 +166,7 @@ fn parse_reference(s: &str) -> Result<Vec<f64>, HypervolumeCmdError> {
 fn parse_front(path: &Path, text: &str, d: usize) -> Result<Vec<Vec<f64>>, HypervolumeCmdError> {
     let mut points = Vec::new();
     let mut first = true;
+    let mut head = None;
     for (k, raw) in text.lines().enumerate() {
         let line = raw.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -174,6 +176,7 @@ fn parse_front(path: &Path, text: &str, d: usize) -> Result<Vec<Vec<f64>>, Hyper
         let header = first && fields.iter().all(|f| f.parse::<f64>().is_err());
         first = false;
         if header {
+            head = Some((k + 1, fields.len()));
             continue;
         }
         if fields.len() != d {
@@ -200,6 +203,19 @@ fn parse_front(path: &Path, text: &str, d: usize) -> Result<Vec<Vec<f64>>, Hyper
             }
         }
         points.push(p);
+    }
+    // Only a first line without numbers: a header of an empty front if it names one column
+    // per objective, else a malformed file (a one-word text file is no front).
+    if let Some((line, found)) = head
+        && points.is_empty()
+        && found != d
+    {
+        return Err(HypervolumeCmdError::Columns {
+            path: path.to_path_buf(),
+            line,
+            found,
+            expected: d,
+        });
     }
     Ok(points)
 }

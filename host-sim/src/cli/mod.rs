@@ -12,6 +12,8 @@ mod optimize_reentry;
 mod optimize_reentry_out;
 #[cfg(test)]
 mod optimize_reentry_tests;
+#[cfg(test)]
+mod optimize_resume_tests;
 mod optimize_structured;
 #[cfg(test)]
 mod optimize_variants_tests;

@@ -110,9 +110,10 @@ pub struct OptimizeArgs {
     /// MOEA/D and SCEA weight generation.
     #[arg(long, value_enum, default_value = "grid")]
     pub weights: WeightsArg,
-    /// MOEA/D and SCEA neighbourhood size (at most population - 1).
-    #[arg(long, default_value_t = 20)]
-    pub neighbours: usize,
+    /// MOEA/D and SCEA neighbourhood size (at most population - 1; default: 20, or
+    /// population - 1 for populations of 20 or less).
+    #[arg(long)]
+    pub neighbours: Option<usize>,
     /// MOEA/D per-variable mutation probability (default 1/variables; the thesis used
     /// 1/population).
     #[arg(long, value_name = "P")]
@@ -183,6 +184,13 @@ pub struct OptimizeArgs {
 }
 
 impl OptimizeArgs {
+    /// `--neighbours`, or the default for the population
+    /// ([`MoeadConfig::default_neighbours`]).
+    pub(super) fn neighbours(&self) -> usize {
+        self.neighbours
+            .unwrap_or_else(|| MoeadConfig::default_neighbours(self.population))
+    }
+
     /// The algorithm's name as in files.
     #[must_use]
     pub fn algorithm_name(&self) -> &'static str {
@@ -268,8 +276,8 @@ pub enum OptimizeError {
         /// Algorithm asked for.
         algorithm: &'static str,
     },
-    /// `--threads 0`.
-    #[error("command line: --threads 0: use at least 1")]
+    /// `--threads` 0 or above 1024.
+    #[error("command line: --threads: use 1 to 1024")]
     Threads,
     /// `--archive 0`.
     #[error(
@@ -436,7 +444,7 @@ pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
     MoeadConfig {
         population: a.population,
         weights,
-        neighbours: a.neighbours,
+        neighbours: a.neighbours(),
         mutation_probability: a.mutation_probability,
         batch_size: a.batch_size,
         archive: a.archive,
@@ -500,6 +508,7 @@ fn generations_to_run(a: &OptimizeArgs, objectives: usize) -> Result<u64, Optimi
 pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, OptimizeError> {
     match threads {
         0 => Err(OptimizeError::Threads),
+        t if t > crate::optim::evaluate::MAX_THREADS => Err(OptimizeError::Threads),
         1 => Ok(None),
         t => Ok(Some(Arc::new(
             rayon::ThreadPoolBuilder::new()
@@ -723,7 +732,7 @@ mod tests {
             seed: 3,
             objectives: 3,
             weights: WeightsArg::Grid,
-            neighbours: 5,
+            neighbours: Some(5),
             mutation_probability: None,
             batch_size: 1,
             ker: None,

@@ -174,6 +174,18 @@ pub enum ReentryError {
     /// The console could not be written.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
+    /// Ctrl-C: the run stopped at a generation boundary without a final file.
+    #[error(
+        "stopped before generation {generation} (Ctrl-C); the checkpoint of the last complete \
+         generation is kept in {}: continue with --resume",
+        dir.display()
+    )]
+    Interrupted {
+        /// The generation that was not completed.
+        generation: u64,
+        /// The run directory.
+        dir: PathBuf,
+    },
 }
 
 /// Whether `optimize` arguments ask for a re-entry run.
@@ -266,7 +278,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     c.seed = a.seed;
     c.threads = a.threads;
     c.batch_size = a.batch_size;
-    c.neighbours = a.neighbours;
+    c.neighbours = a.neighbours();
     c.mutation_probability = a.mutation_probability;
     c.scea_genes = a.scea_genes.new_genes();
     c.archive = a.archive;
@@ -295,8 +307,15 @@ fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             "use moead, nsga2, scea, mhaco or mhaco-objectives".into(),
         );
     }
-    if c.threads == 0 {
-        return bad("threads", "0".into(), "use at least 1".into());
+    if c.population > crate::optim::algorithms::MAX_POPULATION {
+        return bad(
+            "population",
+            c.population.to_string(),
+            "use at most 100000".into(),
+        );
+    }
+    if c.threads == 0 || c.threads > crate::optim::evaluate::MAX_THREADS {
+        return bad("threads", c.threads.to_string(), "use 1 to 1024".into());
     }
     if let Some(p) = c.mutation_probability
         && !(p > 0.0 && p <= 1.0)
@@ -353,6 +372,49 @@ struct Checkpoint<A> {
     records: Vec<Record>,
 }
 
+/// The flags given beside `--resume` (other than `--generations`), as `--flag`: the fields
+/// of `a` that differ from the defaults.
+fn flags_beside_resume(a: &OptimizeArgs) -> Vec<String> {
+    use clap::{CommandFactory, FromArgMatches};
+    #[derive(clap::Parser)]
+    struct Defaults {
+        #[command(flatten)]
+        a: OptimizeArgs,
+    }
+    let Ok(m) = Defaults::command().try_get_matches_from(["optimize"]) else {
+        return Vec::new();
+    };
+    let Ok(d) = Defaults::from_arg_matches(&m) else {
+        return Vec::new();
+    };
+    // One line per top-level field in the pretty Debug form ("    name: value,"); nested
+    // values are indented further and belong to the field above.
+    let fields = |x: &OptimizeArgs| -> Vec<(String, String)> {
+        let text = format!("{x:#?}");
+        let mut out: Vec<(String, String)> = Vec::new();
+        for line in text.lines().skip(1) {
+            match line.strip_prefix("    ") {
+                Some(l) if !l.starts_with(' ') => {
+                    let (k, v) = l.split_once(':').unwrap_or((l, ""));
+                    out.push((k.to_string(), v.to_string()));
+                }
+                _ => {
+                    if let Some(last) = out.last_mut() {
+                        last.1.push_str(line);
+                    }
+                }
+            }
+        }
+        out
+    };
+    fields(a)
+        .into_iter()
+        .zip(fields(&d.a))
+        .filter(|((k, v), (_, w))| v != w && k != "resume" && k != "generations")
+        .map(|((k, _), _)| format!("--{}", k.replace('_', "-")))
+        .collect()
+}
+
 /// Run `optimize` on a re-entry problem.
 ///
 /// # Errors
@@ -383,6 +445,20 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         (None, Some(p)) => p.display().to_string(),
         (None, None) => "command line".to_string(),
     };
+    if resume {
+        let ignored = flags_beside_resume(a);
+        if !ignored.is_empty() {
+            return Err(ReentryError::Setting {
+                source_name: "command line".into(),
+                field: "resume",
+                value: ignored.join(" "),
+                reason: format!(
+                    "a resumed run keeps the settings of {src}; only --generations may be given \
+                     (to extend the run): drop the other flags"
+                ),
+            });
+        }
+    }
     if resume && a.generations_given() {
         // Resuming may extend the run (an interrupted run resumes to its own target).
         c.generations = a.generations;
@@ -395,6 +471,14 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         .unwrap_or(Path::new("."))
         .to_path_buf();
     let problem = c.problem.problem(&base_dir)?;
+    if !resume {
+        // A new run: never into a directory that is not a run; a previous run there is
+        // removed whole (no population or front file of it is left beside the new run's).
+        crate::report::begin_in_place(&dir).map_err(|e| match e {
+            ReportError::Io { path, source } => ReentryError::RunDir { path, source },
+            e => e.into(),
+        })?;
+    }
     std::fs::create_dir_all(dir.join("population")).map_err(|source| ReentryError::RunDir {
         path: dir.clone(),
         source,
@@ -536,6 +620,44 @@ fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f6
         .collect()
 }
 
+/// The records of a restored checkpoint: one per generation up to the state's, each with
+/// the objectives' count of values.
+fn check_records<P: Problem, A: Algorithm<P>>(
+    records: &[Record],
+    alg: &A,
+    c: &ReentryRunConfig,
+) -> Result<(), crate::optim::StateError> {
+    use crate::optim::restore::{bad, count};
+    let want = if alg.is_initialised() {
+        alg.generation() + 1
+    } else {
+        0
+    };
+    count(
+        "records.len()",
+        records.len(),
+        usize::try_from(want).unwrap_or(usize::MAX),
+    )?;
+    let m = c.reference.len();
+    for (i, r) in records.iter().enumerate() {
+        count(
+            &format!("records[{i}].generation"),
+            r.generation as usize,
+            i,
+        )?;
+        count(&format!("records[{i}].best.len()"), r.best.len(), m)?;
+        count(&format!("records[{i}].mean.len()"), r.mean.len(), m)?;
+        if let Some(k) = r.front.iter().position(|f| f.len() != m) {
+            return Err(bad(
+                format!("records[{i}].front[{k}].len()"),
+                r.front[k].len(),
+                format!("must be {m}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 struct Ctx<'a, P> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
@@ -567,12 +689,32 @@ where
     A: Algorithm<P> + Serialize + DeserializeOwned,
 {
     let ck_path = ctx.dir.join("checkpoint.json");
-    let (mut alg, mut records) = if ctx.resume {
+    if ctx.resume {
+        // Leftovers of a killed run (temporary files of atomic writes, a staged front).
+        crate::report::clean_stale(ctx.dir);
+        crate::report::clean_stale(&ctx.dir.join("population"));
+    }
+    // A run stopped before its first checkpoint (during the initial population) resumes
+    // from the start.
+    let resume = ctx.resume && ck_path.exists();
+    let (mut alg, mut records) = if resume {
         let text = read_text(&ck_path)?;
-        let ck: Checkpoint<A> = serde_json::from_str(&text).map_err(|e| ReentryError::Parse {
+        let mut de = serde_json::Deserializer::from_str(&text);
+        let ck: Checkpoint<A> =
+            serde_path_to_error::deserialize(&mut de).map_err(|e| ReentryError::Parse {
+                path: ck_path.clone(),
+                message: format!("field `{}`: {}", e.path(), e.inner()),
+            })?;
+        // A checkpoint that was edited or corrupted must not panic or run forever: the state
+        // is checked against itself and the problem, and the records against the state.
+        let invalid = |e: &dyn std::fmt::Display| ReentryError::Parse {
             path: ck_path.clone(),
             message: e.to_string(),
-        })?;
+        };
+        ck.algorithm
+            .validate(ctx.problem)
+            .map_err(|e| invalid(&e))?;
+        check_records(&ck.records, &ck.algorithm, ctx.c).map_err(|e| invalid(&e))?;
         (ck.algorithm, ck.records)
     } else {
         (fresh, Vec::new())
@@ -609,13 +751,31 @@ where
         write_atomic(&ck_path, json.as_bytes())?;
         Ok(())
     };
+    // Ctrl-C asks the run to stop (it does not exit the process while this lives): a flight
+    // it interrupts is no evaluation (`EvalError::Interrupted`), and the run stops at the next
+    // generation boundary with the last complete generation's checkpoint and no final file.
+    let _active = crate::sim::ActiveRun::start();
+    let interrupted = |alg: &A| ReentryError::Interrupted {
+        generation: alg.generation() + u64::from(alg.is_initialised()),
+        dir: ctx.dir.to_path_buf(),
+    };
+    let stepped = |alg: &mut A, g: u64| match step(ctx, alg, g) {
+        Err(_) if crate::sim::stop_requested() => Err(interrupted(alg)),
+        r => r.map_err(ReentryError::from),
+    };
     if !alg.is_initialised() {
-        step(ctx, &mut alg, 0)?;
+        stepped(&mut alg, 0)?;
         save(&alg, &mut records)?;
     }
     while alg.generation() < total {
-        step(ctx, &mut alg, 1)?;
+        if crate::sim::stop_requested() {
+            return Err(interrupted(&alg));
+        }
+        stepped(&mut alg, 1)?;
         save(&alg, &mut records)?;
+    }
+    if crate::sim::stop_requested() {
+        return Err(interrupted(&alg));
     }
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();

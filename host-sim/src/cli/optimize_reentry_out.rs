@@ -14,7 +14,7 @@ use crate::design::AnalyticalModel;
 use crate::optim::Individual;
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
-use crate::report::{ReportError, write_atomic};
+use crate::report::{ReportError, RunDir, write_atomic};
 use crate::report::{Series, line_plot_svg};
 use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
 use crate::sim::SimResult;
@@ -27,17 +27,23 @@ pub struct Record {
     /// Evaluations so far.
     pub evaluations: u64,
     /// Fraction of feasible individuals.
+    #[serde(with = "crate::optim::nonfinite::scalar")]
     pub feasible_fraction: f64,
     /// Hypervolume of the feasible front (0 without feasible members): of the external
     /// archive when the run keeps one (`archive` in config.toml).
+    #[serde(with = "crate::optim::nonfinite::scalar")]
     pub hypervolume: f64,
     /// Smallest violation in the population.
+    #[serde(with = "crate::optim::nonfinite::scalar")]
     pub min_violation: f64,
     /// Best (smallest) feasible value per objective (NaN: none feasible).
+    #[serde(with = "crate::optim::nonfinite::vec")]
     pub best: Vec<f64>,
     /// Mean feasible value per objective (NaN: none feasible).
+    #[serde(with = "crate::optim::nonfinite::vec")]
     pub mean: Vec<f64>,
     /// The feasible front's objective vectors (the external archive's, if any).
+    #[serde(with = "crate::optim::nonfinite::vec2")]
     pub front: Vec<Vec<f64>>,
 }
 
@@ -63,11 +69,23 @@ pub fn record_of(
             mean[k] = feas.iter().map(|i| i.objectives[k]).sum::<f64>() / feas.len() as f64;
         }
     }
-    let mut front: Vec<Vec<f64>> = feasible_front_indices(result)
+    // Each distinct objective vector once (members with equal values are one point).
+    let mut front: Vec<Vec<f64>> = front_order(result)
         .into_iter()
         .map(|i| result[i].objectives.clone())
         .collect();
-    front.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    front.sort_by(|a, b| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    front.dedup_by(|a, b| {
+        a.iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    });
     Record {
         generation,
         evaluations,
@@ -183,6 +201,66 @@ fn member_run(
     Some(run.result)
 }
 
+/// The indices of `result`'s feasible front sorted by the first objective, each distinct
+/// member once (identical decisions with identical values are one member).
+fn front_order(result: &[Individual<Vec<f64>>]) -> Vec<usize> {
+    let mut idx = feasible_front_indices(result);
+    idx.sort_by(|&a, &b| result[a].objectives[0].total_cmp(&result[b].objectives[0]));
+    let bits = |i: &Individual<Vec<f64>>| -> Vec<u64> {
+        i.decision
+            .iter()
+            .chain(&i.objectives)
+            .chain(&i.constraints)
+            .map(|v| v.to_bits())
+            .collect()
+    };
+    let mut seen = std::collections::HashSet::new();
+    idx.retain(|&i| seen.insert(bits(&result[i])));
+    idx
+}
+
+/// The front directory (front/): one scenario file per member and the trajectories of three
+/// chosen members, written into a staging directory and put in place whole (no member of a
+/// previous front is left beside them). Returns the chosen trajectories' series.
+fn write_front_dir(
+    dir: &Path,
+    front_scenarios: Vec<Option<Scenario>>,
+    c: &ReentryRunConfig,
+    analytical: Option<&AnalyticalModel>,
+) -> Result<Vec<Series>, ReportError> {
+    let n = front_scenarios.len();
+    let mut fdir = RunDir::begin_owned(&dir.join("front"))?;
+    let mut chosen = Vec::new();
+    for (k, sc) in front_scenarios.into_iter().enumerate() {
+        let Some(mut sc) = sc else {
+            continue;
+        };
+        sc.name = format!("{}-member-{k:02}", c.problem.base);
+        fdir.write(
+            format!("member_{k:02}.toml"),
+            scenario_to_toml(&sc).as_bytes(),
+        )?;
+        if k == 0 || k + 1 == n || k == n / 2 {
+            chosen.push((k, sc));
+        }
+    }
+    chosen.dedup_by_key(|(k, _)| *k);
+    let mut traj = Vec::new();
+    for (k, sc) in &chosen {
+        let run_dir = fdir.staging().join(format!("member_{k:02}"));
+        if let Some(result) = member_run(sc, analytical, &run_dir) {
+            let pts = result
+                .samples
+                .iter()
+                .map(|s| (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3))
+                .collect();
+            traj.push(series(format!("member {k:02}"), pts));
+        }
+    }
+    fdir.commit()?;
+    Ok(traj)
+}
+
 /// Write the final files: records, population, front (the feasible front of `result`: the
 /// population, or the external archive), member scenarios (`scenarios`: one per `result`
 /// member), chosen trajectories (flown by the problem's simulator: `analytical` for an
@@ -200,6 +278,17 @@ pub fn write_final(
     c: &ReentryRunConfig,
     analytical: Option<&AnalyticalModel>,
 ) -> Result<(), ReportError> {
+    // The front, sorted by range objective, without repeated members, with one scenario file
+    // per member.
+    let idx = front_order(result);
+    let front: Vec<Individual<Vec<f64>>> = idx.iter().map(|&i| result[i].clone()).collect();
+    let front_scenarios: Vec<Option<Scenario>> = idx
+        .iter()
+        .map(|&i| scenarios.get(i).cloned().flatten())
+        .collect();
+    // The front directory first: its flights are the long part, and a Ctrl-C during them
+    // leaves no final file.
+    let traj = write_front_dir(dir, front_scenarios, c, analytical)?;
     let mut csv = String::from(
         "generation,evaluations,feasible_fraction,hypervolume,min_violation,best_f1,best_f2,mean_f1,mean_f2,front_size\n",
     );
@@ -223,47 +312,7 @@ pub fn write_final(
     let json = serde_json::to_string_pretty(records).map_err(ReportError::Json)?;
     write_atomic(&dir.join("generations.json"), json.as_bytes())?;
     write_atomic(&dir.join("population.csv"), csv_of(pop).as_bytes())?;
-    // The front, sorted by range objective, with one scenario file per member.
-    let mut idx = feasible_front_indices(result);
-    idx.sort_by(|&a, &b| result[a].objectives[0].total_cmp(&result[b].objectives[0]));
-    let front: Vec<Individual<Vec<f64>>> = idx.iter().map(|&i| result[i].clone()).collect();
-    let front_scenarios: Vec<Option<Scenario>> = idx
-        .iter()
-        .map(|&i| scenarios.get(i).cloned().flatten())
-        .collect();
     write_atomic(&dir.join("front.csv"), csv_of(&front).as_bytes())?;
-    let fdir = dir.join("front");
-    std::fs::create_dir_all(&fdir).map_err(|source| ReportError::Io {
-        path: fdir.clone(),
-        source,
-    })?;
-    let mut chosen = Vec::new();
-    for (k, sc) in front_scenarios.into_iter().enumerate() {
-        let Some(mut sc) = sc else {
-            continue;
-        };
-        sc.name = format!("{}-member-{k:02}", c.problem.base);
-        write_atomic(
-            &fdir.join(format!("member_{k:02}.toml")),
-            scenario_to_toml(&sc).as_bytes(),
-        )?;
-        if k == 0 || k + 1 == front.len() || k == front.len() / 2 {
-            chosen.push((k, sc));
-        }
-    }
-    chosen.dedup_by_key(|(k, _)| *k);
-    let mut traj = Vec::new();
-    for (k, sc) in &chosen {
-        let run_dir = fdir.join(format!("member_{k:02}"));
-        if let Some(result) = member_run(sc, analytical, &run_dir) {
-            let pts = result
-                .samples
-                .iter()
-                .map(|s| (s.state.speed_m_s / 1e3, s.conditions.altitude_m / 1e3))
-                .collect();
-            traj.push(series(format!("member {k:02}"), pts));
-        }
-    }
     if !traj.is_empty() {
         plot(
             dir,

@@ -249,7 +249,7 @@ mod tests {
             seed: 3,
             objectives: 3,
             weights: WeightsArg::Grid,
-            neighbours: 5,
+            neighbours: Some(5),
             mutation_probability: None,
             batch_size: 1,
             ker: None,

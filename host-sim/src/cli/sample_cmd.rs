@@ -14,6 +14,9 @@ use crate::optim::population::sanitize;
 use crate::optim::{Problem, RealProblem};
 use crate::report::write_atomic;
 
+/// Most points of one design.
+const MAX_COUNT: usize = 1_000_000;
+
 /// Arguments of `sample`.
 #[derive(Debug, clap::Args)]
 pub struct SampleArgs {
@@ -48,8 +51,11 @@ pub fn run(a: &SampleArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
     if a.count == 0 {
         return Err(bad("--count", "0".into(), "use at least 1"));
     }
-    if a.threads == 0 {
-        return Err(bad("--threads", "0".into(), "use at least 1"));
+    if a.threads == 0 || a.threads > crate::optim::evaluate::MAX_THREADS {
+        return Err(bad("--threads", a.threads.to_string(), "use 1 to 1024"));
+    }
+    if a.count > MAX_COUNT {
+        return Err(bad("--count", a.count.to_string(), "use at most 1000000"));
     }
     let p = DesignConfig::preset(&a.problem)?.problem(std::path::Path::new("."))?;
     let pts = latin_hypercube(p.bounds(), a.count, a.seed);

@@ -277,6 +277,21 @@ impl ReentryProblem {
     }
 }
 
+impl ReentryProblem {
+    /// [`ReentryProblem::evaluate_scenario`] as an optimiser's evaluation: a flight during
+    /// which a stop was requested (Ctrl-C: the simulation ends `Interrupted`) is no result.
+    ///
+    /// # Errors
+    /// [`EvalError::Interrupted`] when a stop was requested.
+    pub fn try_evaluate_scenario(&self, sc: &Scenario) -> Result<Evaluation, EvalError> {
+        let e = self.evaluate_scenario(sc);
+        if crate::sim::stop_requested() {
+            return Err(EvalError::Interrupted);
+        }
+        Ok(e)
+    }
+}
+
 impl Problem for ReentryProblem {
     type Decision = Vec<f64>;
 
@@ -293,7 +308,7 @@ impl Problem for ReentryProblem {
         let sc = self
             .scenario_of(x)
             .map_err(|e| EvalError::Failed(Box::new(e)))?;
-        Ok(self.evaluate_scenario(&sc))
+        self.try_evaluate_scenario(&sc)
     }
 }
 

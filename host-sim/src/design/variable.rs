@@ -87,9 +87,8 @@ impl Problem for VariableReentry {
 
     fn evaluate(&self, c: &Chromosome) -> Result<Evaluation, EvalError> {
         let (table, h) = self.table_of(c)?;
-        Ok(self
-            .inner
-            .evaluate_scenario(&self.inner.scenario_of_table(table, h)))
+        self.inner
+            .try_evaluate_scenario(&self.inner.scenario_of_table(table, h))
     }
 }
 

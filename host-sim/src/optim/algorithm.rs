@@ -75,6 +75,17 @@ pub trait Algorithm<P: Problem> {
     fn is_finished(&self) -> bool {
         false
     }
+
+    /// Check a restored (deserialised) state against itself and `problem` before it runs:
+    /// sizes, indices, counters, vector lengths, finite values. Every algorithm of this
+    /// module checks its whole state; the default (for algorithms outside it) accepts any.
+    ///
+    /// # Errors
+    /// [`super::StateError`] naming the field.
+    fn validate(&self, problem: &P) -> Result<(), super::StateError> {
+        let _ = problem;
+        Ok(())
+    }
 }
 
 /// An open batch: the decisions handed out and the evaluations told so far.
@@ -125,6 +136,16 @@ impl<D> Batch<D> {
     #[must_use]
     pub fn is_told(&self, index: usize) -> bool {
         self.remaining > 0 && self.told.get(index).is_some_and(Option::is_some)
+    }
+
+    /// Evaluations not yet told.
+    pub(crate) fn remaining(&self) -> usize {
+        self.remaining
+    }
+
+    /// The told slots, one per decision.
+    pub(crate) fn told_slots(&self) -> &[Option<Individual<()>>] {
+        &self.told
     }
 
     /// The decisions of the batch.

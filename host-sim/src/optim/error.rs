@@ -96,7 +96,9 @@ pub enum ConfigError {
     },
     /// More neighbours than other individuals.
     #[error(
-        "neighbours {neighbours} is too large for population {population}; use at most {max}",
+        "neighbours (MOEA/D neighbourhood size, --neighbours) {neighbours} is too large for \
+         population {population}; use at most {max}, or leave it out (default: \
+         min(20, population - 1))",
         max = population.saturating_sub(1)
     )]
     TooManyNeighbours {
@@ -145,6 +147,10 @@ pub enum EvalError {
     /// The problem's own failure (e.g. a simulation that did not finish), with its cause.
     #[error("evaluation failed: {0}")]
     Failed(#[source] Box<dyn std::error::Error + Send + Sync>),
+    /// The evaluation was stopped on request (Ctrl-C): it is no result, and the run stops
+    /// without telling it.
+    #[error("evaluation interrupted (stop requested): not a result")]
+    Interrupted,
 }
 
 /// Misuse of the ask/tell protocol.
@@ -212,4 +218,7 @@ pub enum OptimError {
         #[source]
         source: EvalError,
     },
+    /// A restored state that does not hold together (a corrupt or edited checkpoint).
+    #[error(transparent)]
+    State(#[from] super::restore::StateError),
 }

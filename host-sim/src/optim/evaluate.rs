@@ -68,6 +68,10 @@ impl Evaluator for Rayon {
     }
 }
 
+/// Most evaluation threads a command or a campaign accepts (a thread pool of 100 000 threads
+/// takes minutes to build and then thrashes); larger counts are refused naming the option.
+pub const MAX_THREADS: usize = 1024;
+
 /// Run `generations` more generations of `algorithm` on `problem` (first completing the
 /// initial population if needed), evaluating each batch with `evaluator`. The observer sees
 /// the initial population (generation 0) and every completed generation.

@@ -14,7 +14,8 @@
 //!   serialisable generator of a run;
 //! * [`archive`]: [`ParetoArchive`], the bounded external archive of non-dominated solutions
 //!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
-//! * [`hypervolume`]: exact hypervolume, contributions, least contributor.
+//! * [`hypervolume`]: exact hypervolume, contributions, least contributor;
+//! * [`nonfinite`]: serde of `f64`s that may be NaN or infinite (checkpoints, records).
 //!
 //! See docs/reference/optimisers.md for the semantics and the measured convergence.
 
@@ -25,12 +26,14 @@ pub mod chromosome;
 pub mod error;
 pub mod evaluate;
 pub mod hypervolume;
+pub mod nonfinite;
 pub mod observe;
 pub mod operators;
 pub mod pareto;
 pub mod population;
 pub mod problem;
 pub mod problems;
+pub mod restore;
 pub mod rng;
 pub mod root;
 pub mod weights;
@@ -46,5 +49,6 @@ pub use evaluate::{Evaluator, Rayon, Serial, evolve};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
+pub use restore::StateError;
 pub use rng::OptimRng;
 pub use weights::{Decomposition, WeightGeneration};

@@ -87,10 +87,13 @@ pub struct GenerationRecord {
     /// Evaluations so far.
     pub evaluations: u64,
     /// Fraction of feasible individuals.
+    #[serde(with = "crate::optim::nonfinite::scalar")]
     pub feasible_fraction: f64,
     /// Smallest violation in the population.
+    #[serde(with = "crate::optim::nonfinite::scalar")]
     pub min_violation: f64,
     /// Hypervolume of the feasible front, if a reference point was given and valid.
+    #[serde(with = "crate::optim::nonfinite::option")]
     pub hypervolume: Option<f64>,
 }
 

@@ -19,10 +19,13 @@ pub struct Individual<D> {
     /// The decision (chromosome).
     pub decision: D,
     /// Objective values (minimised).
+    #[serde(with = "crate::optim::nonfinite::vec")]
     pub objectives: Vec<f64>,
     /// Constraint values (`<= 0` satisfied).
+    #[serde(with = "crate::optim::nonfinite::vec")]
     pub constraints: Vec<f64>,
     /// Total violation `sum max(0, g_i)`; `f64::MAX` for a failed evaluation.
+    #[serde(with = "crate::optim::nonfinite::scalar")]
     pub violation: f64,
 }
 

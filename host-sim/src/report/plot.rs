@@ -48,6 +48,12 @@ pub struct Series {
     pub dashed: bool,
 }
 
+/// Most ticks on an axis.
+const MAX_TICKS: usize = 20;
+
+/// Series of at most this many points are drawn with a marker at every point.
+const MAX_MARKED: usize = 200;
+
 /// Series colours (matplotlib's first four).
 const COLOURS: [RGBColor; 4] = [
     RGBColor(0x1f, 0x77, 0xb4),
@@ -74,6 +80,9 @@ fn nice_step(span: f64, n: f64) -> f64 {
 }
 
 fn fmt_tick(v: f64, step: f64) -> String {
+    if step >= 1e9 || (step < 1e-9 && step > 0.0) {
+        return format!("{v:e}");
+    }
     let decimals = if step >= 1.0 {
         0
     } else {
@@ -115,13 +124,21 @@ fn bounds(series: &[Series]) -> (f64, f64, f64, f64) {
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
-    if x1 - x0 <= 0.0 {
-        x1 = x0 + 1.0;
-    }
-    if y1 - y0 <= 0.0 {
-        y1 = y0 + 1.0;
-    }
+    let (x0, x1) = widen(x0, x1);
+    let (y0, y1) = widen(y0, y1);
     (x0, x1, y0, y1)
+}
+
+/// A data range made drawable: within +-1e306 (so that spans and steps stay finite) and,
+/// if flat, widened by 1 or by a tenth of its magnitude when that is larger (`1e300 + 1` is
+/// still `1e300`: a flat range at a huge value would have a zero span and endless ticks).
+fn widen(lo: f64, hi: f64) -> (f64, f64) {
+    const LIMIT: f64 = 1e306;
+    let (lo, hi) = (lo.clamp(-LIMIT, LIMIT), hi.clamp(-LIMIT, LIMIT));
+    if hi - lo > 0.0 {
+        return (lo, hi);
+    }
+    (lo, lo + (0.1 * lo.abs()).max(1.0))
 }
 
 fn draw<DB: DrawingBackend>(
@@ -145,8 +162,8 @@ where
         .x_label_area_size(44)
         .y_label_area_size(64)
         .build_cartesian_2d(x0..x1, y0..y1)?;
-    let x_ticks = ((x1 - x0) / xs).round() as usize + 1;
-    let y_ticks = ((y1 - y0) / ys).round() as usize + 1;
+    let x_ticks = (((x1 - x0) / xs).round() as usize + 1).min(MAX_TICKS);
+    let y_ticks = (((y1 - y0) / ys).round() as usize + 1).min(MAX_TICKS);
     let x_fmt = |v: &f64| fmt_tick(*v, xs);
     let y_fmt = |v: &f64| fmt_tick(*v, ys);
     chart
@@ -209,12 +226,20 @@ where
                 });
             }
         } else {
+            // A marker at every point of a short series, so a few points (a small front) are
+            // visible, not an empty line.
+            let dots = if points.len() <= MAX_MARKED {
+                points.clone()
+            } else {
+                Vec::new()
+            };
             let drawn = chart.draw_series(LineSeries::new(points, style))?;
             if in_legend {
                 drawn
                     .label(label)
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
             }
+            chart.draw_series(dots.into_iter().map(|p| Circle::new(p, 3, style.filled())))?;
         }
     }
     if !series.is_empty() {
@@ -534,6 +559,53 @@ mod tests {
         )
         .unwrap();
         assert!(!s.contains("NaN") && s.contains("flat"), "{s}");
+    }
+
+    /// Huge or flat-at-huge values draw in bounded time (a flat range at 1e300 once had a
+    /// zero span, a tick step of 1e-308 and no end of ticks).
+    #[test]
+    fn huge_values_plot() {
+        for pts in [
+            vec![(0.0, 1e300)],
+            vec![(0.0, -1.7e308), (1.0, 1.7e308)],
+            vec![(f64::MAX, 1.0), (-f64::MAX, 2.0)],
+            vec![(0.0, 0.4), (1.0, 1e300)],
+        ] {
+            let s = line_plot_svg(
+                "t",
+                "x",
+                "y",
+                &[Series {
+                    label: "a".into(),
+                    points: pts,
+                    dashed: false,
+                }],
+            )
+            .unwrap();
+            assert!(s.len() < 100_000, "{}", s.len());
+        }
+    }
+
+    /// A series of one point (a 1-member front) is drawn as a marker, not an empty line;
+    /// long series (trajectories) have none.
+    #[test]
+    fn short_series_have_markers() {
+        let one = |n: usize| {
+            line_plot_svg(
+                "front",
+                "x",
+                "y",
+                &[Series {
+                    label: "generation 0".into(),
+                    points: (0..n).map(|i| (i as f64, 1.0 / (1.0 + i as f64))).collect(),
+                    dashed: false,
+                }],
+            )
+            .unwrap()
+        };
+        assert_eq!(one(1).matches("<circle").count(), 1);
+        assert_eq!(one(5).matches("<circle").count(), 5);
+        assert_eq!(one(MAX_MARKED + 1).matches("<circle").count(), 0);
     }
 
     #[test]

@@ -93,6 +93,26 @@ impl RunDir {
     /// [`ReportError::Io`] naming the path: no final name component (`/`, `..`), the target
     /// exists and is not a directory, or the parent cannot be created or written.
     pub fn begin(target: &Path) -> Result<Self, ReportError> {
+        Self::begin_with(target, true)
+    }
+
+    /// [`RunDir::begin`] for a sub-directory of a run directory the caller owns (e.g. the
+    /// front of an optimisation run): replaced whole whether or not it carries the marker.
+    ///
+    /// # Errors
+    /// As [`RunDir::begin`], except that a non-run directory is replaced.
+    pub fn begin_owned(target: &Path) -> Result<Self, ReportError> {
+        Self::begin_with(target, false)
+    }
+
+    /// The temporary directory the run is written into until [`RunDir::commit`] (for a
+    /// writer of its own, such as a nested run directory).
+    #[must_use]
+    pub fn staging(&self) -> &Path {
+        &self.tmp
+    }
+
+    fn begin_with(target: &Path, check_marker: bool) -> Result<Self, ReportError> {
         let name = match target.components().next_back() {
             Some(Component::Normal(n)) => n.to_string_lossy().into_owned(),
             _ => {
@@ -122,7 +142,7 @@ impl RunDir {
                 ),
             });
         }
-        if fs::symlink_metadata(target).is_ok() && !replaceable(target) {
+        if check_marker && fs::symlink_metadata(target).is_ok() && !replaceable(target) {
             return Err(ReportError::Io {
                 path: target.to_path_buf(),
                 source: io::Error::new(
@@ -291,6 +311,35 @@ impl Drop for RunDir {
             let _ = fs::remove_dir_all(&self.tmp);
         }
     }
+}
+
+/// Start a run directory that is written in place as the run goes (a checkpointed
+/// optimisation, resumable from it): a directory that is not a host-sim run (no [`MARKER`],
+/// not empty) is refused; a previous run there is removed whole (none of its files is left
+/// beside the new run's); the directory is created with the marker.
+///
+/// # Errors
+/// [`ReportError::Io`] naming the path: a non-run directory or a file there, or the
+/// directory cannot be removed or created.
+pub fn begin_in_place(target: &Path) -> Result<(), ReportError> {
+    if let Ok(meta) = fs::symlink_metadata(target) {
+        let refuse = |why: String| ReportError::Io {
+            path: target.to_path_buf(),
+            source: io::Error::new(io::ErrorKind::AlreadyExists, why),
+        };
+        if !meta.is_dir() {
+            return Err(refuse("exists and is not a directory; not replaced".into()));
+        }
+        if !replaceable(target) {
+            return Err(refuse(format!(
+                "exists, is not empty and is not a host-sim run directory (no {MARKER}); \
+                 not replaced: choose another --out or remove it"
+            )));
+        }
+        fs::remove_dir_all(target).map_err(io_err(target))?;
+    }
+    fs::create_dir_all(target).map_err(io_err(target))?;
+    fs::write(target.join(MARKER), MARKER_TEXT).map_err(io_err(target))
 }
 
 /// Whether process `pid` is alive (`None`: cannot tell, no `/proc`).

@@ -127,6 +127,12 @@ fn hypervolume_cli_errors_name_file_and_line() {
             "0.1,0.2\n0.3,\n",
             "bad5.csv:2: field 2 = \"\": not a number",
         ),
+        // A one-line text file is no front (it used to give 0 with exit 0).
+        (
+            "bad6.csv",
+            "hello world\n",
+            "bad6.csv:1: 1 fields, but the reference point has 2",
+        ),
     ];
     for (name, text, want) in cases {
         let f = temp_file(name, text);

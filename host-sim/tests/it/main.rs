@@ -17,6 +17,7 @@ mod hypervolume_pagmo2;
 mod input_keys;
 mod input_ranges;
 mod integrator_reuse;
+mod interrupt;
 mod layering;
 mod lift_down;
 mod navconv;

@@ -15,6 +15,27 @@ pub use scea::{NewGenes, Scea, SceaConfig, SceaVariation};
 
 use super::error::ConfigError;
 
+/// Largest population (and archive) any algorithm accepts: larger sizes are refused with an
+/// error naming the field instead of failing on allocation.
+pub const MAX_POPULATION: usize = 100_000;
+
+/// `value` of `name` at most [`MAX_POPULATION`].
+pub(crate) fn check_size(
+    algorithm: &'static str,
+    name: &'static str,
+    value: usize,
+) -> Result<(), ConfigError> {
+    if value > MAX_POPULATION {
+        return Err(ConfigError::Count {
+            algorithm,
+            name,
+            value,
+            range: "at most 100000",
+        });
+    }
+    Ok(())
+}
+
 /// Check `value` lies in `[lo, hi]`.
 pub(crate) fn check_range(
     algorithm: &'static str,

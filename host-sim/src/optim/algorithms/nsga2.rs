@@ -61,6 +61,7 @@ impl Default for Nsga2Config {
 impl Nsga2Config {
     fn check(&self) -> Result<(), ConfigError> {
         let n = self.population;
+        super::check_size(NAME, "population", n)?;
         if n < 8 {
             return Err(ConfigError::PopulationTooSmall {
                 algorithm: NAME,
@@ -341,5 +342,34 @@ impl<P: RealProblem> Algorithm<P> for Nsga2 {
 
     fn is_told(&self, index: usize) -> bool {
         self.batch.is_told(index)
+    }
+
+    fn validate(&self, problem: &P) -> Result<(), crate::optim::StateError> {
+        use crate::optim::restore::{bad, count, individuals, real_decision};
+        let (m, c) = (problem.objectives(), problem.constraints());
+        self.config
+            .check()
+            .map_err(|e| bad("config", "(restored)", e.to_string()))?;
+        let n = self.config.population;
+        let dec = |f: &str, d: &Vec<f64>| real_decision(f, d, problem.bounds());
+        self.batch.validate("batch", m, c, &dec)?;
+        if self.batch.is_open() {
+            count("batch.decisions.len()", self.batch.decisions().len(), n)?;
+        }
+        match (&self.archive, self.config.archive) {
+            (Some(a), cap) => a.validate("archive", cap, m, c, &dec)?,
+            (None, Some(_)) if self.initialised || self.batch.is_open() => {
+                return Err(bad("archive", "absent", "the configuration has an archive"));
+            }
+            _ => {}
+        }
+        if self.initialised {
+            count("population.len()", self.population.len(), n)?;
+            individuals("population", &self.population, m, c, &dec)?;
+        } else {
+            count("population.len()", self.population.len(), 0)?;
+            count("generation", self.generation as usize, 0)?;
+        }
+        Ok(())
     }
 }

@@ -278,7 +278,7 @@ pub fn check_capacity(algorithm: &'static str, capacity: usize) -> Result<(), Co
             range: "[1, inf) (the archive's capacity)",
         });
     }
-    Ok(())
+    crate::optim::algorithms::check_size(algorithm, "archive", capacity)
 }
 
 /// `v` on the unit interval of `[lo, hi]` (0 when the extent is 0); halved differences so

@@ -96,6 +96,7 @@ impl MhacoConfig {
                 objectives: ranked,
             });
         }
+        super::check_size(NAME, "population", self.population)?;
         if self.population < 2 {
             return Err(ConfigError::PopulationTooSmall {
                 algorithm: NAME,
@@ -418,5 +419,53 @@ impl<P: RealProblem> Algorithm<P> for Mhaco {
 
     fn is_finished(&self) -> bool {
         self.finished
+    }
+
+    fn validate(&self, problem: &P) -> Result<(), crate::optim::StateError> {
+        use crate::optim::restore::{bad, count, individuals, real_decision};
+        let (m, c) = (problem.objectives(), problem.constraints());
+        self.config
+            .check(m, c)
+            .map_err(|e| bad("config", "(restored)", e.to_string()))?;
+        let n = self.config.population;
+        let dec = |f: &str, d: &Vec<f64>| real_decision(f, d, problem.bounds());
+        self.batch.validate("batch", m, c, &dec)?;
+        if self.batch.is_open() {
+            count("batch.decisions.len()", self.batch.decisions().len(), n)?;
+        }
+        if !(self.q > 0.0 && self.q.is_finite()) {
+            return Err(bad("q", self.q, "must be finite and > 0"));
+        }
+        if !(1..=self.config.n_gen_mark).contains(&self.gen_mark) {
+            return Err(bad(
+                "gen_mark",
+                self.gen_mark,
+                format!("must be in [1, n_gen_mark = {}]", self.config.n_gen_mark),
+            ));
+        }
+        if !self.initialised {
+            count("population.len()", self.population.len(), 0)?;
+            count("generation", self.generation as usize, 0)?;
+            return Ok(());
+        }
+        let len = self.population.len();
+        if self.archive_len == 0 || self.archive_len > self.config.ker.min(len) {
+            return Err(bad(
+                "archive_len",
+                self.archive_len,
+                format!(
+                    "must be in [1, min(ker, population.len()) = {}]",
+                    self.config.ker.min(len)
+                ),
+            ));
+        }
+        if len > self.config.ker + n {
+            return Err(bad(
+                "population.len()",
+                len,
+                format!("must be at most ker + population = {}", self.config.ker + n),
+            ));
+        }
+        individuals("population", &self.population, m, c, &dec)
     }
 }

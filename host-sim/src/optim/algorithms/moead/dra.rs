@@ -97,11 +97,41 @@ impl ResourceAllocation {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub(super) struct DraState {
     /// Utility `pi_i` per subproblem.
+    #[serde(with = "crate::optim::nonfinite::vec")]
     pub(super) utility: Vec<f64>,
     /// Objectives of each subproblem's member at the last update.
+    #[serde(with = "crate::optim::nonfinite::vec2")]
     saved_objectives: Vec<Vec<f64>>,
     /// Violation of each subproblem's member at the last update.
+    #[serde(with = "crate::optim::nonfinite::vec")]
     saved_violation: Vec<f64>,
+}
+
+impl DraState {
+    /// Check a restored state: one utility, saved objective vector and violation per
+    /// subproblem, not NaN.
+    pub(super) fn validate(&self, n: usize, m: usize) -> Result<(), crate::optim::StateError> {
+        use crate::optim::restore::{bad, count};
+        count("dra.utility.len()", self.utility.len(), n)?;
+        count("dra.saved_objectives.len()", self.saved_objectives.len(), n)?;
+        count("dra.saved_violation.len()", self.saved_violation.len(), n)?;
+        for (i, f) in self.saved_objectives.iter().enumerate() {
+            count(&format!("dra.saved_objectives[{i}].len()"), f.len(), m)?;
+        }
+        let all = self
+            .utility
+            .iter()
+            .chain(&self.saved_violation)
+            .chain(self.saved_objectives.iter().flatten());
+        if all.clone().any(|x| x.is_nan()) {
+            return Err(bad(
+                "dra",
+                "NaN",
+                "utilities and saved values must be numbers",
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// Improvement above which a subproblem's utility is reset to 1 (the paper's 0.001).

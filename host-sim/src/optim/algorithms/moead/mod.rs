@@ -51,6 +51,7 @@ use crate::optim::weights::{
 use super::check_range;
 
 mod dra;
+mod restore;
 mod sbx;
 
 pub use dra::ResourceAllocation;
@@ -122,6 +123,13 @@ impl Default for MoeadConfig {
 }
 
 impl MoeadConfig {
+    /// The neighbourhood size used when none is given: the thesis' 20, or `population - 1`
+    /// for smaller populations (at least 2).
+    #[must_use]
+    pub fn default_neighbours(population: usize) -> usize {
+        20.min(population.saturating_sub(1)).max(2)
+    }
+
     fn check(&self, objectives: usize) -> Result<(), ConfigError> {
         if objectives < 2 {
             return Err(ConfigError::TooFewObjectives {
@@ -129,6 +137,7 @@ impl MoeadConfig {
                 objectives,
             });
         }
+        super::check_size(NAME, "population", self.population)?;
         if self.population < 3 {
             return Err(ConfigError::PopulationTooSmall {
                 algorithm: NAME,
@@ -200,6 +209,21 @@ pub trait MoeadVariation<P: Problem>:
     /// A random decision for the initial population.
     fn random(&self, problem: &P, rng: &mut OptimRng) -> P::Decision;
 
+    /// Check a restored decision (`field` names it) against the problem: its dimension and
+    /// finite values within the bounds. Default: accept any.
+    ///
+    /// # Errors
+    /// [`crate::optim::StateError`] naming the field.
+    fn check_decision(
+        &self,
+        problem: &P,
+        field: &str,
+        decision: &P::Decision,
+    ) -> Result<(), crate::optim::StateError> {
+        let _ = (problem, field, decision);
+        Ok(())
+    }
+
     /// The child of subproblem member `x` with parents `a` and `b`. `reuse` is a spent
     /// decision whose allocation may be recycled (its contents are meaningless).
     #[allow(clippy::too_many_arguments)] // the operator has exactly these inputs
@@ -224,6 +248,15 @@ pub struct DeVariation;
 impl<P: RealProblem> MoeadVariation<P> for DeVariation {
     fn random(&self, problem: &P, rng: &mut OptimRng) -> Vec<f64> {
         random_point(problem.bounds(), rng)
+    }
+
+    fn check_decision(
+        &self,
+        problem: &P,
+        field: &str,
+        decision: &Vec<f64>,
+    ) -> Result<(), crate::optim::StateError> {
+        crate::optim::restore::real_decision(field, decision, problem.bounds())
     }
 
     fn child(
@@ -264,6 +297,7 @@ pub struct MoeadWith<D, V> {
     population: Vec<Individual<D>>,
     weights: Vec<Vec<f64>>,
     neighbourhoods: Vec<Vec<usize>>,
+    #[serde(with = "crate::optim::nonfinite::vec")]
     ideal: Vec<f64>,
     /// Subproblem order of the current generation and the next position in it.
     order: Vec<usize>,
@@ -692,6 +726,10 @@ where
 
     fn is_told(&self, index: usize) -> bool {
         self.batch.is_told(index)
+    }
+
+    fn validate(&self, problem: &P) -> Result<(), crate::optim::StateError> {
+        self.validate_state(problem)
     }
 }
 

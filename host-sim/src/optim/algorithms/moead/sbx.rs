@@ -45,6 +45,15 @@ impl MoeadSbx {
 }
 
 impl<P: RealProblem> MoeadVariation<P> for SbxVariation {
+    fn check_decision(
+        &self,
+        problem: &P,
+        field: &str,
+        decision: &Vec<f64>,
+    ) -> Result<(), crate::optim::StateError> {
+        crate::optim::restore::real_decision(field, decision, problem.bounds())
+    }
+
     fn check(&self, _problem: &P, _config: &MoeadConfig) -> Result<(), ConfigError> {
         check_range(NAME, "eta_c", self.eta_c, 1.0, 100.0, "[1, 100]")?;
         check_range(

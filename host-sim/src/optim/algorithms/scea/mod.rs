@@ -89,6 +89,26 @@ impl<P: StructuredProblem> MoeadVariation<P> for SceaVariation {
         random_chromosome(problem, rng)
     }
 
+    fn check_decision(
+        &self,
+        problem: &P,
+        field: &str,
+        c: &Chromosome,
+    ) -> Result<(), crate::optim::StateError> {
+        use crate::optim::restore::{bad, finite};
+        finite(&format!("{field}.fixed"), &c.fixed)?;
+        for (l, leg) in c.legs.iter().enumerate() {
+            for (k, node) in leg.iter().enumerate() {
+                finite(&format!("{field}.legs[{l}][{k}]"), node)?;
+            }
+        }
+        let derived = problem.derived_nodes(&c.fixed);
+        problem
+            .layout()
+            .check(c, derived.as_deref())
+            .map_err(|e| bad(field, "chromosome", e.to_string()))
+    }
+
     fn child(
         &self,
         problem: &P,
