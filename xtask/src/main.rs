@@ -8,7 +8,7 @@
 //! * `cargo xtask golden`    regenerate the firmware's golden commands on the host
 //! * `cargo xtask setup`     install rustup targets/components and QEMU
 //! * `cargo xtask fuzz`      the seeded fuzz harnesses over the flight code (`guidance-fuzz`) and
-//!                           host-sim's input files (`host-sim/examples/fuzz_inputs.rs`)
+//!   host-sim's input files (`host-sim/examples/fuzz_inputs.rs`)
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
