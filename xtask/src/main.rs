@@ -7,7 +7,8 @@
 //! * `cargo xtask size`      check the firmware's flash/RAM footprint against its budget
 //! * `cargo xtask golden`    regenerate the firmware's golden commands on the host
 //! * `cargo xtask setup`     install rustup targets/components and QEMU
-//! * `cargo xtask fuzz`      the seeded fuzz harness over the flight code (`guidance-fuzz`)
+//! * `cargo xtask fuzz`      the seeded fuzz harnesses over the flight code (`guidance-fuzz`) and
+//!   host-sim's input files (`host-sim/examples/fuzz_inputs.rs`)
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
@@ -41,7 +42,8 @@ const USAGE: &str = "usage: cargo xtask <test|firmware|pil|bench-firmware|size|s
   golden    regenerate onboard-spec/src/golden.rs from the host run of the smoke scenario\n\
   setup     rustup targets and components, qemu-system-arm (apt-get when root)\n\
   board-example  build examples/board-firmware (a standalone crate using guidance-core) and run it in QEMU\n\
-  fuzz      fuzz the flight code (node tables, guidance, frame decoder, closed forms, lateral, estimate):\n\
+  fuzz      fuzz the flight code (node tables, guidance, frame decoder, closed forms, lateral, estimate)\n\
+            and host-sim's input files (scenario, vehicle, settings, run-config):\n\
             [--seconds N per target | --cases N] [--seed S] [--target T]; default: the CI budget";
 
 fn main() -> ExitCode {
@@ -176,9 +178,50 @@ fn seed_property_tests(c: &mut Command) {
 /// Seed and per-target case budget of the fuzz step of `cargo xtask test` (deterministic).
 const FUZZ_CI_ARGS: [&str; 4] = ["--seed", "20261130", "--cases", "20000"];
 
-/// Run the fuzz harness (profile `fuzz`: optimised, with overflow checks and debug
-/// assertions); no arguments: the CI budget.
+/// Targets of the host input-file fuzzer (`host-sim/examples/fuzz_inputs.rs`); the others
+/// are the flight-code harness's (`fuzz/`).
+const HOST_FUZZ_TARGETS: [&str; 4] = ["scenario", "vehicle", "settings", "run-config"];
+
+/// Run the fuzz harnesses (profile `fuzz`: optimised, with overflow checks and debug
+/// assertions): the flight code's (`guidance-fuzz`) and host-sim's input files
+/// (`fuzz_inputs`), with the same arguments; `--target NAME` runs the one harness that has it.
+/// No arguments: the CI budget.
 fn fuzz(args: &[String]) -> Result<(), String> {
+    let target = args
+        .iter()
+        .position(|a| a == "--target")
+        .and_then(|i| args.get(i + 1))
+        .filter(|t| t.as_str() != "all");
+    let host = target.is_none_or(|t| HOST_FUZZ_TARGETS.contains(&t.as_str()));
+    let core = target.is_none_or(|t| !HOST_FUZZ_TARGETS.contains(&t.as_str()));
+    if core {
+        fuzz_core(args)?;
+    }
+    if host {
+        let mut c = cargo();
+        c.args([
+            "run",
+            "--profile",
+            "fuzz",
+            "--quiet",
+            "-p",
+            "host-sim",
+            "--example",
+            "fuzz_inputs",
+            "--",
+        ]);
+        if args.is_empty() {
+            c.args(FUZZ_CI_ARGS);
+        } else {
+            c.args(args);
+        }
+        run(c, "fuzz (input files)")?;
+    }
+    Ok(())
+}
+
+/// The flight-code harness (`fuzz/`).
+fn fuzz_core(args: &[String]) -> Result<(), String> {
     let mut c = cargo();
     c.args([
         "run",

@@ -236,7 +236,7 @@ impl Fingerprint {
             .load_vehicle()
             .map_err(|e| CampaignError::Scenario {
                 file: setup.file.clone(),
-                source: Box::new(e.into()),
+                source: Box::new(e),
             })?;
         f.vehicle(&vehicle);
         f.debug("host_sim.version", &env!("CARGO_PKG_VERSION"));

@@ -135,7 +135,7 @@ pub fn fly_case_logged(
         file: setup.file.clone(),
         source: Box::new(source),
     };
-    let mut vehicle = sc.load_vehicle().map_err(|e| scen(e.into()))?;
+    let mut vehicle = sc.load_vehicle().map_err(scen)?;
     let env = sc.environment.build();
     let zero = CaseDraw {
         index: u32::MAX,

@@ -394,7 +394,7 @@ impl CampaignSetup {
             file: file.into(),
             source: Box::new(source),
         };
-        let vehicle = sc.load_vehicle().map_err(|e| scen(e.into()))?;
+        let vehicle = sc.load_vehicle().map_err(scen)?;
         let env: Environment = sc.environment.build();
         let planet = env.planet;
         let g0 = build_guidance(sc, &planet, file).map_err(scen)?;

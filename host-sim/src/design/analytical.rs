@@ -20,7 +20,7 @@ use crate::analytic::{
     GuidedGlide, Placement, fit_us76, guided_glide,
 };
 use crate::env::ExponentialAtmosphere;
-use crate::scenario::{AtmosphereSpec, Scenario, ScenarioError};
+use crate::scenario::{AtmosphereSpec, Scenario};
 
 /// Which simulator evaluates a design problem.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -56,9 +56,7 @@ impl AnalyticalModel {
     /// its vehicle is not steered by bank only; [`DesignError::Analytic`] when the vehicle
     /// has no usable polar.
     pub fn of(base: &Scenario) -> Result<Self, DesignError> {
-        let v = base
-            .load_vehicle()
-            .map_err(|e| DesignError::Scenario(ScenarioError::from(e)))?;
+        let v = base.load_vehicle().map_err(DesignError::Scenario)?;
         let vehicle = AnalyticVehicle::from_vehicle(&v, DEFAULT_POLAR_MACH)?;
         if vehicle.trim_cl.is_none() {
             return Err(DesignError::Setting {

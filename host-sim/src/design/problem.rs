@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 use super::analytical::{AnalyticalModel, Simulator};
 use super::{DesignError, Encoding};
 use crate::optim::{Bounds, EvalError, Evaluation, Problem, RealProblem};
-use crate::scenario::{Scenario, ScenarioError, fly};
+use crate::scenario::{Scenario, fly};
 use crate::sim::{Summary, TerminationReason};
 
 /// The thesis' trajectory constraints (sec. 4.2.3), SI.
@@ -144,8 +144,7 @@ impl ReentryProblem {
             });
         }
         // The base must load and build its guidance (vehicle files, bounds).
-        base.load_vehicle()
-            .map_err(|e| DesignError::Scenario(ScenarioError::from(e)))?;
+        base.load_vehicle().map_err(DesignError::Scenario)?;
         let bounds = encoding.bounds()?;
         Ok(Self {
             base,

@@ -7,7 +7,7 @@
 use guidance_core::setup::{SetupItem, items};
 
 use crate::dynamics::Dynamics;
-use crate::scenario::{Scenario, ScenarioError, build_guidance, build_replanning};
+use crate::scenario::{Scenario, build_guidance, build_replanning};
 use crate::sim::{self, SimResult};
 
 use super::reference::unwrap_pil_error;
@@ -26,7 +26,7 @@ pub fn scenario_setup(
     let g = build_guidance(sc, &env.planet, file)?;
     let replanning = match &sc.replanning {
         Some(_) => {
-            let veh = sc.load_vehicle().map_err(ScenarioError::from)?;
+            let veh = sc.load_vehicle()?;
             build_replanning(sc, &env, &veh, file)?
         }
         None => None,
@@ -69,9 +69,7 @@ pub fn fly_scenario_pil(
     let record = std::cell::RefCell::new(PilRecord::default());
     let run = || -> Result<(SimResult, PilStats), PilError> {
         let (setup, limits) = scenario_setup(sc, file)?;
-        let veh = sc
-            .load_vehicle()
-            .map_err(crate::scenario::ScenarioError::from)?;
+        let veh = sc.load_vehicle()?;
         let env = sc.environment.build();
         let source = PilGuidance::start_with(cfg, limits, &setup)?;
         record.replace(source.record());

@@ -1,5 +1,6 @@
-//! The scenario file as written: serde structs, every section and key optional, unknown keys
-//! rejected (`deny_unknown_fields`). Units are those in the key names (km, deg, deg/s); the
+//! The scenario file as written: serde structs, every section and key an `Option` (so a
+//! missing required key is reported as such by `required`), unknown keys rejected
+//! (`deny_unknown_fields`). Units are those in the key names (km, deg, deg/s); the
 //! resolver ([`super::parse_scenario`]) range-checks them and converts to SI and radians.
 
 use serde::Deserialize;

@@ -5,23 +5,29 @@
 //! rejected), then resolved into a [`Scenario`] (SI units, radians, typed choices) with every
 //! value range-checked; every error names the file, the field and the value
 //! ([`ScenarioError`]). [`Scenario::default`] is the HORUS-2B reference mission and
-//! [`Scenario::builtin`] names the built-in scenarios. [`fly`] flies a scenario with
-//! `guidance-core`'s guidance and [`simulate_scenario`] also writes its run directory.
+//! [`Scenario::builtin`] names the built-in scenarios (`simulate --builtin NAME`). [`fly`]
+//! flies a scenario with `guidance-core`'s guidance and [`simulate_scenario`] also writes its
+//! run directory; [`Warning`]s tell of exceeded vehicle limits and likely unit mistakes.
 //!
-//! Scenario file (all sections and keys optional; defaults are the HORUS-2B reference
-//! mission, thesis eq. 2.3 and table 2.1). `host-sim simulate --print-scenario` prints it:
+//! A scenario file states what it flies: the keys marked REQUIRED below (the vehicle, the
+//! entry state, the guidance, the time limit) have no default and their absence is an error
+//! naming the file and the key; the others have the generic defaults shown (the name defaults
+//! to the file's stem). docs/reference/inputs.md has the rules. `host-sim simulate
+//! --print-scenario` prints a complete file (the HORUS-2B reference mission, thesis eq. 2.3
+//! and table 2.1):
 //!
 //! ```toml
 //! name = "horus-2b-reference"   # 1-100 characters, no control characters or / \
-//! vehicle = "horus-2b"            # built-in name, or vehicle_file = "my.toml"
+//! vehicle = "horus-2b"            # REQUIRED: built-in name, or vehicle_file = "my.toml"
 //!
-//! [environment]
+//! [environment]                   # default: preset = "full"
 //! preset = "full"                 # full: US76, J2, rotating; simplified: exponential, central
+//!                                 # (refused if atmosphere, gravity and rotating all given)
 //! # atmosphere = "us76" | "exponential" | "table"; gravity = "j2" | "central"; rotating = true
 //!
 //! [environment.planet]            # optional: preset = "earth" | "mars", then constants
-//! radius_m = 6378137.0
-//! mu_m3_s2 = 3.986004418e14
+//! radius_m = 6378137.0            # [1e3, 1e9] m
+//! mu_m3_s2 = 3.986004418e14       # [1e3, 1e21] m^3/s^2
 //! j2 = 1.0826267e-3
 //! rotation_rate_rad_s = 7.292115e-5   # used when rotating = true
 //!
@@ -40,7 +46,7 @@
 //! speed_exponent = 3.15
 //! # nose_radius_m = 0.8           # replaces the vehicle's
 //!
-//! [entry]
+//! [entry]                         # REQUIRED: every key
 //! altitude_km = 122.0
 //! longitude_deg = -106.7
 //! latitude_deg = -22.3
@@ -48,19 +54,21 @@
 //! flight_path_angle_deg = -1.43
 //! heading_deg = 70.75
 //!
-//! [guidance]
+//! [guidance]                      # REQUIRED: every key (tension with "hermite" only)
 //! independent = "time"            # or "energy" (normalised energy, 1 at entry)
-//! interpolation = "linear"        # or "natural-cubic", "hermite" (with tension)
+//! interpolation = "linear"        # or "natural-cubic", "hermite" (with tension in [0, 1])
 //! period_s = 2.0                # [0.01, 100] s
-//! alpha_rate_deg_s = 5.0          # [0.001, 1000] deg/s
-//! sigma_rate_deg_s = 15.0         # [0.001, 1000] deg/s
-//! initial_alpha_deg = 40.0
-//! initial_sigma_deg = 0.0
+//! alpha_rate_deg_s = 5.0          # [0.001, 1000] deg/s, <= the vehicle's limits.alpha_rate_deg_s
+//! sigma_rate_deg_s = 15.0         # [0.001, 1000] deg/s, <= the vehicle's limits.sigma_rate_deg_s
+//! initial_alpha_deg = 40.0        # [0, 45] deg
+//! initial_sigma_deg = 0.0         # (-180, 180] deg; |sigma| > 90 deg: lift down
 //! nodes = [[0, 40, 0], [264, 40, 0], [290, 40, 79.6], ...]   # [x, alpha_deg, sigma_deg]
+//!                                 # alpha [0, 45] deg, sigma (-180, 180] deg
 //!
 //! [termination]
 //! altitude_km = 25.0              # [0, 10000) km; and/or mach = 2.5, normalized_energy = 0.01
-//! max_time_s = 2500.0             # (0, 1e6] s
+//!                                 # (optional; not written: not used; the ground always ends it)
+//! max_time_s = 2500.0             # REQUIRED: (0, 1e6] s
 //!
 //! [integrator]
 //! rtol = 1e-9

@@ -1,7 +1,9 @@
 //! Scenario file -> [`Scenario`]: the TOML is read into [`ScenarioFile`] (unknown fields
 //! rejected), then every value is range-checked and converted to SI units and radians; every
-//! error names the file, the field and the value. Defaults are the HORUS-2B reference mission
-//! ([`Scenario::default`]); the `[guidance]` section is in
+//! error names the file, the field and the value. The keys describing the vehicle, the entry,
+//! the guidance and the time limit are required (`required`); the others take the generic
+//! defaults of [`Scenario::default`] (integrator, monitors, output, environment preset,
+//! heat-flux constants); the `[guidance]` section is in
 //! [`resolve_guidance`](super::resolve_guidance).
 
 use std::path::Path;
