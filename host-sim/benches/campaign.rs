@@ -4,7 +4,7 @@
 //!   second = 16 / time per iteration (docs/reference/performance.md, docs/reference/campaigns.md).
 //! * `campaign_per_core`: flights per second on one core for every campaign mode of both
 //!   vehicles: the SRM glide as above, and HORUS-2B (the built-in reference scenario with
-//!   the campaign settings of examples/horus-dispersions.toml: numerical predictor, path-limit
+//!   its built-in stack, examples/horus-2b-stack.toml: numerical predictor, path-limit
 //!   barrier, terminal crossrange law) to its scenario's end, [`PER_CORE_FLIGHTS`] flights per
 //!   iteration on one rayon thread. Flights per second per core = that count / time per
 //!   iteration (docs/reference/campaign-throughput.md).
@@ -14,7 +14,7 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use host_sim::campaign::run::RunOptions;
-use host_sim::campaign::{CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign};
+use host_sim::campaign::{CampaignSetup, DispersionSettings, Mode, run_campaign};
 use host_sim::scenario::Scenario;
 
 const FLIGHTS: u32 = 16;
@@ -22,8 +22,6 @@ const FLIGHTS: u32 = 16;
 /// Flights per iteration of `campaign_per_core`.
 const PER_CORE_FLIGHTS: u32 = 8;
 
-/// The HORUS-2B campaign settings of the project's dispersion runs.
-const HORUS_SETTINGS: &str = include_str!("../../examples/horus-dispersions.toml");
 
 fn bench(c: &mut Criterion) {
     let setup = CampaignSetup::new(&Scenario::srm_glide(), "builtin:srm-glide", Some(2500.0))
@@ -56,8 +54,7 @@ fn bench(c: &mut Criterion) {
 }
 
 fn per_core(c: &mut Criterion) {
-    let horus = parse_settings(HORUS_SETTINGS, "examples/horus-dispersions.toml")
-        .expect("HORUS-2B campaign settings");
+    let horus = DispersionSettings::default();
     let srm = DispersionSettings {
         interface_speed_m_s: Some(2500.0),
         ..DispersionSettings::default()
@@ -78,14 +75,9 @@ fn per_core(c: &mut Criterion) {
             cases: PER_CORE_FLIGHTS,
             ..settings
         };
-        let setup = CampaignSetup::with_guidance(
-            &sc,
-            file,
-            settings.interface_speed_m_s,
-            &settings.guidance,
-        )
-        .expect("campaign set-up");
-        for mode in Mode::ALL {
+        let setup = CampaignSetup::new(&sc, file, settings.interface_speed_m_s)
+            .expect("campaign set-up");
+        for mode in setup.modes() {
             let opts = RunOptions {
                 modes: vec![mode],
                 out_dir: None,

@@ -129,7 +129,14 @@ fn seeds(target: Target, examples: &Path) -> Vec<(String, String)> {
                 ("trim".into(), v("kind = \"trim\"\ncl = 0.3\ncd = 0.9")),
             ]
         }
-        Target::Settings => vec![("horus-dispersions".into(), read("horus-dispersions.toml"))],
+        Target::Settings => vec![(
+            "dispersions".into(),
+            "[dispersions]\ncases = 1000\nseed = 20261130\ninterface_speed_m_s = 2500.0\n\
+             density_wavelength_km = 20.0\n\
+             [dispersions.speed_m_s]\ndistribution = \"normal\"\nthree_sigma = 20.0\n\
+             [dispersions.lift]\ndistribution = \"uniform\"\nthree_sigma = 0.05\n"
+                .into(),
+        )],
         Target::RunConfig => ["horus-2b", "srm", "srm-analytical"]
             .iter()
             .map(|p| {
