@@ -340,13 +340,13 @@ pub const SRM_GLIDE_NODES_DEG: [(f64, f64, f64); 4] = [
 
 /// The SRM capsule's energy-indexed glide (host-sim's built-in `srm-glide`): the table
 /// [`SRM_GLIDE_NODES_DEG`] with linear interpolation and two-sided bank bounds (alpha 0..45
-/// deg, sigma -90..90 deg, so a lateral logic can reverse the bank), the 2 s period and the
+/// deg, sigma -180..180 deg as scenario files allow, so a lateral logic can reverse the bank), the 2 s period and the
 /// 5 deg/s and 15 deg/s rate limits, initial attitude 0, 0, entry [`SRM_GLIDE_ENTRY`].
 ///
 /// # Errors
 /// Only if `S` cannot represent the values (never for `f32`, `f64`, `Fixed`).
 pub fn srm_glide<S: Scalar>() -> Result<Mission<S>, GuidanceError> {
-    let bounds = AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0)?;
+    let bounds = AngleBounds::from_deg(0.0, 45.0, -180.0, 180.0)?;
     let table = NodeTable::from_deg(Independent::NormalizedEnergy, &SRM_GLIDE_NODES_DEG, bounds)?;
     Ok(Mission {
         name: "srm-glide",

@@ -22,7 +22,6 @@ const FLIGHTS: u32 = 16;
 /// Flights per iteration of `campaign_per_core`.
 const PER_CORE_FLIGHTS: u32 = 8;
 
-
 fn bench(c: &mut Criterion) {
     let setup = CampaignSetup::new(&Scenario::srm_glide(), "builtin:srm-glide", Some(2500.0))
         .expect("SRM campaign set-up");
@@ -75,8 +74,8 @@ fn per_core(c: &mut Criterion) {
             cases: PER_CORE_FLIGHTS,
             ..settings
         };
-        let setup = CampaignSetup::new(&sc, file, settings.interface_speed_m_s)
-            .expect("campaign set-up");
+        let setup =
+            CampaignSetup::new(&sc, file, settings.interface_speed_m_s).expect("campaign set-up");
         for mode in setup.modes() {
             let opts = RunOptions {
                 modes: vec![mode],

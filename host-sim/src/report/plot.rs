@@ -603,7 +603,8 @@ mod tests {
             )
             .unwrap()
         };
-        assert_eq!(one(1).matches("<circle").count(), 1);
+        // One point: its marker and the marker of its legend entry.
+        assert_eq!(one(1).matches("<circle").count(), 2);
         assert_eq!(one(5).matches("<circle").count(), 5);
         assert_eq!(one(MAX_MARKED + 1).matches("<circle").count(), 0);
     }

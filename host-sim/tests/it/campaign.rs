@@ -52,7 +52,11 @@ fn parse_layers(flat: &str, file: &str) -> Result<Layered, CampaignError> {
             sections.get(sec).cloned().unwrap_or_default()
         ));
     }
-    match host_sim::scenario::parse_scenario(&text, file, std::path::Path::new(".")) {
+    match host_sim::scenario::parse_scenario(
+        &crate::support::complete_scenario(&text),
+        file,
+        std::path::Path::new("."),
+    ) {
         Ok(sc) => Ok(Layered {
             guidance: sc.layers.unwrap().settings,
         }),

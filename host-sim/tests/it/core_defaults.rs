@@ -110,9 +110,24 @@ fn scenario_replanning_defaults_are_the_cores() {
 vehicle = "srm"
 [environment]
 preset = "simplified"
+[entry]
+altitude_km = 100.0
+longitude_deg = 0.0
+latitude_deg = 0.0
+speed_m_s = 7500.0
+flight_path_angle_deg = -1.0
+heading_deg = 90.0
 [guidance]
 independent = "energy"
+interpolation = "linear"
+period_s = 2.0
+alpha_rate_deg_s = 5.0
+sigma_rate_deg_s = 15.0
+initial_alpha_deg = 0.0
+initial_sigma_deg = 0.0
 nodes = [[1.0, 0.0, 0.0], [0.5, 0.0, 50.0], [0.0, 0.0, 0.0]]
+[termination]
+max_time_s = 3000.0
 [replanning]
 range_km = 8000.0
 final_speed_m_s = 2500.0

@@ -9,8 +9,13 @@ use host_sim::campaign::{CampaignSetup, Mode, parse_settings};
 use host_sim::scenario::guidance_layers::{LAYER_KEYS, TARGET_KEYS};
 use host_sim::scenario::{Scenario, ScenarioError, parse_scenario, scenario_to_toml};
 
+/// `text` over a complete scenario with no layer (the stored profile alone).
 fn parse(text: &str) -> Result<Scenario, ScenarioError> {
-    parse_scenario(text, "s.toml", std::path::Path::new("."))
+    parse_scenario(
+        &crate::support::complete_scenario(text),
+        "s.toml",
+        std::path::Path::new("."),
+    )
 }
 
 /// A file's layers are the sections it writes; none: the stored profile alone (even though
@@ -178,19 +183,14 @@ fn key_list_template_and_docs_agree() {
     for key in TARGET_KEYS {
         listed.insert(format!("target.{key}"));
     }
-    // The template: keys under each [guidance.<section>] header.
+    // The template: keys under each [guidance.<section>] table.
     let mut in_template = std::collections::BTreeSet::new();
-    let mut section = None;
-    for line in template.lines() {
-        if let Some(s) = line
-            .strip_prefix("[guidance.")
-            .and_then(|r| r.strip_suffix(']'))
-        {
-            section = Some(s.to_string());
-        } else if line.starts_with('[') {
-            section = None;
-        } else if let (Some(s), Some((k, _))) = (&section, line.split_once(" = ")) {
-            in_template.insert(format!("{s}.{k}"));
+    let table: toml::Table = template.parse().unwrap();
+    for (section, value) in table["guidance"].as_table().unwrap() {
+        if let Some(t) = value.as_table() {
+            for k in t.keys() {
+                in_template.insert(format!("{section}.{k}"));
+            }
         }
     }
     // The reference mission leaves the estimator's and terminal law's optional keys at their

@@ -297,9 +297,10 @@ fn ramp_kinks() {
 }
 
 /// A complete scenario file: the built-in HORUS-2B reference mission as printed by
-/// `simulate --print-scenario`, with the tables and keys of `snippet` merged over it (tables
-/// merged key by key, other values replaced). Scenario files state what they fly; tests that
-/// change a few keys start from this.
+/// `simulate --print-scenario` without its onboard layers (`[guidance.<layer>]`: the stored
+/// profile alone), with the tables and keys of `snippet` merged over it (tables merged key by
+/// key, other values replaced). Scenario files state what they fly; tests that change a few
+/// keys start from this.
 pub fn complete_scenario(snippet: &str) -> String {
     fn merge(base: &mut toml::Table, over: toml::Table) {
         for (k, v) in over {
@@ -313,7 +314,15 @@ pub fn complete_scenario(snippet: &str) -> String {
     }
     let printed = host_sim::scenario::scenario_to_toml(&host_sim::scenario::Scenario::default());
     let mut base: toml::Table = printed.parse().expect("the printed scenario parses");
+    strip_layers(&mut base);
     let over: toml::Table = snippet.parse().expect("the snippet is valid TOML");
     merge(&mut base, over);
     toml::to_string(&base).expect("a TOML table serialises")
+}
+
+/// Remove the onboard layers (`[guidance.<layer>]` tables) from a scenario table.
+pub fn strip_layers(t: &mut toml::Table) {
+    if let Some(toml::Value::Table(g)) = t.get_mut("guidance") {
+        g.retain(|_, v| !v.is_table());
+    }
 }
