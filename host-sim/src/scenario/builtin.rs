@@ -86,7 +86,7 @@ impl Default for Scenario {
 }
 
 /// The HORUS-2B reference mission's onboard stack: every layer, with the settings of the
-/// documented accuracy (docs/HORUS-DISPERSIONS.md; chosen on tuning seeds 1 and 2): the
+/// documented accuracy (CHANGELOG.md, issue 12; chosen on tuning seeds 1 and 2): the
 /// numerical predictor with the stored angle-of-attack profile's lift from E-hat 0.96 (after
 /// the entry pull-out), its whole-flight limit check off (scale 100), final speed offset
 /// 25 m/s, largest vertical fraction 0.9 (a bank of at least 25.8 deg for turning
