@@ -1,6 +1,6 @@
-//! The closed loop flies `guidance-core`'s [`FlightStack`]: the attitude source of
+//! The closed loop flies `guidance-core`'s [`FlightStack`](guidance_core::stack::FlightStack): the attitude source of
 //! [`crate::sim::simulate`] that hands each guidance tick's navigation state and sensed
-//! accelerations to [`FlightStack::tick`] (the one entry the firmware calls too). The host
+//! accelerations to [`FlightStack::tick`](guidance_core::stack::FlightStack::tick) (the one entry the firmware calls too). The host
 //! assembles no layer itself: it builds a [`guidance_core::stack::StackConfig`] (the scenario's,
 //! [`crate::scenario::build_stack`], or a campaign mode's, `CampaignSetup::stack_of`).
 //!

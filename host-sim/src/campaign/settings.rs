@@ -147,7 +147,7 @@ impl DispersionSettings {
     /// cases, a negative or non-finite 3-sigma value, an unknown distribution, a non-positive
     /// wavelength, a density or mass dispersion of 30 % or more at 3 sigma (the density scale is
     /// kept within [0.5, 1.5], the mass must stay positive), a bad guidance setting
-    /// ([`CampaignGuidance::validate`]).
+    /// ([`CampaignGuidance::validate`](crate::scenario::guidance_layers::CampaignGuidance::validate)).
     pub fn validate(&self, file: &str) -> Result<(), CampaignError> {
         let bad = |field: &str, value: String, reason: &str| CampaignError::Setting {
             file: file.to_string(),

@@ -2,7 +2,7 @@
 //! and terminal law, re-planner, onboard estimation, path-limit bound): [`CampaignGuidance`]
 //! with the documented defaults, written in the scenario's `[guidance.lateral]`,
 //! `[guidance.replanning]`, `[guidance.estimator]` and `[guidance.barrier]` sections
-//! ([`super::resolve_layers`], key names in [`LAYER_KEYS`]) and validated with errors that
+//! (`resolve_layers`, key names in [`LAYER_KEYS`]) and validated with errors that
 //! name the field.
 
 use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
