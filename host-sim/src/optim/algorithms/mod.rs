@@ -5,7 +5,7 @@ pub mod moead;
 pub mod nsga2;
 pub mod scea;
 
-pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig};
+pub use mhaco::{ConstraintHandling, Mhaco, MhacoConfig, VlMhaco};
 pub use moead::{
     DeVariation, Moead, MoeadConfig, MoeadSbx, MoeadVariation, MoeadWith, ResourceAllocation,
     SbxVariation,

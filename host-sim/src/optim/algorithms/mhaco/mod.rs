@@ -27,6 +27,7 @@
 
 pub mod archive;
 pub mod kernel;
+pub mod variable;
 
 #[cfg(test)]
 mod tests;
@@ -34,6 +35,7 @@ mod tests;
 use serde::{Deserialize, Serialize};
 
 pub use archive::ConstraintHandling;
+pub use variable::VlMhaco;
 
 use crate::optim::algorithm::{Algorithm, Batch, check_objectives};
 use crate::optim::error::{ConfigError, OptimError};
@@ -85,7 +87,7 @@ impl Default for MhacoConfig {
 }
 
 impl MhacoConfig {
-    fn check(&self, objectives: usize, constraints: usize) -> Result<(), ConfigError> {
+    pub(crate) fn check(&self, objectives: usize, constraints: usize) -> Result<(), ConfigError> {
         let ranked = match self.constraints {
             ConstraintHandling::AsObjectives { .. } => objectives + constraints,
             ConstraintHandling::FeasibilityFirst => objectives,
@@ -290,50 +292,68 @@ impl Mhaco {
         self.batch.open(ants);
     }
 
-    /// Rank `merged` (old archive first, then the batch starting at `batch_start`), keep the
-    /// best `ker` as the archive and fill up with the batch's other members.
     fn update_archive(
         &mut self,
         merged: Vec<Individual<Vec<f64>>>,
         batch_start: usize,
         offset: f64,
     ) {
-        let keep = self.config.ker.min(merged.len());
-        let order = archive::rank(&merged, &self.config.constraints, keep, offset);
-        let mut slots: Vec<Option<Individual<Vec<f64>>>> = merged.into_iter().map(Some).collect();
-        let mut population = Vec::with_capacity(self.config.population);
-        for &i in &order {
-            if let Some(ind) = slots[i].take() {
-                population.push(ind);
-            }
-        }
-        self.archive_len = population.len();
-        for ind in slots.into_iter().skip(batch_start).flatten() {
-            if population.len() >= self.config.population {
-                break;
-            }
-            population.push(ind);
-        }
-        self.population = population;
+        (self.population, self.archive_len) = select(&self.config, merged, batch_start, offset);
     }
 
-    /// Progress bookkeeping of pagmo's steps 2 (see the module documentation).
     fn count_progress(&mut self, improved: bool) {
-        if improved {
-            self.stalls = 0;
-        } else {
-            self.stalls += 1;
-        }
-        if self.stalls == 0 || self.stalls > 2 {
-            self.gen_mark += 1;
-        }
-        if self.gen_mark > self.config.n_gen_mark {
-            self.gen_mark = 1;
-        }
-        if self.config.evalstop != 0 && self.stalls >= self.config.evalstop {
-            self.finished = true;
+        self.finished |= advance(&self.config, improved, &mut self.stalls, &mut self.gen_mark);
+    }
+}
+
+/// Rank `merged` (old archive first, then the batch starting at `batch_start`), keep the best
+/// `ker` as the archive and fill up with the batch's other members: the new population and
+/// the archive's length (shared by [`Mhaco`] and [`VlMhaco`]).
+pub(crate) fn select<D>(
+    config: &MhacoConfig,
+    merged: Vec<Individual<D>>,
+    batch_start: usize,
+    offset: f64,
+) -> (Vec<Individual<D>>, usize) {
+    let keep = config.ker.min(merged.len());
+    let order = archive::rank(&merged, &config.constraints, keep, offset);
+    let mut slots: Vec<Option<Individual<D>>> = merged.into_iter().map(Some).collect();
+    let mut population = Vec::with_capacity(config.population);
+    for &i in &order {
+        if let Some(ind) = slots[i].take() {
+            population.push(ind);
         }
     }
+    let archive_len = population.len();
+    for ind in slots.into_iter().skip(batch_start).flatten() {
+        if population.len() >= config.population {
+            break;
+        }
+        population.push(ind);
+    }
+    (population, archive_len)
+}
+
+/// Progress bookkeeping of pagmo's step 2 (see the module documentation); `true` when
+/// `evalstop` stops the run.
+pub(crate) fn advance(
+    config: &MhacoConfig,
+    improved: bool,
+    stalls: &mut u64,
+    gen_mark: &mut u64,
+) -> bool {
+    if improved {
+        *stalls = 0;
+    } else {
+        *stalls += 1;
+    }
+    if *stalls == 0 || *stalls > 2 {
+        *gen_mark += 1;
+    }
+    if *gen_mark > config.n_gen_mark {
+        *gen_mark = 1;
+    }
+    config.evalstop != 0 && *stalls >= config.evalstop
 }
 
 impl<P: RealProblem> Algorithm<P> for Mhaco {
