@@ -1,8 +1,11 @@
-//! Campaign statistics: mean, standard deviation, 50th/95th/99th percentiles and worst case.
+//! Campaign statistics: mean, standard deviation, 50th/90th/95th/99th/99.9th percentiles (nearest
+//! rank, `report::campaign::cdf::nearest_rank`, the percentiles the miss CDF marks) and worst
+//! case.
 
 use serde::Serialize;
 
 use super::{CaseResult, Mode};
+use crate::report::campaign::cdf::{nearest_rank, sorted};
 
 /// Statistics of one quantity over the cases.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -13,10 +16,15 @@ pub struct Stats {
     pub std: f64,
     /// Median (nearest rank: the `ceil(0.5 n)`-th smallest).
     pub p50: f64,
+    /// 90th percentile (nearest rank: the `ceil(0.9 n)`-th smallest).
+    pub p90: f64,
     /// 95th percentile (nearest rank: the `ceil(0.95 n)`-th smallest).
     pub p95: f64,
     /// 99th percentile (nearest rank: the `ceil(0.99 n)`-th smallest).
     pub p99: f64,
+    /// 99.9th percentile (nearest rank: the `ceil(0.999 n)`-th smallest; with fewer than
+    /// 1000 cases the largest value).
+    pub p99_9: f64,
     /// Largest value.
     pub worst: f64,
 }
@@ -31,29 +39,26 @@ impl Stats {
                 mean: 0.0,
                 std: 0.0,
                 p50: 0.0,
+                p90: 0.0,
                 p95: 0.0,
                 p99: 0.0,
+                p99_9: 0.0,
                 worst: 0.0,
             };
         }
-        let mut v: Vec<f64> = values
-            .iter()
-            .map(|x| if x.is_finite() { *x } else { f64::INFINITY })
-            .collect();
-        v.sort_by(f64::total_cmp);
+        let v = sorted(values);
         let n = v.len() as f64;
         let mean = v.iter().sum::<f64>() / n;
         let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
-        let pct = |p: f64| {
-            let rank = ((p * n).ceil() as usize).clamp(1, v.len());
-            v.get(rank - 1).copied().unwrap_or(f64::INFINITY)
-        };
+        let pct = |p: f64| nearest_rank(&v, p).unwrap_or(f64::INFINITY);
         Self {
             mean,
             std: var.sqrt(),
             p50: pct(0.5),
+            p90: pct(0.9),
             p95: pct(0.95),
             p99: pct(0.99),
+            p99_9: pct(0.999),
             worst: v.last().copied().unwrap_or(f64::INFINITY),
         }
     }
@@ -138,6 +143,11 @@ mod tests {
         assert_eq!(s.p99, 198.0);
         assert_eq!(s.p95, 190.0);
         assert_eq!(s.p50, 100.0);
+        assert_eq!(s.p90, 180.0);
+        // 0.999 * 200 = 199.8: the 200th.
+        assert_eq!(s.p99_9, 200.0);
+        let k: Vec<f64> = (1..=1000).rev().map(f64::from).collect();
+        assert_eq!(Stats::of(&k).p99_9, 999.0);
         assert_eq!(s.worst, 200.0);
         assert!((s.std - (((200.0f64 * 200.0) - 1.0) / 12.0).sqrt()).abs() < 1e-9);
         assert_eq!(Stats::of(&[1.0, f64::NAN]).worst, f64::INFINITY);

@@ -3,6 +3,8 @@
 //! directory is written whole or not at all ([`RunDir`]: built in a temporary sibling, then
 //! put in place in one step); single files with [`write_atomic`].
 
+pub mod campaign;
+pub mod chart;
 mod csv;
 mod plot;
 pub mod run_dir;

@@ -18,7 +18,7 @@ use super::ReportError;
 use crate::sim::{Sample, SimResult};
 use crate::vehicle::VehicleLimits;
 
-type PlotError = Box<dyn std::error::Error + Send + Sync>;
+pub(super) type PlotError = Box<dyn std::error::Error + Send + Sync>;
 
 /// Plot size \[px\] (SVG user units and PNG pixels).
 const SIZE: (u32, u32) = (720, 460);
@@ -63,7 +63,7 @@ const COLOURS: [RGBColor; 4] = [
 ];
 
 /// "Nice" tick step for a span of `span` with about `n` ticks.
-fn nice_step(span: f64, n: f64) -> f64 {
+pub(super) fn nice_step(span: f64, n: f64) -> f64 {
     let raw = (span / n).max(f64::MIN_POSITIVE);
     let mag = 10f64.powf(raw.log10().floor());
     let f = raw / mag;
@@ -79,7 +79,7 @@ fn nice_step(span: f64, n: f64) -> f64 {
     nf * mag
 }
 
-fn fmt_tick(v: f64, step: f64) -> String {
+pub(super) fn fmt_tick(v: f64, step: f64) -> String {
     if step >= 1e9 || (step < 1e-9 && step > 0.0) {
         return format!("{v:e}");
     }
@@ -98,7 +98,7 @@ fn fmt_tick(v: f64, step: f64) -> String {
 
 /// Axis range covering `lo..hi`, rounded out to multiples of a nice step for about `n`
 /// ticks; returns `(lo, hi, step)`.
-fn nice_range(lo: f64, hi: f64, n: f64) -> (f64, f64, f64) {
+pub(super) fn nice_range(lo: f64, hi: f64, n: f64) -> (f64, f64, f64) {
     let step = nice_step(hi - lo, n);
     ((lo / step).floor() * step, (hi / step).ceil() * step, step)
 }
@@ -132,7 +132,7 @@ fn bounds(series: &[Series]) -> (f64, f64, f64, f64) {
 /// A data range made drawable: within +-1e306 (so that spans and steps stay finite) and,
 /// if flat, widened by 1 or by a tenth of its magnitude when that is larger (`1e300 + 1` is
 /// still `1e300`: a flat range at a huge value would have a zero span and endless ticks).
-fn widen(lo: f64, hi: f64) -> (f64, f64) {
+pub(super) fn widen(lo: f64, hi: f64) -> (f64, f64) {
     const LIMIT: f64 = 1e306;
     let (lo, hi) = (lo.clamp(-LIMIT, LIMIT), hi.clamp(-LIMIT, LIMIT));
     if hi - lo > 0.0 {
@@ -296,15 +296,18 @@ pub fn line_plot_png(
         let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
         draw(&root, title, x_label, y_label, series).map_err(plot_err)?;
     }
+    encode_png(&rgb, w, h).map_err(plot_err)
+}
+
+/// An 8-bit RGB buffer of `w` x `h` pixels as a PNG file.
+pub(super) fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, PlotError> {
     let mut png_bytes = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut png_bytes, w, h);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc.write_header().map_err(|e| plot_err(Box::new(e)))?;
-        writer
-            .write_image_data(&rgb)
-            .map_err(|e| plot_err(Box::new(e)))?;
+        let mut writer = enc.write_header()?;
+        writer.write_image_data(rgb)?;
     }
     Ok(png_bytes)
 }

@@ -1,0 +1,47 @@
+//! Downrange and crossrange error against time to go of the worst flights (two panels, one
+//! line per flight; time to go runs down to 0 at the right, where each line ends at the
+//! flight's footprint point).
+
+use super::ModeReport;
+use crate::report::chart::{Figure, Layer, Legend, Mark, PALETTE, Panel};
+
+/// The error-history figure of `r`.
+#[must_use]
+pub fn figure(r: &ModeReport) -> Figure {
+    let panel = |what: &str, pick: fn(&super::TracePoint) -> f64| {
+        let mut p = Panel::new(
+            format!(
+                "{} {}: {what} error of the {} worst flights ({})",
+                r.scenario,
+                r.mode,
+                r.traces.len(),
+                r.trace_reference
+            ),
+            "time to go [s]",
+            &format!("{what} error [km]"),
+        );
+        p.x_negated = true;
+        p.legend = Legend::UpperLeft;
+        for (i, t) in r.traces.iter().enumerate() {
+            let colour = PALETTE.get(i % PALETTE.len()).copied().unwrap_or(PALETTE[0]);
+            p.layers.push(Layer::new(
+                format!("#{} (miss {:.2} km)", t.id, t.miss_km),
+                colour,
+                Mark::Line {
+                    points: t.points.iter().map(|q| (-q.time_to_go_s, pick(q))).collect(),
+                    width: 2,
+                    dashed: false,
+                },
+            ));
+        }
+        p
+    };
+    Figure {
+        panels: vec![
+            panel("downrange", |q| q.downrange_km),
+            panel("crossrange", |q| q.crossrange_km),
+        ],
+        columns: 1,
+        panel_size: (1100, 520),
+    }
+}
