@@ -130,6 +130,20 @@ pub fn fly_case_logged(
     draw: Option<&CaseDraw>,
     mode: Mode,
 ) -> Result<(CaseResult, ReplanLog), CampaignError> {
+    fly_case_traced(setup, draw, mode).map(|(r, log, _)| (r, log))
+}
+
+/// [`fly_case_logged`], also returning the flight's trajectory (a sample at every guidance
+/// tick and event: the campaign's flights record at ticks). The record is the one
+/// [`fly_case`] gives, bit for bit.
+///
+/// # Errors
+/// As [`fly_case`].
+pub fn fly_case_traced(
+    setup: &CampaignSetup,
+    draw: Option<&CaseDraw>,
+    mode: Mode,
+) -> Result<(CaseResult, ReplanLog, SimResult), CampaignError> {
     let sc = &setup.scenario;
     let scen = |source| CampaignError::Scenario {
         file: setup.file.clone(),
@@ -289,5 +303,5 @@ pub fn fly_case_logged(
         final_latitude_rad: end.latitude_rad,
         final_longitude_rad: end.longitude_rad,
     };
-    Ok((case, log))
+    Ok((case, log, result))
 }

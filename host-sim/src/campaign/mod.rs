@@ -1,6 +1,6 @@
 //! Dispersion campaigns (Monte Carlo): N closed-loop flights of one scenario with dispersed
 //! entry state, atmosphere, aerodynamics and mass, flown with three guidance modes on the same
-//! cases, with statistics, a footprint and histograms (docs/reference/campaigns.md).
+//! cases, with statistics and a report of figures per mode (docs/reference/campaigns.md).
 //!
 //! * [`settings`]: the `[dispersions]` TOML section, defaults, validation naming the field;
 //! * [`draw`]: the dispersed values of case `i`, from a generator seeded by (seed, i) only;
@@ -12,7 +12,9 @@
 //!   with atomic writes, progress bar);
 //! * [`fingerprint`]: the resolved inputs of a campaign, stored with its cases, so a run
 //!   resumes only into a directory of the same inputs;
-//! * [`stats`] and [`plot`]: statistics and SVG plots.
+//! * [`stats`]: statistics;
+//! * [`report`]: the report's figures per mode ([`crate::report::campaign`]), the worst
+//!   flights replayed with their trajectories.
 
 pub mod draw;
 pub mod fingerprint;
@@ -20,7 +22,7 @@ pub mod flight;
 pub mod imu;
 pub mod models;
 pub mod output;
-pub mod plot;
+pub mod report;
 pub mod run;
 pub mod settings;
 pub mod setup;

@@ -1,13 +1,14 @@
 //! Writing a campaign: `summary.json` (settings, target, statistics per mode, nominal flights,
 //! failed cases with their errors),
-//! `cases-<mode>.csv` (one row per flight) and the SVG plots, each written atomically.
+//! `cases-<mode>.csv` (one row per flight) and the report's figures per mode (SVG and PNG,
+//! [`super::report`]), each written atomically.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::plot::campaign_plots;
+use super::report::report_files;
 use super::run::{CampaignOutput, CaseFailure};
 use super::settings::DispersionSettings;
 use super::setup::CampaignSetup;
@@ -85,9 +86,9 @@ pub fn write_campaign(
         write_atomic(&p, csv.as_bytes())?;
         files.push(p);
     }
-    for (name, svg) in campaign_plots(&out.cases)? {
+    for (name, bytes) in report_files(setup, settings, out)? {
         let p = dir.join(name);
-        write_atomic(&p, svg.as_bytes())?;
+        write_atomic(&p, &bytes)?;
         files.push(p);
     }
     Ok(files)

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use super::draw::{CaseDraw, draw_case};
 use super::fingerprint::{Fingerprint, check_and_record};
-use super::flight::{CaseResult, fly_case};
+use super::flight::{CaseResult, fly_case, fly_case_traced};
 use super::settings::DispersionSettings;
 use super::setup::CampaignSetup;
 use super::stats::ModeStats;
@@ -202,6 +202,23 @@ pub fn replay_case(
         _ => Replay::NoRecord,
     };
     Ok((r, replay))
+}
+
+/// Fly case `index` of the campaign in `mode` alone ([`replay_case`]), or the undispersed
+/// flight for `None`, with its trajectory: the record (bit for bit the campaign's) and the
+/// simulation result with a sample at every guidance tick.
+///
+/// # Errors
+/// [`CampaignError`] if the flight fails.
+pub fn replay_case_traced(
+    setup: &CampaignSetup,
+    settings: &DispersionSettings,
+    mode: Mode,
+    index: Option<u32>,
+) -> Result<(CaseResult, crate::sim::SimResult), CampaignError> {
+    let draw = index.map(|i| draw_case(settings, i));
+    let (r, _, sim) = fly_case_traced(setup, draw.as_ref(), mode)?;
+    Ok((r, sim))
 }
 
 /// Run the campaign.

@@ -16,7 +16,6 @@ use std::path::{Path, PathBuf};
 use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
-pub(crate) use plot::ensure_font;
 pub use plot::{PlotLimits, Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, begin_in_place, clean_stale};
 pub use summary::{

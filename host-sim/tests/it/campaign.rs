@@ -856,3 +856,47 @@ fn terminal_lateral_settings_are_read_and_checked() {
         assert_eq!(field_of(e), scenario_key(field), "{text}");
     }
 }
+
+/// The report's traced replays: the replayed record is the campaign's bit for bit, the worst
+/// flights come largest miss first, and each error history ends (time to go 0) at the
+/// flight's footprint point and starts at the longest time to go both flights share.
+#[test]
+fn report_replays_the_worst_flights_with_their_error_histories() {
+    use host_sim::campaign::report::mode_report;
+    use host_sim::campaign::run::replay_case_traced;
+    let setup = srm_setup();
+    let s = small(4);
+    let opts = RunOptions {
+        modes: vec![Mode::StoredReversals],
+        out_dir: None,
+        threads: Some(2),
+        progress: false,
+    };
+    let out = run_campaign(&setup, &s, &opts).unwrap();
+    let cases = &out.cases[0].1;
+    let (again, sim) = replay_case_traced(&setup, &s, Mode::StoredReversals, Some(2)).unwrap();
+    assert_eq!(&again, &cases[2]);
+    assert!(sim.samples.len() > 100, "{} samples", sim.samples.len());
+    let r = mode_report(&setup, &s, &out, Mode::StoredReversals).unwrap();
+    assert_eq!(r.flights.len(), 4);
+    assert_eq!(r.traces.len(), 4);
+    let misses: Vec<f64> = r.traces.iter().map(|t| t.miss_km).collect();
+    assert!(misses.windows(2).all(|w| w[0] >= w[1]), "{misses:?}");
+    for t in &r.traces {
+        let c = cases.iter().find(|c| c.index == t.id).unwrap();
+        let end = t.points.last().unwrap();
+        assert_eq!(end.time_to_go_s, 0.0);
+        assert!(
+            (end.downrange_km - c.downrange_error_m / 1e3).abs() < 1e-6
+                && (end.crossrange_km - c.crossrange_error_m / 1e3).abs() < 1e-6,
+            "case {}: ends at {end:?}, footprint ({}, {}) km",
+            t.id,
+            c.downrange_error_m / 1e3,
+            c.crossrange_error_m / 1e3
+        );
+        let first = t.points.first().unwrap().time_to_go_s;
+        let nominal = out.nominal[0].flight_time_s;
+        assert!(first <= nominal.min(c.flight_time_s) + 1e-9, "{first}");
+        assert!(first > 0.9 * nominal.min(c.flight_time_s), "{first}");
+    }
+}

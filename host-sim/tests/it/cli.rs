@@ -531,24 +531,27 @@ fn srm_dispersions(speed: &str, out: &std::path::Path) -> std::process::Output {
         .unwrap()
 }
 
-/// `host-sim dispersions --out` in a fresh process writes its SVG plots: the campaign plots
-/// register the embedded font themselves (without it the first caption failed with
-/// "Font loading error: FontUnavailable" and the command exited 1).
+/// `host-sim dispersions --out` in a fresh process writes its report, SVG and PNG, per mode:
+/// the figures register the embedded font themselves (without it the first caption failed
+/// with "Font loading error: FontUnavailable" and the command exited 1).
 #[test]
 fn dispersions_writes_its_plots_in_a_fresh_process() {
     let d = temp_dir("dispersions-plots");
     let o = srm_dispersions("2500", &d);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in [
-        "summary.json",
-        "cases-stored.csv",
-        "miss-histogram-stored.svg",
-    ] {
+    for f in ["summary.json", "cases-stored.csv"] {
         assert!(d.join(f).exists(), "{f} missing");
     }
-    let svg = std::fs::read_to_string(d.join("footprint.svg")).unwrap();
+    for stem in host_sim::report::campaign::figure_stems("stored") {
+        for ext in ["svg", "png"] {
+            let f = d.join(format!("{stem}.{ext}"));
+            let len = std::fs::metadata(&f).map_or(0, |m| m.len());
+            assert!(len > 1000, "{} missing or empty ({len} bytes)", f.display());
+        }
+    }
+    let svg = std::fs::read_to_string(d.join("footprint-stored.svg")).unwrap();
     assert!(
-        svg.contains("<text") && svg.contains("downrange error"),
+        svg.contains("<text") && svg.contains("downrange error") && svg.contains("3-sigma"),
         "{svg}"
     );
     let _ = std::fs::remove_dir_all(&d);
