@@ -39,6 +39,9 @@ pub fn write_campaign(
     settings: &DispersionSettings,
     out: &CampaignOutput,
 ) -> Result<Vec<PathBuf>, CampaignError> {
+    // The figures first: their replayed flights end early on a stop request (Ctrl-C), and
+    // then nothing of the campaign is written (no summary of an interrupted run).
+    let figures = report_files(setup, settings, out)?;
     let mut files = Vec::new();
     let r = setup.planet_radius_m;
     let s = Summary {
@@ -86,7 +89,7 @@ pub fn write_campaign(
         write_atomic(&p, csv.as_bytes())?;
         files.push(p);
     }
-    for (name, bytes) in report_files(setup, settings, out)? {
+    for (name, bytes) in figures {
         let p = dir.join(name);
         write_atomic(&p, &bytes)?;
         files.push(p);
