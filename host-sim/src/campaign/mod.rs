@@ -12,7 +12,7 @@
 //!   with atomic writes, progress bar);
 //! * [`fingerprint`]: the resolved inputs of a campaign, stored with its cases, so a run
 //!   resumes only into a directory of the same inputs;
-//! * [`stats`]: statistics;
+//! * [`stats`]: the statistics of each mode;
 //! * [`report`]: the report's figures per mode ([`crate::report::campaign`]), the worst
 //!   flights replayed with their trajectories.
 

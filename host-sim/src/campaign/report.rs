@@ -173,7 +173,12 @@ mod tests {
 
     #[test]
     fn interpolation_at_time_to_go() {
-        let t = [(10.0, 0.0, 0.0), (6.0, 4.0, -4.0), (6.0, 5.0, 1.0), (0.0, 11.0, 7.0)];
+        let t = [
+            (10.0, 0.0, 0.0),
+            (6.0, 4.0, -4.0),
+            (6.0, 5.0, 1.0),
+            (0.0, 11.0, 7.0),
+        ];
         assert_eq!(at_time_to_go(&t, 10.0), Some((0.0, 0.0)));
         assert_eq!(at_time_to_go(&t, 8.0), Some((2.0, -2.0)));
         assert_eq!(at_time_to_go(&t, 3.0), Some((8.0, 4.0)));

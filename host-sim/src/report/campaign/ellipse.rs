@@ -156,7 +156,10 @@ mod tests {
             // The major axis' end is at k sqrt(3) along 45 deg.
             let end = g.ellipse(k, 4)[0];
             let r = k * 3f64.sqrt() / 2f64.sqrt();
-            assert!((end.0 - r).abs() < 1e-9 && (end.1 - r).abs() < 1e-9, "{end:?}");
+            assert!(
+                (end.0 - r).abs() < 1e-9 && (end.1 - r).abs() < 1e-9,
+                "{end:?}"
+            );
         }
         assert!((normal_fraction_inside(1.0) - 0.393_469).abs() < 1e-6);
         assert!((normal_fraction_inside(3.0) - 0.988_891).abs() < 1e-6);
@@ -166,7 +169,13 @@ mod tests {
     /// no Mahalanobis distance.
     #[test]
     fn sample_covariance() {
-        let pts = [(1.0, 2.0), (3.0, 6.0), (5.0, 4.0), (7.0, 8.0), (f64::NAN, 0.0)];
+        let pts = [
+            (1.0, 2.0),
+            (3.0, 6.0),
+            (5.0, 4.0),
+            (7.0, 8.0),
+            (f64::NAN, 0.0),
+        ];
         let g = Gaussian2::of(&pts).unwrap();
         assert_eq!(g.mean, (4.0, 5.0));
         // dx = -3 -1 1 3, dy = -3 1 -1 3: sxx = 20/3, syy = 20/3, sxy = 16/3.
@@ -191,7 +200,10 @@ mod tests {
             .map(|_| {
                 let (u, v) = (uniform().max(1e-300), uniform());
                 let r = (-2.0 * u.ln()).sqrt();
-                let (a, b) = (r * (std::f64::consts::TAU * v).cos(), r * (std::f64::consts::TAU * v).sin());
+                let (a, b) = (
+                    r * (std::f64::consts::TAU * v).cos(),
+                    r * (std::f64::consts::TAU * v).sin(),
+                );
                 (3.0 * a + 1.0, 0.5 * a + b)
             })
             .collect();

@@ -24,7 +24,12 @@ mod tests {
 
     #[test]
     fn counts_and_edges() {
-        let (e, c) = histogram(&[0.1, 0.2, 0.55, 0.99, 1.0, 7.0, -3.0, f64::NAN], 0.0, 1.0, 2);
+        let (e, c) = histogram(
+            &[0.1, 0.2, 0.55, 0.99, 1.0, 7.0, -3.0, f64::NAN],
+            0.0,
+            1.0,
+            2,
+        );
         assert_eq!(e, vec![0.0, 0.5, 1.0]);
         assert_eq!(c, vec![3.0, 4.0]);
     }

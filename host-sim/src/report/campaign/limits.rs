@@ -32,7 +32,7 @@ pub fn figure(r: &ModeReport) -> Figure {
             } else {
                 (0.0, 1.1)
             };
-            let over = v.iter().filter(|x| !(**x <= 1.0)).count();
+            let over = v.iter().filter(|x| x.is_nan() || **x > 1.0).count();
             let worst = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             let mut p = Panel::new(
                 format!(

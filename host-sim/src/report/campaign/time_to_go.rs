@@ -23,12 +23,19 @@ pub fn figure(r: &ModeReport) -> Figure {
         p.x_negated = true;
         p.legend = Legend::UpperLeft;
         for (i, t) in r.traces.iter().enumerate() {
-            let colour = PALETTE.get(i % PALETTE.len()).copied().unwrap_or(PALETTE[0]);
+            let colour = PALETTE
+                .get(i % PALETTE.len())
+                .copied()
+                .unwrap_or(PALETTE[0]);
             p.layers.push(Layer::new(
                 format!("#{} (miss {:.2} km)", t.id, t.miss_km),
                 colour,
                 Mark::Line {
-                    points: t.points.iter().map(|q| (-q.time_to_go_s, pick(q))).collect(),
+                    points: t
+                        .points
+                        .iter()
+                        .map(|q| (-q.time_to_go_s, pick(q)))
+                        .collect(),
                     width: 2,
                     dashed: false,
                 },

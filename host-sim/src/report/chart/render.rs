@@ -1,7 +1,7 @@
 //! Drawing a [`Figure`] with `plotters` on its SVG and bitmap backends (one code path).
 
-use plotters::coord::Shift;
 use plotters::chart::SeriesAnno;
+use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
