@@ -44,11 +44,10 @@ pub use algorithms::{
     Nsga2Config, ResourceAllocation, SbxVariation, Scea, SceaConfig,
 };
 pub use archive::ParetoArchive;
-pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
+pub use error::{BoundsError, ConfigError, EvalError, OptimError, StateError, TellError};
 pub use evaluate::{Evaluator, Rayon, Serial, evolve};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
-pub use restore::StateError;
 pub use rng::OptimRng;
 pub use weights::{Decomposition, WeightGeneration};
