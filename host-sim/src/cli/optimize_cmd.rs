@@ -5,8 +5,6 @@
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::time::Instant;
 
 use clap::ValueEnum;
 use serde::Serialize;
@@ -15,9 +13,9 @@ use crate::optim::hypervolume::{HypervolumeError, hypervolume};
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{NAMES, TestProblem, TestProblemError};
 use crate::optim::{
-    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx,
-    NoObserver, Nsga2, Nsga2Config, OptimError, Problem, Rayon, SbxVariation, Serial,
-    WeightGeneration, evolve,
+    Algorithm, Budget, ConstraintHandling, Executor, Individual, Mhaco, MhacoConfig, Moead,
+    MoeadConfig, MoeadSbx, Nsga2, Nsga2Config, OptimError, Problem, SbxVariation, Threads,
+    ThreadsError, WeightGeneration,
 };
 use crate::report::{ReportError, RunDir};
 
@@ -395,23 +393,16 @@ pub(super) struct Outcome {
 }
 
 fn drive<A: Algorithm<TestProblem>>(
-    mut alg: A,
+    alg: A,
     problem: &TestProblem,
     generations: u64,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    threads: &Threads,
 ) -> Result<Outcome, OptimError> {
-    let start = Instant::now();
-    match pool {
-        Some(pool) => evolve(
-            &mut alg,
-            problem,
-            &Rayon::with_pool(pool),
-            generations,
-            &mut NoObserver,
-        )?,
-        None => evolve(&mut alg, problem, &Serial, generations, &mut NoObserver)?,
-    }
-    let wall_time_s = start.elapsed().as_secs_f64();
+    let run = Executor::new(problem, alg)
+        .budget(Budget::Generations(generations))
+        .threads(threads.clone())
+        .run()?;
+    let (alg, wall_time_s) = (run.algorithm, run.wall_time_s);
     Ok(Outcome {
         population: alg.population().to_vec(),
         archive: alg.external_archive().map(<[_]>::to_vec),
@@ -504,18 +495,29 @@ fn generations_to_run(a: &OptimizeArgs, objectives: usize) -> Result<u64, Optimi
     Ok((e - n).div_ceil(per_generation as u64))
 }
 
-/// The evaluation pool for `--threads` (`None`: serial).
-pub(super) fn pool(threads: usize) -> Result<Option<Arc<rayon::ThreadPool>>, OptimizeError> {
-    match threads {
-        0 => Err(OptimizeError::Threads),
-        t if t > crate::optim::evaluate::MAX_THREADS => Err(OptimizeError::Threads),
-        1 => Ok(None),
-        t => Ok(Some(Arc::new(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .map_err(|source| OptimizeError::Pool { threads: t, source })?,
-        ))),
+/// The evaluation threads for `--threads`.
+pub(super) fn threads(count: usize) -> Result<Threads, OptimizeError> {
+    Threads::new(count).map_err(|e| match e {
+        ThreadsError::Count(_) => OptimizeError::Threads,
+        ThreadsError::Pool { threads, source } => OptimizeError::Pool { threads, source },
+    })
+}
+
+/// The hypervolume reference point: `--ref` when given (checked against the problem's `m`
+/// objectives), otherwise the problem's `default`.
+pub(super) fn reference(
+    a: &OptimizeArgs,
+    m: usize,
+    default: impl FnOnce() -> Vec<f64>,
+) -> Result<Vec<f64>, OptimizeError> {
+    match &a.reference {
+        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => Ok(r.clone()),
+        Some(r) => Err(OptimizeError::Reference {
+            expected: m,
+            got: r.len(),
+            values: r.clone(),
+        }),
+        None => Ok(default()),
     }
 }
 
@@ -565,31 +567,21 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
             name: a.problem.clone(),
         })?;
     let m = problem.objectives();
-    let reference = match &a.reference {
-        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => r.clone(),
-        Some(r) => {
-            return Err(OptimizeError::Reference {
-                expected: m,
-                got: r.len(),
-                values: r.clone(),
-            });
-        }
-        None => problem.reference_point(),
-    };
+    let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
-    let pool = pool(a.threads)?;
+    let pool = threads(a.threads)?;
     let outcome = match a.algorithm {
         AlgorithmName::Moead => {
             let config = moead_config(a);
             match a.moead_operator {
                 MoeadOperatorArg::De => {
-                    drive(Moead::new(config, a.seed), &problem, generations, pool)?
+                    drive(Moead::new(config, a.seed), &problem, generations, &pool)?
                 }
                 MoeadOperatorArg::Sbx => drive(
                     MoeadSbx::sbx(config, SbxVariation::default(), a.seed),
                     &problem,
                     generations,
-                    pool,
+                    &pool,
                 )?,
             }
         }
@@ -599,13 +591,13 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
                 archive: a.archive,
                 ..Nsga2Config::default()
             };
-            drive(Nsga2::new(config, a.seed), &problem, generations, pool)?
+            drive(Nsga2::new(config, a.seed), &problem, generations, &pool)?
         }
         AlgorithmName::Mhaco => {
             let config = mhaco_config(a);
-            drive(Mhaco::new(config, a.seed), &problem, a.generations, pool)?
+            drive(Mhaco::new(config, a.seed), &problem, a.generations, &pool)?
         }
-        AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, pool)?,
+        AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, &pool)?,
     };
     let pop = &outcome.population;
     let result = outcome.archive.as_deref().unwrap_or(pop);

@@ -7,8 +7,6 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::time::Instant;
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -18,8 +16,9 @@ use super::optimize_reentry_out::{Record, record_of, write_final, write_generati
 use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
 use crate::optim::chromosome::Chromosome;
 use crate::optim::{
-    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes,
-    NoObserver, Nsga2, Nsga2Config, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
+    Algorithm, Budget, ConstraintHandling, Executor, Individual, Mhaco, MhacoConfig, Moead,
+    MoeadConfig, NewGenes, Nsga2, Nsga2Config, OptimError, Problem, Scea, SceaConfig, Stop,
+    Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -490,20 +489,12 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         })?;
         write_atomic(&dir.join("config.toml"), text.as_bytes())?;
     }
-    let pool = match c.threads {
-        1 => None,
-        t => Some(Arc::new(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .map_err(|e| ReentryError::Setting {
-                    source_name: src.clone(),
-                    field: "threads",
-                    value: t.to_string(),
-                    reason: e.to_string(),
-                })?,
-        )),
-    };
+    let pool = Threads::new(c.threads).map_err(|e| ReentryError::Setting {
+        source_name: src.clone(),
+        field: "threads",
+        value: c.threads.to_string(),
+        reason: e.to_string(),
+    })?;
     let moead = MoeadConfig {
         population: c.population,
         neighbours: c.neighbours,
@@ -662,25 +653,8 @@ struct Ctx<'a, P> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
     problem: &'a P,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    pool: Threads,
     resume: bool,
-}
-
-fn step<P: RunProblem, A: Algorithm<P>>(
-    ctx: &Ctx<'_, P>,
-    alg: &mut A,
-    generations: u64,
-) -> Result<(), OptimError> {
-    match &ctx.pool {
-        Some(pool) => evolve(
-            alg,
-            ctx.problem,
-            &Rayon::with_pool(Arc::clone(pool)),
-            generations,
-            &mut NoObserver,
-        ),
-        None => evolve(alg, ctx.problem, &Serial, generations, &mut NoObserver),
-    }
 }
 
 fn drive<P, A>(ctx: &Ctx<'_, P>, fresh: A, out: &mut dyn Write) -> Result<(), ReentryError>
@@ -697,7 +671,7 @@ where
     // A run stopped before its first checkpoint (during the initial population) resumes
     // from the start.
     let resume = ctx.resume && ck_path.exists();
-    let (mut alg, mut records) = if resume {
+    let (alg, mut records) = if resume {
         let text = read_text(&ck_path)?;
         let mut de = serde_json::Deserializer::from_str(&text);
         let ck: Checkpoint<A> =
@@ -722,7 +696,6 @@ where
     let total = ctx.c.generations;
     let bar = indicatif::ProgressBar::new(total + 1);
     bar.set_position(records.len() as u64);
-    let start = Instant::now();
     let save = |alg: &A, records: &mut Vec<Record>| -> Result<(), ReentryError> {
         let pop = flat::<P>(alg.population());
         let result = alg.external_archive().map(flat::<P>);
@@ -755,30 +728,20 @@ where
     // it interrupts is no evaluation (`EvalError::Interrupted`), and the run stops at the next
     // generation boundary with the last complete generation's checkpoint and no final file.
     let _active = crate::sim::ActiveRun::start();
-    let interrupted = |alg: &A| ReentryError::Interrupted {
-        generation: alg.generation() + u64::from(alg.is_initialised()),
-        dir: ctx.dir.to_path_buf(),
-    };
-    let stepped = |alg: &mut A, g: u64| match step(ctx, alg, g) {
-        Err(_) if crate::sim::stop_requested() => Err(interrupted(alg)),
-        r => r.map_err(ReentryError::from),
-    };
-    if !alg.is_initialised() {
-        stepped(&mut alg, 0)?;
-        save(&alg, &mut records)?;
-    }
-    while alg.generation() < total {
-        if crate::sim::stop_requested() {
-            return Err(interrupted(&alg));
-        }
-        stepped(&mut alg, 1)?;
-        save(&alg, &mut records)?;
-    }
-    if crate::sim::stop_requested() {
-        return Err(interrupted(&alg));
+    let stop = crate::sim::stop_requested;
+    let run = Executor::new(ctx.problem, alg)
+        .budget(Budget::Generations(ctx.c.generations))
+        .threads(ctx.pool.clone())
+        .stop_when(&stop)
+        .run_with(|alg: &A| save(alg, &mut records))?;
+    let (alg, wall) = (run.algorithm, run.wall_time_s);
+    if run.stop == Stop::Interrupted {
+        return Err(ReentryError::Interrupted {
+            generation: alg.generation() + u64::from(alg.is_initialised()),
+            dir: ctx.dir.to_path_buf(),
+        });
     }
     bar.finish_and_clear();
-    let wall = start.elapsed().as_secs_f64();
     let last = records.last().cloned();
     // The front's members: the external archive's when the run keeps one.
     let scenarios: Vec<Option<Scenario>> = alg

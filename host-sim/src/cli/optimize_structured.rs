@@ -7,19 +7,18 @@
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
-use std::sync::Arc;
-use std::time::Instant;
 
 use super::optimize_cmd::{
-    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, pool, print_summary,
+    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, print_summary,
+    reference, threads,
 };
 use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::{
-    Algorithm, Individual, NewGenes, NoObserver, OptimError, Problem, Rayon, Scea, SceaConfig,
-    Serial, evolve,
+    Algorithm, Budget, Executor, Individual, NewGenes, OptimError, Problem, Scea, SceaConfig,
+    Threads,
 };
 use crate::report::write_atomic;
 
@@ -66,21 +65,13 @@ type SceaOutcome = (
 fn evolve_scea<P: StructuredProblem>(
     a: &OptimizeArgs,
     problem: &P,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    threads: &Threads,
 ) -> Result<SceaOutcome, OptimError> {
-    let mut alg = Scea::new(scea_config(a), a.seed);
-    let start = Instant::now();
-    match pool {
-        Some(pool) => evolve(
-            &mut alg,
-            problem,
-            &Rayon::with_pool(pool),
-            a.generations,
-            &mut NoObserver,
-        )?,
-        None => evolve(&mut alg, problem, &Serial, a.generations, &mut NoObserver)?,
-    }
-    let wall = start.elapsed().as_secs_f64();
+    let run = Executor::new(problem, Scea::new(scea_config(a), a.seed))
+        .budget(Budget::Generations(a.generations))
+        .threads(threads.clone())
+        .run()?;
+    let (alg, wall) = (run.algorithm, run.wall_time_s);
     Ok((
         <Scea as Algorithm<P>>::population(&alg).to_vec(),
         <Scea as Algorithm<P>>::external_archive(&alg).map(<[_]>::to_vec),
@@ -93,10 +84,10 @@ fn evolve_scea<P: StructuredProblem>(
 pub(super) fn drive_scea(
     a: &OptimizeArgs,
     problem: &TestProblem,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    threads: &Threads,
 ) -> Result<Outcome, OptimError> {
     let wrapped = FixedLength::new(problem.clone());
-    let (population, archive, evaluations, wall_time_s) = evolve_scea(a, &wrapped, pool)?;
+    let (population, archive, evaluations, wall_time_s) = evolve_scea(a, &wrapped, threads)?;
     let fixed = |inds: Vec<Individual<Chromosome>>| -> Vec<Individual<Vec<f64>>> {
         inds.into_iter()
             .map(|i| Individual {
@@ -135,19 +126,8 @@ pub(super) fn run_variable_length(
         });
     }
     let m = problem.objectives();
-    let reference = match &a.reference {
-        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => r.clone(),
-        Some(r) => {
-            return Err(OptimizeError::Reference {
-                expected: m,
-                got: r.len(),
-                values: r.clone(),
-            });
-        }
-        None => problem.reference_point(),
-    };
-    let pool = pool(a.threads)?;
-    let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, pool)?;
+    let reference = reference(a, m, || problem.reference_point())?;
+    let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, &threads(a.threads)?)?;
     let result = archive.as_deref().unwrap_or(&pop);
     let front: Vec<&[f64]> = feasible_front_indices(result)
         .into_iter()

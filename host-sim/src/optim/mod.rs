@@ -25,6 +25,7 @@ pub mod archive;
 pub mod chromosome;
 pub mod error;
 pub mod evaluate;
+pub mod executor;
 pub mod hypervolume;
 pub mod nonfinite;
 pub mod observe;
@@ -45,7 +46,8 @@ pub use algorithms::{
 };
 pub use archive::ParetoArchive;
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, StateError, TellError};
-pub use evaluate::{Evaluator, Rayon, Serial, evolve};
+pub use evaluate::{Evaluator, Rayon, Serial, Threads, ThreadsError, evolve};
+pub use executor::{Budget, Executor, Run, Stop};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
