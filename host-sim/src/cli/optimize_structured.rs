@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
 
-use super::optimize_cmd::{
+use super::optimize_common::{
     AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, print_summary,
     reference, threads,
 };
@@ -17,32 +17,11 @@ use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::{
-    Algorithm, Budget, Executor, Individual, NewGenes, OptimError, Problem, Scea, SceaConfig,
-    Threads,
+    Algorithm, Budget, Executor, Individual, OptimError, Problem, Scea, SceaConfig, Threads,
 };
 use crate::report::write_atomic;
 
-/// Where SCEA takes the genes of a node it appends (`--scea-genes`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum SceaGenesArg {
-    /// Uniformly random in the node bounds (the thesis' SCEA, sec. 4.1.5).
-    Random,
-    /// History-based: the same node of a mating parent from the population (the thesis'
-    /// recommendation, sec. 10.2); random when neither parent has it. The default.
-    #[value(alias = "history")]
-    Population,
-}
-
-impl SceaGenesArg {
-    /// The library's gene source.
-    #[must_use]
-    pub fn new_genes(self) -> NewGenes {
-        match self {
-            Self::Random => NewGenes::Random,
-            Self::Population => NewGenes::Population,
-        }
-    }
-}
+pub use super::optimize_common::SceaGenesArg;
 
 fn scea_config(a: &OptimizeArgs) -> SceaConfig {
     SceaConfig {
@@ -183,7 +162,7 @@ fn write_variable_length(
     // Front and summary as for the fixed-length problems (no decisions in the population
     // file there), then the chromosome file over it.
     let flat: Vec<Individual<Vec<f64>>> = Vec::new();
-    super::optimize_cmd::write_outputs(dir, &flat, front, summary)?;
+    super::optimize_common::write_outputs(dir, &flat, front, summary)?;
     let mut csv = String::new();
     let header: Vec<String> = (1..=summary.objectives)
         .map(|i| format!("f{i}"))
@@ -234,7 +213,7 @@ mod tests {
             batch_size: 1,
             ker: None,
             n_gen_mark: 7,
-            mhaco_constraints: super::super::optimize_cmd::MhacoConstraintsArg::FeasibilityFirst,
+            mhaco_constraints: super::super::optimize_common::MhacoConstraintsArg::FeasibilityFirst,
             scea_genes: SceaGenesArg::Population,
             archive: None,
             resource_allocation: false,

@@ -152,17 +152,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
          those would move to a leaf cli module.",
     ),
     (
-        &[
-            "cli::optimize_cmd",
-            "cli::optimize_reentry",
-            "cli::optimize_reentry_out",
-            "cli::optimize_structured",
-        ],
-        "the four optimise files import each other (the arguments and the test-problem run in \
-         optimize_cmd, which dispatches to the re-entry and variable-length runs, which use its \
-         argument types); issue 21 item 1 (the library executor) removes it.",
-    ),
-    (
         &["compare::case", "compare::metrics"],
         "case flies a case and scores it with metrics; metrics matches on case::Case. Case \
          would move to a leaf module.",
