@@ -55,9 +55,9 @@ pub use glide::{GlidePoint, GlideSolution};
 pub use nondim::{
     Constants, EntryState, ExpAtmosphere, LiftControl, NonDim, Planet, VehicleParams,
 };
-pub use predict::skip_validity;
 pub use predict::{
     LoadLimits, PeakMode, PeakStatus, Prediction, PredictorConfig, predict, predict_with,
 };
+pub use predict::{skip_validity, validity_of};
 pub use skip::{Leg, SkipOptions, SkipPoint, SkipSolution};
-pub use validity::{Extrapolation, Validity, validity_of};
+pub use validity::{Extrapolation, Validity};

@@ -479,3 +479,13 @@ pub fn glide_start_radius<S: Real>(
     }
     brent(f, lo, r_max, f_lo, f_hi, S::ZERO)
 }
+
+/// The validity of a predictor result: its [`Prediction::validity`], or out of domain with
+/// the error.
+#[must_use]
+pub fn validity_of<S>(result: &Result<Prediction<S>, VinhError>) -> Validity {
+    match result {
+        Ok(p) => p.validity,
+        Err(e) => Validity::OutOfDomain(*e),
+    }
+}

@@ -1,4 +1,4 @@
-//! How far a prediction can be trusted: [`Validity`] of every [`super::Prediction`].
+//! How far a prediction can be trusted: [`Validity`] of every prediction (`super::Prediction`).
 //!
 //! The closed forms return a typed [`VinhError`] outside their mathematical domain (out of
 //! domain). Inside it, their accuracy was measured against numerical integration of the same
@@ -20,7 +20,6 @@
 //! in-domain prediction was within 2.65 %.
 
 use super::error::VinhError;
-use super::predict::Prediction;
 
 /// Skip entry speeds validated against integration \[m/s\] (`validate_vinh_skip_*`: 7435.5 to
 /// 10 500 m/s). The lower end was 7 400 m/s until the skip error map found a skip at exactly
@@ -127,15 +126,5 @@ impl Validity {
             Validity::InDomain if outside => Validity::Extrapolated(reason),
             v => v,
         }
-    }
-}
-
-/// The validity of a predictor result: its [`Prediction::validity`], or out of domain with
-/// the error.
-#[must_use]
-pub fn validity_of<S>(result: &Result<Prediction<S>, VinhError>) -> Validity {
-    match result {
-        Ok(p) => p.validity,
-        Err(e) => Validity::OutOfDomain(*e),
     }
 }

@@ -8,6 +8,7 @@ mod compare_cmd;
 mod dispersions_cmd;
 mod hypervolume_cmd;
 mod optimize_cmd;
+mod optimize_common;
 mod optimize_reentry;
 mod optimize_reentry_out;
 #[cfg(test)]

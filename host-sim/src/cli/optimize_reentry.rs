@@ -7,194 +7,21 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::time::Instant;
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use super::optimize_cmd::{MhacoConstraintsArg, OptimizeArgs};
+use super::optimize_common::{MhacoConstraintsArg, OptimizeArgs};
+pub use super::optimize_common::{ReentryError, ReentryRunConfig};
 use super::optimize_reentry_out::{Record, record_of, write_final, write_generation};
-use crate::design::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
+use crate::design::{ReentryProblem, VariableReentry};
 use crate::optim::chromosome::Chromosome;
 use crate::optim::{
-    Algorithm, ConstraintHandling, Individual, Mhaco, MhacoConfig, Moead, MoeadConfig, NewGenes,
-    NoObserver, Nsga2, Nsga2Config, OptimError, Problem, Rayon, Scea, SceaConfig, Serial, evolve,
+    Algorithm, Budget, ConstraintHandling, Executor, Individual, Mhaco, MhacoConfig, Moead,
+    MoeadConfig, Nsga2, Nsga2Config, Problem, Scea, SceaConfig, Stop, Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
-
-/// A re-entry optimisation run: algorithm settings and the problem (file units).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReentryRunConfig {
-    /// `moead`, `nsga2`, `scea` (variable length: 4 to `problem.encoding.nodes` nodes),
-    /// `mhaco` (feasible candidates first) or `mhaco-objectives` (MHACO with the constraints
-    /// as extra objectives, the thesis' sec. 9.3.2: `c / c_max` capped at 2, 0.5 added to
-    /// every objective per violated constraint).
-    pub algorithm: String,
-    /// Population size.
-    pub population: usize,
-    /// Generations after the initial population.
-    pub generations: u64,
-    /// Seed.
-    pub seed: u64,
-    /// Evaluation threads (the result does not depend on it).
-    pub threads: usize,
-    /// MOEA/D offspring per batch (1: pagmo's steady state; larger: parallel evaluation).
-    pub batch_size: usize,
-    /// MOEA/D neighbourhood size (thesis: 20).
-    pub neighbours: usize,
-    /// MOEA/D replacement limit (thesis: 1).
-    pub limit: usize,
-    /// MOEA/D per-variable mutation probability (thesis: 1 / population; default
-    /// 1 / variables).
-    pub mutation_probability: Option<f64>,
-    /// SCEA: source of the genes of appended nodes, `random` (the thesis) or `population`
-    /// (history-based, the thesis' recommendation sec. 10.2; the default, also for files
-    /// written before the field existed).
-    #[serde(default = "history_genes")]
-    pub scea_genes: NewGenes,
-    /// MOEA/D, NSGA-II and SCEA: capacity of the external archive of the feasible
-    /// non-dominated solutions found during the run (Zhang & Li 2007's external population,
-    /// hypervolume truncation; not in pagmo), whose front is then the run's front (front.csv,
-    /// the member scenarios, the recorded front and hypervolume). Absent (default): pagmo's
-    /// semantics, the final population's front.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub archive: Option<usize>,
-    /// Hypervolume reference point `[f_r, f_Q]` (objective units).
-    pub reference: Vec<f64>,
-    /// The design problem.
-    pub problem: DesignConfig,
-}
-
-fn history_genes() -> NewGenes {
-    NewGenes::Population
-}
-
-impl ReentryRunConfig {
-    /// The thesis' settings (sec. 9.1) on a preset problem.
-    ///
-    /// # Errors
-    /// [`DesignError::UnknownPreset`].
-    pub fn thesis(preset: &str) -> Result<Self, DesignError> {
-        let problem = DesignConfig::preset(preset)?;
-        let m = 2 + usize::from(problem.objectives.skips);
-        let mut reference = vec![0.0, 2.0];
-        reference.resize(m, 10.0);
-        Ok(Self {
-            algorithm: "moead".into(),
-            population: 64,
-            generations: 128,
-            seed: 123,
-            threads: 1,
-            batch_size: 1,
-            neighbours: 20,
-            limit: 1,
-            mutation_probability: Some(1.0 / 64.0),
-            scea_genes: history_genes(),
-            archive: None,
-            reference,
-            problem,
-        })
-    }
-}
-
-/// Failures of a re-entry run; each names the field or file and what to change.
-#[derive(Debug, thiserror::Error)]
-pub enum ReentryError {
-    /// The problem could not be built.
-    #[error(transparent)]
-    Design(#[from] DesignError),
-    /// A bad setting.
-    #[error("{source_name}: field `{field}` = {value}: {reason}")]
-    Setting {
-        /// Command line or file.
-        source_name: String,
-        /// Field.
-        field: &'static str,
-        /// Value.
-        value: String,
-        /// What to change.
-        reason: String,
-    },
-    /// A file could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// A TOML file is not valid TOML.
-    #[error("{}: {source}", path.display())]
-    Toml {
-        /// The file.
-        path: PathBuf,
-        /// The parser's error (line, column, offending text).
-        source: crate::toml_input::TomlSyntax,
-    },
-    /// A field of a TOML file is unknown, missing or of the wrong type.
-    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
-    Field {
-        /// The file.
-        path: PathBuf,
-        /// Dotted path of the field.
-        field: String,
-        /// Its value as written, or `(missing)`.
-        value: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A JSON file is malformed, or a configuration cannot be printed as TOML.
-    #[error("{path}: {message}")]
-    Parse {
-        /// The file.
-        path: PathBuf,
-        /// Parser message (with the field).
-        message: String,
-    },
-    /// The run directory cannot be written.
-    #[error("run directory {path}: cannot write: {source}; choose a writable --out")]
-    RunDir {
-        /// The directory.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// The optimiser refused its settings or failed.
-    #[error("optimiser: {0}")]
-    Optim(#[from] OptimError),
-    /// An evaluation failed outright.
-    #[error("evaluation: {0}")]
-    Eval(#[from] crate::optim::EvalError),
-    /// Output could not be written.
-    #[error(transparent)]
-    Report(#[from] ReportError),
-    /// The console could not be written.
-    #[error("cannot write output: {0}")]
-    Io(#[from] std::io::Error),
-    /// Ctrl-C: the run stopped at a generation boundary without a final file.
-    #[error(
-        "stopped before generation {generation} (Ctrl-C); the checkpoint of the last complete \
-         generation is kept in {}: continue with --resume",
-        dir.display()
-    )]
-    Interrupted {
-        /// The generation that was not completed.
-        generation: u64,
-        /// The run directory.
-        dir: PathBuf,
-    },
-}
-
-/// Whether `optimize` arguments ask for a re-entry run.
-pub(super) fn wants_reentry(a: &OptimizeArgs) -> bool {
-    a.print_config
-        || a.config.is_some()
-        || a.resume.is_some()
-        || crate::design::PRESETS.contains(&a.problem.as_str())
-}
 
 fn read_text(path: &Path) -> Result<String, ReentryError> {
     std::fs::read_to_string(path).map_err(|source| ReentryError::Read {
@@ -490,20 +317,12 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         })?;
         write_atomic(&dir.join("config.toml"), text.as_bytes())?;
     }
-    let pool = match c.threads {
-        1 => None,
-        t => Some(Arc::new(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .map_err(|e| ReentryError::Setting {
-                    source_name: src.clone(),
-                    field: "threads",
-                    value: t.to_string(),
-                    reason: e.to_string(),
-                })?,
-        )),
-    };
+    let pool = Threads::new(c.threads).map_err(|e| ReentryError::Setting {
+        source_name: src.clone(),
+        field: "threads",
+        value: c.threads.to_string(),
+        reason: e.to_string(),
+    })?;
     let moead = MoeadConfig {
         population: c.population,
         neighbours: c.neighbours,
@@ -662,25 +481,8 @@ struct Ctx<'a, P> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
     problem: &'a P,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    pool: Threads,
     resume: bool,
-}
-
-fn step<P: RunProblem, A: Algorithm<P>>(
-    ctx: &Ctx<'_, P>,
-    alg: &mut A,
-    generations: u64,
-) -> Result<(), OptimError> {
-    match &ctx.pool {
-        Some(pool) => evolve(
-            alg,
-            ctx.problem,
-            &Rayon::with_pool(Arc::clone(pool)),
-            generations,
-            &mut NoObserver,
-        ),
-        None => evolve(alg, ctx.problem, &Serial, generations, &mut NoObserver),
-    }
 }
 
 fn drive<P, A>(ctx: &Ctx<'_, P>, fresh: A, out: &mut dyn Write) -> Result<(), ReentryError>
@@ -697,7 +499,7 @@ where
     // A run stopped before its first checkpoint (during the initial population) resumes
     // from the start.
     let resume = ctx.resume && ck_path.exists();
-    let (mut alg, mut records) = if resume {
+    let (alg, mut records) = if resume {
         let text = read_text(&ck_path)?;
         let mut de = serde_json::Deserializer::from_str(&text);
         let ck: Checkpoint<A> =
@@ -722,7 +524,6 @@ where
     let total = ctx.c.generations;
     let bar = indicatif::ProgressBar::new(total + 1);
     bar.set_position(records.len() as u64);
-    let start = Instant::now();
     let save = |alg: &A, records: &mut Vec<Record>| -> Result<(), ReentryError> {
         let pop = flat::<P>(alg.population());
         let result = alg.external_archive().map(flat::<P>);
@@ -755,30 +556,20 @@ where
     // it interrupts is no evaluation (`EvalError::Interrupted`), and the run stops at the next
     // generation boundary with the last complete generation's checkpoint and no final file.
     let _active = crate::sim::ActiveRun::start();
-    let interrupted = |alg: &A| ReentryError::Interrupted {
-        generation: alg.generation() + u64::from(alg.is_initialised()),
-        dir: ctx.dir.to_path_buf(),
-    };
-    let stepped = |alg: &mut A, g: u64| match step(ctx, alg, g) {
-        Err(_) if crate::sim::stop_requested() => Err(interrupted(alg)),
-        r => r.map_err(ReentryError::from),
-    };
-    if !alg.is_initialised() {
-        stepped(&mut alg, 0)?;
-        save(&alg, &mut records)?;
-    }
-    while alg.generation() < total {
-        if crate::sim::stop_requested() {
-            return Err(interrupted(&alg));
-        }
-        stepped(&mut alg, 1)?;
-        save(&alg, &mut records)?;
-    }
-    if crate::sim::stop_requested() {
-        return Err(interrupted(&alg));
+    let stop = crate::sim::stop_requested;
+    let run = Executor::new(ctx.problem, alg)
+        .budget(Budget::Generations(ctx.c.generations))
+        .threads(ctx.pool.clone())
+        .stop_when(&stop)
+        .run_with(|alg: &A| save(alg, &mut records))?;
+    let (alg, wall) = (run.algorithm, run.wall_time_s);
+    if run.stop == Stop::Interrupted {
+        return Err(ReentryError::Interrupted {
+            generation: alg.generation() + u64::from(alg.is_initialised()),
+            dir: ctx.dir.to_path_buf(),
+        });
     }
     bar.finish_and_clear();
-    let wall = start.elapsed().as_secs_f64();
     let last = records.last().cloned();
     // The front's members: the external archive's when the run keeps one.
     let scenarios: Vec<Option<Scenario>> = alg

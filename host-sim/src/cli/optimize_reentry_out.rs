@@ -9,7 +9,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::optimize_reentry::ReentryRunConfig;
+use super::optimize_common::ReentryRunConfig;
 use crate::design::AnalyticalModel;
 use crate::optim::Individual;
 use crate::optim::hypervolume::hypervolume;

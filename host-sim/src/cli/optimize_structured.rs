@@ -7,43 +7,21 @@
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
-use std::sync::Arc;
-use std::time::Instant;
 
-use super::optimize_cmd::{
-    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, pool, print_summary,
+use super::optimize_common::{
+    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, print_summary,
+    reference, threads,
 };
 use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::{
-    Algorithm, Individual, NewGenes, NoObserver, OptimError, Problem, Rayon, Scea, SceaConfig,
-    Serial, evolve,
+    Algorithm, Budget, Executor, Individual, OptimError, Problem, Scea, SceaConfig, Threads,
 };
 use crate::report::write_atomic;
 
-/// Where SCEA takes the genes of a node it appends (`--scea-genes`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum SceaGenesArg {
-    /// Uniformly random in the node bounds (the thesis' SCEA, sec. 4.1.5).
-    Random,
-    /// History-based: the same node of a mating parent from the population (the thesis'
-    /// recommendation, sec. 10.2); random when neither parent has it. The default.
-    #[value(alias = "history")]
-    Population,
-}
-
-impl SceaGenesArg {
-    /// The library's gene source.
-    #[must_use]
-    pub fn new_genes(self) -> NewGenes {
-        match self {
-            Self::Random => NewGenes::Random,
-            Self::Population => NewGenes::Population,
-        }
-    }
-}
+pub use super::optimize_common::SceaGenesArg;
 
 fn scea_config(a: &OptimizeArgs) -> SceaConfig {
     SceaConfig {
@@ -66,21 +44,13 @@ type SceaOutcome = (
 fn evolve_scea<P: StructuredProblem>(
     a: &OptimizeArgs,
     problem: &P,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    threads: &Threads,
 ) -> Result<SceaOutcome, OptimError> {
-    let mut alg = Scea::new(scea_config(a), a.seed);
-    let start = Instant::now();
-    match pool {
-        Some(pool) => evolve(
-            &mut alg,
-            problem,
-            &Rayon::with_pool(pool),
-            a.generations,
-            &mut NoObserver,
-        )?,
-        None => evolve(&mut alg, problem, &Serial, a.generations, &mut NoObserver)?,
-    }
-    let wall = start.elapsed().as_secs_f64();
+    let run = Executor::new(problem, Scea::new(scea_config(a), a.seed))
+        .budget(Budget::Generations(a.generations))
+        .threads(threads.clone())
+        .run()?;
+    let (alg, wall) = (run.algorithm, run.wall_time_s);
     Ok((
         <Scea as Algorithm<P>>::population(&alg).to_vec(),
         <Scea as Algorithm<P>>::external_archive(&alg).map(<[_]>::to_vec),
@@ -93,10 +63,10 @@ fn evolve_scea<P: StructuredProblem>(
 pub(super) fn drive_scea(
     a: &OptimizeArgs,
     problem: &TestProblem,
-    pool: Option<Arc<rayon::ThreadPool>>,
+    threads: &Threads,
 ) -> Result<Outcome, OptimError> {
     let wrapped = FixedLength::new(problem.clone());
-    let (population, archive, evaluations, wall_time_s) = evolve_scea(a, &wrapped, pool)?;
+    let (population, archive, evaluations, wall_time_s) = evolve_scea(a, &wrapped, threads)?;
     let fixed = |inds: Vec<Individual<Chromosome>>| -> Vec<Individual<Vec<f64>>> {
         inds.into_iter()
             .map(|i| Individual {
@@ -135,19 +105,8 @@ pub(super) fn run_variable_length(
         });
     }
     let m = problem.objectives();
-    let reference = match &a.reference {
-        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => r.clone(),
-        Some(r) => {
-            return Err(OptimizeError::Reference {
-                expected: m,
-                got: r.len(),
-                values: r.clone(),
-            });
-        }
-        None => problem.reference_point(),
-    };
-    let pool = pool(a.threads)?;
-    let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, pool)?;
+    let reference = reference(a, m, || problem.reference_point())?;
+    let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, &threads(a.threads)?)?;
     let result = archive.as_deref().unwrap_or(&pop);
     let front: Vec<&[f64]> = feasible_front_indices(result)
         .into_iter()
@@ -203,7 +162,7 @@ fn write_variable_length(
     // Front and summary as for the fixed-length problems (no decisions in the population
     // file there), then the chromosome file over it.
     let flat: Vec<Individual<Vec<f64>>> = Vec::new();
-    super::optimize_cmd::write_outputs(dir, &flat, front, summary)?;
+    super::optimize_common::write_outputs(dir, &flat, front, summary)?;
     let mut csv = String::new();
     let header: Vec<String> = (1..=summary.objectives)
         .map(|i| format!("f{i}"))
@@ -254,7 +213,7 @@ mod tests {
             batch_size: 1,
             ker: None,
             n_gen_mark: 7,
-            mhaco_constraints: super::super::optimize_cmd::MhacoConstraintsArg::FeasibilityFirst,
+            mhaco_constraints: super::super::optimize_common::MhacoConstraintsArg::FeasibilityFirst,
             scea_genes: SceaGenesArg::Population,
             archive: None,
             resource_allocation: false,

@@ -220,5 +220,18 @@ pub enum OptimError {
     },
     /// A restored state that does not hold together (a corrupt or edited checkpoint).
     #[error(transparent)]
-    State(#[from] super::restore::StateError),
+    State(#[from] StateError),
+}
+
+/// A restored state that does not hold together: its field (dotted path), the value and what
+/// is wrong.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("restored state: field `{field}` = {value}: {reason}")]
+pub struct StateError {
+    /// Dotted path of the field, with indices (`population[3].objectives`).
+    pub field: String,
+    /// The value found (shortened).
+    pub value: String,
+    /// What it must be.
+    pub reason: String,
 }

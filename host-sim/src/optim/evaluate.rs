@@ -72,6 +72,84 @@ impl Evaluator for Rayon {
 /// takes minutes to build and then thrashes); larger counts are refused naming the option.
 pub const MAX_THREADS: usize = 1024;
 
+/// How a run evaluates its batches: serially on the calling thread (1 thread) or on its own
+/// rayon pool of N threads. The one dispatch every front end uses (`host-sim optimize`, the
+/// re-entry and variable-length runs); the result does not depend on the count.
+#[derive(Clone, Debug)]
+pub struct Threads {
+    count: usize,
+    pool: Option<Arc<rayon::ThreadPool>>,
+}
+
+/// `Threads::new` refused the count or could not start the pool.
+#[derive(Debug, thiserror::Error)]
+pub enum ThreadsError {
+    /// 0, or more than [`MAX_THREADS`].
+    #[error("{0} evaluation threads: use 1 to {MAX_THREADS}")]
+    Count(usize),
+    /// The rayon pool could not be built.
+    #[error("cannot start {threads} evaluation threads: {source}")]
+    Pool {
+        /// Threads asked for.
+        threads: usize,
+        /// Cause.
+        source: rayon::ThreadPoolBuildError,
+    },
+}
+
+impl Threads {
+    /// Serial evaluation (1 thread).
+    #[must_use]
+    pub fn serial() -> Self {
+        Self {
+            count: 1,
+            pool: None,
+        }
+    }
+
+    /// `count` evaluation threads: 1 is serial, more build a pool of that size.
+    ///
+    /// # Errors
+    /// [`ThreadsError::Count`] for 0 or above [`MAX_THREADS`], [`ThreadsError::Pool`] if rayon
+    /// cannot start the threads.
+    pub fn new(count: usize) -> Result<Self, ThreadsError> {
+        match count {
+            0 => Err(ThreadsError::Count(count)),
+            c if c > MAX_THREADS => Err(ThreadsError::Count(count)),
+            1 => Ok(Self::serial()),
+            c => {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(c)
+                    .build()
+                    .map_err(|source| ThreadsError::Pool { threads: c, source })?;
+                Ok(Self {
+                    count: c,
+                    pool: Some(Arc::new(pool)),
+                })
+            }
+        }
+    }
+
+    /// Number of evaluation threads (1: serial).
+    #[must_use]
+    pub fn count(&self) -> usize {
+        self.count
+    }
+}
+
+impl Evaluator for Threads {
+    fn evaluate<P: Problem>(
+        &self,
+        problem: &P,
+        batch: &[P::Decision],
+    ) -> Vec<Result<Evaluation, EvalError>> {
+        match &self.pool {
+            Some(pool) => pool.install(|| batch.par_iter().map(|d| problem.evaluate(d)).collect()),
+            None => Serial.evaluate(problem, batch),
+        }
+    }
+}
+
 /// Run `generations` more generations of `algorithm` on `problem` (first completing the
 /// initial population if needed), evaluating each batch with `evaluator`. The observer sees
 /// the initial population (generation 0) and every completed generation.

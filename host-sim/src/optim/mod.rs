@@ -25,6 +25,7 @@ pub mod archive;
 pub mod chromosome;
 pub mod error;
 pub mod evaluate;
+pub mod executor;
 pub mod hypervolume;
 pub mod nonfinite;
 pub mod observe;
@@ -44,11 +45,11 @@ pub use algorithms::{
     Nsga2Config, ResourceAllocation, SbxVariation, Scea, SceaConfig,
 };
 pub use archive::ParetoArchive;
-pub use error::{BoundsError, ConfigError, EvalError, OptimError, TellError};
-pub use evaluate::{Evaluator, Rayon, Serial, evolve};
+pub use error::{BoundsError, ConfigError, EvalError, OptimError, StateError, TellError};
+pub use evaluate::{Evaluator, Rayon, Serial, Threads, ThreadsError, evolve};
+pub use executor::{Budget, Executor, Run, Stop};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
-pub use restore::StateError;
 pub use rng::OptimRng;
 pub use weights::{Decomposition, WeightGeneration};

@@ -7,21 +7,9 @@ use std::fmt::Display;
 
 use super::algorithm::Batch;
 use super::archive::ParetoArchive;
+pub use super::error::StateError;
 use super::population::Individual;
 use super::problem::Bounds;
-
-/// A restored state that does not hold together: its field (dotted path), the value and what
-/// is wrong.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("restored state: field `{field}` = {value}: {reason}")]
-pub struct StateError {
-    /// Dotted path of the field, with indices (`population[3].objectives`).
-    pub field: String,
-    /// The value found (shortened).
-    pub value: String,
-    /// What it must be.
-    pub reason: String,
-}
 
 /// A [`StateError`] for `field`.
 pub fn bad(field: impl Into<String>, value: impl Display, reason: impl Into<String>) -> StateError {

@@ -20,6 +20,7 @@ mod integrator_reuse;
 mod interrupt;
 mod layering;
 mod lift_down;
+mod module_graph;
 mod navconv;
 mod pil;
 mod pil_faults;
