@@ -357,6 +357,15 @@ impl CampaignSetup {
             .collect()
     }
 
+    /// The mode flying the most of the scenario's stack: the last of
+    /// [`CampaignSetup::modes`] (the barrier rides with the re-planning modes where the
+    /// scenario has it). `host-sim simulate` of a scenario with guidance layers flies the
+    /// nominal case in it (`crate::scenario::fly`).
+    #[must_use]
+    pub fn full_mode(&self) -> super::Mode {
+        self.modes().last().copied().unwrap_or(super::Mode::Stored)
+    }
+
     /// Check that the stack can fly every mode of `modes`.
     ///
     /// # Errors

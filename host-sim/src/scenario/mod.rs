@@ -154,7 +154,7 @@ use crate::sim::{SimConfig, Termination};
 
 pub use builtin::{horus_stack, srm_stack};
 pub use error::ScenarioError;
-pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
+pub use flight::{Flight, RunOutput, StackOutcome, fly, simulate_scenario, write_flight};
 pub use guidance::{
     PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
     build_stack, guidance_bounds,
