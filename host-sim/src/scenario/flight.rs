@@ -154,6 +154,19 @@ fn fly_layers(
 ) -> Result<Flight, ScenarioError> {
     let setup = CampaignSetup::new(sc, file, None).map_err(|e| campaign_error(e, file))?;
     let mode = setup.full_mode();
+    // Every layer written flies, or the flight is refused (never silently less).
+    if setup.stack_of(mode).layers() != setup.stack.layers() {
+        return Err(ScenarioError::Field {
+            file: file.to_string(),
+            field: "guidance.lateral".into(),
+            value: "(missing)".into(),
+            reason: format!(
+                "the layers {:?} make no campaign mode (re-planning flies with bank reversals): \
+                 add [guidance.lateral]",
+                setup.stack.layers()
+            ),
+        });
+    }
     let run = fly_case_run(&setup, None, mode, sc.output_interval_s, progress)
         .map_err(|e| campaign_error(e, file))?;
     Ok(Flight {

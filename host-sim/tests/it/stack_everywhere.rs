@@ -88,3 +88,18 @@ fn simulate_a_one_case_campaign_and_its_replay_fly_the_same_stack() {
     assert_eq!(&replayed, case);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A scenario whose layers make no campaign mode (re-planning without bank reversals) is
+/// refused by `simulate`, naming the missing section: it never flies less than it writes.
+#[test]
+fn simulate_refuses_layers_that_make_no_mode() {
+    let text = crate::support::complete_scenario(
+        "[guidance.replanning]\n[guidance.target]\nnominal = true\n",
+    );
+    let sc = parse_scenario(&text, "r.toml", std::path::Path::new(".")).unwrap();
+    let e = fly(&sc, "r.toml", &mut |_| {}).unwrap_err().to_string();
+    assert!(
+        e.contains("r.toml") && e.contains("guidance.lateral"),
+        "{e}"
+    );
+}
