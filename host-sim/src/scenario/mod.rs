@@ -128,6 +128,7 @@ pub mod file;
 mod flight;
 mod guidance;
 pub mod guidance_layers;
+pub mod old_replanning;
 mod required;
 mod resolve;
 mod resolve_environment;

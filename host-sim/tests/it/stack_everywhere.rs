@@ -103,3 +103,29 @@ fn simulate_refuses_layers_that_make_no_mode() {
         "{e}"
     );
 }
+
+/// A `[replanning]` section beside the guidance layers is refused, naming the new key of each
+/// old one it holds (one set of names per setting).
+#[test]
+fn replanning_beside_the_layers_names_the_new_keys() {
+    let text = crate::support::complete_scenario(
+        "[guidance.lateral]\n[guidance.replanning]\n[guidance.target]\nnominal = true\n\
+         [replanning]\nevery_n_ticks = 5\ntolerance_m = 500\nrange_km = 9000\nfinal_speed_m_s = 2500\n",
+    );
+    let e = parse_scenario(&text, "both.toml", std::path::Path::new("."))
+        .unwrap_err()
+        .to_string();
+    for part in [
+        "both.toml",
+        "`replanning`",
+        "replanning.every_n_ticks -> [guidance.replanning] every_n_ticks",
+        "replanning.tolerance_m -> [guidance.replanning] tolerance_km",
+        "replanning.range_km -> [guidance.target] downrange_km",
+        "replanning.final_speed_m_s -> [guidance.target] interface_speed_m_s",
+    ] {
+        assert!(e.contains(part), "`{part}` not in {e}");
+    }
+    assert!(!e.contains("max_skips"), "{e}");
+    // Every old key has its entry.
+    assert_eq!(host_sim::scenario::old_replanning::OLD_KEYS.len(), 17);
+}
