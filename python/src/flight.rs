@@ -8,7 +8,6 @@
 use std::path::{Path, PathBuf};
 
 use host_sim::env::{Atmosphere, ExponentialAtmosphere, Us76};
-use host_sim::report::summary_report;
 use host_sim::scenario::{Scenario, fly, parse_scenario, read_scenario, scenario_to_toml};
 use host_sim::sim::{Sample, SampleKind};
 use pyo3::exceptions::PyValueError;
@@ -119,13 +118,7 @@ pub(crate) fn resolve(
 fn fly_source(src: &Source, summary_only: bool) -> Result<FlownColumns, PyErr> {
     let (sc, file) = resolve(src).map_err(|e| errors::scenario(&e))?;
     let flight = fly(&sc, &file, &mut |_| {}).map_err(|e| errors::scenario(&e))?;
-    let summary = summary_report(
-        &flight.result,
-        &sc.name,
-        &flight.vehicle.name,
-        &sc.environment.describe(),
-        flight.environment.planet.radius_m,
-    );
+    let summary = flight.summary(&sc, &sc.name);
     let summary_json = serde_json::to_string(&summary)
         .map_err(|e| errors::ReentryError::new_err(format!("summary: {e}")))?;
     let samples = if summary_only {

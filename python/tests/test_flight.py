@@ -54,6 +54,18 @@ def test_builtin_and_its_scenario_dict(host_sim, tmp_path):
     host_sim("simulate", "--quiet", "--builtin", "srm-glide", "--out", tmp_path / "srm")
     expected = json.loads((tmp_path / "srm" / "summary.json").read_text())
     assert reentry.fly(builtin="srm-glide").summary == expected
+    # The built-in's whole stack flies, as a campaign's nominal case in its fullest mode: the
+    # same miss as `host-sim dispersions`' nominal record.
+    target = expected["target"]
+    assert target["mode"] == "replan-estimation" and target["reached_interface"]
+    host_sim("dispersions", "--builtin", "srm-glide", "-n", "1", "--threads", "1", "--quiet",
+             "--modes", "replan-estimation", "--out", tmp_path / "campaign")
+    campaign = json.loads((tmp_path / "campaign" / "summary.json").read_text())
+    (nominal,) = campaign["nominal"]
+    assert target["miss_km"] == nominal["miss_m"] / 1e3
+    assert (target["reversals"], target["replans"]) == (nominal["reversals"], nominal["replans"])
+    stored = reentry.fly(builtin="horus-2b-stored").summary
+    assert "target" not in stored
     assert set(reentry.builtin_scenarios()) == {"horus-2b-reference", "horus-2b-stored", "srm-glide"}
     assert reentry.scenario_toml() == host_sim("simulate", "--print-scenario").stdout
 

@@ -130,7 +130,7 @@ pub fn fly_case_logged(
     draw: Option<&CaseDraw>,
     mode: Mode,
 ) -> Result<(CaseResult, ReplanLog), CampaignError> {
-    fly_case_traced(setup, draw, mode).map(|(r, log, _)| (r, log))
+    fly_case_run(setup, draw, mode, 0.0, &mut |_| {}).map(|f| (f.case, f.log))
 }
 
 /// [`fly_case_logged`], also returning the flight's trajectory (a sample at every guidance
@@ -144,6 +144,36 @@ pub fn fly_case_traced(
     draw: Option<&CaseDraw>,
     mode: Mode,
 ) -> Result<(CaseResult, ReplanLog, SimResult), CampaignError> {
+    fly_case_run(setup, draw, mode, 0.0, &mut |_| {}).map(|f| (f.case, f.log, f.result))
+}
+
+/// A flown case with its trajectory ([`fly_case_run`]).
+#[derive(Debug)]
+pub struct CaseFlight {
+    /// The case's record (as the campaign writes it).
+    pub case: CaseResult,
+    /// Its re-plans.
+    pub log: ReplanLog,
+    /// The run (samples every `output_interval_s`, or at the guidance ticks for 0).
+    pub result: SimResult,
+}
+
+/// The one flight of a campaign case (`None`: the nominal world) in `mode`, also returning
+/// the run: [`fly_case`] and [`fly_case_logged`] fly it with `output_interval_s = 0` (samples at
+/// the guidance ticks) and no progress; `host-sim simulate` of a scenario with guidance layers
+/// flies the nominal case in the best mode with the scenario's output interval and a progress
+/// bar (`crate::scenario::fly`). The run ends at the terminal interface (the campaign's E-hat),
+/// at the altitude floor, or at the scenario's time limit or the ground.
+///
+/// # Errors
+/// As [`fly_case`].
+pub fn fly_case_run(
+    setup: &CampaignSetup,
+    draw: Option<&CaseDraw>,
+    mode: Mode,
+    output_interval_s: f64,
+    progress: &mut dyn FnMut(crate::sim::Progress),
+) -> Result<CaseFlight, CampaignError> {
     let sc = &setup.scenario;
     let scen = |source| CampaignError::Scenario {
         file: setup.file.clone(),
@@ -209,7 +239,7 @@ pub fn fly_case_traced(
     entry.longitude_rad += d.longitude_rad;
     let mut cfg: SimConfig = sc.sim_config();
     cfg.entry = entry;
-    cfg.output_interval_s = 0.0;
+    cfg.output_interval_s = output_interval_s;
     // Terminal interface: the nominal end's energy, as E-hat of this case's entry.
     let case_energy = EnergyNormalizer::<f64>::new(
         env.planet.mu_m3_s2,
@@ -240,7 +270,7 @@ pub fn fly_case_traced(
     })?;
     let source = ImuSource::new(StackSource::new(stack), ImuModel::of(&d));
     let (result, src) =
-        simulate(dynm, source, &cfg, &mut |_| {}).map_err(|source| CampaignError::Sim {
+        simulate(dynm, source, &cfg, progress).map_err(|source| CampaignError::Sim {
             index: Some(d.index),
             source,
         })?;
@@ -303,5 +333,5 @@ pub fn fly_case_traced(
         final_latitude_rad: end.latitude_rad,
         final_longitude_rad: end.longitude_rad,
     };
-    Ok((case, log, result))
+    Ok(CaseFlight { case, log, result })
 }

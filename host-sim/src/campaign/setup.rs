@@ -22,7 +22,7 @@ use crate::dynamics::SphericalState;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
 use crate::scenario::guidance_layers::CampaignGuidance;
-use crate::scenario::{Scenario, TargetSpec, build_guidance};
+use crate::scenario::{PREDICTOR_FIT_ALTITUDES_M, Scenario, TargetSpec, build_guidance};
 use crate::sim::SimResult;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -357,6 +357,15 @@ impl CampaignSetup {
             .collect()
     }
 
+    /// The mode flying the most of the scenario's stack: the last of
+    /// [`CampaignSetup::modes`] (the barrier rides with the re-planning modes where the
+    /// scenario has it). `host-sim simulate` of a scenario with guidance layers flies the
+    /// nominal case in it (`crate::scenario::fly`).
+    #[must_use]
+    pub fn full_mode(&self) -> super::Mode {
+        self.modes().last().copied().unwrap_or(super::Mode::Stored)
+    }
+
     /// Check that the stack can fly every mode of `modes`.
     ///
     /// # Errors
@@ -469,12 +478,14 @@ impl CampaignSetup {
                 reversal_lead_s: gs.terminal_reversal_lead_s,
             }),
         };
-        let fit = ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), 50e3, 100e3).map_err(
-            |e| CampaignError::Predictor {
-                file: file.into(),
-                source: e.into(),
-            },
-        )?;
+        let (h1, h2) = PREDICTOR_FIT_ALTITUDES_M;
+        let fit =
+            ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), h1, h2).map_err(|e| {
+                CampaignError::Predictor {
+                    file: file.into(),
+                    source: e.into(),
+                }
+            })?;
         let model =
             predictor_model(&vehicle, &fit, &planet, PREDICTOR_POLAR_MACH).map_err(|source| {
                 CampaignError::Predictor {
@@ -498,10 +509,10 @@ impl CampaignSetup {
                 min_vertical_fraction: gs.min_vertical_fraction,
                 max_vertical_fraction: gs.max_vertical_fraction,
                 tolerance_m: gs.replan_tolerance_km * 1e3,
-                max_iterations: 20,
+                max_iterations: guidance_core::replan::DEFAULT_MAX_ITERATIONS,
                 predictor: PredictorConfig {
                     final_speed_m_s: v_f + gs.final_speed_offset_m_s(),
-                    max_skips: 4,
+                    max_skips: guidance_core::replan::DEFAULT_MAX_SKIPS,
                 },
                 // The mode of `replan-estimation`; masking the estimator off drops the sink
                 // (`StackConfig::masked`).

@@ -121,6 +121,7 @@ fn pil_run(
         result,
         vehicle: sc.load_vehicle()?,
         environment: sc.environment.build(),
+        stack: None,
     };
     Ok(write_flight(
         sc,
@@ -240,6 +241,26 @@ pub(super) fn run(a: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError>
         s.skips,
         s.rhs_evals
     )?;
+    if let Some(t) = &s.target {
+        writeln!(
+            out,
+            "guidance stack ({}): miss {:.2} km from the target ({:.4} deg, {:.4} deg) (downrange {:+.2} km, crossrange {:+.2} km){}; {} reversals, {} re-plans ({} fall-backs)",
+            t.mode,
+            t.miss_km,
+            t.latitude_deg,
+            t.longitude_deg,
+            t.downrange_error_km,
+            t.crossrange_error_km,
+            if t.reached_interface {
+                ""
+            } else {
+                ", terminal interface not reached"
+            },
+            t.reversals,
+            t.replans,
+            t.fall_backs
+        )?;
+    }
     // The input warnings were printed before the flight.
     for w in run
         .warnings

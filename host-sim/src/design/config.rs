@@ -103,6 +103,8 @@ impl DesignConfig {
             "horus-2b" => {
                 let mut sc = Scenario {
                     name: "horus-2b-design".into(),
+                    // The design problems shape the stored profile: it is flown alone.
+                    layers: None,
                     ..Scenario::default()
                 };
                 // The reference mission's 2500 s limit cuts long-range profiles (a flight
@@ -119,6 +121,7 @@ impl DesignConfig {
             "srm" | "srm-altitude" | "srm-analytical" | "srm-analytical-altitude" => {
                 let mut sc = Scenario::srm_glide();
                 sc.name = "srm-design".into();
+                sc.layers = None;
                 Ok(sc)
             }
             file => Ok(read_scenario(&dir.join(file))?),

@@ -19,7 +19,8 @@ pub use csv::trajectory_csv;
 pub use plot::{PlotLimits, Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, begin_in_place, clean_stale};
 pub use summary::{
-    FinalState, LinkFaultsOut, PeakOut, PilOut, SummaryReport, ViolationsOut, summary_report,
+    FinalState, LinkFaultsOut, PeakOut, PilOut, SummaryReport, TargetOut, ViolationsOut,
+    summary_report,
 };
 
 /// Output failures (always naming the path).

@@ -114,6 +114,36 @@ pub struct SummaryReport {
     /// a software-in-the-loop summary is unchanged).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pil: Option<PilOut>,
+    /// The guidance stack's outcome against its target: only for a scenario with guidance
+    /// layers (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target: Option<TargetOut>,
+}
+
+/// A guidance stack's outcome against its target (`[guidance.target]`), as a campaign records
+/// its nominal case.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TargetOut {
+    /// The campaign mode flown (the scenario's fullest, e.g. `replan-estimation`).
+    pub mode: String,
+    /// Target latitude \[deg\] (geocentric).
+    pub latitude_deg: f64,
+    /// Target longitude \[deg\].
+    pub longitude_deg: f64,
+    /// True if the flight ended at the terminal interface (not the floor or the time limit).
+    pub reached_interface: bool,
+    /// Great-circle distance from the end to the target \[km\].
+    pub miss_km: f64,
+    /// Downrange error along the entry great circle (positive: long) \[km\].
+    pub downrange_error_km: f64,
+    /// Crossrange error (positive: right of the entry great circle) \[km\].
+    pub crossrange_error_km: f64,
+    /// Bank reversals.
+    pub reversals: u32,
+    /// Re-plans run.
+    pub replans: u32,
+    /// Re-plans that fell back to the table in use.
+    pub fall_backs: u32,
 }
 
 /// The processor-in-the-loop part of a PIL run's summary.
@@ -210,5 +240,6 @@ pub fn summary_report(
         rejected_steps: s.rejected_steps,
         guidance_ticks: s.ticks,
         pil: None,
+        target: None,
     }
 }

@@ -108,6 +108,15 @@ pub enum ScenarioError {
         /// The vehicle's rate limit \[deg/s\].
         vehicle_deg_s: f64,
     },
+    /// The scenario's guidance stack (its `[guidance.*]` layers) could not be built or flown
+    /// (the campaign set-up's error: it names the file and the field).
+    #[error("{file}: guidance stack: {source}")]
+    Stack {
+        /// File name (or built-in scenario).
+        file: String,
+        /// The set-up's error.
+        source: Box<crate::campaign::CampaignError>,
+    },
     /// The vehicle could not be loaded.
     #[error(transparent)]
     Vehicle(#[from] VehicleFileError),

@@ -7,6 +7,7 @@
 
 use guidance_core::estimate::{AeroEstimator, EstimatorConfig};
 use guidance_core::replan::PredictorMode;
+use guidance_core::{estimate, lateral, replan};
 use serde::{Deserialize, Serialize};
 
 use crate::campaign::CampaignError;
@@ -311,16 +312,16 @@ fn is_unit_scale(s: &[f64; 2]) -> bool {
 impl Default for CampaignGuidance {
     fn default() -> Self {
         Self {
-            corridor_width_entry_deg: 15.0,
-            corridor_width_final_deg: 3.0,
-            corridor_low_speed_fraction: 0.05,
-            hysteresis_deg: 1.0,
-            max_reversals: 12,
-            freeze_km: 30.0,
-            replan_every_n_ticks: 5,
-            replan_tolerance_km: 1.0,
-            min_vertical_fraction: 0.05,
-            max_vertical_fraction: 1.0,
+            corridor_width_entry_deg: lateral::DEFAULT_WIDTH_ENTRY_DEG,
+            corridor_width_final_deg: lateral::DEFAULT_WIDTH_FINAL_DEG,
+            corridor_low_speed_fraction: lateral::DEFAULT_LOW_SPEED_FRACTION,
+            hysteresis_deg: lateral::DEFAULT_HYSTERESIS_DEG,
+            max_reversals: lateral::DEFAULT_MAX_REVERSALS,
+            freeze_km: lateral::DEFAULT_FREEZE_DISTANCE_M / 1e3,
+            replan_every_n_ticks: replan::DEFAULT_EVERY_N_TICKS,
+            replan_tolerance_km: replan::DEFAULT_TOLERANCE_M / 1e3,
+            min_vertical_fraction: replan::DEFAULT_MIN_VERTICAL_FRACTION,
+            max_vertical_fraction: replan::DEFAULT_MAX_VERTICAL_FRACTION,
             glide_sink: true,
             predictor: CampaignPredictor::Hybrid,
             predictor_final_speed_offset_m_s: None,
@@ -337,11 +338,17 @@ impl Default for CampaignGuidance {
             terminal_lateral_km: None,
             terminal_tolerance_km: 1.0,
             terminal_reversal_lead_s: 5.0,
-            estimator_lift_to_drag_gain: 0.1,
-            estimator_drag_gain: 0.2,
-            estimator_lift_to_drag_bounds: [0.5, 2.0],
-            estimator_drag_bounds: [0.3, 3.0],
-            estimator_min_drag_m_s2: 0.5,
+            estimator_lift_to_drag_gain: estimate::DEFAULT_LIFT_TO_DRAG_GAIN,
+            estimator_drag_gain: estimate::DEFAULT_DRAG_GAIN,
+            estimator_lift_to_drag_bounds: [
+                estimate::DEFAULT_LIFT_TO_DRAG_BOUNDS.0,
+                estimate::DEFAULT_LIFT_TO_DRAG_BOUNDS.1,
+            ],
+            estimator_drag_bounds: [
+                estimate::DEFAULT_DRAG_BOUNDS.0,
+                estimate::DEFAULT_DRAG_BOUNDS.1,
+            ],
+            estimator_min_drag_m_s2: estimate::DEFAULT_MIN_DRAG_M_S2,
         }
     }
 }

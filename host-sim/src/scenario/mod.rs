@@ -128,6 +128,7 @@ pub mod file;
 mod flight;
 mod guidance;
 pub mod guidance_layers;
+pub mod old_replanning;
 mod required;
 mod resolve;
 mod resolve_environment;
@@ -154,7 +155,7 @@ use crate::sim::{SimConfig, Termination};
 
 pub use builtin::{horus_stack, srm_stack};
 pub use error::ScenarioError;
-pub use flight::{Flight, RunOutput, fly, simulate_scenario, write_flight};
+pub use flight::{Flight, RunOutput, StackOutcome, fly, simulate_scenario, write_flight};
 pub use guidance::{
     PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
     build_stack, guidance_bounds,

@@ -173,6 +173,9 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
         output(&f, t, &mut sc)?;
     }
     if let Some(t) = sf.replanning {
+        if sc.layers.is_some() {
+            return Err(super::old_replanning::refuse(&f, &t));
+        }
         super::resolve_replanning::replanning(&f, t, &mut sc)?;
     }
     cross_checks(&f, &sc)?;

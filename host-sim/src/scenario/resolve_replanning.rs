@@ -4,7 +4,8 @@
 
 use guidance_core::nodes::Independent;
 use guidance_core::replan::{
-    MAX_EVERY_N_TICKS, MAX_ITERATIONS, PredictorMode, RangeTarget, TargetPoint,
+    DEFAULT_EVERY_N_TICKS, DEFAULT_LAMBDA, DEFAULT_MAX_VERTICAL_FRACTION, MAX_EVERY_N_TICKS,
+    MAX_ITERATIONS, PredictorMode, RangeTarget, TargetPoint,
 };
 use guidance_core::vinh::predict::MAX_SKIPS;
 
@@ -66,7 +67,7 @@ pub(super) fn replanning(
         u32::from(MAX_EVERY_N_TICKS),
     )?
     .and_then(|n| u16::try_from(n).ok())
-    .unwrap_or(5);
+    .unwrap_or(DEFAULT_EVERY_N_TICKS);
     let steps = small("replanning.steps_per_tick", t.steps_per_tick, 0, u8::MAX)?.unwrap_or(0);
     let deg = |field, v| {
         f.checked(
@@ -131,13 +132,13 @@ pub(super) fn replanning(
             |x| (0.0..=10.0).contains(&x),
             "must be in [0, 10]",
         )?
-        .unwrap_or(1.0);
+        .unwrap_or(DEFAULT_LAMBDA);
     let fraction =
         |field, v| f.checked(field, v, |x: f64| x > 0.0 && x <= 1.0, "must be in (0, 1]");
     let fmin = fraction("replanning.min_vertical_fraction", t.min_vertical_fraction)?
         .unwrap_or(DEFAULT_MIN_VERTICAL_FRACTION);
-    let fmax =
-        fraction("replanning.max_vertical_fraction", t.max_vertical_fraction)?.unwrap_or(1.0);
+    let fmax = fraction("replanning.max_vertical_fraction", t.max_vertical_fraction)?
+        .unwrap_or(DEFAULT_MAX_VERTICAL_FRACTION);
     if fmin > fmax {
         return Err(f.err(
             "replanning.min_vertical_fraction",

@@ -91,7 +91,7 @@ fn terminal_state_error_follows_rtol_below_the_event_time_floor() {
 /// The built-in HORUS-2B reference flight (ended by the 25 km altitude event) at `rtol`
 /// (absolute tolerances from it, `state_atol`): final speed \[m/s\] and radius \[m\].
 fn reference_flight_end(rtol: f64) -> (f64, f64) {
-    let mut sc = host_sim::scenario::Scenario::default();
+    let mut sc = host_sim::scenario::Scenario::horus_2b_stored();
     sc.tolerances.rtol = rtol;
     let flight = host_sim::scenario::fly(&sc, "builtin", &mut |_| {}).unwrap();
     let end = flight.result.samples.last().unwrap();

@@ -33,5 +33,6 @@ mod replan_domain;
 mod replan_loop;
 mod run_dir_kill;
 mod scenario_files;
+mod stack_everywhere;
 mod support;
 mod warnings;

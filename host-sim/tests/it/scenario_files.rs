@@ -193,7 +193,10 @@ fn bad_environment_settings_are_named() {
 /// Heat-flux constants and the nose radius reach the run: doubling c* doubles the peak.
 #[test]
 fn heat_flux_constants_reach_the_dynamics() {
-    let base = Scenario::srm_glide();
+    let base = Scenario {
+        layers: None,
+        ..Scenario::srm_glide()
+    };
     let text = "vehicle = \"srm\"\n[heat_flux]\ncoefficient = 2.2194e8\n";
     let mut doubled = parse_scenario(&complete_scenario(text), "h.toml", Path::new(".")).unwrap();
     doubled.entry = base.entry;

@@ -13,7 +13,7 @@ use crate::support::complete_scenario;
 /// peak, the limit and the time of the summary, and the span of samples over the limit.
 #[test]
 fn reference_mission_warns_of_its_heat_flux_peak() {
-    let sc = Scenario::default();
+    let sc = Scenario::horus_2b_stored();
     let f = fly(&sc, "(built-in)", &mut |_| {}).unwrap();
     let w = f.warnings(&sc);
     assert_eq!(w.len(), 1, "{w:?}");
@@ -59,6 +59,7 @@ fn reference_mission_warns_of_its_heat_flux_peak() {
     }
     // Within every limit: no warning.
     let mut calm = Scenario::srm_glide();
+    calm.layers = None;
     calm.termination.max_time_s = 300.0;
     let f = fly(&calm, "(built-in)", &mut |_| {}).unwrap();
     assert_eq!(f.warnings(&calm), vec![]);
@@ -117,7 +118,13 @@ fn simulate_prints_the_warnings() {
     );
     assert!(dir.join("run/summary.json").exists());
     let o = Command::new(env!("CARGO_BIN_EXE_host-sim"))
-        .args(["simulate", "--quiet", "--out"])
+        .args([
+            "simulate",
+            "--quiet",
+            "--builtin",
+            "horus-2b-stored",
+            "--out",
+        ])
         .arg(dir.join("ref"))
         .output()
         .unwrap();
