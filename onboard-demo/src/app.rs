@@ -6,10 +6,17 @@
 //! `stm32f4-flight` (feature `stm32f4`, compile only) on an STM32F407's USART2 and timers with
 //! stm32f4xx-hal, free-running.
 //!
-//! Protocol (`guidance_core::link`): set-up frames build the guidance (`guidance_core::setup`:
-//! the stored profile, or with onboard re-planning when its items were uploaded; the core's
-//! own checks at commit, a typed status answering each item); each nav frame is one guidance
-//! update, answered with a command frame; an end frame ends the run. A frame that
+//! Protocol (`guidance_core::link`): image frames carry the whole flight-guidance stack
+//! (set-up protocol v2, `guidance_core::setup::image`: profile, re-planner, lateral logic with
+//! the terminal law, estimator, barrier and target, versioned and CRC-32-checked); after the
+//! last chunk the application decodes it in its scalars and builds a
+//! `guidance_core::stack::FlightStack` with the core's checks, answering a typed status for
+//! every refusal (CRC, version, size, a layer the build cannot fly, a malformed field, a stack
+//! the core rejects) and building nothing then. Set-up frames (protocol v1,
+//! `guidance_core::setup::SetupItem`) still build the stored profile or `ReplanningGuidance`
+//! alone. Each nav frame is one update (`FlightStack::tick` with the frame's sensed lift and
+//! drag accelerations), answered with a command frame that carries the stack's reversal and
+//! re-plan counts; an end frame ends the run. A frame that
 //! does not decode, or a sample guidance rejects, is a counted fault: the held command keeps
 //! flying and the answer carries the status. The status discrete is high while the last
 //! update was accepted, low after a fault or before guidance exists.
@@ -24,10 +31,14 @@ use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
 use embedded_io::{Read, ReadExactError, Write};
 use guidance_core::guidance::{Command, Guidance, RateLimits};
+use guidance_core::estimate::SensedAero;
 use guidance_core::link::{
-    CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
+    CommandFrame, FRAME_LEN, Frame, ImageFrame, LinkStatus, NavFrame, SetupFrame, decode, encode,
 };
+use guidance_core::nodes::DEFAULT_NODE_CAPACITY;
+use guidance_core::setup::image::{ImageReceiver, image_capacity};
 use guidance_core::setup::{SetupBuilder, SetupGuidance, SetupItem};
+use guidance_core::stack::{FlightStack, Layers};
 use guidance_core::{NavState, Real, Scalar};
 
 use crate::clock::{Pacing, TickMonitor, TickStats, TickTimer, pace, period_us};
@@ -58,6 +69,69 @@ pub enum AppError<E> {
     NoGuidance,
 }
 
+/// Bytes of the set-up image buffer: the largest image of a stack of
+/// [`DEFAULT_NODE_CAPACITY`] nodes (a larger table is refused as `ImageSize`).
+pub const IMAGE_BUFFER_BYTES: usize = image_capacity(DEFAULT_NODE_CAPACITY);
+
+/// The layers this application flies (every layer the core has, on both targets).
+pub const SUPPORTED_LAYERS: Layers = Layers::ALL;
+
+/// What the application flies: the uploaded stack (protocol v2), or the v1 set-up's guidance.
+// One per run, held for the whole run: no allocation.
+#[allow(clippy::large_enum_variant)]
+enum Flight<S, const N: usize, R> {
+    /// Protocol v1 (or the compiled-in fallback).
+    Legacy(SetupGuidance<S, N, R>),
+    /// Protocol v2: the whole stack.
+    Stack(FlightStack<S, N, R>),
+}
+
+impl<S: Scalar, const N: usize, R: Real> Flight<S, N, R> {
+    fn guidance(&self) -> &Guidance<S, N> {
+        match self {
+            Flight::Legacy(g) => g.guidance(),
+            Flight::Stack(s) => s.guidance(),
+        }
+    }
+
+    /// (reversals, re-plans) so far.
+    fn counts(&self) -> (u32, u32) {
+        match self {
+            Flight::Legacy(SetupGuidance::Replanning(r)) => (0, r.counts().replans),
+            Flight::Legacy(SetupGuidance::Stored(_)) => (0, 0),
+            Flight::Stack(s) => (
+                u32::from(s.reversals()),
+                s.replan_counts().map_or(0, |c| c.replans),
+            ),
+        }
+    }
+}
+
+fn narrow_sensed<R: Real>(s: &SensedAero<f64>) -> SensedAero<R> {
+    SensedAero {
+        lift_m_s2: R::from_f64(s.lift_m_s2),
+        drag_m_s2: R::from_f64(s.drag_m_s2),
+    }
+}
+
+/// Take one image chunk; after the last one decode the image and build the stack.
+fn take_chunk<S: Scalar, const N: usize, R: Real>(
+    rx: &mut ImageReceiver<IMAGE_BUFFER_BYTES>,
+    f: &ImageFrame,
+) -> Result<Option<FlightStack<S, N, R>>, LinkStatus> {
+    let image = rx
+        .take(f.index, f.count, &f.data)
+        .map_err(LinkStatus::from_image_error)?;
+    let Some(image) = image else {
+        return Ok(None);
+    };
+    let config = guidance_core::setup::image::decode::<S, N, R>(image, SUPPORTED_LAYERS)
+        .map_err(LinkStatus::from_image_error)?;
+    FlightStack::new(&config)
+        .map(Some)
+        .map_err(LinkStatus::from_stack_error)
+}
+
 fn narrow<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
     NavState {
         time_s: S::from_f64(n.time_s),
@@ -77,11 +151,13 @@ fn wide<S: Scalar>(c: Command<S>) -> Command<f64> {
     }
 }
 
-fn answer<S: Scalar, const N: usize>(
-    g: Option<&Guidance<S, N>>,
+fn answer<S: Scalar, const N: usize, R: Real>(
+    flight: Option<&Flight<S, N, R>>,
     seq: u32,
     status: LinkStatus,
 ) -> CommandFrame {
+    let (reversals, replans) = flight.map_or((0, 0), Flight::counts);
+    let g = flight.map(Flight::guidance);
     let zero = Command {
         alpha_rad: 0.0,
         sigma_rad: 0.0,
@@ -97,6 +173,8 @@ fn answer<S: Scalar, const N: usize>(
                 alpha_rad_s: 0.0,
                 sigma_rad_s: 0.0,
             },
+            reversals,
+            replans,
         };
     };
     let tick = g.last_tick_s().unwrap_or(S::ZERO);
@@ -111,6 +189,8 @@ fn answer<S: Scalar, const N: usize>(
             alpha_rad_s: rates.alpha_rad_s.to_f64(),
             sigma_rad_s: rates.sigma_rad_s.to_f64(),
         },
+        reversals,
+        replans,
     }
 }
 
@@ -139,7 +219,8 @@ where
     P: DelayNs,
 {
     let mut setup = SetupBuilder::<S, N>::new();
-    let mut guidance: Option<SetupGuidance<S, N, R>> = None;
+    let mut image = ImageReceiver::<IMAGE_BUFFER_BYTES>::new();
+    let mut guidance: Option<Flight<S, N, R>> = None;
     let mut inb = [0u8; FRAME_LEN];
     let mut outb = [0u8; FRAME_LEN];
     let mut out = Outcome {
@@ -164,7 +245,7 @@ where
                 let st = match item {
                     SetupItem::Commit => match setup.build_flight::<R>() {
                         Ok(g) => {
-                            guidance = Some(g);
+                            guidance = Some(Flight::Legacy(g));
                             LinkStatus::Ok
                         }
                         Err(e) => LinkStatus::from_setup_error(e),
@@ -174,19 +255,38 @@ where
                         Err(e) => LinkStatus::from_setup_error(e),
                     },
                 };
-                answer(guidance.as_ref().map(SetupGuidance::guidance), seq, st)
+                answer(guidance.as_ref(), seq, st)
             }
-            Ok(Frame::Nav(NavFrame { seq, nav })) => {
+            Ok(Frame::Image(f)) => {
+                let st = match take_chunk::<S, N, R>(&mut image, &f) {
+                    Ok(Some(stack)) => {
+                        guidance = Some(Flight::Stack(stack));
+                        LinkStatus::Ok
+                    }
+                    Ok(None) => LinkStatus::Ok,
+                    Err(st) => st,
+                };
+                answer(guidance.as_ref(), f.seq, st)
+            }
+            Ok(Frame::Nav(NavFrame { seq, nav, sensed })) => {
                 if guidance.is_none() {
-                    guidance = Some(SetupGuidance::Stored(
+                    guidance = Some(Flight::Legacy(SetupGuidance::Stored(
                         fallback().ok_or(AppError::NoGuidance)?,
-                    ));
+                    )));
                 }
                 match guidance.as_mut() {
                     Some(g) => {
-                        let st = match g.update(&narrow(&nav)) {
-                            Ok(o) if o.ticked => LinkStatus::Ok,
-                            Ok(_) => LinkStatus::NotTicked,
+                        let nav_s = narrow(&nav);
+                        let updated = match g {
+                            Flight::Legacy(l) => l.update(&nav_s).map(|o| o.ticked),
+                            Flight::Stack(s) => {
+                                let m = sensed.as_ref().map(narrow_sensed::<R>);
+                                s.tick(&nav_s, m.as_ref()).map(|o| o.ticked)
+                            }
+                        };
+                        let st = match updated {
+                            Ok(true) => LinkStatus::Ok,
+                            Ok(false) => LinkStatus::NotTicked,
                             Err(e) => {
                                 out.faults = out.faults.wrapping_add(1);
                                 LinkStatus::from_error(e)
@@ -195,23 +295,15 @@ where
                         healthy = matches!(st, LinkStatus::Ok | LinkStatus::NotTicked);
                         ticked = st == LinkStatus::Ok;
                         monitor.set_period_us(period_us(g.guidance().config().period_s.to_f64()));
-                        answer(Some(g.guidance()), seq, st)
+                        answer(Some(&*g), seq, st)
                     }
-                    None => answer::<S, N>(None, seq, LinkStatus::InvalidConfig),
+                    None => answer::<S, N, R>(None, seq, LinkStatus::InvalidConfig),
                 }
             }
-            Ok(Frame::Command(c)) => answer(
-                guidance.as_ref().map(SetupGuidance::guidance),
-                c.seq,
-                LinkStatus::BadFrame,
-            ),
+            Ok(Frame::Command(c)) => answer(guidance.as_ref(), c.seq, LinkStatus::BadFrame),
             Err(_) => {
                 out.faults = out.faults.wrapping_add(1);
-                answer(
-                    guidance.as_ref().map(SetupGuidance::guidance),
-                    0,
-                    LinkStatus::BadFrame,
-                )
+                answer(guidance.as_ref(), 0, LinkStatus::BadFrame)
             }
         };
         let _ = if healthy {
@@ -319,7 +411,15 @@ mod tests {
                 latitude_rad: HORUS2B_ENTRY.latitude_rad,
                 longitude_rad: HORUS2B_ENTRY.longitude_rad,
             };
-            encode(&Frame::Nav(NavFrame { seq: k, nav }), &mut b).unwrap();
+            encode(
+                &Frame::Nav(NavFrame {
+                    seq: k,
+                    nav,
+                    sensed: None,
+                }),
+                &mut b,
+            )
+            .unwrap();
             input.extend_from_slice(&b);
         }
         encode(&Frame::End(10), &mut b).unwrap();

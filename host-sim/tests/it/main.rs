@@ -22,6 +22,7 @@ mod layering;
 mod lift_down;
 mod navconv;
 mod pil;
+mod pil_campaign;
 mod pil_faults;
 mod pil_reliability;
 mod pil_replanning;
