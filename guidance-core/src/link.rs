@@ -42,9 +42,9 @@
 
 use crate::command::Command;
 use crate::error::{GuidanceError, NodeTableError};
+use crate::estimate::SensedAero;
 use crate::nav::NavState;
 use crate::rate::{RampEnd, RateLimits, limit_command, ramp_end};
-use crate::estimate::SensedAero;
 use crate::setup::image::{CHUNK_BYTES, ImageError};
 use crate::setup::{SetupError, SetupItem};
 use crate::stack::StackBuildError;
@@ -448,12 +448,7 @@ pub fn encode(frame: &Frame, out: &mut [u8; FRAME_LEN]) -> Result<(), LinkError>
         Frame::End(seq) => (FrameType::End, 0, *seq, [0.0; SLOTS]),
         Frame::Setup(f) => {
             let [a, b, c, d, e, g, h] = f.item.to_slots();
-            (
-                FrameType::Setup,
-                0,
-                f.seq,
-                [a, b, c, d, e, g, h, 0.0, 0.0],
-            )
+            (FrameType::Setup, 0, f.seq, [a, b, c, d, e, g, h, 0.0, 0.0])
         }
         Frame::Image(f) => {
             let (head, rest) = out.split_at_mut(PAYLOAD);

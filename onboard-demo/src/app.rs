@@ -30,8 +30,8 @@
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
 use embedded_io::{Read, ReadExactError, Write};
-use guidance_core::guidance::{Command, Guidance, RateLimits};
 use guidance_core::estimate::SensedAero;
+use guidance_core::guidance::{Command, Guidance, RateLimits};
 use guidance_core::link::{
     CommandFrame, FRAME_LEN, Frame, ImageFrame, LinkStatus, NavFrame, SetupFrame, decode, encode,
 };
@@ -114,22 +114,47 @@ fn narrow_sensed<R: Real>(s: &SensedAero<f64>) -> SensedAero<R> {
     }
 }
 
-/// Take one image chunk; after the last one decode the image and build the stack.
+/// Take one image chunk; after the last one decode the image and build the stack into
+/// `flight` (kept as it was on a refusal). Not inlined: the decoded configuration and the
+/// stack under construction live in this frame only, not in the serving loop's for the whole
+/// run.
+#[inline(never)]
 fn take_chunk<S: Scalar, const N: usize, R: Real>(
     rx: &mut ImageReceiver<IMAGE_BUFFER_BYTES>,
     f: &ImageFrame,
-) -> Result<Option<FlightStack<S, N, R>>, LinkStatus> {
-    let image = rx
-        .take(f.index, f.count, &f.data)
-        .map_err(LinkStatus::from_image_error)?;
-    let Some(image) = image else {
-        return Ok(None);
+    flight: &mut Option<Flight<S, N, R>>,
+) -> LinkStatus {
+    let image = match rx.take(f.index, f.count, &f.data) {
+        Ok(Some(image)) => image,
+        Ok(None) => return LinkStatus::Ok,
+        Err(e) => return LinkStatus::from_image_error(e),
     };
-    let config = guidance_core::setup::image::decode::<S, N, R>(image, SUPPORTED_LAYERS)
-        .map_err(LinkStatus::from_image_error)?;
-    FlightStack::new(&config)
-        .map(Some)
-        .map_err(LinkStatus::from_stack_error)
+    let config = match guidance_core::setup::image::decode::<S, N, R>(image, SUPPORTED_LAYERS) {
+        Ok(c) => c,
+        Err(e) => return LinkStatus::from_image_error(e),
+    };
+    match FlightStack::new(&config) {
+        Ok(stack) => {
+            *flight = Some(Flight::Stack(stack));
+            LinkStatus::Ok
+        }
+        Err(e) => LinkStatus::from_stack_error(e),
+    }
+}
+
+/// Build the v1 set-up's guidance into `flight` (not inlined, as [`take_chunk`]).
+#[inline(never)]
+fn commit_v1<S: Scalar, const N: usize, R: Real>(
+    setup: &SetupBuilder<S, N>,
+    flight: &mut Option<Flight<S, N, R>>,
+) -> LinkStatus {
+    match setup.build_flight::<R>() {
+        Ok(g) => {
+            *flight = Some(Flight::Legacy(g));
+            LinkStatus::Ok
+        }
+        Err(e) => LinkStatus::from_setup_error(e),
+    }
 }
 
 fn narrow<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
@@ -243,13 +268,7 @@ where
             Ok(Frame::End(_)) => return Ok(out),
             Ok(Frame::Setup(SetupFrame { seq, item })) => {
                 let st = match item {
-                    SetupItem::Commit => match setup.build_flight::<R>() {
-                        Ok(g) => {
-                            guidance = Some(Flight::Legacy(g));
-                            LinkStatus::Ok
-                        }
-                        Err(e) => LinkStatus::from_setup_error(e),
-                    },
+                    SetupItem::Commit => commit_v1(&setup, &mut guidance),
                     other => match setup.apply(&other) {
                         Ok(()) => LinkStatus::Ok,
                         Err(e) => LinkStatus::from_setup_error(e),
@@ -258,14 +277,7 @@ where
                 answer(guidance.as_ref(), seq, st)
             }
             Ok(Frame::Image(f)) => {
-                let st = match take_chunk::<S, N, R>(&mut image, &f) {
-                    Ok(Some(stack)) => {
-                        guidance = Some(Flight::Stack(stack));
-                        LinkStatus::Ok
-                    }
-                    Ok(None) => LinkStatus::Ok,
-                    Err(st) => st,
-                };
+                let st = take_chunk(&mut image, &f, &mut guidance);
                 answer(guidance.as_ref(), f.seq, st)
             }
             Ok(Frame::Nav(NavFrame { seq, nav, sensed })) => {

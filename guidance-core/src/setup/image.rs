@@ -59,7 +59,9 @@ use crate::replan::{
     ReplanLimits, SCHEDULE_NODES, ScheduleNode, TargetPoint,
 };
 use crate::scalar::{Real, Scalar};
-use crate::stack::{BarrierLayer, LateralLayer, Layer, Layers, ProfileLayer, ReplanLayer, StackConfig};
+use crate::stack::{
+    BarrierLayer, LateralLayer, Layer, Layers, ProfileLayer, ReplanLayer, StackConfig,
+};
 use crate::vinh::PredictorConfig;
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
@@ -77,7 +79,19 @@ const HEADER: usize = 12;
 #[must_use]
 pub const fn image_capacity(nodes: usize) -> usize {
     let profile = 3 * 8 + 1 + 1 + 8 + 4 * 8 + 2 + 24 * nodes + 3 * 8 + 2 * 8;
-    let replan = 2 + 2 * 8 + 4 * 8 + 1 + 8 + 1 + 1 + 2 * 8 + 3 * 8 + 5 * 8 + 8 + 1 + 1
+    let replan = 2
+        + 2 * 8
+        + 4 * 8
+        + 1
+        + 8
+        + 1
+        + 1
+        + 2 * 8
+        + 3 * 8
+        + 5 * 8
+        + 8
+        + 1
+        + 1
         + 1
         + 24 * SCHEDULE_NODES
         + 1
@@ -124,7 +138,10 @@ impl core::fmt::Display for ImageError {
         match self {
             Self::BadMagic => f.write_str("not a set-up image (bad magic)"),
             Self::BadVersion { found } => {
-                write!(f, "set-up image version {found}, this build reads {IMAGE_VERSION}")
+                write!(
+                    f,
+                    "set-up image version {found}, this build reads {IMAGE_VERSION}"
+                )
             }
             Self::BadCrc => f.write_str("set-up image CRC-32 mismatch"),
             Self::Size => f.write_str("set-up image size wrong or too large for the build"),
@@ -292,7 +309,11 @@ pub fn encode<S: Scalar, const M: usize, P: Real>(
     wr.bytes(&[0; 4])?;
     let p = &config.profile;
     let g = &p.guidance;
-    wr.fs(&[w(g.period_s), w(g.rates.alpha_rad_s), w(g.rates.sigma_rad_s)])?;
+    wr.fs(&[
+        w(g.period_s),
+        w(g.rates.alpha_rad_s),
+        w(g.rates.sigma_rad_s),
+    ])?;
     wr.u8(match p.table.independent() {
         Independent::NormalizedEnergy => 0,
         Independent::TimeS => 1,
@@ -500,7 +521,10 @@ pub fn decode<S: Scalar, const N: usize, P: Real>(
         }
     }
     // Fields, from byte 12, within the CRC-covered body.
-    let mut r = Reader { b: body, at: HEADER };
+    let mut r = Reader {
+        b: body,
+        at: HEADER,
+    };
     let guidance = GuidanceConfig {
         period_s: r.s()?,
         rates: RateLimits {
@@ -545,8 +569,8 @@ pub fn decode<S: Scalar, const N: usize, P: Real>(
     let used = nodes.get(..count).ok_or(ImageError::TooManyNodes)?;
     // A table the core rejects is flown by nobody: reported as malformed.
     let table = NodeTable::new(independent, used, bounds).map_err(|_| ImageError::Malformed)?;
-    let energy = EnergyNormalizer::from_parts([r.f()?, r.f()?, r.f()?])
-        .map_err(|_| ImageError::Range)?;
+    let energy =
+        EnergyNormalizer::from_parts([r.f()?, r.f()?, r.f()?]).map_err(|_| ImageError::Range)?;
     let initial = Command {
         alpha_rad: r.s()?,
         sigma_rad: r.s()?,
@@ -821,16 +845,13 @@ impl<const CAP: usize> ImageReceiver<CAP> {
 /// The chunks of an image: (index, count, 68 bytes, the last padded with zeros).
 pub fn chunks(image: &[u8]) -> impl Iterator<Item = (u16, u16, [u8; CHUNK_BYTES])> + '_ {
     let count = u16::try_from(image.len().div_ceil(CHUNK_BYTES)).unwrap_or(u16::MAX);
-    image
-        .chunks(CHUNK_BYTES)
-        .zip(0u16..)
-        .map(move |(c, i)| {
-            let mut a = [0u8; CHUNK_BYTES];
-            if let Some(d) = a.get_mut(..c.len()) {
-                d.copy_from_slice(c);
-            }
-            (i, count, a)
-        })
+    image.chunks(CHUNK_BYTES).zip(0u16..).map(move |(c, i)| {
+        let mut a = [0u8; CHUNK_BYTES];
+        if let Some(d) = a.get_mut(..c.len()) {
+            d.copy_from_slice(c);
+        }
+        (i, count, a)
+    })
 }
 
 #[cfg(test)]
@@ -841,5 +862,12 @@ mod tests {
     #[test]
     fn crc32_check_value() {
         assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+    }
+
+    /// The figure docs/reference/guidance-stack.md states.
+    #[test]
+    fn capacity_of_the_firmware_table() {
+        assert_eq!(image_capacity(16), 1171);
+        assert_eq!(image_capacity(16).div_ceil(CHUNK_BYTES), 18);
     }
 }

@@ -20,7 +20,8 @@ const CAP: usize = image_capacity(16);
 /// terminal law, a Hermite table.
 fn everything() -> StackConfig<f64> {
     let mut c = full();
-    c.profile.interpolation = guidance_core::interp::Interpolation::CardinalHermite { tension: 0.25 };
+    c.profile.interpolation =
+        guidance_core::interp::Interpolation::CardinalHermite { tension: 0.25 };
     if let Some(r) = c.replan.as_mut() {
         r.lift_schedule = Some(LiftSchedule::linear(7000.0, 1.2, 3000.0, 0.8));
         r.start_normalized_energy = Some(0.9);
@@ -102,7 +103,9 @@ fn decoded_stacks_fly_in_the_firmware_scalars() {
             time_s: <Fixed as guidance_core::Scalar>::from_f64(n.time_s),
             radius_m: <Fixed as guidance_core::Scalar>::from_f64(n.radius_m),
             speed_m_s: <Fixed as guidance_core::Scalar>::from_f64(n.speed_m_s),
-            flight_path_angle_rad: <Fixed as guidance_core::Scalar>::from_f64(n.flight_path_angle_rad),
+            flight_path_angle_rad: <Fixed as guidance_core::Scalar>::from_f64(
+                n.flight_path_angle_rad,
+            ),
             heading_rad: <Fixed as guidance_core::Scalar>::from_f64(n.heading_rad),
             latitude_rad: <Fixed as guidance_core::Scalar>::from_f64(n.latitude_rad),
             longitude_rad: <Fixed as guidance_core::Scalar>::from_f64(n.longitude_rad),

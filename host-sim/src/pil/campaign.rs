@@ -274,7 +274,10 @@ pub fn fly_case_pil(
     })
 }
 
-fn stack_error(setup: &CampaignSetup, source: guidance_core::stack::StackBuildError) -> CampaignError {
+fn stack_error(
+    setup: &CampaignSetup,
+    source: guidance_core::stack::StackBuildError,
+) -> CampaignError {
     CampaignError::Stack {
         file: setup.file.clone(),
         source,
