@@ -515,4 +515,101 @@ mod tests {
         let total_ns: u64 = d.0.iter().map(|&n| u64::from(n)).sum();
         assert_eq!(total_ns, 5 * 1_000_000_000);
     }
+
+    /// The reference mission's profile as a stack image (protocol v2).
+    fn stack_image() -> Vec<u8> {
+        use guidance_core::stack::{ProfileLayer, StackConfig};
+        let m = horus2b_reference::<f64>().unwrap();
+        let c: StackConfig<f64> = StackConfig {
+            profile: ProfileLayer {
+                guidance: m.config,
+                table: m.table.clone(),
+                interpolation: m.interpolation,
+                energy: m.earth_energy_normalizer().unwrap(),
+                initial: m.initial,
+            },
+            replan: None,
+            lateral: None,
+            estimator: None,
+            barrier: None,
+            target: None,
+        };
+        let mut b = [0u8; IMAGE_BUFFER_BYTES];
+        let n = guidance_core::setup::image::encode(&c, &mut b).unwrap();
+        b[..n].to_vec()
+    }
+
+    /// `image`'s chunks (in `order`), then the ten nav frames of [`link`]; the statuses of
+    /// the chunk answers and the number of `Ok` nav answers.
+    fn upload(image: &[u8], order: &[usize]) -> (Vec<LinkStatus>, u32, bool) {
+        let chunks: Vec<_> = guidance_core::setup::image::chunks(image).collect();
+        let mut l = link();
+        let mut input = Vec::new();
+        let mut b = [0u8; FRAME_LEN];
+        for (seq, &k) in order.iter().enumerate() {
+            let (index, count, data) = chunks[k];
+            let f = ImageFrame {
+                seq: 100 + u32::try_from(seq).unwrap(),
+                index,
+                count,
+                data,
+            };
+            encode(&Frame::Image(f), &mut b).unwrap();
+            input.extend_from_slice(&b);
+        }
+        let n = input.len();
+        input.extend_from_slice(&l.input);
+        l.input = input;
+        let mut t = SteppingTimer {
+            now_us: 0,
+            step_us: 1,
+        };
+        // No fallback: with nothing built the first nav frame ends the run (`NoGuidance`).
+        let built = serve::<f32, CAP, f32, _, _, _, _>(&mut l, &mut Pin, &mut t, LOCKSTEP, || None)
+            .map_err(|e| assert_eq!(e, AppError::NoGuidance))
+            .is_ok();
+        let answers: Vec<_> = l
+            .output
+            .chunks_exact(FRAME_LEN)
+            .map(|c| match decode(c) {
+                Ok(Frame::Command(c)) => c.status,
+                _ => LinkStatus::BadFrame,
+            })
+            .collect();
+        let k = n / FRAME_LEN;
+        let ok = answers[k..]
+            .iter()
+            .filter(|s| **s == LinkStatus::Ok)
+            .count();
+        (answers[..k].to_vec(), u32::try_from(ok).unwrap(), built)
+    }
+
+    /// A good image builds the stack (every chunk `Ok`, the nav frames fly it); a corrupted
+    /// one is refused with `ImageCrc`, a chunk out of order with `ImageOrder`, and with
+    /// nothing built no nav frame is flown (without a fallback the run stops), never with less.
+    #[test]
+    fn set_up_image_builds_the_stack_or_is_refused_typed() {
+        let img = stack_image();
+        let n = img.len().div_ceil(guidance_core::setup::image::CHUNK_BYTES);
+        let all: Vec<usize> = (0..n).collect();
+        let (st, ok, built) = upload(&img, &all);
+        assert!(st.iter().all(|s| *s == LinkStatus::Ok), "{st:?}");
+        assert!(built);
+        assert_eq!(ok, 5);
+        let mut bad = img.clone();
+        bad[20] ^= 1;
+        let (st, ok, built) = upload(&bad, &all);
+        assert_eq!(st.last(), Some(&LinkStatus::ImageCrc));
+        assert!(!built && ok == 0);
+        let mut swapped = all.clone();
+        swapped.swap(1, 2);
+        let (st, _, built) = upload(&img, &swapped);
+        assert_eq!(st[1], LinkStatus::ImageOrder);
+        assert!(!built);
+        let mut v3 = img.clone();
+        v3[4] = 3;
+        let (st, _, built) = upload(&v3, &all);
+        assert_eq!(st.last(), Some(&LinkStatus::ImageVersion));
+        assert!(!built);
+    }
 }
