@@ -72,6 +72,36 @@ impl<S: Scalar> EnergyNormalizer<S> {
         })
     }
 
+    /// The precomputed constants: surface circular speed `sqrt(mu/R)` \[m/s\], planet radius
+    /// `R` \[m\], and the inverse energy span \[-\] (what [`EnergyNormalizer::from_parts`]
+    /// takes; the set-up image carries them, [`crate::setup::image`]).
+    #[must_use]
+    pub fn parts(&self) -> [S; 3] {
+        [self.circular_speed_m_s, self.planet_radius_m, self.inv_span]
+    }
+
+    /// The normaliser of [`EnergyNormalizer::parts`] given in `f64` (each rounded to `S`, as
+    /// [`EnergyNormalizer::new`] rounds them: the same normaliser bit for bit).
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] if a part is non-finite, not positive, or does not
+    /// fit `S`.
+    pub fn from_parts(parts: [f64; 3]) -> Result<Self, GuidanceError> {
+        let [c, r, i] = parts;
+        let conv = |v: f64| {
+            if v.is_finite() && v > 0.0 {
+                S::from_f64_checked(v).ok_or(GuidanceError::InvalidConfig)
+            } else {
+                Err(GuidanceError::InvalidConfig)
+            }
+        };
+        Ok(Self {
+            circular_speed_m_s: conv(c)?,
+            planet_radius_m: conv(r)?,
+            inv_span: conv(i)?,
+        })
+    }
+
     /// Normalised energy E-hat \[-\] at `radius_m` \[m\] and `speed_m_s` \[m/s\]. 1 at entry, 0 at
     /// standstill on the surface; not clamped (it can exceed 1 or go below 0).
     ///

@@ -2,7 +2,7 @@
 //! the host simulator (`host-sim::pil`) and the firmware (`onboard-demo`'s `pil` binary).
 //!
 //! # Frame layout
-//! Every frame is [`FRAME_LEN`] = 66 bytes, all integers and floats little-endian:
+//! Every frame is [`FRAME_LEN`] = 82 bytes, all integers and floats little-endian:
 //!
 //! | bytes  | field                                                            |
 //! |--------|------------------------------------------------------------------|
@@ -10,16 +10,23 @@
 //! | 2      | frame type ([`FrameType`])                                       |
 //! | 3      | status ([`LinkStatus`]; 0 except in command frames)             |
 //! | 4..8   | sequence number (`u32`; a command answers the nav frame's number) |
-//! | 8..64  | payload: seven `f64` (unused slots are 0)                         |
-//! | 64..66 | CRC-16/CCITT-FALSE over bytes 0..64 ([`crc16_ccitt`])             |
+//! | 8..80  | payload: nine `f64` (unused slots are 0), or raw image bytes      |
+//! | 80..82 | CRC-16/CCITT-FALSE over bytes 0..80 ([`crc16_ccitt`])             |
 //!
 //! Payloads (all `f64`, SI units, radians):
 //! * nav: time \[s\], radius \[m\], speed \[m/s\], flight-path angle \[rad\], heading \[rad\],
-//!   latitude \[rad\], longitude \[rad\] (the [`NavState`] field order);
+//!   latitude \[rad\], longitude \[rad\] (the [`NavState`] field order), then the sensed lift
+//!   and drag accelerations \[m/s^2\] (type [`FrameType::NavSensed`]; 0 in a
+//!   [`FrameType::Nav`] frame, which carries no measurement);
 //! * command: tick time \[s\], held alpha \[rad\], held sigma \[rad\], ramp-start alpha \[rad\],
-//!   ramp-start sigma \[rad\], alpha rate limit \[rad/s\], sigma rate limit \[rad/s\];
+//!   ramp-start sigma \[rad\], alpha rate limit \[rad/s\], sigma rate limit \[rad/s\], bank
+//!   reversals made \[-\], re-plans run \[-\] (exact integers);
 //! * end: none (all zero);
-//! * set-up: slot 0 the item code, then the item's values ([`crate::setup::SetupItem`]).
+//! * set-up (protocol v1): slot 0 the item code, then the item's values
+//!   ([`crate::setup::SetupItem`]; slots 7 and 8 are 0);
+//! * image (set-up protocol v2, [`crate::setup::image`]): bytes 8..10 the chunk index, 10..12
+//!   the chunk count (`u16`), 12..80 the [`CHUNK_BYTES`] image bytes of the chunk (raw, not
+//!   floats).
 //!
 //! Why `f64` on the wire although the firmware runs `f32` guidance: the host's state goes over
 //! unchanged and the firmware rounds it to `f32` itself (exactly where an `f32` SIL run would),
@@ -35,16 +42,19 @@
 
 use crate::command::Command;
 use crate::error::{GuidanceError, NodeTableError};
+use crate::estimate::SensedAero;
 use crate::nav::NavState;
 use crate::rate::{RampEnd, RateLimits, limit_command, ramp_end};
+use crate::setup::image::{CHUNK_BYTES, ImageError};
 use crate::setup::{SetupError, SetupItem};
+use crate::stack::StackBuildError;
 
 /// Length of every frame \[bytes\].
-pub const FRAME_LEN: usize = 66;
+pub const FRAME_LEN: usize = 82;
 /// Sync word at the start of every frame.
 pub const SYNC: [u8; 2] = [0xA5, 0x5A];
 /// Number of `f64` payload slots.
-const SLOTS: usize = 7;
+const SLOTS: usize = 9;
 /// Offset of the payload \[bytes\].
 const PAYLOAD: usize = 8;
 /// Offset of the checksum \[bytes\].
@@ -103,6 +113,12 @@ pub enum FrameType {
     /// Host -> firmware: one guidance set-up item ([`crate::setup`]); answered by a command
     /// frame whose status says whether it was taken.
     Setup = 4,
+    /// Host -> firmware: one chunk of a set-up image ([`crate::setup::image`]); answered by
+    /// a command frame whose status says whether it was taken (after the last chunk: whether
+    /// the stack was built).
+    Image = 5,
+    /// Host -> firmware: navigation state with the sensed lift and drag accelerations.
+    NavSensed = 6,
 }
 
 /// Outcome of one guidance update on the firmware, carried in command frames. Maps
@@ -132,6 +148,24 @@ pub enum LinkStatus {
     /// A set-up item was malformed, out of order, or the set-up incomplete at commit
     /// ([`crate::setup::SetupError`] other than a core error).
     BadSetup,
+    /// A set-up image failed its CRC-32 ([`ImageError::BadCrc`]).
+    ImageCrc,
+    /// A set-up image of another format version, or not an image
+    /// ([`ImageError::BadVersion`], [`ImageError::BadMagic`]).
+    ImageVersion,
+    /// A set-up image with a layer this build does not fly ([`ImageError::Unsupported`]).
+    ImageLayer,
+    /// A set-up image too large for the build, of the wrong size, or with more nodes than the
+    /// build holds ([`ImageError::Size`], [`ImageError::TooManyNodes`]).
+    ImageSize,
+    /// A set-up image chunk out of order ([`ImageError::ChunkOrder`]).
+    ImageOrder,
+    /// A malformed set-up image field, or a value the firmware's scalar cannot hold
+    /// ([`ImageError::Malformed`], [`ImageError::Range`]).
+    ImageMalformed,
+    /// The stack of a set-up image was rejected by the core's checks
+    /// ([`crate::stack::FlightStack::new`]).
+    StackRejected,
 }
 
 impl LinkStatus {
@@ -143,6 +177,25 @@ impl LinkStatus {
             SetupError::Guidance(g) => Self::from_error(g),
             _ => LinkStatus::BadSetup,
         }
+    }
+
+    /// Status of a set-up image refusal.
+    #[must_use]
+    pub fn from_image_error(e: ImageError) -> Self {
+        match e {
+            ImageError::BadCrc => LinkStatus::ImageCrc,
+            ImageError::BadMagic | ImageError::BadVersion { .. } => LinkStatus::ImageVersion,
+            ImageError::Unsupported(_) => LinkStatus::ImageLayer,
+            ImageError::Size | ImageError::TooManyNodes => LinkStatus::ImageSize,
+            ImageError::ChunkOrder => LinkStatus::ImageOrder,
+            ImageError::Malformed | ImageError::Range => LinkStatus::ImageMalformed,
+        }
+    }
+
+    /// Status of a stack the core refused to build.
+    #[must_use]
+    pub fn from_stack_error(_: StackBuildError) -> Self {
+        LinkStatus::StackRejected
     }
 
     /// Status of a guidance error.
@@ -173,7 +226,14 @@ impl LinkStatus {
             LinkStatus::Ok
             | LinkStatus::NotTicked
             | LinkStatus::BadFrame
-            | LinkStatus::BadSetup => None,
+            | LinkStatus::BadSetup
+            | LinkStatus::ImageCrc
+            | LinkStatus::ImageVersion
+            | LinkStatus::ImageLayer
+            | LinkStatus::ImageSize
+            | LinkStatus::ImageOrder
+            | LinkStatus::ImageMalformed
+            | LinkStatus::StackRejected => None,
         }
     }
 
@@ -189,6 +249,13 @@ impl LinkStatus {
             LinkStatus::BadFrame => 7,
             LinkStatus::ImplausibleTime => 8,
             LinkStatus::BadSetup => 9,
+            LinkStatus::ImageCrc => 10,
+            LinkStatus::ImageVersion => 11,
+            LinkStatus::ImageLayer => 12,
+            LinkStatus::ImageSize => 13,
+            LinkStatus::ImageOrder => 14,
+            LinkStatus::ImageMalformed => 15,
+            LinkStatus::StackRejected => 16,
         }
     }
 
@@ -204,6 +271,13 @@ impl LinkStatus {
             7 => LinkStatus::BadFrame,
             8 => LinkStatus::ImplausibleTime,
             9 => LinkStatus::BadSetup,
+            10 => LinkStatus::ImageCrc,
+            11 => LinkStatus::ImageVersion,
+            12 => LinkStatus::ImageLayer,
+            13 => LinkStatus::ImageSize,
+            14 => LinkStatus::ImageOrder,
+            15 => LinkStatus::ImageMalformed,
+            16 => LinkStatus::StackRejected,
             _ => return Err(LinkError::BadStatus),
         })
     }
@@ -217,6 +291,8 @@ pub struct NavFrame {
     pub seq: u32,
     /// Navigation state (SI units, radians).
     pub nav: NavState<f64>,
+    /// The lift and drag accelerations \[m/s^2\] sensed at `nav` (`None`: no measurement).
+    pub sensed: Option<SensedAero<f64>>,
 }
 
 /// Firmware -> host: the guidance answer to one [`NavFrame`].
@@ -235,6 +311,10 @@ pub struct CommandFrame {
     pub ramp_start: Command<f64>,
     /// Rate limits of the ramp \[rad/s\].
     pub rates: RateLimits<f64>,
+    /// Bank reversals the firmware's stack has made \[-\] (0 without the lateral layer).
+    pub reversals: u32,
+    /// Re-plans the firmware's stack has run \[-\] (0 without the re-planner).
+    pub replans: u32,
 }
 
 impl CommandFrame {
@@ -273,6 +353,22 @@ pub enum Frame {
     End(u32),
     /// Guidance set-up item.
     Setup(SetupFrame),
+    /// One chunk of a set-up image.
+    Image(ImageFrame),
+}
+
+/// Host -> firmware: one chunk of a set-up image ([`crate::setup::image`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ImageFrame {
+    /// Sequence number \[-\].
+    pub seq: u32,
+    /// Index of this chunk (from 0) \[-\].
+    pub index: u16,
+    /// Number of chunks of the image \[-\].
+    pub count: u16,
+    /// The chunk's image bytes (the last chunk padded with zeros).
+    pub data: [u8; CHUNK_BYTES],
 }
 
 /// Host -> firmware: one guidance set-up item.
@@ -312,8 +408,12 @@ pub fn encode(frame: &Frame, out: &mut [u8; FRAME_LEN]) -> Result<(), LinkError>
     let (ty, status, seq, vals) = match frame {
         Frame::Nav(f) => {
             let n = &f.nav;
+            let (ty, l, d) = match f.sensed {
+                Some(s) => (FrameType::NavSensed, s.lift_m_s2, s.drag_m_s2),
+                None => (FrameType::Nav, 0.0, 0.0),
+            };
             (
-                FrameType::Nav,
+                ty,
                 0,
                 f.seq,
                 [
@@ -324,6 +424,8 @@ pub fn encode(frame: &Frame, out: &mut [u8; FRAME_LEN]) -> Result<(), LinkError>
                     n.heading_rad,
                     n.latitude_rad,
                     n.longitude_rad,
+                    l,
+                    d,
                 ],
             )
         }
@@ -339,31 +441,47 @@ pub fn encode(frame: &Frame, out: &mut [u8; FRAME_LEN]) -> Result<(), LinkError>
                 f.ramp_start.sigma_rad,
                 f.rates.alpha_rad_s,
                 f.rates.sigma_rad_s,
+                f64::from(f.reversals),
+                f64::from(f.replans),
             ],
         ),
         Frame::End(seq) => (FrameType::End, 0, *seq, [0.0; SLOTS]),
-        Frame::Setup(f) => (FrameType::Setup, 0, f.seq, f.item.to_slots()),
+        Frame::Setup(f) => {
+            let [a, b, c, d, e, g, h] = f.item.to_slots();
+            (FrameType::Setup, 0, f.seq, [a, b, c, d, e, g, h, 0.0, 0.0])
+        }
+        Frame::Image(f) => {
+            let (head, rest) = out.split_at_mut(PAYLOAD);
+            head.copy_from_slice(&header(FrameType::Image, 0, f.seq));
+            let (payload, _) = rest.split_at_mut(CRC_AT - PAYLOAD);
+            let (ic, data) = payload.split_at_mut(4);
+            let [i0, i1] = f.index.to_le_bytes();
+            let [c0, c1] = f.count.to_le_bytes();
+            ic.copy_from_slice(&[i0, i1, c0, c1]);
+            data.copy_from_slice(&f.data);
+            seal(out);
+            return Ok(());
+        }
     };
     if vals.iter().any(|v| !v.is_finite()) {
         return Err(LinkError::NonFinite);
     }
     let (head, rest) = out.split_at_mut(PAYLOAD);
     let (payload, _) = rest.split_at_mut(CRC_AT - PAYLOAD);
-    let seq_bytes = seq.to_le_bytes();
-    let header = [
-        SYNC[0],
-        SYNC[1],
-        ty as u8,
-        status,
-        seq_bytes[0],
-        seq_bytes[1],
-        seq_bytes[2],
-        seq_bytes[3],
-    ];
-    head.copy_from_slice(&header);
+    head.copy_from_slice(&header(ty, status, seq));
     for (chunk, v) in payload.chunks_exact_mut(8).zip(vals.iter()) {
         chunk.copy_from_slice(&v.to_le_bytes());
     }
+    seal(out);
+    Ok(())
+}
+
+fn header(ty: FrameType, status: u8, seq: u32) -> [u8; PAYLOAD] {
+    let q = seq.to_le_bytes();
+    [SYNC[0], SYNC[1], ty as u8, status, q[0], q[1], q[2], q[3]]
+}
+
+fn seal(out: &mut [u8; FRAME_LEN]) {
     let crc = match out.get(..CRC_AT) {
         Some(body) => crc16_ccitt(body),
         None => 0,
@@ -371,7 +489,16 @@ pub fn encode(frame: &Frame, out: &mut [u8; FRAME_LEN]) -> Result<(), LinkError>
     if let Some(c) = out.get_mut(CRC_AT..) {
         c.copy_from_slice(&crc.to_le_bytes());
     }
-    Ok(())
+}
+
+/// A count slot of a command frame: an exact integer in `u32`.
+fn count(v: f64) -> Result<u32, LinkError> {
+    if v >= 0.0 && v <= f64::from(u32::MAX) && libm::floor(v) == v {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Ok(v as u32)
+    } else {
+        Err(LinkError::BadPayload)
+    }
 }
 
 /// Read one frame from `bytes` (exactly [`FRAME_LEN`] long).
@@ -396,6 +523,23 @@ pub fn decode(bytes: &[u8]) -> Result<Frame, LinkError> {
         return Err(LinkError::BadChecksum);
     }
     let seq = u32::from_le_bytes([q0, q1, q2, q3]);
+    // Only command frames carry a status; every other frame must say `Ok` (0).
+    if ty != FrameType::Command as u8 && status != LinkStatus::Ok.code() {
+        return Err(LinkError::BadStatus);
+    }
+    if ty == FrameType::Image as u8 {
+        let (ic, data) = payload.split_at(4);
+        let &[i0, i1, c0, c1] = ic else {
+            return Err(LinkError::BadLength);
+        };
+        let data: [u8; CHUNK_BYTES] = data.try_into().map_err(|_| LinkError::BadLength)?;
+        return Ok(Frame::Image(ImageFrame {
+            seq,
+            index: u16::from_le_bytes([i0, i1]),
+            count: u16::from_le_bytes([c0, c1]),
+            data,
+        }));
+    }
     let mut v = [0.0_f64; SLOTS];
     for (slot, chunk) in v.iter_mut().zip(payload.chunks_exact(8)) {
         let mut b = [0u8; 8];
@@ -405,27 +549,38 @@ pub fn decode(bytes: &[u8]) -> Result<Frame, LinkError> {
     if v.iter().any(|x| !x.is_finite()) {
         return Err(LinkError::NonFinite);
     }
-    let [a, b, c, d, e, f, g] = v;
-    // Only command frames carry a status; nav and end frames must say `Ok` (0), and an end frame
-    // carries no payload (all slots +0.0), as the layout above specifies.
-    if ty != FrameType::Command as u8 && status != LinkStatus::Ok.code() {
-        return Err(LinkError::BadStatus);
-    }
-    if ty == FrameType::End as u8 && v.iter().any(|x| x.to_bits() != 0) {
+    let [a, b, c, d, e, f, g, h, i] = v;
+    // An end frame carries no payload (all slots +0.0), a nav frame without a measurement
+    // and a set-up frame nothing in slots 7 and 8, as the layout above specifies.
+    let zero = |x: f64| x.to_bits() == 0;
+    if ty == FrameType::End as u8 && !v.iter().all(|x| zero(*x)) {
         return Err(LinkError::BadPayload);
     }
+    if (ty == FrameType::Nav as u8 || ty == FrameType::Setup as u8) && !(zero(h) && zero(i)) {
+        return Err(LinkError::BadPayload);
+    }
+    let nav = NavState {
+        time_s: a,
+        radius_m: b,
+        speed_m_s: c,
+        flight_path_angle_rad: d,
+        heading_rad: e,
+        latitude_rad: f,
+        longitude_rad: g,
+    };
     match ty {
         1 => Ok(Frame::Nav(NavFrame {
             seq,
-            nav: NavState {
-                time_s: a,
-                radius_m: b,
-                speed_m_s: c,
-                flight_path_angle_rad: d,
-                heading_rad: e,
-                latitude_rad: f,
-                longitude_rad: g,
-            },
+            nav,
+            sensed: None,
+        })),
+        6 => Ok(Frame::Nav(NavFrame {
+            seq,
+            nav,
+            sensed: Some(SensedAero {
+                lift_m_s2: h,
+                drag_m_s2: i,
+            }),
         })),
         2 => Ok(Frame::Command(CommandFrame {
             seq,
@@ -443,11 +598,14 @@ pub fn decode(bytes: &[u8]) -> Result<Frame, LinkError> {
                 alpha_rad_s: f,
                 sigma_rad_s: g,
             },
+            reversals: count(h)?,
+            replans: count(i)?,
         })),
         3 => Ok(Frame::End(seq)),
         4 => Ok(Frame::Setup(SetupFrame {
             seq,
-            item: SetupItem::from_slots(&v).map_err(|_| LinkError::BadPayload)?,
+            item: SetupItem::from_slots(&[a, b, c, d, e, f, g])
+                .map_err(|_| LinkError::BadPayload)?,
         })),
         _ => Err(LinkError::BadType),
     }
@@ -476,6 +634,7 @@ mod tests {
                 latitude_rad: -0.4,
                 longitude_rad: -1.8,
             },
+            sensed: None,
         })
     }
 
@@ -547,6 +706,41 @@ mod tests {
     }
 
     #[test]
+    fn image_frames_carry_raw_bytes_and_sensed_nav_its_measurement() {
+        let mut data = [0u8; CHUNK_BYTES];
+        for (i, d) in data.iter_mut().enumerate() {
+            *d = u8::try_from(i * 37 % 256).unwrap();
+        }
+        // NaN bit patterns are image bytes, not floats: carried as they are.
+        data[..8].copy_from_slice(&f64::NAN.to_le_bytes());
+        let f = Frame::Image(ImageFrame {
+            seq: 9,
+            index: 3,
+            count: 11,
+            data,
+        });
+        let mut b = [0u8; FRAME_LEN];
+        encode(&f, &mut b).unwrap();
+        assert_eq!(decode(&b), Ok(f));
+        let Frame::Nav(mut n) = nav_frame() else {
+            unreachable!()
+        };
+        n.sensed = Some(SensedAero {
+            lift_m_s2: 12.5,
+            drag_m_s2: 30.25,
+        });
+        encode(&Frame::Nav(n), &mut b).unwrap();
+        assert_eq!(b[2], FrameType::NavSensed as u8);
+        assert_eq!(decode(&b), Ok(Frame::Nav(n)));
+        // A plain nav frame with something in the measurement slots is refused.
+        encode(&nav_frame(), &mut b).unwrap();
+        b[PAYLOAD + 7 * 8..PAYLOAD + 8 * 8].copy_from_slice(&1.0f64.to_le_bytes());
+        let c = crc16_ccitt(&b[..CRC_AT]).to_le_bytes();
+        b[CRC_AT..].copy_from_slice(&c);
+        assert_eq!(decode(&b), Err(LinkError::BadPayload));
+    }
+
+    #[test]
     fn non_finite_is_not_encoded() {
         let mut f = nav_frame();
         if let Frame::Nav(n) = &mut f {
@@ -599,6 +793,8 @@ mod tests {
                 command: g.command(),
                 ramp_start: g.attitude_at(t_k),
                 rates: g.config().rates,
+                reversals: 0,
+                replans: 0,
             };
             assert_eq!(Some(cf.ramp_end()), g.ramp_end_s(), "tick {k}");
             for j in 0..=8 {
@@ -616,7 +812,7 @@ mod tests {
 
     fn frame() -> impl Strategy<Value = Frame> {
         let vals = prop::array::uniform7(finite());
-        let status = 0u8..9;
+        let status = 0u8..17;
         (any::<u32>(), 0u8..3, status, vals).prop_map(|(seq, ty, st, v)| {
             let [a, b, c, d, e, f, g] = v;
             match ty {
@@ -631,6 +827,10 @@ mod tests {
                         latitude_rad: f,
                         longitude_rad: g,
                     },
+                    sensed: (seq % 2 == 1).then_some(SensedAero {
+                        lift_m_s2: a,
+                        drag_m_s2: b,
+                    }),
                 }),
                 1 => Frame::Command(CommandFrame {
                     seq,
@@ -648,6 +848,8 @@ mod tests {
                         alpha_rad_s: f,
                         sigma_rad_s: g,
                     },
+                    reversals: seq % 7,
+                    replans: seq / 3,
                 }),
                 _ => Frame::End(seq),
             }
@@ -675,7 +877,7 @@ mod tests {
             body[1] = SYNC[1];
             let mut b = [0u8; FRAME_LEN];
             b[..32].copy_from_slice(&body);
-            b[32..CRC_AT].copy_from_slice(&body);
+            b[32..64].copy_from_slice(&body);
             let c = crc16_ccitt(&b[..CRC_AT]).to_le_bytes();
             b[CRC_AT..].copy_from_slice(&c);
             if let Ok(f) = decode(&b) {

@@ -6,10 +6,17 @@
 //! `stm32f4-flight` (feature `stm32f4`, compile only) on an STM32F407's USART2 and timers with
 //! stm32f4xx-hal, free-running.
 //!
-//! Protocol (`guidance_core::link`): set-up frames build the guidance (`guidance_core::setup`:
-//! the stored profile, or with onboard re-planning when its items were uploaded; the core's
-//! own checks at commit, a typed status answering each item); each nav frame is one guidance
-//! update, answered with a command frame; an end frame ends the run. A frame that
+//! Protocol (`guidance_core::link`): image frames carry the whole flight-guidance stack
+//! (set-up protocol v2, `guidance_core::setup::image`: profile, re-planner, lateral logic with
+//! the terminal law, estimator, barrier and target, versioned and CRC-32-checked); after the
+//! last chunk the application decodes it in its scalars and builds a
+//! `guidance_core::stack::FlightStack` with the core's checks, answering a typed status for
+//! every refusal (CRC, version, size, a layer the build cannot fly, a malformed field, a stack
+//! the core rejects) and building nothing then. Set-up frames (protocol v1,
+//! `guidance_core::setup::SetupItem`) still build the stored profile or `ReplanningGuidance`
+//! alone. Each nav frame is one update (`FlightStack::tick` with the frame's sensed lift and
+//! drag accelerations), answered with a command frame that carries the stack's reversal and
+//! re-plan counts; an end frame ends the run. A frame that
 //! does not decode, or a sample guidance rejects, is a counted fault: the held command keeps
 //! flying and the answer carries the status. The status discrete is high while the last
 //! update was accepted, low after a fault or before guidance exists.
@@ -23,11 +30,15 @@
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
 use embedded_io::{Read, ReadExactError, Write};
+use guidance_core::estimate::SensedAero;
 use guidance_core::guidance::{Command, Guidance, RateLimits};
 use guidance_core::link::{
-    CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
+    CommandFrame, FRAME_LEN, Frame, ImageFrame, LinkStatus, NavFrame, SetupFrame, decode, encode,
 };
+use guidance_core::nodes::DEFAULT_NODE_CAPACITY;
+use guidance_core::setup::image::{ImageReceiver, image_capacity};
 use guidance_core::setup::{SetupBuilder, SetupGuidance, SetupItem};
+use guidance_core::stack::{FlightStack, Layers};
 use guidance_core::{NavState, Real, Scalar};
 
 use crate::clock::{Pacing, TickMonitor, TickStats, TickTimer, pace, period_us};
@@ -58,6 +69,94 @@ pub enum AppError<E> {
     NoGuidance,
 }
 
+/// Bytes of the set-up image buffer: the largest image of a stack of
+/// [`DEFAULT_NODE_CAPACITY`] nodes (a larger table is refused as `ImageSize`).
+pub const IMAGE_BUFFER_BYTES: usize = image_capacity(DEFAULT_NODE_CAPACITY);
+
+/// The layers this application flies (every layer the core has, on both targets).
+pub const SUPPORTED_LAYERS: Layers = Layers::ALL;
+
+/// What the application flies: the uploaded stack (protocol v2), or the v1 set-up's guidance.
+// One per run, held for the whole run: no allocation.
+#[allow(clippy::large_enum_variant)]
+enum Flight<S, const N: usize, R> {
+    /// Protocol v1 (or the compiled-in fallback).
+    Legacy(SetupGuidance<S, N, R>),
+    /// Protocol v2: the whole stack.
+    Stack(FlightStack<S, N, R>),
+}
+
+impl<S: Scalar, const N: usize, R: Real> Flight<S, N, R> {
+    fn guidance(&self) -> &Guidance<S, N> {
+        match self {
+            Flight::Legacy(g) => g.guidance(),
+            Flight::Stack(s) => s.guidance(),
+        }
+    }
+
+    /// (reversals, re-plans) so far.
+    fn counts(&self) -> (u32, u32) {
+        match self {
+            Flight::Legacy(SetupGuidance::Replanning(r)) => (0, r.counts().replans),
+            Flight::Legacy(SetupGuidance::Stored(_)) => (0, 0),
+            Flight::Stack(s) => (
+                u32::from(s.reversals()),
+                s.replan_counts().map_or(0, |c| c.replans),
+            ),
+        }
+    }
+}
+
+fn narrow_sensed<R: Real>(s: &SensedAero<f64>) -> SensedAero<R> {
+    SensedAero {
+        lift_m_s2: R::from_f64(s.lift_m_s2),
+        drag_m_s2: R::from_f64(s.drag_m_s2),
+    }
+}
+
+/// Take one image chunk; after the last one decode the image and build the stack into
+/// `flight` (kept as it was on a refusal). Not inlined: the decoded configuration and the
+/// stack under construction live in this frame only, not in the serving loop's for the whole
+/// run.
+#[inline(never)]
+fn take_chunk<S: Scalar, const N: usize, R: Real>(
+    rx: &mut ImageReceiver<IMAGE_BUFFER_BYTES>,
+    f: &ImageFrame,
+    flight: &mut Option<Flight<S, N, R>>,
+) -> LinkStatus {
+    let image = match rx.take(f.index, f.count, &f.data) {
+        Ok(Some(image)) => image,
+        Ok(None) => return LinkStatus::Ok,
+        Err(e) => return LinkStatus::from_image_error(e),
+    };
+    let config = match guidance_core::setup::image::decode::<S, N, R>(image, SUPPORTED_LAYERS) {
+        Ok(c) => c,
+        Err(e) => return LinkStatus::from_image_error(e),
+    };
+    match FlightStack::new(&config) {
+        Ok(stack) => {
+            *flight = Some(Flight::Stack(stack));
+            LinkStatus::Ok
+        }
+        Err(e) => LinkStatus::from_stack_error(e),
+    }
+}
+
+/// Build the v1 set-up's guidance into `flight` (not inlined, as [`take_chunk`]).
+#[inline(never)]
+fn commit_v1<S: Scalar, const N: usize, R: Real>(
+    setup: &SetupBuilder<S, N>,
+    flight: &mut Option<Flight<S, N, R>>,
+) -> LinkStatus {
+    match setup.build_flight::<R>() {
+        Ok(g) => {
+            *flight = Some(Flight::Legacy(g));
+            LinkStatus::Ok
+        }
+        Err(e) => LinkStatus::from_setup_error(e),
+    }
+}
+
 fn narrow<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
     NavState {
         time_s: S::from_f64(n.time_s),
@@ -77,11 +176,13 @@ fn wide<S: Scalar>(c: Command<S>) -> Command<f64> {
     }
 }
 
-fn answer<S: Scalar, const N: usize>(
-    g: Option<&Guidance<S, N>>,
+fn answer<S: Scalar, const N: usize, R: Real>(
+    flight: Option<&Flight<S, N, R>>,
     seq: u32,
     status: LinkStatus,
 ) -> CommandFrame {
+    let (reversals, replans) = flight.map_or((0, 0), Flight::counts);
+    let g = flight.map(Flight::guidance);
     let zero = Command {
         alpha_rad: 0.0,
         sigma_rad: 0.0,
@@ -97,6 +198,8 @@ fn answer<S: Scalar, const N: usize>(
                 alpha_rad_s: 0.0,
                 sigma_rad_s: 0.0,
             },
+            reversals,
+            replans,
         };
     };
     let tick = g.last_tick_s().unwrap_or(S::ZERO);
@@ -111,6 +214,8 @@ fn answer<S: Scalar, const N: usize>(
             alpha_rad_s: rates.alpha_rad_s.to_f64(),
             sigma_rad_s: rates.sigma_rad_s.to_f64(),
         },
+        reversals,
+        replans,
     }
 }
 
@@ -139,7 +244,8 @@ where
     P: DelayNs,
 {
     let mut setup = SetupBuilder::<S, N>::new();
-    let mut guidance: Option<SetupGuidance<S, N, R>> = None;
+    let mut image = ImageReceiver::<IMAGE_BUFFER_BYTES>::new();
+    let mut guidance: Option<Flight<S, N, R>> = None;
     let mut inb = [0u8; FRAME_LEN];
     let mut outb = [0u8; FRAME_LEN];
     let mut out = Outcome {
@@ -162,31 +268,37 @@ where
             Ok(Frame::End(_)) => return Ok(out),
             Ok(Frame::Setup(SetupFrame { seq, item })) => {
                 let st = match item {
-                    SetupItem::Commit => match setup.build_flight::<R>() {
-                        Ok(g) => {
-                            guidance = Some(g);
-                            LinkStatus::Ok
-                        }
-                        Err(e) => LinkStatus::from_setup_error(e),
-                    },
+                    SetupItem::Commit => commit_v1(&setup, &mut guidance),
                     other => match setup.apply(&other) {
                         Ok(()) => LinkStatus::Ok,
                         Err(e) => LinkStatus::from_setup_error(e),
                     },
                 };
-                answer(guidance.as_ref().map(SetupGuidance::guidance), seq, st)
+                answer(guidance.as_ref(), seq, st)
             }
-            Ok(Frame::Nav(NavFrame { seq, nav })) => {
+            Ok(Frame::Image(f)) => {
+                let st = take_chunk(&mut image, &f, &mut guidance);
+                answer(guidance.as_ref(), f.seq, st)
+            }
+            Ok(Frame::Nav(NavFrame { seq, nav, sensed })) => {
                 if guidance.is_none() {
-                    guidance = Some(SetupGuidance::Stored(
+                    guidance = Some(Flight::Legacy(SetupGuidance::Stored(
                         fallback().ok_or(AppError::NoGuidance)?,
-                    ));
+                    )));
                 }
                 match guidance.as_mut() {
                     Some(g) => {
-                        let st = match g.update(&narrow(&nav)) {
-                            Ok(o) if o.ticked => LinkStatus::Ok,
-                            Ok(_) => LinkStatus::NotTicked,
+                        let nav_s = narrow(&nav);
+                        let updated = match g {
+                            Flight::Legacy(l) => l.update(&nav_s).map(|o| o.ticked),
+                            Flight::Stack(s) => {
+                                let m = sensed.as_ref().map(narrow_sensed::<R>);
+                                s.tick(&nav_s, m.as_ref()).map(|o| o.ticked)
+                            }
+                        };
+                        let st = match updated {
+                            Ok(true) => LinkStatus::Ok,
+                            Ok(false) => LinkStatus::NotTicked,
                             Err(e) => {
                                 out.faults = out.faults.wrapping_add(1);
                                 LinkStatus::from_error(e)
@@ -195,23 +307,15 @@ where
                         healthy = matches!(st, LinkStatus::Ok | LinkStatus::NotTicked);
                         ticked = st == LinkStatus::Ok;
                         monitor.set_period_us(period_us(g.guidance().config().period_s.to_f64()));
-                        answer(Some(g.guidance()), seq, st)
+                        answer(Some(&*g), seq, st)
                     }
-                    None => answer::<S, N>(None, seq, LinkStatus::InvalidConfig),
+                    None => answer::<S, N, R>(None, seq, LinkStatus::InvalidConfig),
                 }
             }
-            Ok(Frame::Command(c)) => answer(
-                guidance.as_ref().map(SetupGuidance::guidance),
-                c.seq,
-                LinkStatus::BadFrame,
-            ),
+            Ok(Frame::Command(c)) => answer(guidance.as_ref(), c.seq, LinkStatus::BadFrame),
             Err(_) => {
                 out.faults = out.faults.wrapping_add(1);
-                answer(
-                    guidance.as_ref().map(SetupGuidance::guidance),
-                    0,
-                    LinkStatus::BadFrame,
-                )
+                answer(guidance.as_ref(), 0, LinkStatus::BadFrame)
             }
         };
         let _ = if healthy {
@@ -319,7 +423,15 @@ mod tests {
                 latitude_rad: HORUS2B_ENTRY.latitude_rad,
                 longitude_rad: HORUS2B_ENTRY.longitude_rad,
             };
-            encode(&Frame::Nav(NavFrame { seq: k, nav }), &mut b).unwrap();
+            encode(
+                &Frame::Nav(NavFrame {
+                    seq: k,
+                    nav,
+                    sensed: None,
+                }),
+                &mut b,
+            )
+            .unwrap();
             input.extend_from_slice(&b);
         }
         encode(&Frame::End(10), &mut b).unwrap();
@@ -402,5 +514,102 @@ mod tests {
         // of `delay_ns`; 1 s in total per tick.
         let total_ns: u64 = d.0.iter().map(|&n| u64::from(n)).sum();
         assert_eq!(total_ns, 5 * 1_000_000_000);
+    }
+
+    /// The reference mission's profile as a stack image (protocol v2).
+    fn stack_image() -> Vec<u8> {
+        use guidance_core::stack::{ProfileLayer, StackConfig};
+        let m = horus2b_reference::<f64>().unwrap();
+        let c: StackConfig<f64> = StackConfig {
+            profile: ProfileLayer {
+                guidance: m.config,
+                table: m.table.clone(),
+                interpolation: m.interpolation,
+                energy: m.earth_energy_normalizer().unwrap(),
+                initial: m.initial,
+            },
+            replan: None,
+            lateral: None,
+            estimator: None,
+            barrier: None,
+            target: None,
+        };
+        let mut b = [0u8; IMAGE_BUFFER_BYTES];
+        let n = guidance_core::setup::image::encode(&c, &mut b).unwrap();
+        b[..n].to_vec()
+    }
+
+    /// `image`'s chunks (in `order`), then the ten nav frames of [`link`]; the statuses of
+    /// the chunk answers and the number of `Ok` nav answers.
+    fn upload(image: &[u8], order: &[usize]) -> (Vec<LinkStatus>, u32, bool) {
+        let chunks: Vec<_> = guidance_core::setup::image::chunks(image).collect();
+        let mut l = link();
+        let mut input = Vec::new();
+        let mut b = [0u8; FRAME_LEN];
+        for (seq, &k) in order.iter().enumerate() {
+            let (index, count, data) = chunks[k];
+            let f = ImageFrame {
+                seq: 100 + u32::try_from(seq).unwrap(),
+                index,
+                count,
+                data,
+            };
+            encode(&Frame::Image(f), &mut b).unwrap();
+            input.extend_from_slice(&b);
+        }
+        let n = input.len();
+        input.extend_from_slice(&l.input);
+        l.input = input;
+        let mut t = SteppingTimer {
+            now_us: 0,
+            step_us: 1,
+        };
+        // No fallback: with nothing built the first nav frame ends the run (`NoGuidance`).
+        let built = serve::<f32, CAP, f32, _, _, _, _>(&mut l, &mut Pin, &mut t, LOCKSTEP, || None)
+            .map_err(|e| assert_eq!(e, AppError::NoGuidance))
+            .is_ok();
+        let answers: Vec<_> = l
+            .output
+            .chunks_exact(FRAME_LEN)
+            .map(|c| match decode(c) {
+                Ok(Frame::Command(c)) => c.status,
+                _ => LinkStatus::BadFrame,
+            })
+            .collect();
+        let k = n / FRAME_LEN;
+        let ok = answers[k..]
+            .iter()
+            .filter(|s| **s == LinkStatus::Ok)
+            .count();
+        (answers[..k].to_vec(), u32::try_from(ok).unwrap(), built)
+    }
+
+    /// A good image builds the stack (every chunk `Ok`, the nav frames fly it); a corrupted
+    /// one is refused with `ImageCrc`, a chunk out of order with `ImageOrder`, and with
+    /// nothing built no nav frame is flown (without a fallback the run stops), never with less.
+    #[test]
+    fn set_up_image_builds_the_stack_or_is_refused_typed() {
+        let img = stack_image();
+        let n = img.len().div_ceil(guidance_core::setup::image::CHUNK_BYTES);
+        let all: Vec<usize> = (0..n).collect();
+        let (st, ok, built) = upload(&img, &all);
+        assert!(st.iter().all(|s| *s == LinkStatus::Ok), "{st:?}");
+        assert!(built);
+        assert_eq!(ok, 5);
+        let mut bad = img.clone();
+        bad[20] ^= 1;
+        let (st, ok, built) = upload(&bad, &all);
+        assert_eq!(st.last(), Some(&LinkStatus::ImageCrc));
+        assert!(!built && ok == 0);
+        let mut swapped = all.clone();
+        swapped.swap(1, 2);
+        let (st, _, built) = upload(&img, &swapped);
+        assert_eq!(st[1], LinkStatus::ImageOrder);
+        assert!(!built);
+        let mut v3 = img.clone();
+        v3[4] = 3;
+        let (st, _, built) = upload(&v3, &all);
+        assert_eq!(st.last(), Some(&LinkStatus::ImageVersion));
+        assert!(!built);
     }
 }

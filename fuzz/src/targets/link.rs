@@ -58,6 +58,7 @@ fn frame<R: Rng>(rng: &mut R) -> Frame {
                 latitude_rad: f(),
                 longitude_rad: f(),
             },
+            sensed: None,
         }),
         1 => Frame::Command(CommandFrame {
             seq,
@@ -75,6 +76,8 @@ fn frame<R: Rng>(rng: &mut R) -> Frame {
                 alpha_rad_s: f(),
                 sigma_rad_s: f(),
             },
+            reversals: 0,
+            replans: 0,
         }),
         _ => Frame::End(seq),
     }

@@ -21,6 +21,7 @@ use crate::nodes::{AngleBounds, Independent, Node, NodeTable};
 use crate::replan::ReplanningGuidance;
 use crate::scalar::{Real, Scalar};
 
+pub mod image;
 pub mod replanning;
 
 pub use replanning::{ReplanItem, replan_items};

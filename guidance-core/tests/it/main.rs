@@ -13,6 +13,7 @@ mod numerical_replan;
 mod numerical_rotation;
 mod path_barrier;
 mod path_bound;
+mod setup_image;
 mod stack;
 mod vinh_error_map;
 mod vinh_peaks;

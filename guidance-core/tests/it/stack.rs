@@ -70,7 +70,7 @@ fn replanning() -> ReplanningConfig<f64> {
     rcfg(RangeTarget::Point(target()), 3, PredictorMode::AutoSink)
 }
 
-fn full() -> StackConfig<f64> {
+pub(crate) fn full() -> StackConfig<f64> {
     let r = replanning();
     StackConfig {
         profile: ProfileLayer {
@@ -103,7 +103,7 @@ fn full() -> StackConfig<f64> {
 
 /// A descent along the equator heading east, turning slowly left and right so that the
 /// corridor reverses: one sample per 2 s tick.
-fn samples() -> impl Iterator<Item = NavState<f64>> {
+pub(crate) fn samples() -> impl Iterator<Item = NavState<f64>> {
     (0..120).map(|k| {
         let t = 2.0 * f64::from(k);
         let mut n = glide_nav(t);
@@ -116,7 +116,7 @@ fn samples() -> impl Iterator<Item = NavState<f64>> {
 }
 
 /// Sensed accelerations that differ from the model (not the model's own, so the estimate moves).
-fn sensed(n: &NavState<f64>) -> SensedAero<f64> {
+pub(crate) fn sensed(n: &NavState<f64>) -> SensedAero<f64> {
     let m = model();
     let e = guidance_core::estimate::expected_aero(
         &m.atmosphere,

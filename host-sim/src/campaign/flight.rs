@@ -121,6 +121,42 @@ pub fn fly_case(
 /// without re-planning).
 pub type ReplanLog = Vec<(ReplanReport<f64>, ReportContext)>;
 
+/// What a campaign flight's guidance counted, read at the end of the flight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CaseCounts {
+    /// Bank reversals.
+    pub reversals: u32,
+    /// Re-plans run.
+    pub replans: u32,
+    /// Re-plans that fell back to the table in use.
+    pub fall_backs: u32,
+    /// Onboard estimate at the end (L/D scale, drag scale) \[-\].
+    pub estimated_scales: Option<[f64; 2]>,
+}
+
+/// The guidance of a campaign flight: the host's stack ([`StackSource`]) or, in PIL, the
+/// firmware flying the same stack (`crate::pil::fly_case_pil`).
+pub trait CaseSource: crate::sim::AttitudeSource {
+    /// The counts at the end of the flight.
+    fn counts(&self) -> CaseCounts;
+}
+
+impl CaseSource for StackSource {
+    fn counts(&self) -> CaseCounts {
+        let fall_backs = self
+            .reports
+            .iter()
+            .filter(|r| matches!(r.case, ReplanCase::FallBack(_)))
+            .count();
+        CaseCounts {
+            reversals: u32::from(self.reversals()),
+            replans: self.stack.replan_counts().map_or(0, |c| c.replans),
+            fall_backs: u32::try_from(fall_backs).unwrap_or(u32::MAX),
+            estimated_scales: self.stack.aero_scales().map(|a| [a.lift_to_drag, a.drag]),
+        }
+    }
+}
+
 /// [`fly_case`], also returning the flight's re-plans ([`ReplanLog`]).
 ///
 /// # Errors
@@ -158,12 +194,11 @@ pub struct CaseFlight {
     pub result: SimResult,
 }
 
-/// The one flight of a campaign case (`None`: the nominal world) in `mode`, also returning
-/// the run: [`fly_case`] and [`fly_case_logged`] fly it with `output_interval_s = 0` (samples at
-/// the guidance ticks) and no progress; `host-sim simulate` of a scenario with guidance layers
-/// flies the nominal case in the best mode with the scenario's output interval and a progress
-/// bar (`crate::scenario::fly`). The run ends at the terminal interface (the campaign's E-hat),
-/// at the altitude floor, or at the scenario's time limit or the ground.
+/// The one flight of a campaign case (`None`: the nominal world) in `mode` by the host's
+/// stack, also returning the run: [`fly_case`] and [`fly_case_logged`] fly it with
+/// `output_interval_s = 0` (samples at the guidance ticks) and no progress; `host-sim
+/// simulate` of a scenario with guidance layers flies the nominal case in the best mode with
+/// the scenario's output interval and a progress bar (`crate::scenario::fly`).
 ///
 /// # Errors
 /// As [`fly_case`].
@@ -174,6 +209,43 @@ pub fn fly_case_run(
     output_interval_s: f64,
     progress: &mut dyn FnMut(crate::sim::Progress),
 ) -> Result<CaseFlight, CampaignError> {
+    let (case, s, result) =
+        fly_case_with(setup, draw, mode, output_interval_s, progress, |config| {
+            let stack = FlightStack::new(config).map_err(|source| CampaignError::Stack {
+                file: setup.file.clone(),
+                source,
+            })?;
+            Ok(StackSource::new(stack))
+        })?;
+    let log: ReplanLog = s
+        .reports
+        .iter()
+        .copied()
+        .zip(s.contexts.iter().copied())
+        .collect();
+    Ok(CaseFlight { case, log, result })
+}
+
+/// One case (`None`: the nominal world) in `mode`, flown by the guidance `source` makes of
+/// the mode's stack ([`CampaignSetup::stack_of`]) behind the case's IMU: the world, the
+/// terminal interface and the record exactly as [`fly_case`]. The run ends at the terminal
+/// interface (the campaign's E-hat), at the altitude floor, or at the scenario's time limit
+/// or the ground. Returns the record, the source after the flight and the run (samples
+/// every `output_interval_s`, or at the guidance ticks for 0).
+///
+/// # Errors
+/// As [`fly_case`], and `source`'s error.
+pub fn fly_case_with<A: CaseSource>(
+    setup: &CampaignSetup,
+    draw: Option<&CaseDraw>,
+    mode: Mode,
+    output_interval_s: f64,
+    progress: &mut dyn FnMut(crate::sim::Progress),
+    source: impl FnOnce(&guidance_core::stack::HostStackConfig<f64>) -> Result<A, CampaignError>,
+) -> Result<(CaseResult, A, SimResult), CampaignError>
+where
+    A::Error: std::error::Error + Send + Sync + 'static,
+{
     let sc = &setup.scenario;
     let scen = |source| CampaignError::Scenario {
         file: setup.file.clone(),
@@ -264,32 +336,18 @@ pub fn fly_case_run(
     cfg.termination.normalized_energy = Some(e_hat_f);
     cfg.termination.altitude_m = Some(setup.floor_altitude_m);
     cfg.termination.mach = None;
-    let stack = FlightStack::new(&setup.stack_of(mode)).map_err(|source| CampaignError::Stack {
-        file: setup.file.clone(),
-        source,
-    })?;
-    let source = ImuSource::new(StackSource::new(stack), ImuModel::of(&d));
+    let source = ImuSource::new(source(&setup.stack_of(mode))?, ImuModel::of(&d));
     let (result, src) =
         simulate(dynm, source, &cfg, progress).map_err(|source| CampaignError::Sim {
             index: Some(d.index),
             source,
         })?;
-    let s = &src.source;
-    let fall_backs = s
-        .reports
-        .iter()
-        .filter(|r| matches!(r.case, ReplanCase::FallBack(_)))
-        .count();
-    let log: ReplanLog = s
-        .reports
-        .iter()
-        .copied()
-        .zip(s.contexts.iter().copied())
-        .collect();
-    let reversals = u32::from(s.reversals());
-    let replans = s.stack.replan_counts().map_or(0, |c| c.replans);
-    let fall_backs = u32::try_from(fall_backs).unwrap_or(u32::MAX);
-    let estimated_scales = s.stack.aero_scales().map(|a| [a.lift_to_drag, a.drag]);
+    let CaseCounts {
+        reversals,
+        replans,
+        fall_backs,
+        estimated_scales,
+    } = src.source.counts();
     let end = result
         .samples
         .last()
@@ -333,5 +391,5 @@ pub fn fly_case_run(
         final_latitude_rad: end.latitude_rad,
         final_longitude_rad: end.longitude_rad,
     };
-    Ok(CaseFlight { case, log, result })
+    Ok((case, src.source, result))
 }

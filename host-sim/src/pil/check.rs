@@ -244,6 +244,8 @@ mod tests {
             command: cmd(35.0, 30.0),
             ramp_start: cmd(40.0, 0.0),
             rates: RateLimits::thesis_default(),
+            reversals: 0,
+            replans: 0,
         }
     }
 

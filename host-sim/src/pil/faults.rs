@@ -175,8 +175,15 @@ impl PilGuidance {
                     self.stats.faults.corrupted += 1;
                     let seq = self.next_seq();
                     let mut buf = [0u8; FRAME_LEN];
-                    encode(&Frame::Nav(NavFrame { seq, nav: *nav }), &mut buf)
-                        .map_err(PilError::Link)?;
+                    encode(
+                        &Frame::Nav(NavFrame {
+                            seq,
+                            nav: *nav,
+                            sensed: None,
+                        }),
+                        &mut buf,
+                    )
+                    .map_err(PilError::Link)?;
                     if let Some(inj) = self.faults.as_mut() {
                         inj.corrupt(&mut buf);
                     }
@@ -228,7 +235,15 @@ impl PilGuidance {
         };
         let seq = self.next_seq();
         let mut buf = [0u8; FRAME_LEN];
-        encode(&Frame::Nav(NavFrame { seq, nav: stale }), &mut buf).map_err(PilError::Link)?;
+        encode(
+            &Frame::Nav(NavFrame {
+                seq,
+                nav: stale,
+                sensed: None,
+            }),
+            &mut buf,
+        )
+        .map_err(PilError::Link)?;
         self.note(seq, &stale, "delivered late");
         let answer = self.roundtrip(&buf)?;
         match decode(&answer).map_err(PilError::Link)? {

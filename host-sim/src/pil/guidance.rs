@@ -9,9 +9,10 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use guidance_core::NavState;
+use guidance_core::estimate::SensedAero;
 use guidance_core::guidance::Command;
 use guidance_core::link::{
-    CommandFrame, FRAME_LEN, Frame, LinkStatus, NavFrame, SetupFrame, decode, encode,
+    CommandFrame, FRAME_LEN, Frame, ImageFrame, LinkStatus, NavFrame, SetupFrame, decode, encode,
 };
 use guidance_core::setup::SetupItem;
 
@@ -44,6 +45,10 @@ pub struct PilGuidance {
     pub(super) record: PilRecord,
     /// The link fault injector (`None`: a clean link).
     pub(super) faults: Option<super::faults::FaultInjector>,
+    /// The measurement of the coming tick (sent in its nav frame).
+    sensed: Option<SensedAero<f64>>,
+    /// Whether the uploaded stack uses sensed accelerations.
+    senses: bool,
 }
 
 impl PilGuidance {
@@ -107,6 +112,8 @@ impl PilGuidance {
             stats: PilStats::default(),
             record: PilRecord::default(),
             faults: None,
+            sensed: None,
+            senses: false,
         };
         let (nav_path, cmd_path) = me.paths();
         mkfifo(&nav_path)?;
@@ -185,6 +192,61 @@ impl PilGuidance {
         let s = self.seq;
         self.seq = self.seq.wrapping_add(1);
         s
+    }
+
+    /// As [`PilGuidance::start_with`], uploading a set-up image (protocol v2,
+    /// `guidance_core::setup::image`: the whole stack) instead of set-up items; `senses`: the
+    /// stack uses sensed accelerations (they then go with every tick's nav frame).
+    ///
+    /// # Errors
+    /// As [`PilGuidance::start`]; [`PilError::ImageRejected`] if the firmware refuses a chunk
+    /// or the image.
+    pub fn start_with_image(
+        cfg: PilConfig,
+        limits: FrameLimits,
+        image: &[u8],
+        senses: bool,
+    ) -> Result<Self, PilError> {
+        let faults = cfg.faults;
+        let mut cfg = cfg;
+        cfg.faults = None;
+        let mut me = Self::start_with(cfg, limits, &[])?;
+        for (index, count, data) in guidance_core::setup::image::chunks(image) {
+            let seq = me.next_seq();
+            let mut buf = [0u8; FRAME_LEN];
+            encode(
+                &Frame::Image(ImageFrame {
+                    seq,
+                    index,
+                    count,
+                    data,
+                }),
+                &mut buf,
+            )
+            .map_err(PilError::Link)?;
+            let bytes = me.roundtrip_for(&buf, "a set-up image answer")?;
+            match decode(&bytes).map_err(PilError::Link)? {
+                Frame::Command(c) if c.seq == seq && c.status == LinkStatus::Ok => {}
+                Frame::Command(c) if c.seq == seq => {
+                    return Err(PilError::ImageRejected {
+                        index,
+                        count,
+                        status: c.status,
+                    });
+                }
+                Frame::Command(c) => {
+                    return Err(PilError::OutOfSequence {
+                        seq,
+                        got: c.seq,
+                        status: c.status,
+                    });
+                }
+                frame => return Err(PilError::UnexpectedFrame { seq, frame }),
+            }
+        }
+        me.senses = senses;
+        me.faults = faults.map(super::faults::FaultInjector::new);
+        Ok(me)
     }
 
     /// Send one set-up item and wait for its status.
@@ -271,7 +333,16 @@ impl PilGuidance {
         let started = Instant::now();
         self.seq = self.seq.wrapping_add(1);
         let mut buf = [0u8; FRAME_LEN];
-        encode(&Frame::Nav(NavFrame { seq, nav: *nav }), &mut buf).map_err(PilError::Link)?;
+        let sensed = self.sensed.take();
+        encode(
+            &Frame::Nav(NavFrame {
+                seq,
+                nav: *nav,
+                sensed,
+            }),
+            &mut buf,
+        )
+        .map_err(PilError::Link)?;
         let bytes = self.roundtrip_for(&buf, "a command frame")?;
         self.stats.frames += 1;
         self.stats.link_s += started.elapsed().as_secs_f64();
@@ -378,6 +449,13 @@ impl AttitudeSource for PilGuidance {
         self.next_tick_s = c.tick_time_s + self.period_s;
         self.last = Some(c);
         Ok(())
+    }
+    fn sense(&mut self, _nav: &NavState<f64>, sensed: &SensedAero<f64>) -> Result<(), PilError> {
+        self.sensed = Some(*sensed);
+        Ok(())
+    }
+    fn senses(&self) -> bool {
+        self.senses
     }
     fn attitude_at(&self, time_s: f64) -> Command<f64> {
         match &self.last {

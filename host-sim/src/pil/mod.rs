@@ -19,6 +19,7 @@
 //! ([`FrameLimits::check`]) before it is flown; the exchanged frames are kept in a
 //! [`PilRecord`] that outlives a failed run.
 
+mod campaign;
 mod check;
 mod faults;
 mod fifo;
@@ -36,6 +37,7 @@ use guidance_core::link::{Frame, LinkError, LinkStatus};
 use crate::scenario::ScenarioError;
 use crate::sim;
 
+pub use campaign::{PilCase, TwinCheck, fly_case_pil};
 pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
 pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES, RejectedFault};
 pub use fifo::FIFO_DIR_PREFIX;
@@ -215,6 +217,23 @@ pub enum PilError {
         /// The firmware's status.
         status: LinkStatus,
     },
+    /// The firmware refused a set-up image chunk (protocol v2; after the last chunk: the image
+    /// or the stack it describes).
+    #[error("firmware refused set-up image chunk {index} of {count} with status {status:?}")]
+    ImageRejected {
+        /// Index of the chunk.
+        index: u16,
+        /// Number of chunks.
+        count: u16,
+        /// The firmware's status.
+        status: LinkStatus,
+    },
+    /// A campaign case could not be set up or flown (not a link or firmware failure).
+    #[error("campaign case: {0}")]
+    Campaign(Box<crate::campaign::CampaignError>),
+    /// The stack of a campaign case cannot be written as a set-up image.
+    #[error("set-up image: {0}")]
+    Image(guidance_core::setup::image::ImageError),
     /// The firmware answered a nav frame with an error status (its guidance rejected the sample,
     /// or it could not decode the frame).
     #[error("firmware answered frame {seq} with status {status:?}{}", guidance_error_text(*status))]

@@ -23,6 +23,7 @@ mod lift_down;
 mod module_graph;
 mod navconv;
 mod pil;
+mod pil_campaign;
 mod pil_faults;
 mod pil_reliability;
 mod pil_replanning;

@@ -224,6 +224,8 @@ fn bad_frame(tick_time_s: f64, alpha_rad: f64, sigma_rad: f64) -> [u8; FRAME_LEN
             sigma_rad: 0.0,
         },
         rates: RateLimits::thesis_default(),
+        reversals: 0,
+        replans: 0,
     };
     let mut b = [0u8; FRAME_LEN];
     encode(&Frame::Command(f), &mut b).unwrap();
@@ -407,6 +409,8 @@ fn pil_cli_keeps_the_record_of_a_failed_run() {
                 sigma_rad: 0.0,
             },
             rates: RateLimits::thesis_default(),
+            reversals: 0,
+            replans: 0,
         };
         let mut b = [0u8; FRAME_LEN];
         encode(&Frame::Command(ok), &mut b).unwrap();

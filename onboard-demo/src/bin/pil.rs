@@ -12,7 +12,11 @@
 //! Cortex-M3 (`thumbv7m-none-eabi`). The host first uploads its scenario's guidance as set-up
 //! frames (`guidance_core::setup`: node table in either independent variable, interpolation,
 //! bounds, period, rates, initial attitude, E-hat map); every item is answered with a typed
-//! status, and the commit builds `Guidance` with the core's own checks. Without a set-up the
+//! status, and the commit builds `Guidance` with the core's own checks. Or it uploads a whole
+//! flight-guidance stack as a set-up image (protocol v2, `guidance_core::setup::image`, 68-byte
+//! image frames): the firmware builds a `FlightStack` (every layer: re-planner, lateral logic,
+//! estimator, barrier) and ticks it with the nav frames' sensed accelerations; a refused image
+//! is answered with its typed status. Without a set-up the
 //! firmware flies the compiled-in HORUS-2B reference mission
 //! (`guidance_core::missions::horus2b_reference`).
 //!
