@@ -347,7 +347,7 @@ impl Crate {
     fn absolute(&self, m: &ModPath, p: &[String], crate_names: &[&str]) -> Option<ModPath> {
         let first = p.first()?;
         let mut base: ModPath;
-        let mut rest = &p[..];
+        let mut rest = p;
         if first == "crate" || crate_names.contains(&first.as_str()) {
             base = Vec::new();
             rest = &rest[1..];
@@ -375,7 +375,7 @@ impl Crate {
     /// The module that defines the item at absolute path `p` (following re-exports).
     fn target(&self, p: &[String], depth: usize) -> ModPath {
         let mut k = p.len();
-        while k > 0 && !self.modules.contains(&p[..k].to_vec()) {
+        while k > 0 && !self.modules.contains(&p[..k]) {
             k -= 1;
         }
         let m = p[..k].to_vec();
