@@ -133,8 +133,12 @@ fn core_box(g: &Gaussian2) -> Option<Box> {
         y1 = y1.max(y);
     }
     let (dx, dy) = (0.1 * (x1 - x0), 0.1 * (y1 - y0));
-    (x1 > x0 && y1 > y0 && dx.is_finite() && dy.is_finite())
-        .then_some((x0 - dx, x1 + dx, y0 - dy, y1 + dy))
+    (x1 > x0 && y1 > y0 && dx.is_finite() && dy.is_finite()).then_some((
+        x0 - dx,
+        x1 + dx,
+        y0 - dy,
+        y1 + dy,
+    ))
 }
 
 /// The footprint figure of `r`: every flight, and the core when the flights have a

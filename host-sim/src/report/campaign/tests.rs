@@ -43,7 +43,10 @@ fn report(n: u32) -> ModeReport {
         failed: 1,
         nominal_km: Some((0.1, -0.2)),
         traces,
-        trace_reference: ["to the undispersed flight".into(), "off the great circle".into()],
+        trace_reference: [
+            "to the undispersed flight".into(),
+            "off the great circle".into(),
+        ],
     }
 }
 
@@ -128,4 +131,16 @@ fn write_figures_to_look_at() {
             std::fs::write(std::path::Path::new(&dir).join(name), bytes).unwrap();
         }
     }
+}
+
+/// The miss axis is logarithmic for a tail beyond 20 times the median, linear otherwise.
+#[test]
+fn miss_axis_is_logarithmic_for_a_heavy_tail() {
+    let mut r = report(100);
+    assert!(!miss_cdf::figure(&r).panels[0].x_log10);
+    let median = miss_cdf::marked_percentiles(&r).unwrap()[0];
+    r.flights[7].miss_km = 25.0 * median;
+    let f = miss_cdf::figure(&r);
+    assert!(f.panels[0].x_log10);
+    assert!(f.svg("cdf.svg").unwrap().contains("(logarithmic)"));
 }

@@ -55,12 +55,9 @@ pub fn figure(r: &ModeReport) -> Figure {
     };
     Figure {
         panels: vec![
-            panel(
-                "downrange",
-                &r.trace_reference[0],
-                Legend::Hidden,
-                |q| q.downrange_km,
-            ),
+            panel("downrange", &r.trace_reference[0], Legend::Hidden, |q| {
+                q.downrange_km
+            }),
             panel(
                 "crossrange",
                 &r.trace_reference[1],
