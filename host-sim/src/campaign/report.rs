@@ -2,12 +2,13 @@
 //! campaign, the worst flights replayed with their trajectories ([`replay_case_traced`]) for
 //! their error against time to go.
 //!
-//! The error history of a flight is its position's downrange and crossrange (along and across
-//! the great circle from the nominal entry to the target, as at the terminal interface) less
-//! the undispersed flight's of the same mode at the same time to go, plus the undispersed
-//! flight's own terminal error: the error to the undispersed path moved to end on the target.
-//! At time to go 0 it is the flight's footprint point; where the flight has more time to go
-//! than the undispersed flight lasted it is not drawn.
+//! The error history of a flight, from its position along and across the great circle from the
+//! nominal entry to the target (as at the terminal interface): the downrange error is its
+//! along-track position less the undispersed flight's (same mode) at the same time to go, plus
+//! the undispersed flight's own terminal downrange error (the error to the undispersed path
+//! moved to end on the target; where the flight has more time to go than the undispersed
+//! flight lasted it is not drawn); the crossrange error is its distance off that great circle.
+//! At time to go 0 both are the flight's footprint point.
 
 use guidance_core::geo::along_cross_track;
 use rayon::prelude::*;
@@ -22,8 +23,11 @@ use crate::report::campaign::{
 };
 use crate::sim::SimResult;
 
-/// How the error histories are referenced (in the figure's titles).
-pub const TRACE_REFERENCE: &str = "to the undispersed path at equal time to go";
+/// How the downrange and crossrange error histories are referenced (in the figure's titles).
+pub const TRACE_REFERENCE: [&str; 2] = [
+    "to the undispersed path at equal time to go",
+    "off the great circle from the entry to the target",
+];
 
 /// A flight's (time to go, downrange, crossrange) positions \[s, m, m\] along and across the
 /// great circle from the nominal entry to the target.
@@ -45,22 +49,22 @@ fn track(setup: &CampaignSetup, sim: &SimResult) -> Vec<(f64, f64, f64)> {
         .collect()
 }
 
-/// Linear interpolation of `track` (time to go decreasing) at time to go `tg`; `None`
-/// outside it.
-fn at_time_to_go(track: &[(f64, f64, f64)], tg: f64) -> Option<(f64, f64)> {
+/// Linear interpolation of the along-track position of `track` (time to go decreasing) at
+/// time to go `tg`; `None` outside it.
+fn at_time_to_go(track: &[(f64, f64, f64)], tg: f64) -> Option<f64> {
     // First point with time to go <= tg (the track runs from the longest time to go to 0).
     let k = track.partition_point(|p| p.0 > tg);
     let b = track.get(k)?;
     if k == 0 {
-        return (b.0 == tg).then_some((b.1, b.2));
+        return (b.0 == tg).then_some(b.1);
     }
     let a = track.get(k - 1)?;
     let w = a.0 - b.0;
     if w <= 0.0 {
-        return Some((b.1, b.2));
+        return Some(b.1);
     }
     let f = (a.0 - tg) / w;
-    Some((a.1 + f * (b.1 - a.1), a.2 + f * (b.2 - a.2)))
+    Some(a.1 + f * (b.1 - a.1))
 }
 
 /// The error history of `case` (flown as `sim`) against the undispersed flight `nominal`
@@ -74,15 +78,15 @@ pub fn error_trace(
     nominal_sim: &SimResult,
 ) -> ErrorTrace {
     let reference = track(setup, nominal_sim);
-    let offset = (nominal.downrange_error_m, nominal.crossrange_error_m);
+    let offset = nominal.downrange_error_m;
     let points = track(setup, sim)
         .into_iter()
         .filter_map(|(tg, at, xt)| {
-            let (ra, rx) = at_time_to_go(&reference, tg)?;
+            let ra = at_time_to_go(&reference, tg)?;
             Some(TracePoint {
                 time_to_go_s: tg,
-                downrange_km: (at - ra + offset.0) / 1e3,
-                crossrange_km: (xt - rx + offset.1) / 1e3,
+                downrange_km: (at - ra + offset) / 1e3,
+                crossrange_km: xt / 1e3,
             })
         })
         .collect();
@@ -145,7 +149,7 @@ pub fn mode_report(
         failed: out.failed.iter().filter(|f| f.mode == mode).count(),
         nominal_km: nominal.map(|n| (n.downrange_error_m / 1e3, n.crossrange_error_m / 1e3)),
         traces,
-        trace_reference: TRACE_REFERENCE.to_string(),
+        trace_reference: TRACE_REFERENCE.map(String::from),
     })
 }
 
@@ -179,10 +183,10 @@ mod tests {
             (6.0, 5.0, 1.0),
             (0.0, 11.0, 7.0),
         ];
-        assert_eq!(at_time_to_go(&t, 10.0), Some((0.0, 0.0)));
-        assert_eq!(at_time_to_go(&t, 8.0), Some((2.0, -2.0)));
-        assert_eq!(at_time_to_go(&t, 3.0), Some((8.0, 4.0)));
-        assert_eq!(at_time_to_go(&t, 0.0), Some((11.0, 7.0)));
+        assert_eq!(at_time_to_go(&t, 10.0), Some(0.0));
+        assert_eq!(at_time_to_go(&t, 8.0), Some(2.0));
+        assert_eq!(at_time_to_go(&t, 3.0), Some(8.0));
+        assert_eq!(at_time_to_go(&t, 0.0), Some(11.0));
         assert_eq!(at_time_to_go(&t, 11.0), None);
         assert_eq!(at_time_to_go(&t, -1.0), None);
     }

@@ -84,7 +84,7 @@ mod tests {
             failed: 0,
             nominal_km: None,
             traces: Vec::new(),
-            trace_reference: String::new(),
+            trace_reference: [String::new(), String::new()],
         };
         let f = figure(&r);
         assert_eq!(f.panels.len(), 3);

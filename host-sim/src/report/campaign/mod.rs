@@ -77,8 +77,9 @@ pub struct ModeReport {
     pub nominal_km: Option<(f64, f64)>,
     /// Error histories of the worst flights, worst first.
     pub traces: Vec<ErrorTrace>,
-    /// How the error histories are referenced (a note in the figure's titles).
-    pub trace_reference: String,
+    /// How the downrange and the crossrange error histories are referenced (notes in the
+    /// panels' titles).
+    pub trace_reference: [String; 2],
 }
 
 /// Worst cases labelled on the footprint.

@@ -8,20 +8,30 @@ use crate::report::chart::{Figure, Layer, Legend, Mark, PALETTE, Panel};
 /// The error-history figure of `r`.
 #[must_use]
 pub fn figure(r: &ModeReport) -> Figure {
-    let panel = |what: &str, pick: fn(&super::TracePoint) -> f64| {
+    let longest = r
+        .traces
+        .iter()
+        .flat_map(|t| t.points.iter().map(|q| q.time_to_go_s))
+        .filter(|s| s.is_finite())
+        .fold(0.0, f64::max);
+    let panel = |what: &str, note: &str, legend: Legend, pick: fn(&super::TracePoint) -> f64| {
         let mut p = Panel::new(
             format!(
                 "{} {}: {what} error of the {} worst flights ({})",
                 r.scenario,
                 r.mode,
                 r.traces.len(),
-                r.trace_reference
+                note
             ),
             "time to go [s]",
             &format!("{what} error [km]"),
         );
         p.x_negated = true;
-        p.legend = Legend::UpperLeft;
+        // From the longest time to go to the end (0) exactly: no axis beyond the end.
+        if longest > 0.0 {
+            p.x_range = Some((-longest, 0.0));
+        }
+        p.legend = legend;
         for (i, t) in r.traces.iter().enumerate() {
             let colour = PALETTE
                 .get(i % PALETTE.len())
@@ -45,8 +55,15 @@ pub fn figure(r: &ModeReport) -> Figure {
     };
     Figure {
         panels: vec![
-            panel("downrange", |q| q.downrange_km),
-            panel("crossrange", |q| q.crossrange_km),
+            panel("downrange", &r.trace_reference[0], Legend::Hidden, |q| {
+                q.downrange_km
+            }),
+            panel(
+                "crossrange",
+                &r.trace_reference[1],
+                Legend::LowerLeft,
+                |q| q.crossrange_km,
+            ),
         ],
         columns: 1,
         panel_size: (1100, 520),

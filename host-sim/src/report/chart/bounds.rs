@@ -80,7 +80,14 @@ pub(super) fn ranges(p: &Panel, area: (f64, f64)) -> Ranges {
     };
     let (x0, x1) = pad(x0, x1, p.x_range.is_some());
     let (y0, y1) = pad(y0, y1, p.y_range.is_some());
-    let mut x = nice_or_fixed(x0, x1, 8.0, p.x_range.is_some());
+    let mut x = if p.x_log10 && p.x_range.is_none() {
+        // Whole decades (the data's, before padding).
+        let (d0, d1) = xs.or_unit();
+        let (lo, hi) = (d0.floor(), d1.ceil());
+        (lo, if hi > lo { hi } else { lo + 1.0 }, 1.0)
+    } else {
+        nice_or_fixed(x0, x1, 8.0, p.x_range.is_some())
+    };
     let mut y = nice_or_fixed(y0, y1, 6.0, p.y_range.is_some());
     if p.equal_aspect && area.0 > 0.0 && area.1 > 0.0 {
         // Units per pixel on each axis; the smaller one grows to the larger (about the centre).

@@ -144,6 +144,9 @@ pub struct Panel {
     /// Abscissa ticks print the negated value (time to go plotted as `-t_go`, so that the
     /// end is on the right and the ticks read positive).
     pub x_negated: bool,
+    /// The abscissa's data are base-10 logarithms: the axis spans whole decades and its
+    /// ticks print `10^x` (a heavy-tailed miss distribution).
+    pub x_log10: bool,
     /// Abscissa range (`None`: the data's, rounded out).
     pub x_range: Option<(f64, f64)>,
     /// Ordinate range (`None`: the data's, rounded out).
@@ -163,6 +166,7 @@ impl Panel {
             layers: Vec::new(),
             equal_aspect: false,
             x_negated: false,
+            x_log10: false,
             x_range: None,
             y_range: None,
             legend: Legend::UpperRight,

@@ -21,6 +21,19 @@ const CAPTION: (u32, u32) = (18, 32);
 /// Most ticks on an axis.
 const MAX_TICKS: usize = 20;
 
+/// The tick label of `10^v` (whole decades print as 0.01, 1, 100, 1e+06).
+fn decade(v: f64) -> String {
+    let x = 10f64.powf(v);
+    if !(1e-4..1e6).contains(&x) {
+        format!("{x:.0e}")
+    } else if x >= 1.0 {
+        format!("{x:.0}")
+    } else {
+        let digits = (-v.floor()).max(0.0) as usize;
+        format!("{x:.digits$}")
+    }
+}
+
 fn rgb(c: Rgb) -> RGBColor {
     RGBColor(c.0, c.1, c.2)
 }
@@ -87,7 +100,14 @@ where
     let x_ticks = (((x1 - x0) / xs).round() as usize + 1).min(MAX_TICKS);
     let y_ticks = (((y1 - y0) / ys).round() as usize + 1).min(MAX_TICKS);
     let negate = p.x_negated;
-    let x_fmt = move |v: &f64| fmt_tick(if negate { -*v } else { *v }, xs);
+    let log = p.x_log10;
+    let x_fmt = move |v: &f64| {
+        if log {
+            decade(*v)
+        } else {
+            fmt_tick(if negate { -*v } else { *v }, xs)
+        }
+    };
     let y_fmt = |v: &f64| fmt_tick(*v, ys);
     chart
         .configure_mesh()
