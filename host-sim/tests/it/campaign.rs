@@ -502,7 +502,11 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
         setup.interface_speed_m_s
     );
     assert_eq!(replan.final_energy_j_kg, Some(setup.interface_energy_j_kg));
-    assert_eq!(setup.guidance_key(), None, "the defaults are stored as none");
+    assert_eq!(
+        setup.guidance_key(),
+        None,
+        "the defaults are stored as none"
+    );
     // The removed offset: refused, naming the key of the interface.
     let e = parse_layers("final_speed_offset_m_s = 25.0", "p.toml").unwrap_err();
     let msg = e.to_string();
