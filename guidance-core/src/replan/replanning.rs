@@ -418,6 +418,8 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     path_bound: Option<PathBound<P>>,
     /// Numerical predictions fly the path bound too.
     path_bound_predicted: bool,
+    /// Numerical predictions end at this specific energy \[J/kg\] (`None`: the final speed).
+    final_energy_j_kg: Option<P>,
     /// Numerical predictions model the planet's rotation in their equations (with the
     /// model planet) instead of the effective planet.
     numerical_rotation: bool,
@@ -579,6 +581,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             start_energy: None,
             path_bound: None,
             path_bound_predicted: false,
+            final_energy_j_kg: None,
             numerical_rotation: false,
             sensed: None,
         })
@@ -649,6 +652,25 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         }
         self.path_bound = Some(bound);
         self.path_bound_predicted = predicted;
+        Ok(self)
+    }
+
+    /// End every numerical prediction at the specific energy `final_energy_j_kg` \[J/kg\]
+    /// (`E = V^2/2 - mu/r` with the model planet's `mu`, [`PredictorModel::planet`]): the
+    /// terminal interface the flight ends on, instead of the predictor's final speed
+    /// ([`super::ReplanSolver::with_final_energy`]). Closed-form predictions keep the final
+    /// speed of [`super::ReplanConfig::predictor`] (set it to the interface speed). The energy
+    /// falls monotonically along a flight, the speed need not: the final speed alone makes a
+    /// prediction end where a dive or a pull-up first takes the speed through it, or miss a
+    /// dip below it between two integration steps.
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] for a non-finite energy.
+    pub fn with_final_energy(mut self, final_energy_j_kg: P) -> Result<Self, GuidanceError> {
+        if !final_energy_j_kg.is_finite() {
+            return Err(GuidanceError::InvalidConfig);
+        }
+        self.final_energy_j_kg = Some(final_energy_j_kg);
         Ok(self)
     }
 
@@ -897,6 +919,10 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             solver.with_rotation(&m.planet, m.rotation_rate_rad_s, nav)
         } else {
             solver
+        };
+        let solver = match self.final_energy_j_kg {
+            Some(e) => solver.with_final_energy(m.planet.mu_m3_s2, e),
+            None => solver,
         };
         Pending {
             // A non-finite range to go (non-finite model radius or target sum): out of domain.

@@ -54,6 +54,11 @@ pub struct ReplanLayer<P> {
     pub start_normalized_energy: Option<P>,
     /// Numerical predictions model the planet's rotation in their equations of motion.
     pub numerical_rotation: bool,
+    /// Numerical predictions end at this specific energy \[J/kg\] (`V^2/2 - mu/r` with the
+    /// model planet's `mu`: the terminal interface the flight ends on;
+    /// [`crate::replan::ReplanningGuidance::with_final_energy`]); `None`: at the final speed of
+    /// `solver.predictor`.
+    pub final_energy_j_kg: Option<P>,
 }
 
 /// Lateral guidance: bank reversals on a heading-error corridor

@@ -251,6 +251,9 @@ impl<S: Scalar, const N: usize, P: Real> FlightStack<S, N, P> {
                         .with_path_bound(b.bound, b.predicted)
                         .map_err(rejected(Layer::Barrier))?;
                 }
+                if let Some(e) = r.final_energy_j_kg {
+                    g = g.with_final_energy(e).map_err(rejected(Layer::Replan))?;
+                }
                 Core::Replan(g.with_numerical_rotation(r.numerical_rotation))
             }
         };

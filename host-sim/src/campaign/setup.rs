@@ -510,8 +510,10 @@ impl CampaignSetup {
                 max_vertical_fraction: gs.max_vertical_fraction,
                 tolerance_m: gs.replan_tolerance_km * 1e3,
                 max_iterations: guidance_core::replan::DEFAULT_MAX_ITERATIONS,
+                // The closed forms end at the interface speed; the numerical predictions at
+                // the interface energy (`final_energy_j_kg` below).
                 predictor: PredictorConfig {
-                    final_speed_m_s: v_f + gs.final_speed_offset_m_s(),
+                    final_speed_m_s: v_f,
                     max_skips: guidance_core::replan::DEFAULT_MAX_SKIPS,
                 },
                 // The mode of `replan-estimation`; masking the estimator off drops the sink
@@ -528,6 +530,9 @@ impl CampaignSetup {
             },
             start_normalized_energy: gs.replan_start_normalized_energy,
             numerical_rotation: gs.predictor_rotation,
+            // The terminal interface the flights end on: the nominal flight's energy where it
+            // slows to the interface speed.
+            final_energy_j_kg: Some(0.5 * v_f * v_f - planet.mu_m3_s2 / end.radius_m),
         };
         let barrier = gs.path_bound_limit_scale.map(|[q, g]| BarrierLayer {
             bound: PathBound {

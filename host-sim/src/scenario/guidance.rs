@@ -214,6 +214,7 @@ pub fn build_stack(
             lift_schedule: None,
             start_normalized_energy: None,
             numerical_rotation: false,
+            final_energy_j_kg: None,
         }),
         lateral: None,
         estimator: None,

@@ -44,17 +44,6 @@ impl CampaignPredictor {
             (Self::Hybrid, true) => PredictorMode::HybridSink,
         }
     }
-
-    /// The default `predictor_final_speed_offset_m_s` of this predictor \[m/s\]: closed forms 0,
-    /// numerical 5, hybrid 6 (how they were chosen: CHANGELOG.md, issue 12).
-    #[must_use]
-    pub fn default_final_speed_offset_m_s(self) -> f64 {
-        match self {
-            Self::ClosedForm => 0.0,
-            Self::Numerical => 5.0,
-            Self::Hybrid => 6.0,
-        }
-    }
 }
 
 /// The layers' settings (one flat set; the scenario's key for each field: [`LAYER_KEYS`]).
@@ -94,15 +83,6 @@ pub struct CampaignGuidance {
     /// The re-planner's predictor in both re-planning modes: `"closed-form"`, `"numerical"` or
     /// `"hybrid"` (default) ([`CampaignPredictor`]).
     pub predictor: CampaignPredictor,
-    /// Added to the interface speed to give the re-planner's predictor final speed \[m/s\], in
-    /// `[-100, 100]` (default: the predictor's,
-    /// [`CampaignPredictor::default_final_speed_offset_m_s`]; read it with
-    /// [`CampaignGuidance::final_speed_offset_m_s`]). The flights end at the interface
-    /// *energy*, the predictors at a *speed*: a flight ending below the nominal end altitude (a
-    /// larger bank than the stored profile's at the end) is still faster than the interface
-    /// speed when it ends.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub predictor_final_speed_offset_m_s: Option<f64>,
     /// Lift parameter `lambda = C_L / C_L*` of the re-planner's predictor \[-\] (constant over
     /// a prediction), in `(0, 20]`. Default (absent): 1, the polar's maximum L/D (the trim
     /// point of a trim vehicle such as the SRM capsule). The value of a vehicle flying an
@@ -189,7 +169,7 @@ pub struct CampaignGuidance {
 /// The scenario key of every field of [`CampaignGuidance`]: `(field, layer section, key)`,
 /// the key written as `[guidance.<section>] <key>` (the one list of these names: the parser,
 /// the template and the docs' key table are checked against it).
-pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
+pub const LAYER_KEYS: [(&str, &str, &str); 31] = [
     (
         "corridor_width_entry_deg",
         "lateral",
@@ -229,11 +209,6 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
     ),
     ("glide_sink", "replanning", "glide_sink"),
     ("predictor", "replanning", "predictor"),
-    (
-        "predictor_final_speed_offset_m_s",
-        "replanning",
-        "final_speed_offset_m_s",
-    ),
     ("predictor_lift_parameter", "replanning", "lift_parameter"),
     ("predictor_lift_profile", "replanning", "lift_profile"),
     ("predictor_aero_mach", "replanning", "lift_profile_mach"),
@@ -324,7 +299,6 @@ impl Default for CampaignGuidance {
             max_vertical_fraction: replan::DEFAULT_MAX_VERTICAL_FRACTION,
             glide_sink: true,
             predictor: CampaignPredictor::Hybrid,
-            predictor_final_speed_offset_m_s: None,
             predictor_lift_parameter: None,
             predictor_lift_profile: false,
             predictor_aero_mach: false,
@@ -354,13 +328,6 @@ impl Default for CampaignGuidance {
 }
 
 impl CampaignGuidance {
-    /// The predictor final-speed offset in use \[m/s\]: the setting, or the predictor's default.
-    #[must_use]
-    pub fn final_speed_offset_m_s(&self) -> f64 {
-        self.predictor_final_speed_offset_m_s
-            .unwrap_or_else(|| self.predictor.default_final_speed_offset_m_s())
-    }
-
     /// The onboard estimator's settings.
     #[must_use]
     pub fn estimator(&self) -> EstimatorConfig<f64> {
@@ -405,14 +372,6 @@ impl CampaignGuidance {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(bad(name, v.to_string(), "must be finite and >= 0"));
             }
-        }
-        let dv = self.final_speed_offset_m_s();
-        if !(dv.is_finite() && (-100.0..=100.0).contains(&dv)) {
-            return Err(bad(
-                "predictor_final_speed_offset_m_s",
-                dv.to_string(),
-                "must be in [-100, 100]",
-            ));
         }
         let f = self.corridor_low_speed_fraction;
         if !(f.is_finite() && (0.0..1.0).contains(&f)) {

@@ -39,6 +39,8 @@ pub struct ReplanFile {
     max_vertical_fraction: Option<Num>,
     glide_sink: Option<bool>,
     predictor: Option<CampaignPredictor>,
+    /// Removed (refused with the key that replaces it): the predictor ends at the terminal
+    /// interface's energy.
     final_speed_offset_m_s: Option<Num>,
     lift_parameter: Option<Num>,
     lift_profile: Option<bool>,
@@ -238,7 +240,15 @@ pub(super) fn layers(
         set(&mut g.max_vertical_fraction, r.max_vertical_fraction);
         g.glide_sink = r.glide_sink.unwrap_or(g.glide_sink);
         g.predictor = r.predictor.unwrap_or(g.predictor);
-        g.predictor_final_speed_offset_m_s = r.final_speed_offset_m_s.map(|v| v.0);
+        if let Some(v) = r.final_speed_offset_m_s {
+            return Err(f.err(
+                "guidance.replanning.final_speed_offset_m_s",
+                &v.0.to_string(),
+                "removed: the re-planner's numerical predictor ends at the terminal interface's \
+                 energy, the one the flights end on (no tuned offset); the interface is \
+                 [guidance.target] interface_speed_m_s (docs/reference/guidance-stack.md)",
+            ));
+        }
         g.predictor_lift_parameter = r.lift_parameter.map(|v| v.0);
         g.predictor_lift_profile = r.lift_profile.unwrap_or(false);
         g.predictor_aero_mach = r.lift_profile_mach.unwrap_or(false);

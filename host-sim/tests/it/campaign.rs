@@ -427,62 +427,58 @@ fn guidance_settings_are_configurable_and_checked() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `[dispersions.guidance] predictor`: each name picks the re-planner's predictor of both
-/// re-planning modes (the sink only with onboard estimation and `glide_sink`) and its default
-/// final-speed offset (closed forms 0, numerical 5, hybrid 6 m/s; the default predictor is
-/// the hybrid); a bad name or offset is an error naming the file, field and value.
+/// `[guidance.replanning] predictor`: each name picks the re-planner's predictor of both
+/// re-planning modes (the sink only with onboard estimation and `glide_sink`; the default
+/// predictor is the hybrid); the closed forms end at the interface speed and the numerical
+/// predictions at the interface energy (no offset); a bad name is an error naming the file,
+/// field and value, and the removed `final_speed_offset_m_s` is refused naming the key that
+/// replaces it.
 #[test]
 fn campaign_predictor_setting_picks_the_replanner_mode() {
     use guidance_core::replan::PredictorMode as P;
     use host_sim::campaign::CampaignPredictor;
     let parse = |text: &str| parse_layers(text, "p.toml").unwrap().guidance;
     assert_eq!(parse("").predictor, CampaignPredictor::Hybrid, "default");
-    for (text, predictor, estimation, reversals, offset) in [
-        ("", CampaignPredictor::Hybrid, P::HybridSink, P::Hybrid, 6.0),
+    for (text, predictor, estimation, reversals) in [
+        ("", CampaignPredictor::Hybrid, P::HybridSink, P::Hybrid),
         (
             "predictor = \"closed-form\"",
             CampaignPredictor::ClosedForm,
             P::AutoSink,
             P::Auto,
-            0.0,
         ),
         (
             "predictor = \"closed-form\"\nglide_sink = false",
             CampaignPredictor::ClosedForm,
             P::Auto,
             P::Auto,
-            0.0,
         ),
         (
             "predictor = \"numerical\"",
             CampaignPredictor::Numerical,
             P::Numerical,
             P::Numerical,
-            5.0,
         ),
         (
             "predictor = \"hybrid\"",
             CampaignPredictor::Hybrid,
             P::HybridSink,
             P::Hybrid,
-            6.0,
         ),
         (
-            "predictor = \"hybrid\"\nglide_sink = false\npredictor_final_speed_offset_m_s = -2.0",
+            "predictor = \"hybrid\"\nglide_sink = false",
             CampaignPredictor::Hybrid,
             P::Hybrid,
             P::Hybrid,
-            -2.0,
         ),
     ] {
         let g = parse(text);
         assert_eq!(g.predictor, predictor, "{text}");
-        assert_eq!(g.final_speed_offset_m_s(), offset, "{text}");
         assert_eq!(g.predictor.mode(g.glide_sink), estimation, "{text}");
         assert_eq!(g.predictor.mode(false), reversals, "{text}");
     }
     // The setting reaches the flights' re-planner (one set-up: nominal flights are not cheap).
-    let g = parse("predictor = \"hybrid\"\npredictor_final_speed_offset_m_s = 5.0");
+    let g = parse("predictor = \"hybrid\"");
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
@@ -499,39 +495,35 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
             .mode,
         P::HybridSink
     );
+    let replan = setup.stack_of(Mode::ReplanReversals).replan.unwrap();
+    assert_eq!(replan.solver.mode, P::Hybrid);
     assert_eq!(
-        setup
-            .stack_of(Mode::ReplanReversals)
-            .replan
-            .unwrap()
-            .solver
-            .mode,
-        P::Hybrid
+        replan.solver.predictor.final_speed_m_s,
+        setup.interface_speed_m_s
     );
+    assert_eq!(replan.final_energy_j_kg, Some(setup.interface_energy_j_kg));
     assert_eq!(
-        setup
-            .stack_of(Mode::ReplanReversals)
-            .replan
-            .unwrap()
-            .solver
-            .predictor
-            .final_speed_m_s,
-        setup.interface_speed_m_s + 5.0
+        setup.guidance_key(),
+        None,
+        "the defaults are stored as none"
     );
-    assert_eq!(setup.guidance_key(), Some(g));
-    for (text, field, value) in [
-        ("predictor = \"fast\"", "predictor", "fast"),
-        (
-            "predictor_final_speed_offset_m_s = 150.0",
-            "predictor_final_speed_offset_m_s",
-            "150",
-        ),
-        (
-            "predictor_final_speed_offset_m_s = nan",
-            "predictor_final_speed_offset_m_s",
-            "NaN",
-        ),
+    // The removed offset: refused, naming the key of the interface.
+    let e = parse_layers("final_speed_offset_m_s = 25.0", "p.toml").unwrap_err();
+    let msg = e.to_string();
+    assert_eq!(
+        field_of(e),
+        "guidance.replanning.final_speed_offset_m_s",
+        "{msg}"
+    );
+    for w in [
+        "p.toml",
+        "25",
+        "removed",
+        "[guidance.target] interface_speed_m_s",
     ] {
+        assert!(msg.contains(w), "`{msg}` lacks `{w}`");
+    }
+    for (text, field, value) in [("predictor = \"fast\"", "predictor", "fast")] {
         let e = parse_layers(text, "p.toml").unwrap_err();
         let msg = e.to_string();
         assert_eq!(field_of(e), scenario_key(field), "{text}");

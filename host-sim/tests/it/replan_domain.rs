@@ -351,7 +351,13 @@ pub fn campaign(
         },
         ..Default::default()
     };
-    let setup = CampaignSetup::with_guidance(sc, name, interface, &layers).unwrap();
+    let mut setup = CampaignSetup::with_guidance(sc, name, interface, &layers).unwrap();
+    // The numerical predictions end at the final speed here, as `recompute`'s solve and its
+    // reference integration do (the campaigns end them at the interface energy:
+    // `ReplanLayer::final_energy_j_kg`, tested in guidance-core's numerical_predictor).
+    if let Some(r) = setup.stack.replan.as_mut() {
+        r.final_energy_j_kg = None;
+    }
     let label = if predictor == "closed-form" {
         String::new()
     } else {

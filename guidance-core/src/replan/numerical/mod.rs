@@ -51,9 +51,22 @@
 //! integrated with 1/16 of this step: `validate_integration_numerical_predictor_*`
 //! (docs/reference/vinh.md, "Numerical predictor").
 //!
-//! The last step, which takes the speed below the final speed, is redone from its start with
-//! the step interpolated linearly in speed, and the small remainder is closed with the rates at
-//! its end (first order in a residual of a few mm/s), so the prediction ends at the final speed.
+//! # Terminal condition
+//! With [`NumericalRun::with_final_energy`] (the re-planner's, given the terminal interface's
+//! energy) the prediction ends at a specific energy `E = V^2/2 - mu/r`, the interface the
+//! flights end on. The energy only falls (drag dissipates it; the rotation terms are small),
+//! so the first step that ends below it holds the one crossing: that step is redone from its
+//! start to the fraction interpolated linearly in energy, refined by Newton steps on the
+//! energy (each an RK4 step from the start, `TERMINAL_REFINEMENTS`), and the remainder is
+//! closed to first order with the rates at its end. The speed need not fall: a pull-up slows
+//! the vehicle through a final speed and the next descent speeds it up again, between two
+//! steps (the SRM from 99.5 km, 3,350 m/s, -2.2 deg, f 0.91: the speed-ended prediction takes
+//! the later crossing, 20.1 % long; `numerical_predictor_ends_at_the_final_energy_inside_a_step`).
+//!
+//! Without it the prediction ends at the final speed of [`PredictorConfig`]: the last step,
+//! which takes the speed below the final speed, is redone from its start with the step
+//! interpolated linearly in speed, and the small remainder is closed with the rates at its end
+//! (first order in a residual of a few mm/s), so the prediction ends at the final speed.
 //!
 //! # Peaks
 //! Heat flux and g-load are evaluated at every integration node (from the first stage of the
@@ -113,6 +126,38 @@ pub const STEPS_PER_SOLVER_STEP: u16 = 64;
 /// \[m/s^2\].
 const ESCAPE_DRAG_M_S2: f64 = 1e-6;
 
+/// The terminal energy of a prediction ([`NumericalRun::with_final_energy`]), held as the
+/// energy above standstill on the surface (`E + mu/R`, positive: no cancellation of two
+/// large terms at every step in `f32`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct FinalEnergy<S> {
+    /// Gravitational parameter the energy is measured with \[m^3/s^2\].
+    mu: S,
+    /// `mu / R` \[J/kg\].
+    mu_over_r: S,
+    /// The final energy above surface standstill, `E_f + mu/R` \[J/kg\].
+    above_surface: S,
+}
+
+impl<S: Real> FinalEnergy<S> {
+    /// `E(y) - E_f` \[J/kg\]: positive before the end (planet radius `radius_m` \[m\]).
+    fn residual(&self, y: &Y<S>, radius_m: S) -> S {
+        // -mu/r + mu/R = mu h / (R r).
+        (y.v * y.v).half() + self.mu_over_r * y.h / (radius_m + y.h) - self.above_surface
+    }
+
+    /// `d(E - E_f)/dt` \[W/kg\] at `y` with rates `dy`.
+    fn rate(&self, y: &Y<S>, dy: &Y<S>, radius_m: S) -> S {
+        let r = radius_m + y.h;
+        y.v * dy.v + self.mu / (r * r) * dy.h
+    }
+}
+
+/// Newton refinements of the terminal crossing inside the last step (each one RK4 step from
+/// the start of that step), before the first-order closure.
+const TERMINAL_REFINEMENTS: u8 = 2;
+
 /// A numerical prediction in progress (module docs): `Copy`, advanced a bounded number of steps
 /// at a time.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,6 +165,8 @@ const ESCAPE_DRAG_M_S2: f64 = 1e-6;
 pub struct NumericalRun<S> {
     model: Model<S>,
     final_speed_m_s: S,
+    /// The terminal energy (`None`: the prediction ends at `final_speed_m_s`).
+    final_energy: Option<FinalEnergy<S>>,
     peaks: PeakMode<S>,
     y: Y<S>,
     h0: S,
@@ -191,6 +238,7 @@ impl<S: Real> NumericalRun<S> {
                 rotation: None,
             },
             final_speed_m_s: config.final_speed_m_s,
+            final_energy: None,
             peaks,
             y: Y {
                 h: h0,
@@ -246,6 +294,39 @@ impl<S: Real> NumericalRun<S> {
     #[must_use]
     pub fn with_rotation(mut self, omega_rad_s: S, latitude_rad: S, heading_rad: S) -> Self {
         self.model.rotation = Rotation::new(omega_rad_s, latitude_rad, heading_rad);
+        self
+    }
+
+    /// This prediction ending at the specific energy `final_energy_j_kg` \[J/kg\]
+    /// (`E = V^2/2 - mu/r`, measured with `mu_m3_s2` \[m^3/s^2\]: the planet's own, also when
+    /// the dynamics fly a rotation-corrected effective `mu`) instead of at the final speed of
+    /// [`NumericalRun::new`]: the interface the flights end on. The energy falls monotonically
+    /// (drag only dissipates it) where the speed need not (a pull-up or a dive changes the speed
+    /// both ways), so the first step that ends below it holds the one crossing, located inside
+    /// that step (module docs). A non-finite or non-positive `mu_m3_s2`, or a non-finite
+    /// energy, leaves the prediction unchanged (ending at the final speed); a state not above
+    /// the final energy makes the outcome [`VinhError::BelowFinalSpeed`] without a step.
+    #[must_use]
+    pub fn with_final_energy(mut self, mu_m3_s2: S, final_energy_j_kg: S) -> Self {
+        let r = self.model.radius_m;
+        let mu_over_r = mu_m3_s2 / r;
+        let above_surface = final_energy_j_kg + mu_over_r;
+        if !(mu_m3_s2.is_finite()
+            && mu_m3_s2 > S::ZERO
+            && final_energy_j_kg.is_finite()
+            && above_surface.is_finite())
+        {
+            return self;
+        }
+        let e = FinalEnergy {
+            mu: mu_m3_s2,
+            mu_over_r,
+            above_surface,
+        };
+        if !(e.residual(&self.y, r) > S::ZERO) && self.steps == 0 {
+            self.outcome = Some(Err(VinhError::BelowFinalSpeed));
+        }
+        self.final_energy = Some(e);
         self
     }
 
@@ -360,8 +441,13 @@ impl<S: Real> NumericalRun<S> {
         if !y1.is_finite() {
             return Some(Err(VinhError::NonFiniteResult));
         }
-        let vf = self.final_speed_m_s;
-        if y1.v <= vf {
+        if let Some(e) = self.final_energy {
+            let r = m.radius_m;
+            let g1 = e.residual(&y1, r);
+            if !(g1 > S::ZERO) {
+                return Some(self.finish_energy(&e, &y0, &rt, dt, g1));
+            }
+        } else if y1.v <= self.final_speed_m_s {
             return Some(self.finish(&y0, &rt, dt, &y1));
         }
         if !(y1.h > S::ZERO) {
@@ -370,6 +456,81 @@ impl<S: Real> NumericalRun<S> {
         self.y = y1;
         self.t = self.t + dt;
         None
+    }
+
+    /// The step `dt` from `y0` (rates `rt`) ended `g1 <= 0` \[J/kg\] past the final energy
+    /// `e`: the crossing inside the step, from the linear interpolation of the energy over the
+    /// step refined by [`TERMINAL_REFINEMENTS`] Newton steps (each an RK4 step from `y0`), the
+    /// small remainder closed to first order with the rates at its end.
+    fn finish_energy(
+        &mut self,
+        e: &FinalEnergy<S>,
+        y0: &Y<S>,
+        rt: &Rates<S>,
+        dt: S,
+        g1: S,
+    ) -> Result<Prediction<S>, VinhError> {
+        let m = &self.model;
+        let r = m.radius_m;
+        let g0 = e.residual(y0, r);
+        // g0 > 0 >= g1, so the fraction is in [0, 1].
+        let frac = (g0 / (g0 - g1)).clamp(S::ZERO, S::ONE);
+        let mut dt1 = dt * frac;
+        let mut y2 = m.rk4(y0, &rt.dy, dt1);
+        let mut r2 = m.rates(&y2);
+        let mut dtc;
+        let mut i = 0_u8;
+        loop {
+            let rate = e.rate(&y2, &r2.dy, r);
+            let c = -e.residual(&y2, r) / rate;
+            dtc = if c.is_finite() && (dt1 + c) >= S::ZERO && (dt1 + c) <= dt {
+                c
+            } else {
+                S::ZERO
+            };
+            if i >= TERMINAL_REFINEMENTS || dtc == S::ZERO {
+                break;
+            }
+            i += 1;
+            dt1 = dt1 + dtc;
+            y2 = m.rk4(y0, &rt.dy, dt1);
+            r2 = m.rates(&y2);
+        }
+        let yf = Y {
+            h: y2.h + r2.dy.h * dtc,
+            v: y2.v + r2.dy.v * dtc,
+            gamma: y2.gamma + r2.dy.gamma * dtc,
+            theta: y2.theta + r2.dy.theta * dtc,
+        };
+        self.end_at(&yf, &r2, dt1 + dtc)
+    }
+
+    /// The prediction ends at `yf` (`dt_last` \[s\] after the last node; `r2` the rates the
+    /// closure used): checks, the last node, the status.
+    fn end_at(&mut self, yf: &Y<S>, r2: &Rates<S>, dt_last: S) -> Result<Prediction<S>, VinhError> {
+        if !(yf.is_finite() && r2.dy.is_finite()) {
+            return Err(VinhError::NonFiniteResult);
+        }
+        if !(yf.h > S::ZERO) {
+            return Err(VinhError::GroundImpact);
+        }
+        let m = &self.model;
+        self.y = *yf;
+        self.t = self.t + dt_last;
+        if self.peaks == PeakMode::RangeOnly {
+            return self.prediction(yf.theta, PeakStatus::NotComputed);
+        }
+        let rf = m.rates(yf);
+        if self.record_node(self.t, rf.rho, yf.v, rf.drag, rf.lift) {
+            return self.prediction(yf.theta, PeakStatus::LimitExceeded);
+        }
+        let status = match self.peaks {
+            PeakMode::Limits(l) if self.q_max > l.heat_flux_w_m2 || self.n_max > l.g_load => {
+                PeakStatus::LimitExceeded
+            }
+            _ => PeakStatus::Computed,
+        };
+        self.prediction(yf.theta, status)
     }
 
     /// The step `dt` from `y0` (rates `rt`) to `y1` crossed the final speed: redo it to the

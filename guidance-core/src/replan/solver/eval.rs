@@ -61,10 +61,14 @@ impl<S: Real> ReplanSolver<S> {
                             Some(b) => r.with_path_bound(b),
                             None => r,
                         };
-                        match &self.rotation {
+                        let r = match &self.rotation {
                             Some(w) => {
                                 r.with_rotation(w.omega_rad_s, w.latitude_rad, w.heading_rad)
                             }
+                            None => r,
+                        };
+                        match self.final_energy {
+                            Some((mu, e)) => r.with_final_energy(mu, e),
                             None => r,
                         }
                     }

@@ -108,6 +108,9 @@ pub struct ReplanSolver<S> {
     path_bound: Option<PathBound<S>>,
     /// The rotating planet of numerical predictions ([`ReplanSolver::with_rotation`]).
     rotation: Option<SolverRotation<S>>,
+    /// The terminal energy of numerical predictions: the gravitational parameter it is
+    /// measured with \[m^3/s^2\] and the energy \[J/kg\] ([`ReplanSolver::with_final_energy`]).
+    final_energy: Option<(S, S)>,
     calls: u8,
     phase: Phase<S>,
 }
@@ -184,6 +187,7 @@ impl<S: Real> ReplanSolver<S> {
             lift_schedule: None,
             path_bound: None,
             rotation: None,
+            final_energy: None,
             calls: 0,
             phase: Phase::EndLo,
         };
@@ -246,6 +250,19 @@ impl<S: Real> ReplanSolver<S> {
                 latitude_rad: nav.latitude_rad,
                 heading_rad: nav.heading_rad,
             });
+        }
+        self
+    }
+
+    /// This solver with its numerical predictions ending at the specific energy
+    /// `final_energy_j_kg` \[J/kg\] (`V^2/2 - mu/r`, measured with `mu_m3_s2` \[m^3/s^2\]:
+    /// the planet's own) instead of the final speed of [`ReplanConfig::predictor`]
+    /// ([`NumericalRun::with_final_energy`]; closed-form predictions keep the final speed). A
+    /// non-finite energy or a non-finite or non-positive `mu_m3_s2` is ignored.
+    #[must_use]
+    pub fn with_final_energy(mut self, mu_m3_s2: S, final_energy_j_kg: S) -> Self {
+        if mu_m3_s2.is_finite() && mu_m3_s2 > S::ZERO && final_energy_j_kg.is_finite() {
+            self.final_energy = Some((mu_m3_s2, final_energy_j_kg));
         }
         self
     }
