@@ -15,6 +15,7 @@ mod path_barrier;
 mod path_bound;
 mod stack;
 mod vinh_error_map;
+mod vinh_oracle;
 mod vinh_peaks;
 mod vinh_props;
 mod vinh_replan;

@@ -32,8 +32,8 @@ fn glide_from(h: f64, v: f64, veh: &VehicleParams<f64>, f: f64) -> Validity {
 }
 
 /// Glide mode from the SRM glide entry: in domain at the equilibrium start (validated +0.56 %),
-/// extrapolated when the start is far above the equilibrium of the bank (cos(sigma) = 0.3:
-/// validated -10 %) and for a vehicle of vertical L/D 0.3; out of domain with the error for a
+/// extrapolated when the start is far above the equilibrium of the bank (cos(sigma) = 0.4,
+/// vertical L/D 0.91: 6.6 km above it) and for a vehicle of vertical L/D 0.3; out of domain with the error for a
 /// final speed above the current speed.
 #[test]
 fn glide_predictions_carry_their_validity() {
@@ -41,7 +41,7 @@ fn glide_predictions_carry_their_validity() {
     let h = n.radius_m - R_EARTH;
     assert_eq!(glide_from(h, n.speed_m_s, &srm(), 1.0), Validity::InDomain);
     assert_eq!(
-        glide_from(h, n.speed_m_s, &srm(), 0.3),
+        glide_from(h, n.speed_m_s, &srm(), 0.4),
         Validity::Extrapolated(Extrapolation::GlideStartOffset)
     );
     // Same polar shape, L/D 0.3 (K raised: E* = 1/(2 sqrt(K C_D0))).
