@@ -37,8 +37,9 @@ use super::skip::SkipSolution;
 use super::validity::{
     Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD,
     GLIDE_MAX_START_ABOVE_STATE_M, GLIDE_MAX_START_OFFSET_M, GLIDE_MAX_START_OFFSET_PER_LD_M,
-    GLIDE_MAX_TRANSIENT_FRACTION, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE,
-    SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_MIN_VERTICAL_LD, SKIP_SPEED_RANGE_M_S, Validity,
+    GLIDE_MAX_TRANSIENT_FRACTION, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_MIN_SUBCIRCULAR_MARGIN,
+    GLIDE_VERTICAL_LD_RANGE, SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_MIN_VERTICAL_LD,
+    SKIP_SPEED_RANGE_M_S, Validity,
 };
 use crate::scalar::Real;
 
@@ -368,7 +369,8 @@ pub(crate) fn glide_validity<S: Real>(
 ) -> Validity {
     let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
     let e = glide.nondim().constants().e_vertical;
-    let ratio = final_speed_m_s / glide.imposed_entry().speed_m_s;
+    let start = glide.imposed_entry();
+    let ratio = final_speed_m_s / start.speed_m_s;
     v.and(
         !inside(r_g - planet.radius_m, GLIDE_ALTITUDE_RANGE_M),
         Extrapolation::GlideAltitude,
@@ -380,6 +382,11 @@ pub(crate) fn glide_validity<S: Real>(
     .and(
         !(ratio >= k(GLIDE_MIN_FINAL_SPEED_RATIO)),
         Extrapolation::GlideFinalSpeedRatio,
+    )
+    .and(
+        !(S::ONE - start.speed_m_s * start.speed_m_s * start.radius_m / planet.mu_m3_s2
+            >= k(GLIDE_MIN_SUBCIRCULAR_MARGIN)),
+        Extrapolation::GlideNearCircular,
     )
 }
 
