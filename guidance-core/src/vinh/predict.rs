@@ -386,7 +386,7 @@ pub(crate) fn glide_validity<S: Real>(
     .and(
         !(S::ONE - start.speed_m_s * start.speed_m_s * start.radius_m / planet.mu_m3_s2
             >= k(GLIDE_MIN_SUBCIRCULAR_MARGIN)),
-        Extrapolation::GlideNearCircular,
+        Extrapolation::GlideCircularMargin,
     )
 }
 

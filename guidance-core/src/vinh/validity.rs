@@ -130,8 +130,9 @@ pub enum Extrapolation {
     /// Final speed below [`GLIDE_MIN_FINAL_SPEED_RATIO`] of the glide start speed.
     GlideFinalSpeedRatio,
     /// Glide start speed so near the circular speed that `1 - u_E` is below
-    /// [`GLIDE_MIN_SUBCIRCULAR_MARGIN`].
-    GlideNearCircular,
+    /// [`GLIDE_MIN_SUBCIRCULAR_MARGIN`] (the error [`super::VinhError::GlideNearCircular`]
+    /// starts at 0.01).
+    GlideCircularMargin,
     /// Glide-mode start radius more than [`GLIDE_MAX_START_OFFSET_PER_LD_M`] times the total
     /// L/D from the state ([`GLIDE_MAX_START_OFFSET_M`] with the sink modelled).
     GlideStartOffset,
