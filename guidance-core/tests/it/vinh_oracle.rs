@@ -162,8 +162,8 @@ impl Tally {
     fn add(&mut self, err: f64, dh_m: f64, case: impl FnOnce() -> String) {
         self.in_domain += 1;
         self.max_dh_m = self.max_dh_m.max(dh_m);
-        let beyond = !(err.abs() <= BOUND);
-        let worst = !(err.abs() <= self.worst.abs());
+        let beyond = err.is_nan() || err.abs() > BOUND;
+        let worst = err.is_nan() || err.abs() > self.worst.abs();
         if beyond || worst {
             let c = case();
             if beyond {
@@ -462,11 +462,11 @@ fn report_and_check(o: &Oracle, min_in_domain: usize) {
     assert!(failed.is_empty(), "{failed:#?}");
 }
 
-/// CI size: every `InDomain` prediction of 30 000 closed-form draws and 3 000 hybrid re-plans is
+/// CI size: every `InDomain` prediction of 30 000 closed-form draws and 4 000 hybrid re-plans is
 /// within 3 % of the integration, and each kind has in-domain cases.
 #[test]
 fn vinh_oracle_in_domain_within_3_percent() {
-    let o = run(1, 30_000, 3_000);
+    let o = run(1, 30_000, 4_000);
     report_and_check(&o, 20);
 }
 
