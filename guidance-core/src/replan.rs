@@ -443,8 +443,11 @@ pub(crate) fn glide_prediction<S: Real>(
                 config.final_speed_m_s,
             ),
             &glide,
+            planet,
+            atmosphere,
             state,
             lift,
+            end.range_angle_rad,
             sink,
         ),
     })

@@ -37,8 +37,9 @@ use super::skip::SkipSolution;
 use super::validity::{
     Extrapolation, GLIDE_ALTITUDE_RANGE_M, GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD,
     GLIDE_MAX_START_ABOVE_STATE_M, GLIDE_MAX_START_OFFSET_M, GLIDE_MAX_START_OFFSET_PER_LD_M,
-    GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_VERTICAL_LD_RANGE, SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V,
-    SKIP_MIN_VERTICAL_LD, SKIP_SPEED_RANGE_M_S, Validity,
+    GLIDE_MAX_TRANSIENT_FRACTION, GLIDE_MIN_FINAL_SPEED_RATIO, GLIDE_MIN_SUBCIRCULAR_MARGIN,
+    GLIDE_VERTICAL_LD_RANGE, SKIP_FPA_RANGE_RAD, SKIP_MAX_EXIT_ETA_V, SKIP_MIN_VERTICAL_LD,
+    SKIP_SPEED_RANGE_M_S, Validity,
 };
 use crate::scalar::Real;
 
@@ -269,7 +270,16 @@ pub fn predict_with<S: Real>(
     let end = glide.point_at_speed(config.final_speed_m_s)?;
     validity = glide_validity(validity, &glide, planet, r_g, config.final_speed_m_s);
     if first_capture {
-        validity = glide_start_validity(validity, &glide, state, lift, false);
+        validity = glide_start_validity(
+            validity,
+            &glide,
+            planet,
+            atmosphere,
+            state,
+            lift,
+            end.range_angle_rad,
+            false,
+        );
     }
     if let PeakMode::Limits(l) = peaks {
         let start = glide.point_at_u(glide.u_entry())?;
@@ -359,7 +369,8 @@ pub(crate) fn glide_validity<S: Real>(
 ) -> Validity {
     let inside = |x: S, (lo, hi): (f64, f64)| x >= k(lo) && x <= k(hi);
     let e = glide.nondim().constants().e_vertical;
-    let ratio = final_speed_m_s / glide.imposed_entry().speed_m_s;
+    let start = glide.imposed_entry();
+    let ratio = final_speed_m_s / start.speed_m_s;
     v.and(
         !inside(r_g - planet.radius_m, GLIDE_ALTITUDE_RANGE_M),
         Extrapolation::GlideAltitude,
@@ -372,19 +383,30 @@ pub(crate) fn glide_validity<S: Real>(
         !(ratio >= k(GLIDE_MIN_FINAL_SPEED_RATIO)),
         Extrapolation::GlideFinalSpeedRatio,
     )
+    .and(
+        !(S::ONE - start.speed_m_s * start.speed_m_s * start.radius_m / planet.mu_m3_s2
+            >= k(GLIDE_MIN_SUBCIRCULAR_MARGIN)),
+        Extrapolation::GlideCircularMargin,
+    )
 }
 
 /// `v` updated with the checks of a glide started at `glide`'s radius `r_g` from `state` (the
 /// glide mode, [`crate::replan::predict_glide_with`], or a chain captured in its first skip):
 /// the distance from the state to `r_g` ([`GLIDE_MAX_START_OFFSET_PER_LD_M`] per unit of total
 /// L/D, or [`GLIDE_MAX_START_OFFSET_M`] with the sink modelled), the state at most
-/// [`GLIDE_MAX_START_ABOVE_STATE_M`] below `r_g`, and its flight-path angle within
-/// [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] of the glide's imposed one.
+/// [`GLIDE_MAX_START_ABOVE_STATE_M`] below `r_g`, its flight-path angle within
+/// [`GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD`] of the glide's imposed one, and the estimated
+/// start transient within [`GLIDE_MAX_TRANSIENT_FRACTION`] of the glide's range angle
+/// `glide_range_angle_rad` \[rad\] (see [`glide_transient_rad`]).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn glide_start_validity<S: Real>(
     v: Validity,
     glide: &GlideSolution<S>,
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
     state: &EntryState<S>,
     lift: &LiftControl<S>,
+    glide_range_angle_rad: S,
     sink: bool,
 ) -> Validity {
     let start = glide.imposed_entry();
@@ -406,6 +428,37 @@ pub(crate) fn glide_start_validity<S: Real>(
                 <= k(GLIDE_MAX_FLIGHT_PATH_ANGLE_OFFSET_RAD)),
             Extrapolation::GlideFlightPathAngle,
         )
+        .and(
+            !(glide_transient_rad(planet, atmosphere, state, &start).is_some_and(|t| {
+                t <= k::<S>(GLIDE_MAX_TRANSIENT_FRACTION) * glide_range_angle_rad
+            })),
+            Extrapolation::GlideTransient,
+        )
+}
+
+/// Estimated range angle \[rad\] of the start transient of a glide whose imposed start is
+/// `start` flown from `state` (see [`GLIDE_MAX_TRANSIENT_FRACTION`]): `(V/r) (1 - exp(-A/H)) / w`
+/// with `w = sqrt(a / H)`, `a = mu/r^2 - V^2/r`, `A = sqrt(dh^2 + (V dgamma / w)^2)`. `None`
+/// when it cannot be estimated (`a <= 0`: at or above circular speed; non-finite values).
+fn glide_transient_rad<S: Real>(
+    planet: &Planet<S>,
+    atmosphere: &ExpAtmosphere<S>,
+    state: &EntryState<S>,
+    start: &EntryState<S>,
+) -> Option<S> {
+    let r = state.radius_m;
+    let v = state.speed_m_s;
+    let h_s = atmosphere.scale_height_m;
+    let a = planet.mu_m3_s2 / (r * r) - v * v / r;
+    if !(a > S::ZERO && h_s > S::ZERO && r > S::ZERO) {
+        return None;
+    }
+    let w = (a / h_s).sqrt_raw();
+    let dh = r - start.radius_m;
+    let dz = v * (state.flight_path_angle_rad - start.flight_path_angle_rad) / w;
+    let amplitude = (dh * dh + dz * dz).sqrt_raw();
+    let t = v / r * (S::ONE - (-amplitude / h_s).exp()) / w;
+    t.is_finite().then_some(t)
 }
 
 /// A prediction stopped by [`PeakMode::Limits`] (range so far; the loads that exceeded).

@@ -16,6 +16,7 @@ mod path_bound;
 mod setup_image;
 mod stack;
 mod vinh_error_map;
+mod vinh_oracle;
 mod vinh_peaks;
 mod vinh_props;
 mod vinh_replan;

@@ -10,8 +10,10 @@ use guidance_core::vinh::{
     validity_of,
 };
 
-const TO_2500: PredictorConfig<f64> = PredictorConfig {
-    final_speed_m_s: 2500.0,
+/// 2700 m/s: 0.35 of the SRM glide entry speed (7658 m/s), inside the glide's final-speed
+/// ratio bound (`GLIDE_MIN_FINAL_SPEED_RATIO`).
+const TO_2700: PredictorConfig<f64> = PredictorConfig {
+    final_speed_m_s: 2700.0,
     max_skips: 4,
 };
 
@@ -27,13 +29,13 @@ fn glide_from(h: f64, v: f64, veh: &VehicleParams<f64>, f: f64) -> Validity {
         veh,
         &lift(f),
         &s,
-        &TO_2500,
+        &TO_2700,
     ))
 }
 
 /// Glide mode from the SRM glide entry: in domain at the equilibrium start (validated +0.56 %),
-/// extrapolated when the start is far above the equilibrium of the bank (cos(sigma) = 0.3:
-/// validated -10 %) and for a vehicle of vertical L/D 0.3; out of domain with the error for a
+/// extrapolated when the start is far above the equilibrium of the bank (cos(sigma) = 0.4,
+/// vertical L/D 0.91: 6.6 km above it) and for a vehicle of vertical L/D 0.3; out of domain with the error for a
 /// final speed above the current speed.
 #[test]
 fn glide_predictions_carry_their_validity() {
@@ -41,7 +43,7 @@ fn glide_predictions_carry_their_validity() {
     let h = n.radius_m - R_EARTH;
     assert_eq!(glide_from(h, n.speed_m_s, &srm(), 1.0), Validity::InDomain);
     assert_eq!(
-        glide_from(h, n.speed_m_s, &srm(), 0.3),
+        glide_from(h, n.speed_m_s, &srm(), 0.4),
         Validity::Extrapolated(Extrapolation::GlideStartOffset)
     );
     // Same polar shape, L/D 0.3 (K raised: E* = 1/(2 sqrt(K C_D0))).
@@ -62,7 +64,7 @@ fn glide_predictions_carry_their_validity() {
         speed_m_s: 2000.0,
         flight_path_angle_rad: 0.0,
     };
-    let r = predict_glide(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500);
+    let r = predict_glide(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2700);
     assert!(matches!(validity_of(&r), Validity::OutOfDomain(_)), "{r:?}");
 }
 
@@ -86,7 +88,7 @@ fn chain_predictions_carry_their_validity() {
                 speed_m_s: v,
                 flight_path_angle_rad: f64::to_radians(g),
             };
-            let r = predict(&planet(), &atmosphere(), &srm(), &lift(f), &s, &TO_2500);
+            let r = predict(&planet(), &atmosphere(), &srm(), &lift(f), &s, &TO_2700);
             let val = validity_of(&r);
             println!(
                 "f {f} {v} m/s {g} deg: {val:?}, {:?}",
@@ -114,7 +116,7 @@ fn chain_predictions_carry_their_validity() {
         speed_m_s: 11_500.0,
         flight_path_angle_rad: f64::to_radians(-7.0),
     };
-    let r = predict(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500);
+    let r = predict(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2700);
     assert_ne!(validity_of(&r), Validity::InDomain, "{r:?}");
 }
 
@@ -131,7 +133,7 @@ fn glide_start_checks_of_the_replanning_domain() {
             speed_m_s: n.speed_m_s,
             flight_path_angle_rad: gamma,
         };
-        predict_glide(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2500).unwrap()
+        predict_glide(&planet(), &atmosphere(), &srm(), &lift(1.0), &s, &TO_2700).unwrap()
     };
     let p = at(0.0, n.flight_path_angle_rad);
     assert_eq!(p.validity, Validity::InDomain);
@@ -174,7 +176,7 @@ fn chain_captured_in_its_first_skip_is_the_glide_from_the_state() {
                             speed_m_s: v,
                             flight_path_angle_rad: g_deg * deg,
                         };
-                        let Ok(c) = predict(&pl, &atmosphere(), &srm(), &lift(f), &s, &TO_2500)
+                        let Ok(c) = predict(&pl, &atmosphere(), &srm(), &lift(f), &s, &TO_2700)
                         else {
                             continue;
                         };
@@ -182,7 +184,7 @@ fn chain_captured_in_its_first_skip_is_the_glide_from_the_state() {
                             continue;
                         }
                         found += 1;
-                        let g = predict_glide(&pl, &atmosphere(), &srm(), &lift(f), &s, &TO_2500)
+                        let g = predict_glide(&pl, &atmosphere(), &srm(), &lift(f), &s, &TO_2700)
                             .unwrap();
                         assert!(
                             (c.range_m - g.range_m).abs() <= 1e-9 * g.range_m,

@@ -586,10 +586,12 @@ const IN_DOMAIN_BOUND_PCT: f64 = 3.0;
 /// applies in two closed-loop runs of the re-planning domain (SRM, simplified environment with a
 /// 10 % thinner atmosphere than the predictor's; full environment heading west with a -0.2 deg
 /// entry, which holds states below their glide start radius): every prediction classed
-/// `InDomain` is within 3 % of the integrated range, and `InDomain` covers at least two thirds
-/// of the glide-mode re-plans with more than 500 km to go. Measured (docs/validation/vinh-numerical.md): in-domain maximum 2.49 % over the whole
-/// domain (6 333 re-plans, scenarios and 20 + 20 campaign flights); 5.8 % before states more
-/// than 1 km below their glide start radius were classed `Extrapolated(GlideBelowEquilibrium)`.
+/// `InDomain` is within 3 % of the integrated range, and `InDomain` covers at least a quarter
+/// of the glide-mode re-plans with more than 500 km to go (measured: 75 of 300 in domain,
+/// worst 0.69 %). Measured before the domain was tightened to the random oracle's guarantee
+/// (docs/validation/vinh-numerical.md): in-domain maximum 2.49 % over the whole domain (6 333
+/// re-plans, scenarios and 20 + 20 campaign flights); 5.8 % before states more than 1 km below
+/// their glide start radius were classed `Extrapolated(GlideBelowEquilibrium)`.
 #[test]
 fn validate_integration_replanning_domain_in_domain_is_within_3_percent() {
     let total = rl::fly_stored(&rl::setup(1.0, 0.0))
@@ -638,10 +640,14 @@ fn validate_integration_replanning_domain_in_domain_is_within_3_percent() {
         points.len(),
         far.len()
     );
-    // Measured 210 of 300: a 10 % thinner atmosphere keeps the vehicle ~1-2 km below the
-    // model's equilibrium (GlideBelowEquilibrium), and glide starts below 70 km.
+    // Measured 75 of 300 (210 before the domain was tightened to what the random oracle of
+    // guidance-core/tests/it/vinh_oracle.rs guarantees): a 10 % thinner atmosphere keeps the
+    // vehicle ~1-2 km below the model's equilibrium (GlideBelowEquilibrium), the glide start
+    // falls below 80 km, the final speed (2.5 km/s) is below 0.34 of glide starts above
+    // 7.35 km/s (GlideFinalSpeedRatio), and the start transient exceeds 1 % of a short glide's
+    // range (GlideTransient). A coverage floor: the domain must not be empty here.
     assert!(
-        far_in * 3 >= far.len() * 2,
+        far_in * 4 >= far.len(),
         "in domain {far_in} of {} far glide re-plans",
         far.len()
     );
