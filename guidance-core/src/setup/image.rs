@@ -96,7 +96,9 @@ pub const fn image_capacity(nodes: usize) -> usize {
         + 24 * SCHEDULE_NODES
         + 1
         + 8
-        + 1;
+        + 1
+        + 1
+        + 8;
     let lateral = 1 + 3 * 8 + 4 * 8 + 8 + 1 + 8 + 1 + 3 * 8;
     let estimator = 6 * 8 + 8;
     let barrier = 5 * 8 + 1;
@@ -384,6 +386,10 @@ pub fn encode<S: Scalar, const M: usize, P: Real>(
             wr.f(w(e))?;
         }
         wr.flag(r.numerical_rotation)?;
+        wr.flag(r.final_energy_j_kg.is_some())?;
+        if let Some(e) = r.final_energy_j_kg {
+            wr.f(w(e))?;
+        }
     }
     if let Some(l) = &config.lateral {
         let c = &l.corridor;
@@ -649,6 +655,7 @@ pub fn decode<S: Scalar, const N: usize, P: Real>(
         };
         let start_normalized_energy = if r.flag()? { Some(r.p()?) } else { None };
         let numerical_rotation = r.flag()?;
+        let final_energy_j_kg = if r.flag()? { Some(r.p()?) } else { None };
         Some(ReplanLayer {
             every_n_ticks,
             limits,
@@ -670,6 +677,7 @@ pub fn decode<S: Scalar, const N: usize, P: Real>(
             lift_schedule,
             start_normalized_energy,
             numerical_rotation,
+            final_energy_j_kg,
         })
     } else {
         None
@@ -867,7 +875,7 @@ mod tests {
     /// The figure docs/reference/guidance-stack.md states.
     #[test]
     fn capacity_of_the_firmware_table() {
-        assert_eq!(image_capacity(16), 1171);
+        assert_eq!(image_capacity(16), 1180);
         assert_eq!(image_capacity(16).div_ceil(CHUNK_BYTES), 18);
     }
 }
