@@ -302,7 +302,9 @@ fn every_vehicle_key_changes_the_flight_or_is_refused() {
     };
     let scenario = |vfile: &str| {
         // The stored profile alone: the walk is over the vehicle's keys.
-        let mut t: Table = scenario_to_toml(&Scenario::horus_2b_stored()).parse().unwrap();
+        let mut t: Table = scenario_to_toml(&Scenario::horus_2b_stored())
+            .parse()
+            .unwrap();
         t.remove("vehicle");
         t.insert("vehicle_file".into(), Value::String(vfile.into()));
         set(&mut t, "termination.max_time_s", Some(v("600.0")));
