@@ -1,6 +1,7 @@
 //! CPU time per closed-loop flight, for comparing builds on a shared machine (issue 11 item
 //! 9): wall-clock benchmarks (criterion) inflate with the machine's load, the thread's own CPU
-//! time much less. Flies the HORUS-2B reference mission and the SRM glide `N` times each
+//! time much less. Flies the HORUS-2B reference mission and the SRM glide (their stored
+//! profiles, without the guidance layers) `N` times each
 //! (default 200) on one thread and prints the median CPU time per flight over 5 rounds, read
 //! from `/proc/thread-self/schedstat` (Linux). A second argument flies only the built-in
 //! scenario of that name (`horus-2b-reference` or `srm-glide`), e.g. to count one scenario's
@@ -33,6 +34,9 @@ fn main() -> Result<(), String> {
         None => vec![Scenario::default(), Scenario::srm_glide()],
     };
     for sc in scenarios {
+        // The stored profile alone: one closed-loop flight (with its layers `fly` would build
+        // a campaign set-up first).
+        let sc = Scenario { layers: None, ..sc };
         let once = fly(&sc, "cpu", &mut |_| {}).map_err(|e| e.to_string())?;
         let mut rounds = Vec::new();
         for _ in 0..5 {

@@ -124,7 +124,12 @@ impl DesignConfig {
                 sc.layers = None;
                 Ok(sc)
             }
-            file => Ok(read_scenario(&dir.join(file))?),
+            file => {
+                // The design problems shape the stored profile: it is flown alone.
+                let mut sc = read_scenario(&dir.join(file))?;
+                sc.layers = None;
+                Ok(sc)
+            }
         }
     }
 
