@@ -608,11 +608,21 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// [`GuidanceError::InvalidConfig`] if the schedule is not valid
     /// ([`LiftSchedule::is_valid`]).
     pub fn with_lift_schedule(mut self, schedule: LiftSchedule<P>) -> Result<Self, GuidanceError> {
+        self.set_lift_schedule(schedule)?;
+        Ok(self)
+    }
+
+    /// [`Self::with_lift_schedule`] in place (no copy of the guidance: used by
+    /// [`crate::stack::FlightStack::new`], whose stack depth counts on the board).
+    pub(crate) fn set_lift_schedule(
+        &mut self,
+        schedule: LiftSchedule<P>,
+    ) -> Result<(), GuidanceError> {
         if !schedule.is_valid() {
             return Err(GuidanceError::InvalidConfig);
         }
         self.lift_schedule = Some(schedule);
-        Ok(self)
+        Ok(())
     }
 
     /// Start no solve while E-hat is above `max_normalized_energy` \[-\]: the stored profile
@@ -623,11 +633,20 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for a non-finite value.
     pub fn with_start_energy(mut self, max_normalized_energy: S) -> Result<Self, GuidanceError> {
+        self.set_start_energy(max_normalized_energy)?;
+        Ok(self)
+    }
+
+    /// [`Self::with_start_energy`] in place.
+    pub(crate) fn set_start_energy(
+        &mut self,
+        max_normalized_energy: S,
+    ) -> Result<(), GuidanceError> {
         if !max_normalized_energy.is_finite() {
             return Err(GuidanceError::InvalidConfig);
         }
         self.start_energy = Some(max_normalized_energy);
-        Ok(self)
+        Ok(())
     }
 
     /// Bound every installed re-planned bank magnitude by the heat-flux and g-load limits at
@@ -647,12 +666,22 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         bound: PathBound<P>,
         predicted: bool,
     ) -> Result<Self, GuidanceError> {
+        self.set_path_bound(bound, predicted)?;
+        Ok(self)
+    }
+
+    /// [`Self::with_path_bound`] in place.
+    pub(crate) fn set_path_bound(
+        &mut self,
+        bound: PathBound<P>,
+        predicted: bool,
+    ) -> Result<(), GuidanceError> {
         if !bound.is_valid() {
             return Err(GuidanceError::InvalidConfig);
         }
         self.path_bound = Some(bound);
         self.path_bound_predicted = predicted;
-        Ok(self)
+        Ok(())
     }
 
     /// End every numerical prediction at the specific energy `final_energy_j_kg` \[J/kg\]
@@ -667,11 +696,30 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for a non-finite energy.
     pub fn with_final_energy(mut self, final_energy_j_kg: P) -> Result<Self, GuidanceError> {
+        self.set_final_energy(final_energy_j_kg)?;
+        Ok(self)
+    }
+
+    /// [`Self::with_final_energy`] in place.
+    pub(crate) fn set_final_energy(&mut self, final_energy_j_kg: P) -> Result<(), GuidanceError> {
         if !final_energy_j_kg.is_finite() {
             return Err(GuidanceError::InvalidConfig);
         }
         self.final_energy_j_kg = Some(final_energy_j_kg);
-        Ok(self)
+        Ok(())
+    }
+
+    /// The estimator and the rotation flag set in place ([`Self::with_estimator`],
+    /// [`Self::with_numerical_rotation`]).
+    pub(crate) fn set_estimator_and_rotation(
+        &mut self,
+        estimator: Option<AeroEstimator<P>>,
+        numerical_rotation: bool,
+    ) {
+        if estimator.is_some() {
+            self.estimator = estimator;
+        }
+        self.numerical_rotation = numerical_rotation;
     }
 
     /// This guidance with its numerical predictions modelling the planet's rotation at

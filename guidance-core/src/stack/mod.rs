@@ -225,36 +225,41 @@ impl<S: Scalar, const N: usize, P: Real> FlightStack<S, N, P> {
                     p.initial,
                 )
                 .map_err(rejected(Layer::Profile))?;
-                let mut g = ReplanningGuidance::new(
-                    p.guidance,
-                    p.table.clone(),
-                    p.interpolation,
-                    p.energy,
-                    p.initial,
-                    replanning,
-                )
-                .map_err(rejected(Layer::Replan))?;
-                if let Some(e) = config.estimator {
-                    g = g
-                        .with_estimator(AeroEstimator::new(e).map_err(rejected(Layer::Estimator))?);
+                let estimator = match config.estimator {
+                    Some(e) => Some(AeroEstimator::new(e).map_err(rejected(Layer::Estimator))?),
+                    None => None,
+                };
+                // Built once and configured in place: every by-value builder step would be
+                // another copy of the guidance on the stack (the board counts it).
+                let mut core = Core::Replan(
+                    ReplanningGuidance::new(
+                        p.guidance,
+                        p.table.clone(),
+                        p.interpolation,
+                        p.energy,
+                        p.initial,
+                        replanning,
+                    )
+                    .map_err(rejected(Layer::Replan))?,
+                );
+                if let Core::Replan(g) = &mut core {
+                    g.set_estimator_and_rotation(estimator, r.numerical_rotation);
+                    if let Some(s) = r.lift_schedule {
+                        g.set_lift_schedule(s).map_err(rejected(Layer::Replan))?;
+                    }
+                    if let Some(e) = r.start_normalized_energy {
+                        g.set_start_energy(S::from_f64(e.to_f64()))
+                            .map_err(rejected(Layer::Replan))?;
+                    }
+                    if let Some(b) = config.barrier {
+                        g.set_path_bound(b.bound, b.predicted)
+                            .map_err(rejected(Layer::Barrier))?;
+                    }
+                    if let Some(e) = r.final_energy_j_kg {
+                        g.set_final_energy(e).map_err(rejected(Layer::Replan))?;
+                    }
                 }
-                if let Some(s) = r.lift_schedule {
-                    g = g.with_lift_schedule(s).map_err(rejected(Layer::Replan))?;
-                }
-                if let Some(e) = r.start_normalized_energy {
-                    g = g
-                        .with_start_energy(S::from_f64(e.to_f64()))
-                        .map_err(rejected(Layer::Replan))?;
-                }
-                if let Some(b) = config.barrier {
-                    g = g
-                        .with_path_bound(b.bound, b.predicted)
-                        .map_err(rejected(Layer::Barrier))?;
-                }
-                if let Some(e) = r.final_energy_j_kg {
-                    g = g.with_final_energy(e).map_err(rejected(Layer::Replan))?;
-                }
-                Core::Replan(g.with_numerical_rotation(r.numerical_rotation))
+                core
             }
         };
         Ok(Self {
