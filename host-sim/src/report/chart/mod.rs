@@ -2,7 +2,7 @@
 //! a list of [`Layer`]s (lines, dots, crosses, bars, vertical lines, text labels) drawn on
 //! linear axes rounded out to "nice" tick steps, rendered by the same code to SVG
 //! ([`Figure::svg`]) and PNG ([`Figure::png`]) through `plotters`, with the embedded font of
-//! [`super::plot`]. The campaign figures ([`super::campaign`]) are built from it.
+//! `report::plot`. The campaign figures ([`super::campaign`]) are built from it.
 
 mod bounds;
 mod render;
