@@ -19,6 +19,16 @@ pub struct Command<S> {
 }
 
 impl<S: Scalar> Command<S> {
+    /// This command in `f64` \[rad\] (each angle through [`Scalar::to_f64`]): how a command
+    /// frame carries it.
+    #[must_use]
+    pub fn to_f64(self) -> Command<f64> {
+        Command {
+            alpha_rad: self.alpha_rad.to_f64(),
+            sigma_rad: self.sigma_rad.to_f64(),
+        }
+    }
+
     /// Command from degrees (converted to radians); `None` if non-finite or not
     /// representable in `S`.
     #[must_use]

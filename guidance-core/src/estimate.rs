@@ -43,6 +43,18 @@ pub struct SensedAero<S> {
     pub drag_m_s2: S,
 }
 
+impl SensedAero<f64> {
+    /// These accelerations in the scalar `R` a flight computer flies (through
+    /// [`crate::scalar::Scalar::from_f64`]; \[m/s^2\]).
+    #[must_use]
+    pub fn to_real<R: Real>(&self) -> SensedAero<R> {
+        SensedAero {
+            lift_m_s2: R::from_f64(self.lift_m_s2),
+            drag_m_s2: R::from_f64(self.drag_m_s2),
+        }
+    }
+}
+
 impl<S: Real> SensedAero<S> {
     /// Check that both accelerations are finite and non-negative.
     ///

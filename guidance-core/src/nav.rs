@@ -23,6 +23,24 @@ pub struct NavState<S> {
     pub longitude_rad: S,
 }
 
+impl NavState<f64> {
+    /// This state in the scalar `S` a flight computer flies (each field through
+    /// [`Scalar::from_f64`]; units unchanged): how the firmware and its PIL twin narrow the
+    /// simulator's navigation frame.
+    #[must_use]
+    pub fn to_scalar<S: Scalar>(&self) -> NavState<S> {
+        NavState {
+            time_s: S::from_f64(self.time_s),
+            radius_m: S::from_f64(self.radius_m),
+            speed_m_s: S::from_f64(self.speed_m_s),
+            flight_path_angle_rad: S::from_f64(self.flight_path_angle_rad),
+            heading_rad: S::from_f64(self.heading_rad),
+            latitude_rad: S::from_f64(self.latitude_rad),
+            longitude_rad: S::from_f64(self.longitude_rad),
+        }
+    }
+}
+
 impl<S: Scalar> NavState<S> {
     /// Check that every field is finite and the radius and speed are positive.
     ///

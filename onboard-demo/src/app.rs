@@ -39,7 +39,7 @@ use guidance_core::nodes::DEFAULT_NODE_CAPACITY;
 use guidance_core::setup::image::{ImageReceiver, image_capacity};
 use guidance_core::setup::{SetupBuilder, SetupGuidance, SetupItem};
 use guidance_core::stack::{FlightStack, Layers};
-use guidance_core::{NavState, Real, Scalar};
+use guidance_core::{Real, Scalar};
 
 use crate::clock::{Pacing, TickMonitor, TickStats, TickTimer, pace, period_us};
 
@@ -107,13 +107,6 @@ impl<S: Scalar, const N: usize, R: Real> Flight<S, N, R> {
     }
 }
 
-fn narrow_sensed<R: Real>(s: &SensedAero<f64>) -> SensedAero<R> {
-    SensedAero {
-        lift_m_s2: R::from_f64(s.lift_m_s2),
-        drag_m_s2: R::from_f64(s.drag_m_s2),
-    }
-}
-
 /// Take one image chunk; after the last one decode the image and build the stack into
 /// `flight` (kept as it was on a refusal). Not inlined: the decoded configuration and the
 /// stack under construction live in this frame only, not in the serving loop's for the whole
@@ -157,25 +150,6 @@ fn commit_v1<S: Scalar, const N: usize, R: Real>(
     }
 }
 
-fn narrow<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
-    NavState {
-        time_s: S::from_f64(n.time_s),
-        radius_m: S::from_f64(n.radius_m),
-        speed_m_s: S::from_f64(n.speed_m_s),
-        flight_path_angle_rad: S::from_f64(n.flight_path_angle_rad),
-        heading_rad: S::from_f64(n.heading_rad),
-        latitude_rad: S::from_f64(n.latitude_rad),
-        longitude_rad: S::from_f64(n.longitude_rad),
-    }
-}
-
-fn wide<S: Scalar>(c: Command<S>) -> Command<f64> {
-    Command {
-        alpha_rad: c.alpha_rad.to_f64(),
-        sigma_rad: c.sigma_rad.to_f64(),
-    }
-}
-
 fn answer<S: Scalar, const N: usize, R: Real>(
     flight: Option<&Flight<S, N, R>>,
     seq: u32,
@@ -208,8 +182,8 @@ fn answer<S: Scalar, const N: usize, R: Real>(
         seq,
         status,
         tick_time_s: tick.to_f64(),
-        command: wide(g.command()),
-        ramp_start: wide(g.attitude_at(tick)),
+        command: g.command().to_f64(),
+        ramp_start: g.attitude_at(tick).to_f64(),
         rates: RateLimits {
             alpha_rad_s: rates.alpha_rad_s.to_f64(),
             sigma_rad_s: rates.sigma_rad_s.to_f64(),
@@ -288,11 +262,11 @@ where
                 }
                 match guidance.as_mut() {
                     Some(g) => {
-                        let nav_s = narrow(&nav);
+                        let nav_s = nav.to_scalar();
                         let updated = match g {
                             Flight::Legacy(l) => l.update(&nav_s).map(|o| o.ticked),
                             Flight::Stack(s) => {
-                                let m = sensed.as_ref().map(narrow_sensed::<R>);
+                                let m = sensed.as_ref().map(SensedAero::to_real::<R>);
                                 s.tick(&nav_s, m.as_ref()).map(|o| o.ticked)
                             }
                         };
@@ -340,6 +314,7 @@ where
 mod tests {
     use super::*;
     use crate::clock::LOCKSTEP;
+    use guidance_core::NavState;
     use guidance_core::energy::EARTH_RADIUS_M;
     use guidance_core::missions::{HORUS2B_ENTRY, horus2b_reference};
     use std::vec::Vec;

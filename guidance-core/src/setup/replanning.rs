@@ -541,18 +541,6 @@ mod tests {
         assert_eq!(SetupItem::from_slots(&unknown), Err(SetupError::BadItem));
     }
 
-    fn nav_s<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
-        NavState {
-            time_s: S::from_f64(n.time_s),
-            radius_m: S::from_f64(n.radius_m),
-            speed_m_s: S::from_f64(n.speed_m_s),
-            flight_path_angle_rad: S::from_f64(n.flight_path_angle_rad),
-            heading_rad: S::from_f64(n.heading_rad),
-            latitude_rad: S::from_f64(n.latitude_rad),
-            longitude_rad: S::from_f64(n.longitude_rad),
-        }
-    }
-
     fn builder<S: crate::Scalar>(list: &[SetupItem]) -> SetupBuilder<S, 16> {
         let mut b = SetupBuilder::<S, 16>::new();
         for it in list.iter().filter(|i| **i != SetupItem::Commit) {
@@ -643,8 +631,8 @@ mod tests {
                 latitude_rad: 0.0,
                 longitude_rad: 1.2e-3 * t,
             };
-            let a = g32.update(&nav_s::<f32>(&nav)).unwrap();
-            let b = gfx.update(&nav_s::<Fixed>(&nav)).unwrap();
+            let a = g32.update(&nav.to_scalar::<f32>()).unwrap();
+            let b = gfx.update(&nav.to_scalar::<Fixed>()).unwrap();
             assert_eq!(a.replan.is_some(), b.replan.is_some(), "tick {k}");
             if let (Some(ra), Some(rb)) = (a.replan, b.replan) {
                 assert_eq!(ra.case, rb.case);

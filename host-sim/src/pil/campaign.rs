@@ -39,25 +39,6 @@ enum Twin {
     Fixed(FlightStack<Fixed, CAPACITY, f32>),
 }
 
-fn narrow<S: Scalar>(n: &NavState<f64>) -> NavState<S> {
-    NavState {
-        time_s: S::from_f64(n.time_s),
-        radius_m: S::from_f64(n.radius_m),
-        speed_m_s: S::from_f64(n.speed_m_s),
-        flight_path_angle_rad: S::from_f64(n.flight_path_angle_rad),
-        heading_rad: S::from_f64(n.heading_rad),
-        latitude_rad: S::from_f64(n.latitude_rad),
-        longitude_rad: S::from_f64(n.longitude_rad),
-    }
-}
-
-fn wide<S: Scalar>(c: Command<S>) -> Command<f64> {
-    Command {
-        alpha_rad: c.alpha_rad.to_f64(),
-        sigma_rad: c.sigma_rad.to_f64(),
-    }
-}
-
 /// What the twin answered at one tick: (held command, ramp start, tick time \[s\],
 /// reversals, re-plans).
 type TwinAnswer = (Command<f64>, Command<f64>, f64, u32, u32);
@@ -68,28 +49,25 @@ impl Twin {
         nav: &NavState<f64>,
         sensed: Option<&SensedAero<f64>>,
     ) -> Result<TwinAnswer, guidance_core::GuidanceError> {
-        let m = sensed.map(|s| SensedAero {
-            lift_m_s2: s.lift_m_s2 as f32,
-            drag_m_s2: s.drag_m_s2 as f32,
-        });
+        let m = sensed.map(|s| s.to_real::<f32>());
         match self {
             Twin::F32(s) => {
-                s.tick(&narrow(nav), m.as_ref())?;
+                s.tick(&nav.to_scalar(), m.as_ref())?;
                 let t = s.guidance().last_tick_s().unwrap_or(0.0);
                 Ok((
-                    wide(s.command()),
-                    wide(s.attitude_at(t)),
+                    s.command().to_f64(),
+                    s.attitude_at(t).to_f64(),
                     f64::from(t),
                     u32::from(s.reversals()),
                     s.replan_counts().map_or(0, |c| c.replans),
                 ))
             }
             Twin::Fixed(s) => {
-                s.tick(&narrow(nav), m.as_ref())?;
+                s.tick(&nav.to_scalar(), m.as_ref())?;
                 let t = s.guidance().last_tick_s().unwrap_or(Fixed::ZERO);
                 Ok((
-                    wide(s.command()),
-                    wide(s.attitude_at(t)),
+                    s.command().to_f64(),
+                    s.attitude_at(t).to_f64(),
                     t.to_f64(),
                     u32::from(s.reversals()),
                     s.replan_counts().map_or(0, |c| c.replans),

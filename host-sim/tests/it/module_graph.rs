@@ -449,6 +449,35 @@ pub fn graph(src: &Path, crate_names: &[&str]) -> Graph {
 }
 
 impl Graph {
+    /// The cycles of this graph checked against an allow-list of `(modules, reason)`: a
+    /// message for every cycle not in it and for every entry that no longer matches a cycle
+    /// (so the list can only shrink). Empty when they agree.
+    pub fn cycle_mismatches(&self, allowed: &[(&[&str], &str)]) -> Vec<String> {
+        let found = self.cycles();
+        let allowed: Vec<BTreeSet<String>> = allowed
+            .iter()
+            .map(|(m, _)| m.iter().map(|s| s.to_string()).collect())
+            .collect();
+        let mut bad = Vec::new();
+        for c in &found {
+            if !allowed.contains(c) {
+                bad.push(format!(
+                    "import cycle not in the allow-list: {:?} ({})",
+                    c,
+                    self.witness(c)
+                ));
+            }
+        }
+        for a in &allowed {
+            if !found.contains(a) {
+                bad.push(format!(
+                    "allow-listed cycle is gone or changed: {a:?}; remove or update its entry"
+                ));
+            }
+        }
+        bad
+    }
+
     /// Modules reachable from `m` (not counting `m` unless on a cycle).
     fn reach(&self, m: &str) -> BTreeSet<String> {
         let mut seen = BTreeSet::new();

@@ -502,12 +502,13 @@ impl<S: Real> NumericalRun<S> {
             gamma: y2.gamma + r2.dy.gamma * dtc,
             theta: y2.theta + r2.dy.theta * dtc,
         };
-        self.end_at(&yf, &r2, dt1 + dtc)
+        let t_end = self.t + (dt1 + dtc);
+        self.end_at(&yf, &r2, t_end)
     }
 
-    /// The prediction ends at `yf` (`dt_last` \[s\] after the last node; `r2` the rates the
-    /// closure used): checks, the last node, the status.
-    fn end_at(&mut self, yf: &Y<S>, r2: &Rates<S>, dt_last: S) -> Result<Prediction<S>, VinhError> {
+    /// The prediction ends at `yf` at time `t_end` \[s\] (`r2` the rates the closure used):
+    /// checks, the last node, the status.
+    fn end_at(&mut self, yf: &Y<S>, r2: &Rates<S>, t_end: S) -> Result<Prediction<S>, VinhError> {
         if !(yf.is_finite() && r2.dy.is_finite()) {
             return Err(VinhError::NonFiniteResult);
         }
@@ -516,7 +517,7 @@ impl<S: Real> NumericalRun<S> {
         }
         let m = &self.model;
         self.y = *yf;
-        self.t = self.t + dt_last;
+        self.t = t_end;
         if self.peaks == PeakMode::RangeOnly {
             return self.prediction(yf.theta, PeakStatus::NotComputed);
         }
@@ -559,28 +560,8 @@ impl<S: Real> NumericalRun<S> {
             gamma: y2.gamma + r2.dy.gamma * dtc,
             theta: y2.theta + r2.dy.theta * dtc,
         };
-        if !(yf.is_finite() && r2.dy.is_finite()) {
-            return Err(VinhError::NonFiniteResult);
-        }
-        if !(yf.h > S::ZERO) {
-            return Err(VinhError::GroundImpact);
-        }
-        self.y = yf;
-        self.t = self.t + dt1 + dtc;
-        if self.peaks == PeakMode::RangeOnly {
-            return self.prediction(yf.theta, PeakStatus::NotComputed);
-        }
-        let rf = m.rates(&yf);
-        if self.record_node(self.t, rf.rho, yf.v, rf.drag, rf.lift) {
-            return self.prediction(yf.theta, PeakStatus::LimitExceeded);
-        }
-        let status = match self.peaks {
-            PeakMode::Limits(l) if self.q_max > l.heat_flux_w_m2 || self.n_max > l.g_load => {
-                PeakStatus::LimitExceeded
-            }
-            _ => PeakStatus::Computed,
-        };
-        self.prediction(yf.theta, status)
+        let t_end = self.t + dt1 + dtc;
+        self.end_at(&yf, &r2, t_end)
     }
 }
 
