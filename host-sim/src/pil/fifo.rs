@@ -85,7 +85,7 @@ pub const FIFO_DIR_PREFIX: &str = "reentry-pil-";
 /// ```
 ///
 /// (the `watchdog` line once QEMU is started). A later run judges the directory by it
-/// ([`FifoDir::create`]): a process is the one recorded only if its pid runs (not a zombie)
+/// (when it creates its own): a process is the one recorded only if its pid runs (not a zombie)
 /// with the recorded start time, so a reused pid is never taken for the owner nor killed.
 pub const OWNER_FILE: &str = "owner";
 

@@ -30,7 +30,8 @@ const KILL_AFTER_S: u32 = 2;
 ///
 /// The shell itself runs QEMU (stdin `/dev/null`) and exits with its status (that of
 /// `timeout`: 124 if the wall-time limit hit). The remaining case, the watchdog killed with
-/// the host, is cleaned by the next run ([`super::fifo::OWNER_FILE`]).
+/// the host, is cleaned by the next run (the FIFO directory's owner record, `pil::OWNER_FILE`,
+/// which names the group: [`Qemu::pgid`]).
 pub(super) const WATCHDOG: &str = r#"d=$1; shift
 exec 3<&0
 { if read -r _ <&3; then exit 0; fi; rm -rf -- "$d"; kill -s KILL 0; } </dev/null >/dev/null 2>&1 &
@@ -143,7 +144,7 @@ impl Qemu {
     /// Start QEMU on `cfg.elf` (made absolute) with working directory `dir` (the FIFO
     /// directory: the firmware opens `./nav` and `./cmd`, so neither the directory's length nor
     /// its characters matter), command line `.`, under the [`WATCHDOG`] (which removes `dir`
-    /// if the host dies); the watchdog is added to `dir`'s owner record.
+    /// if the host dies).
     pub(super) fn spawn(cfg: &PilConfig, dir: &Path) -> Result<Self, PilError> {
         let elf =
             std::fs::canonicalize(&cfg.elf).map_err(|_| PilError::ElfMissing(cfg.elf.clone()))?;
@@ -184,8 +185,6 @@ impl Qemu {
         registry.push((pgid, dir.to_path_buf()));
         drop(registry);
         let watchdog = child.stdin.take();
-        // Without the record a later run cannot stop this QEMU; the watchdog still does.
-        let _ = super::fifo::write_owner(dir, Some(pgid));
         let stdout = child
             .stdout
             .take()
@@ -231,6 +230,11 @@ impl Qemu {
             }
             std::thread::sleep(Duration::from_millis(5));
         }
+    }
+
+    /// QEMU's process group (the watchdog's pid).
+    pub(super) fn pgid(&self) -> u32 {
+        self.pgid
     }
 
     /// Whether the exit status was success.
