@@ -119,6 +119,8 @@ impl PilGuidance {
         mkfifo(&nav_path)?;
         mkfifo(&cmd_path)?;
         let qemu = me.qemu.insert(Qemu::spawn(&me.cfg, me.dir.path())?);
+        // Without the record a later run cannot stop this QEMU; its watchdog still does.
+        let _ = super::fifo::write_owner(me.dir.path(), Some(qemu.pgid()));
         let t = me.cfg.reply_timeout;
         me.nav = Some(open_fifo(&nav_path, true, t, qemu)?);
         let mut cmd = open_fifo(&cmd_path, false, t, qemu)?;

@@ -11,11 +11,15 @@
 //! QEMU runs with the FIFO directory as its working directory and `-append .`, so the firmware
 //! opens `./nav` and `./cmd` whatever the directory's length or characters.
 //!
-//! Nothing hangs and nothing is left behind: QEMU runs in its own process group under
-//! `timeout -k`; opening the FIFOs and every answer wait at most [`PilConfig::reply_timeout`]
-//! and stop at once if QEMU exits (its status and stderr are the error); on every exit path
-//! (error, drop, unwinding panic, and Ctrl-C through [`interrupt_cleanup`]) the process group is
-//! SIGKILLed and the FIFO directory removed. Every command frame is checked
+//! Nothing hangs and nothing is left behind: QEMU runs in its own process group under a
+//! watchdog shell and `timeout -k`; opening the FIFOs and every answer wait at most
+//! [`PilConfig::reply_timeout`] and stop at once if QEMU exits (its status and stderr are the
+//! error); on every exit path (error, drop, unwinding panic, and Ctrl-C through
+//! [`interrupt_cleanup`]) the process group is SIGKILLed and the FIFO directory removed. If
+//! host-sim itself dies (SIGKILL included), the watchdog sees the end of the pipe host-sim
+//! held on its stdin and SIGKILLs the group and removes the directory; a directory whose
+//! owner and watchdog both died is removed, its QEMU killed, by the next run in the same
+//! parent directory (the owner record: [`OWNER_FILE`]). Every command frame is checked
 //! ([`FrameLimits::check`]) before it is flown; the exchanged frames are kept in a
 //! [`PilRecord`] that outlives a failed run.
 
@@ -40,7 +44,7 @@ use crate::sim;
 pub use campaign::{PilCase, TwinCheck, fly_case_pil};
 pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
 pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES, RejectedFault};
-pub use fifo::FIFO_DIR_PREFIX;
+pub use fifo::{FIFO_DIR_PREFIX, OWNER_FILE};
 pub use guidance::PilGuidance;
 pub use qemu::{QemuExit, interrupt_cleanup};
 pub use record::{Exchange, PilRecord};
@@ -175,8 +179,8 @@ pub enum PilError {
         #[source]
         source: std::io::Error,
     },
-    /// QEMU (under `timeout`) could not be started.
-    #[error("cannot start `timeout {}`: {source}", program.display())]
+    /// QEMU (under its watchdog `sh` and `timeout`) could not be started.
+    #[error("cannot start QEMU `{}` (through sh and timeout): {source}", program.display())]
     QemuSpawn {
         /// The QEMU program.
         program: PathBuf,

@@ -328,6 +328,76 @@ impl Default for CampaignGuidance {
 }
 
 impl CampaignGuidance {
+    /// Settings read only beside another: one set away from its default where nothing reads
+    /// it is refused (a file states only what it flies). The default value is accepted (the
+    /// printed template writes every key).
+    ///
+    /// # Errors
+    /// [`CampaignError::Setting`] naming the setting's scenario key and what it needs.
+    fn validate_read(&self, file: &str) -> Result<(), CampaignError> {
+        let bad = |field: &str, value: String, reason: &str| CampaignError::Setting {
+            file: file.to_string(),
+            field: scenario_key(field),
+            value,
+            reason: reason.into(),
+        };
+        let t = self.path_bound_descent_time_s;
+        if self.path_bound_barrier.is_some() && t != 0.0 {
+            return Err(bad(
+                "path_bound_descent_time_s",
+                t.to_string(),
+                "is read by nothing beside the barrier law (frequency_rad_s, damping), which \
+                 replaces the descent term: remove one",
+            ));
+        }
+        if self.predictor_aero_mach && !self.predictor_lift_profile {
+            return Err(bad(
+                "predictor_aero_mach",
+                "true".into(),
+                "is read only with lift_profile = true (the schedule it changes)",
+            ));
+        }
+        if self.terminal_lateral_km.is_none() {
+            for (field, v, default) in [
+                ("terminal_tolerance_km", self.terminal_tolerance_km, 1.0),
+                (
+                    "terminal_reversal_lead_s",
+                    self.terminal_reversal_lead_s,
+                    5.0,
+                ),
+            ] {
+                if v != default {
+                    return Err(bad(
+                        field,
+                        v.to_string(),
+                        "is read only by the terminal law: set terminal_start_km too",
+                    ));
+                }
+            }
+        }
+        if self.predictor == CampaignPredictor::Numerical {
+            if !self.glide_sink {
+                return Err(bad(
+                    "glide_sink",
+                    "false".into(),
+                    "is read only by the closed forms (predictor = \"closed-form\" or \
+                     \"hybrid\"); the numerical predictor has no sink term",
+                ));
+            }
+            if let Some(l) = self.predictor_lift_parameter
+                && self.predictor_lift_profile
+            {
+                return Err(bad(
+                    "predictor_lift_parameter",
+                    l.to_string(),
+                    "is read by nothing with predictor = \"numerical\" and lift_profile = \
+                     true (the predictions fly the profile's lift schedule)",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The onboard estimator's settings.
     #[must_use]
     pub fn estimator(&self) -> EstimatorConfig<f64> {
@@ -509,6 +579,7 @@ impl CampaignGuidance {
                 "must be in [0, 60] s",
             ));
         }
+        self.validate_read(file)?;
         let m = self.estimator_min_drag_m_s2;
         if !(m.is_finite() && m >= 0.0) {
             return Err(bad(

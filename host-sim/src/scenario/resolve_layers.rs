@@ -299,6 +299,14 @@ pub(super) fn layers(
             "the estimator is part of the re-planner: add [guidance.replanning]",
         ));
     }
+    if !on.estimator && !g.glide_sink {
+        // The sink is flown in mode `replan-estimation` only (issue 24: no key read by nothing).
+        return Err(f.err(
+            "guidance.replanning.glide_sink",
+            "false",
+            "is read only with onboard estimation: add [guidance.estimator] or remove it",
+        ));
+    }
     if on.barrier && !on.replan {
         return Err(f.err(
             "guidance.barrier",

@@ -434,3 +434,268 @@ fn every_vehicle_key_changes_the_flight_or_is_refused() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// What a flight with guidance layers gave: as [`outcome`], with the stack's record (mode,
+/// miss, reversals, re-plans) and target; the record's copy of the settings left out (it
+/// echoes every key, flown or not).
+fn layer_outcome(text: &str, dir: &Path) -> Result<String, String> {
+    let sc = parse_scenario(text, "walk.toml", dir).map_err(|e| e.to_string())?;
+    let mut f = fly(&sc, "walk.toml", &mut |_| {}).map_err(|e| e.to_string())?;
+    if let Some(s) = f.stack.as_mut() {
+        s.case.guidance = None;
+    }
+    let all = format!("{:?} {:?}", f.result, f.stack);
+    Ok(format!(
+        "{:?} #{}",
+        f.stack.map(|s| s.case.miss_m),
+        hash(&all)
+    ))
+}
+
+/// The layer keys walked: `(key, value, context)`; the change is flown against the base with
+/// `context` set too (a key read only beside another: the glide sink by the closed forms, the
+/// descent time without the barrier law, the constant lift parameter by the closed forms).
+#[allow(clippy::type_complexity)]
+fn layer_changes() -> Vec<(String, Value, Vec<(&'static str, Value)>)> {
+    // With the hybrid predictor this mission flies no closed-form prediction: the closed forms.
+    let closed_form = || vec![("guidance.replanning.predictor", v("\"closed-form\""))];
+    let mut c: Vec<(String, Value, Vec<(&'static str, Value)>)> = vec![];
+    let mut add = |k: &str, val: &str, ctx: Vec<(&'static str, Value)>| {
+        c.push((format!("guidance.{k}"), v(val), ctx));
+    };
+    add("lateral.corridor_width_entry_deg", "8.0", vec![]);
+    add("lateral.corridor_width_final_deg", "1.0", vec![]);
+    add("lateral.corridor_low_speed_fraction", "0.3", vec![]);
+    add("lateral.hysteresis_deg", "10.0", vec![]);
+    add("lateral.max_reversals", "2", vec![]);
+    add("lateral.freeze_km", "200.0", vec![]);
+    add("lateral.terminal_start_km", "600.0", vec![]);
+    add("lateral.terminal_tolerance_km", "0.2", vec![]);
+    add("lateral.terminal_reversal_lead_s", "30.0", vec![]);
+    add("replanning.every_n_ticks", "2", vec![]);
+    add("replanning.tolerance_km", "20.0", vec![]);
+    add("replanning.min_vertical_fraction", "0.5", vec![]);
+    add("replanning.max_vertical_fraction", "0.6", vec![]);
+    add("replanning.glide_sink", "false", closed_form());
+    add("replanning.predictor", "\"closed-form\"", vec![]);
+    add("replanning.lift_parameter", "2.0", closed_form());
+    add("replanning.lift_profile", "false", vec![]);
+    add("replanning.lift_profile_mach", "true", vec![]);
+    add("replanning.start_normalized_energy", "0.8", vec![]);
+    add("replanning.limit_scale", "[0.5, 0.5]", vec![]);
+    add("replanning.numerical_rotation", "true", vec![]);
+    add("estimator.lift_to_drag_gain", "0.9", vec![]);
+    add("estimator.drag_gain", "0.9", vec![]);
+    add("estimator.lift_to_drag_bounds", "[0.99, 1.01]", vec![]);
+    add("estimator.drag_bounds", "[0.99, 1.01]", vec![]);
+    add("estimator.min_drag_m_s2", "50.0", vec![]);
+    add("barrier.limit_scale", "[0.5, 0.5]", vec![]);
+    add(
+        "barrier.descent_time_s",
+        "60.0",
+        vec![
+            ("guidance.barrier.frequency_rad_s", Value::Boolean(false)),
+            ("guidance.barrier.damping", Value::Boolean(false)),
+        ],
+    );
+    add("barrier.frequency_rad_s", "0.02", vec![]);
+    add("barrier.damping", "5.0", vec![]);
+    add("barrier.predicted", "false", vec![]);
+    add("target.interface_speed_m_s", "3000.0", vec![]);
+    c
+}
+
+/// Every key of the `[guidance.<layer>]` sections ([`LAYER_KEYS`], `[guidance.target]`'s
+/// [`TARGET_KEYS`]), changed, changes the stack's flight (trajectory, summary or record) or is
+/// refused with an error naming it; `Boolean(false)` in a context removes that key. The base
+/// is the reference mission's template (every layer on).
+#[test]
+fn every_layer_key_changes_the_flight_or_is_refused() {
+    use host_sim::scenario::guidance_layers::{LAYER_KEYS, TARGET_KEYS};
+    let dir = temp_dir("layers");
+    let base: Table = scenario_to_toml(&Scenario::default()).parse().unwrap();
+    let with = |t: &Table, ctx: &[(&str, Value)]| {
+        let mut t = t.clone();
+        for (k, val) in ctx {
+            set(
+                &mut t,
+                k,
+                (val != &Value::Boolean(false)).then(|| val.clone()),
+            );
+        }
+        t
+    };
+    let fly_text = |t: &Table| layer_outcome(&toml::to_string(t).unwrap(), &dir);
+    let reference = fly_text(&base).expect("the base flies");
+    let mut changes = layer_changes();
+    // The target's forms: a point, or downrange and crossrange, in place of `nominal`.
+    let point = vec![
+        ("guidance.target.nominal", Value::Boolean(false)),
+        ("guidance.target.latitude_deg", v("30.0")),
+        ("guidance.target.longitude_deg", v("-150.0")),
+    ];
+    let range = vec![
+        ("guidance.target.nominal", Value::Boolean(false)),
+        ("guidance.target.downrange_km", v("6000.0")),
+        ("guidance.target.crossrange_km", v("100.0")),
+    ];
+    changes.push((
+        "guidance.target.latitude_deg".into(),
+        v("31.0"),
+        point.clone(),
+    ));
+    changes.push(("guidance.target.longitude_deg".into(), v("-149.0"), point));
+    changes.push((
+        "guidance.target.downrange_km".into(),
+        v("6500.0"),
+        range.clone(),
+    ));
+    changes.push(("guidance.target.crossrange_km".into(), v("-100.0"), range));
+    // `nominal` against a point form (with the point the nominal aim is not).
+    changes.push((
+        "guidance.target.nominal".into(),
+        Value::Boolean(true),
+        vec![
+            ("guidance.target.nominal", Value::Boolean(false)),
+            ("guidance.target.latitude_deg", v("30.0")),
+            ("guidance.target.longitude_deg", v("-150.0")),
+        ],
+    ));
+    for (_, section, key) in LAYER_KEYS {
+        let k = format!("guidance.{section}.{key}");
+        assert!(
+            changes.iter().any(|(c, _, _)| *c == k),
+            "layer key `{k}` is not walked"
+        );
+    }
+    for key in TARGET_KEYS {
+        let k = format!("guidance.target.{key}");
+        assert!(
+            changes.iter().any(|(c, _, _)| *c == k),
+            "target key `{k}` is not walked"
+        );
+    }
+    let mut report = Vec::new();
+    for (key, value, ctx) in changes {
+        let ctx_base = with(&base, &ctx);
+        let ctx_ref = if ctx.is_empty() {
+            reference.clone()
+        } else {
+            fly_text(&ctx_base).unwrap_or_else(|e| panic!("`{key}`: its context: {e}"))
+        };
+        let mut t = ctx_base.clone();
+        if key == "guidance.target.nominal" {
+            // `nominal = true` beside a point is refused (one form); alone it aims elsewhere.
+            set(&mut t, "guidance.target.latitude_deg", None);
+            set(&mut t, "guidance.target.longitude_deg", None);
+        }
+        set(&mut t, &key, Some(value.clone()));
+        match fly_text(&t) {
+            Err(e) => {
+                let leaf = key.rsplit('.').next().unwrap();
+                assert!(
+                    e.contains(leaf),
+                    "`{key}` = {value}: the error does not name it: {e}"
+                );
+                report.push(format!("{key}: refused: {e}"));
+            }
+            Ok(o) => {
+                assert_ne!(o, ctx_ref, "`{key}` = {value} changed nothing");
+                report.push(format!("{key}: changes the flight ({o} against {ctx_ref})"));
+            }
+        }
+    }
+    println!("{}", report.join("\n"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A layer key read only beside another, set away from its default where nothing reads it, is
+/// refused naming it (each was flown as nothing before: the same flight, found by the walk
+/// above); at its default it is accepted (the template writes every key).
+#[test]
+fn layer_keys_read_by_nothing_are_refused() {
+    let base: Table = scenario_to_toml(&Scenario::default()).parse().unwrap();
+    let parse = |t: &Table| {
+        parse_scenario(&toml::to_string(t).unwrap(), "unread.toml", Path::new("."))
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    parse(&base).expect("the template parses");
+    /// (key, context: keys set or removed, (value as the error shows it, value), default).
+    type Case = (
+        &'static str,
+        Vec<(&'static str, Option<Value>)>,
+        (&'static str, Value),
+        Value,
+    );
+    let cases: [Case; 7] = [
+        // The template flies the barrier law and the numerical predictor with the profile.
+        (
+            "barrier.descent_time_s",
+            vec![],
+            ("60", v("60.0")),
+            v("0.0"),
+        ),
+        (
+            "replanning.glide_sink",
+            vec![],
+            ("false", v("false")),
+            v("true"),
+        ),
+        (
+            "replanning.lift_parameter",
+            vec![],
+            ("2", v("2.0")),
+            v("2.0"),
+        ),
+        (
+            "replanning.lift_profile_mach",
+            vec![("guidance.replanning.lift_profile", Some(v("false")))],
+            ("true", v("true")),
+            v("false"),
+        ),
+        (
+            "lateral.terminal_tolerance_km",
+            vec![("guidance.lateral.terminal_start_km", None)],
+            ("0.2", v("0.2")),
+            v("1.0"),
+        ),
+        (
+            "lateral.terminal_reversal_lead_s",
+            vec![
+                ("guidance.lateral.terminal_start_km", None),
+                ("guidance.lateral.terminal_tolerance_km", Some(v("1.0"))),
+            ],
+            ("30", v("30.0")),
+            v("5.0"),
+        ),
+        (
+            "replanning.glide_sink",
+            vec![
+                ("guidance.estimator", None),
+                ("guidance.replanning.predictor", Some(v("\"hybrid\""))),
+            ],
+            ("false", v("false")),
+            v("true"),
+        ),
+    ];
+    for (key, ctx, (shown, value), default) in cases {
+        let key = format!("guidance.{key}");
+        let mut t = base.clone();
+        for (k, val) in ctx {
+            set(&mut t, k, val);
+        }
+        set(&mut t, &key, Some(value));
+        let e = parse(&t).expect_err(&key);
+        assert!(
+            e.contains(&format!("`{key}`")) && e.contains(shown) && e.contains("unread.toml"),
+            "{key}: {e}"
+        );
+        if key.ends_with("lift_parameter") {
+            // No default value: absent is the only form.
+            continue;
+        }
+        set(&mut t, &key, Some(default));
+        parse(&t).unwrap_or_else(|e| panic!("{key} at its default: {e}"));
+    }
+}

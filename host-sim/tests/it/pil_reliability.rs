@@ -1,7 +1,8 @@
 //! PIL reliability (issue 8 items 2-4): each test reproduces a defect that was found.
 //!
-//! * QEMU is stopped on every exit path (error, panic, Ctrl-C), even when it ignores SIGTERM
-//!   (as QEMU blocked in a FIFO open does), and the FIFO directory is removed;
+//! * QEMU is stopped on every exit path (error, panic, Ctrl-C, SIGKILL of host-sim), even when
+//!   it ignores SIGTERM (as QEMU blocked in a FIFO open does), and the FIFO directory is
+//!   removed; a directory of a run whose owner died is removed (its QEMU killed) by the next;
 //! * a leftover directory of a dead process with the same pid does not block a run;
 //! * every command frame is checked against the configured bounds, rates and tick timing
 //!   (alpha 1e300 rad, alpha 90 deg with sigma 180 deg, tick time 1e300 s were flown before);
@@ -12,13 +13,15 @@
 //! that ignores SIGTERM/SIGINT and records its pid. Tests that need the real QEMU and firmware
 //! skip (pass with a message) when they are absent, unless `PIL_REQUIRED` is set.
 
+use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use guidance_core::guidance::{Command, RateLimits};
 use guidance_core::link::{CommandFrame, FRAME_LEN, Frame, LinkStatus, encode};
 use host_sim::pil::{
-    FIFO_DIR_PREFIX, FrameViolation, PilConfig, PilError, PilGuidance, fly_reference_pil,
+    FIFO_DIR_PREFIX, FrameViolation, OWNER_FILE, PilConfig, PilError, PilGuidance,
+    fly_reference_pil,
 };
 
 fn target_dir() -> PathBuf {
@@ -188,6 +191,112 @@ fn pil_ctrl_c_stops_qemu_and_cleans_up() {
     wait_for("QEMU to be killed", 3.0, || !alive(pid));
     assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
     assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// SIGKILL of `host-sim simulate --pil` mid-run (no handler runs): its watchdog kills QEMU
+/// (which ignores SIGTERM/SIGINT) within seconds and removes the FIFO directory. Before, QEMU
+/// stayed blocked for the 600 s wall-time limit and the directory stayed on disk.
+#[test]
+fn pil_sigkill_of_the_host_stops_qemu_and_cleans_up() {
+    let dir = fresh("sigkill");
+    let (qemu, pidfile) = fake_qemu(&dir, "exec 3<nav 4>cmd");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["simulate", "--quiet", "--pil"])
+        .arg(dir.join("fake-qemu.sh"))
+        .arg("--out")
+        .arg(dir.join("run"))
+        .env("REENTRY_PIL_QEMU", &qemu)
+        .env("TMPDIR", &dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let pid = pid_of(&pidfile);
+    wait_for("the FIFO directory", 5.0, || !leftovers(&dir).is_empty());
+    child.kill().unwrap();
+    child.wait().unwrap();
+    wait_for("QEMU to be killed", 5.0, || !alive(pid));
+    wait_for("the FIFO directory to be removed", 5.0, || {
+        leftovers(&dir).is_empty()
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Start time of process `pid` (field 22 of `/proc/<pid>/stat`).
+fn start_time(pid: u32) -> u64 {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+    let rest = stat.rsplit_once(')').unwrap().1;
+    rest.split_whitespace().nth(19).unwrap().parse().unwrap()
+}
+
+/// A FIFO directory in `parent` with an owner record (the format of `OWNER_FILE`'s docs).
+fn owned_dir(parent: &Path, name: &str, host: (u32, u64), watchdog: Option<(u32, u64)>) -> PathBuf {
+    let boot = std::fs::read_to_string("/proc/sys/kernel/random/boot_id").unwrap();
+    let d = parent.join(format!("{FIFO_DIR_PREFIX}{name}"));
+    std::fs::create_dir(&d).unwrap();
+    let mut text = format!("boot {}\nhost {} {}\n", boot.trim(), host.0, host.1);
+    if let Some((p, s)) = watchdog {
+        text.push_str(&format!("watchdog {p} {s}\n"));
+    }
+    std::fs::write(d.join(OWNER_FILE), text).unwrap();
+    std::fs::write(d.join("nav"), b"").unwrap();
+    d
+}
+
+/// A directory left by a run whose host-sim and watchdog both died (SIGKILL to both), with its
+/// QEMU still running in its process group (ignoring SIGTERM): the next run in the same parent
+/// kills that QEMU and removes the directory. A directory whose owner runs is left alone, and
+/// so is one whose owner pid is now another process (start time differs), but its recorded
+/// QEMU pid, now another process too, is not killed. Before, nothing removed them.
+#[test]
+fn pil_next_run_removes_directories_of_dead_owners() {
+    let dir = fresh("stale");
+    // A dead host: a process that ran and was reaped.
+    let mut gone = std::process::Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    // The stale run's QEMU: its own process group, ignores SIGTERM.
+    let mut stale_qemu = std::process::Command::new("sh")
+        .args(["-c", "trap '' TERM INT HUP; exec sleep 300"])
+        .process_group(0)
+        .spawn()
+        .unwrap();
+    let q = stale_qemu.id();
+    wait_for("the stale QEMU to start", 5.0, || {
+        std::fs::read_to_string(format!("/proc/{q}/cmdline")).is_ok_and(|c| c.contains("sleep"))
+    });
+    let stale = owned_dir(
+        &dir,
+        &format!("{dead}-0"),
+        (dead, 1),
+        Some((q, start_time(q))),
+    );
+    // This process's own directory (its owner runs): kept.
+    let me = std::process::id();
+    let mine = owned_dir(&dir, "mine", (me, start_time(me)), None);
+    // An innocent process with the recorded QEMU's pid but another start time: not killed.
+    let mut innocent = std::process::Command::new("sleep")
+        .arg("300")
+        .spawn()
+        .unwrap();
+    let i = innocent.id();
+    let reused = owned_dir(&dir, "reused", (dead, 1), Some((i, start_time(i) + 1)));
+    let (qemu, _pidfile) = fake_qemu(&dir, "exec 3<nav 4>cmd");
+    let pil = PilGuidance::start(config(&dir, qemu)).unwrap();
+    drop(pil);
+    let reaped = || stale_qemu.try_wait().unwrap().is_some();
+    wait_for("the stale QEMU to be killed", 5.0, reaped);
+    assert!(!stale.exists(), "the stale directory is left");
+    assert!(!reused.exists(), "the directory of a reused pid is left");
+    assert!(mine.exists(), "a live owner's directory was removed");
+    assert!(
+        alive(i),
+        "a process with a recorded pid but another start time was killed"
+    );
+    innocent.kill().unwrap();
+    innocent.wait().unwrap();
+    assert_eq!(leftovers(&dir), vec![format!("{FIFO_DIR_PREFIX}mine")]);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
