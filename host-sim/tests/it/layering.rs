@@ -123,26 +123,6 @@ fn layering_checker_detects_imports() {
 const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
     (
         &[
-            "campaign",
-            "campaign::draw",
-            "campaign::fingerprint",
-            "campaign::flight",
-            "campaign::imu",
-            "campaign::settings",
-            "campaign::setup",
-            "scenario",
-            "scenario::error",
-            "scenario::guidance",
-            "scenario::guidance_layers",
-        ],
-        "campaign's facade (mod.rs) holds the layer selection that scenario::guidance_layers, \
-         settings, flight and setup use, while it calls fingerprint, which uses flight and setup; \
-         scenario::guidance_layers names campaign's layer type. Breaking it means moving the \
-         layer selection into a leaf module shared by scenario and campaign (issue 21 item 5). \
-         scenario::error wraps CampaignError since simulate flies the campaign's builder.",
-    ),
-    (
-        &[
             "cli",
             "cli::atmosphere_cmd",
             "cli::dispersions_cmd",
