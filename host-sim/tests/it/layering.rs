@@ -162,15 +162,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
          the types would move to a leaf module.",
     ),
     (
-        &[
-            "report::chart",
-            "report::chart::bounds",
-            "report::chart::render",
-        ],
-        "bounds and render take the chart types of report/chart/mod.rs, which calls them; the \
-         types would move to a leaf module.",
-    ),
-    (
         &["report", "report::run_dir"],
         "run_dir uses the report facade's writers, which write into run directories.",
     ),
