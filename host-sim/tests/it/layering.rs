@@ -150,18 +150,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
         "the reference flight is built from the PIL scenario, which names the reference type.",
     ),
     (
-        &[
-            "report::campaign",
-            "report::campaign::footprint",
-            "report::campaign::limits",
-            "report::campaign::miss_cdf",
-            "report::campaign::time_to_go",
-            "report::campaign::worst",
-        ],
-        "the figure modules take the data types of report/campaign/mod.rs, which calls them; \
-         the types would move to a leaf module.",
-    ),
-    (
         &["report", "report::run_dir"],
         "run_dir uses the report facade's writers, which write into run directories.",
     ),
