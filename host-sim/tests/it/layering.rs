@@ -150,10 +150,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
         "the reference flight is built from the PIL scenario, which names the reference type.",
     ),
     (
-        &["report", "report::run_dir"],
-        "run_dir uses the report facade's writers, which write into run directories.",
-    ),
-    (
         &[
             "scenario::file",
             "scenario::old_replanning",
