@@ -127,10 +127,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
          would move to a leaf module.",
     ),
     (
-        &["dynamics", "dynamics::frames"],
-        "frames uses STATE_LEN of dynamics/mod.rs, which uses frames::local_axes.",
-    ),
-    (
         &[
             "optim::hypervolume",
             "optim::hypervolume::hv2d",
