@@ -22,6 +22,7 @@
 mod campaign;
 mod check;
 mod faults;
+mod faulty_link;
 mod fifo;
 mod guidance;
 mod qemu;

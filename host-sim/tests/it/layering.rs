@@ -138,10 +138,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
          recursion.",
     ),
     (
-        &["pil::faults", "pil::guidance"],
-        "the fault injector and the PIL guidance link use each other's types.",
-    ),
-    (
         &["pil::reference", "pil::scenario"],
         "the reference flight is built from the PIL scenario, which names the reference type.",
     ),
