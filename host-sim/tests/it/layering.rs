@@ -155,15 +155,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
         "resolve and its per-section resolve_* helpers call each other, and file calls \
          resolve_layers; the helpers would take their shared context from a leaf module.",
     ),
-    (
-        &[
-            "vehicle",
-            "vehicle::horus2b",
-            "vehicle::models",
-            "vehicle::srm",
-        ],
-        "the built-in vehicles use the vehicle types of the facade, which lists the built-ins.",
-    ),
 ];
 
 #[test]
