@@ -372,7 +372,8 @@ impl CampaignSetup {
     }
 
     /// The stack `mode` flies: the full stack with the layers off that the mode leaves out
-    /// ([`super::Mode::layers`], [`StackConfig::masked`]).
+    /// ([`super::Mode::layers`],
+    /// [`StackConfig::masked`](guidance_core::stack::StackConfig::masked)).
     #[must_use]
     pub fn stack_of(&self, mode: super::Mode) -> HostStackConfig<f64> {
         self.stack.masked(mode.layers())
