@@ -21,8 +21,7 @@ use crate::scenario::{AtmosphereSpec, EnvSpec, Scenario};
 use crate::vehicle::Vehicle;
 use guidance_core::stack::StackConfig;
 
-/// File name of the fingerprint in a campaign's output directory.
-pub const FINGERPRINT_FILE: &str = "fingerprint.json";
+pub use super::error::FINGERPRINT_FILE;
 
 /// Version of the fingerprint's layout (a directory of another layout is not resumed).
 pub const FORMAT: u32 = 1;

@@ -4,7 +4,7 @@ use std::io::Write;
 
 use clap::ValueEnum;
 
-use super::CliError;
+use super::error::CliError;
 use crate::env::{Atmosphere, ExponentialAtmosphere, Us76};
 
 /// Atmosphere model choice.

@@ -3,7 +3,7 @@
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
-use super::CliError;
+use super::error::CliError;
 use crate::campaign::output::write_campaign;
 use crate::campaign::run::{Replay, RunOptions, replay_case};
 use crate::campaign::{CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign};

@@ -12,7 +12,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::optim::hypervolume::{HypervolumeError, contributions, hypervolume};
+use super::error::{CliError, HypervolumeCmdError};
+use crate::optim::hypervolume::{contributions, hypervolume};
 
 /// Arguments of `hypervolume`.
 #[derive(Debug, clap::Args)]
@@ -31,65 +32,8 @@ pub struct HypervolumeArgs {
     pub repeat: u32,
 }
 
-/// Failures of `hypervolume`; each names the file and line, or the argument.
-#[derive(Debug, thiserror::Error)]
-pub enum HypervolumeCmdError {
-    /// The front file could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
-    },
-    /// A field of a CSV line is not a finite number.
-    #[error("{path}:{line}: field {field} = {value:?}: {reason}")]
-    Field {
-        /// The file.
-        path: PathBuf,
-        /// Line number, from 1.
-        line: usize,
-        /// Field (column) number, from 1.
-        field: usize,
-        /// The field's text.
-        value: String,
-        /// What is wrong with it.
-        reason: &'static str,
-    },
-    /// A CSV line has a different number of fields than the reference point.
-    #[error("{path}:{line}: {found} fields, but the reference point has {expected} coordinates")]
-    Columns {
-        /// The file.
-        path: PathBuf,
-        /// Line number, from 1.
-        line: usize,
-        /// Fields on the line.
-        found: usize,
-        /// Coordinates of the reference point.
-        expected: usize,
-    },
-    /// The `--ref` argument is malformed.
-    #[error("command line: --ref {value:?}: coordinate {coordinate}: {reason}")]
-    Reference {
-        /// The argument's text.
-        value: String,
-        /// Coordinate number, from 1.
-        coordinate: usize,
-        /// What is wrong with it.
-        reason: &'static str,
-    },
-    /// The hypervolume could not be computed.
-    #[error("{path}: {source}")]
-    Hypervolume {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        source: HypervolumeError,
-    },
-}
-
 /// Run `hypervolume` with arguments `a`, writing the results to `out`.
-pub(super) fn run(a: &HypervolumeArgs, out: &mut dyn Write) -> Result<(), super::CliError> {
+pub(super) fn run(a: &HypervolumeArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let reference = parse_reference(&a.reference)?;
     let text = std::fs::read_to_string(&a.front).map_err(|source| HypervolumeCmdError::Read {
         path: a.front.clone(),

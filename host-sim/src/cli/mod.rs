@@ -6,6 +6,7 @@
 mod atmosphere_cmd;
 mod compare_cmd;
 mod dispersions_cmd;
+mod error;
 mod hypervolume_cmd;
 mod optimize_cmd;
 mod optimize_common;
@@ -27,12 +28,11 @@ use std::io::Write;
 
 use clap::{Parser, Subcommand};
 
-use crate::{report, scenario, vehicle};
-
 pub use atmosphere_cmd::{AtmosphereArgs, AtmosphereModel};
 pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
 pub use dispersions_cmd::DispersionsArgs;
-pub use hypervolume_cmd::{HypervolumeArgs, HypervolumeCmdError};
+pub use error::{CliError, HypervolumeCmdError};
+pub use hypervolume_cmd::HypervolumeArgs;
 pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 pub use optimize_reentry::{ReentryError, ReentryRunConfig, check_run_config};
 pub use sample_cmd::SampleArgs;
@@ -70,54 +70,6 @@ pub enum Command {
     /// Latin-hypercube sample of a re-entry design problem, evaluated in parallel
     /// (samples.csv: decision, objectives, constraints, violation).
     Sample(SampleArgs),
-}
-
-/// CLI failures; the message names file, field and value where there is one.
-#[derive(Debug, thiserror::Error)]
-pub enum CliError {
-    /// Command-line usage error (also `--help`/`--version`, which are not failures).
-    #[error("{0}")]
-    Usage(#[from] clap::Error),
-    /// A bad command-line value.
-    #[error("command line: argument `{field}` = {value}: {reason}")]
-    Argument {
-        /// Argument name.
-        field: &'static str,
-        /// The value given.
-        value: String,
-        /// What is required.
-        reason: &'static str,
-    },
-    /// Bad scenario, or a scenario that failed to fly.
-    #[error(transparent)]
-    Scenario(#[from] scenario::ScenarioError),
-    /// Vehicle could not be loaded.
-    #[error(transparent)]
-    Vehicle(#[from] vehicle::VehicleFileError),
-    /// Output could not be written.
-    #[error("{0}")]
-    Report(#[from] report::ReportError),
-    /// Processor-in-the-loop run failed.
-    #[error("PIL: {0}")]
-    Pil(#[from] crate::pil::PilError),
-    /// Analytical-vs-numerical comparison failed.
-    #[error("{0}")]
-    Compare(#[from] crate::compare::CompareError),
-    /// Optimisation failed.
-    #[error("{0}")]
-    Optimize(#[from] OptimizeError),
-    /// `hypervolume` failed.
-    #[error("{0}")]
-    Hypervolume(#[from] HypervolumeCmdError),
-    /// `sample` failed.
-    #[error("{0}")]
-    Sample(#[from] ReentryError),
-    /// Writing to the console failed.
-    #[error("cannot write output: {0}")]
-    Io(#[from] std::io::Error),
-    /// A dispersion campaign failed.
-    #[error("{0}")]
-    Campaign(Box<crate::campaign::CampaignError>),
 }
 
 /// Run the CLI with `args` (including the program name), writing normal output to `out`.

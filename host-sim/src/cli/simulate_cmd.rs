@@ -4,7 +4,7 @@
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
-use super::CliError;
+use super::error::CliError;
 use crate::scenario::{
     Flight, RunOutput, Scenario, read_scenario, scenario_to_toml, simulate_scenario, write_flight,
 };

@@ -2,7 +2,7 @@
 
 use std::io::Write;
 
-use super::CliError;
+use super::error::CliError;
 use crate::vehicle;
 
 /// Run `vehicles`, writing the CSV to `out`.

@@ -1,11 +1,17 @@
 //! Frames and states of the simulator: the inertial Cartesian state it integrates, the
 //! planet-relative spherical state it reports, and the conversions between them (frames as in
-//! the parent module's documentation).
+//! the parent module's documentation), and the layout of the integrated state.
 
 use nalgebra::Vector3;
 
-use super::STATE_LEN;
 use crate::env::Planet;
+
+/// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
+pub const STATE_LEN: usize = 8;
+/// Slot of the heat load `Q` \[J/m^2\] in the integrated state.
+pub const HEAT_LOAD_SLOT: usize = 6;
+/// Slot of the flown range angle `theta` \[rad\] in the integrated state.
+pub const FLOWN_RANGE_SLOT: usize = 7;
 
 /// Inertial Cartesian state.
 #[derive(Clone, Copy, Debug, PartialEq)]

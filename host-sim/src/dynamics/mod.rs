@@ -31,18 +31,12 @@ mod frames;
 
 use frames::local_axes;
 pub use frames::{
-    CartesianState, SphericalState, cartesian_of, cartesian_to_spherical, spherical_to_cartesian,
+    CartesianState, FLOWN_RANGE_SLOT, HEAT_LOAD_SLOT, STATE_LEN, SphericalState, cartesian_of,
+    cartesian_to_spherical, spherical_to_cartesian,
 };
 
 /// Standard gravity g0 [m/s^2] used to express g-loads (eq. 2.1); `guidance-core`'s value.
 pub const G0_M_S2: f64 = guidance_core::monitor::G0_M_S2;
-
-/// Length of the integrated Cartesian state: `[x, y, z, vx, vy, vz, Q, theta]`.
-pub const STATE_LEN: usize = 8;
-/// Slot of the heat load `Q` \[J/m^2\] in the integrated state.
-pub const HEAT_LOAD_SLOT: usize = 6;
-/// Slot of the flown range angle `theta` \[rad\] in the integrated state.
-pub const FLOWN_RANGE_SLOT: usize = 7;
 
 /// Everything the forces model computes at one instant (inputs to the RHS and to outputs).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -11,12 +11,11 @@
 //!   delivered; it stays in the record, marked).
 //!
 //! A tick whose retries all fail is flown on the held command (a missed tick). Every attempt is
-//! in the [`super::PilRecord`], marked with its fault; the counts are in [`FaultCounts`].
+//! in the [`super::PilRecord`], marked with its fault; the counts are in [`FaultCounts`]. The
+//! injector is here; `faulty_link` flies a tick through it.
 
 use guidance_core::NavState;
-use guidance_core::link::{FRAME_LEN, Frame, LinkStatus, NavFrame, decode, encode};
-
-use super::{Exchange, PilError, PilGuidance};
+use guidance_core::link::FRAME_LEN;
 
 /// Retries of one tick's nav frame after a drop or corruption.
 pub const MAX_RETRIES: u32 = 3;
@@ -74,10 +73,11 @@ pub struct FaultInjector {
     cfg: FaultConfig,
     state: u64,
     /// A delayed nav frame waiting to be delivered after the next tick's frame.
-    pending: Option<NavState<f64>>,
+    pub(super) pending: Option<NavState<f64>>,
 }
 
-enum Fault {
+/// What happens to one transmission.
+pub(super) enum Fault {
     None,
     Drop,
     Corrupt,
@@ -107,7 +107,8 @@ impl FaultInjector {
         (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
     }
 
-    fn roll(&mut self, first_attempt: bool) -> Fault {
+    /// The fault of one transmission (only a first attempt may be delayed).
+    pub(super) fn roll(&mut self, first_attempt: bool) -> Fault {
         let u = self.uniform();
         let c = &self.cfg;
         if u < c.p_drop {
@@ -122,7 +123,7 @@ impl FaultInjector {
     }
 
     /// Flip 1 to 3 distinct bits of `buf`.
-    fn corrupt(&mut self, buf: &mut [u8; FRAME_LEN]) {
+    pub(super) fn corrupt(&mut self, buf: &mut [u8; FRAME_LEN]) {
         let n = 1 + self.next_u64() % 3;
         let mut flipped = [usize::MAX; 3];
         let mut k = 0;
@@ -136,132 +137,6 @@ impl FaultInjector {
                 *b ^= 1 << (bit % 8);
             }
             k += 1;
-        }
-    }
-}
-
-impl PilGuidance {
-    fn note(&self, seq: u32, nav: &NavState<f64>, fault: &str) {
-        self.record.push(Exchange {
-            seq,
-            nav: *nav,
-            reply: None,
-            failure: None,
-            fault: Some(fault.to_string()),
-        });
-    }
-
-    /// One tick through the faulty link (see the module docs).
-    pub(super) fn tick_with_faults(&mut self, nav: &NavState<f64>) -> Result<(), PilError> {
-        let mut flown = None;
-        for attempt in 0..=MAX_RETRIES {
-            if attempt > 0 {
-                self.stats.faults.retries += 1;
-            }
-            let Some(inj) = self.faults.as_mut() else {
-                break;
-            };
-            match inj.roll(attempt == 0) {
-                Fault::None => {
-                    flown = Some(self.exchange(nav)?);
-                    break;
-                }
-                Fault::Drop => {
-                    self.stats.faults.dropped += 1;
-                    let seq = self.next_seq();
-                    self.note(seq, nav, "dropped");
-                }
-                Fault::Corrupt => {
-                    self.stats.faults.corrupted += 1;
-                    let seq = self.next_seq();
-                    let mut buf = [0u8; FRAME_LEN];
-                    encode(
-                        &Frame::Nav(NavFrame {
-                            seq,
-                            nav: *nav,
-                            sensed: None,
-                        }),
-                        &mut buf,
-                    )
-                    .map_err(PilError::Link)?;
-                    if let Some(inj) = self.faults.as_mut() {
-                        inj.corrupt(&mut buf);
-                    }
-                    self.note(seq, nav, "corrupted");
-                    let answer = self.roundtrip(&buf)?;
-                    match decode(&answer).map_err(PilError::Link)? {
-                        Frame::Command(c) if c.status == LinkStatus::BadFrame => {
-                            self.record.set_reply(c);
-                        }
-                        answer => {
-                            return Err(PilError::FaultNotRejected {
-                                seq,
-                                fault: RejectedFault::Corrupted,
-                                answer,
-                            });
-                        }
-                    }
-                }
-                Fault::Delay => {
-                    self.stats.faults.delayed += 1;
-                    if let Some(inj) = self.faults.as_mut() {
-                        inj.pending = Some(*nav);
-                    }
-                    let seq = self.next_seq();
-                    self.note(seq, nav, "delayed past its tick");
-                    break;
-                }
-            }
-        }
-        match flown {
-            Some(c) => {
-                self.next_tick_s = c.tick_time_s + self.period_s;
-                self.last = Some(c);
-                self.deliver_stale()?;
-            }
-            None => {
-                // Hold: the firmware's command continues; the next tick is one period on.
-                self.stats.faults.missed_ticks += 1;
-                self.next_tick_s = nav.time_s + self.period_s;
-            }
-        }
-        Ok(())
-    }
-
-    /// Deliver a delayed frame after a newer one: the firmware must reject it.
-    fn deliver_stale(&mut self) -> Result<(), PilError> {
-        let Some(stale) = self.faults.as_mut().and_then(|i| i.pending.take()) else {
-            return Ok(());
-        };
-        let seq = self.next_seq();
-        let mut buf = [0u8; FRAME_LEN];
-        encode(
-            &Frame::Nav(NavFrame {
-                seq,
-                nav: stale,
-                sensed: None,
-            }),
-            &mut buf,
-        )
-        .map_err(PilError::Link)?;
-        self.note(seq, &stale, "delivered late");
-        let answer = self.roundtrip(&buf)?;
-        match decode(&answer).map_err(PilError::Link)? {
-            Frame::Command(c)
-                if c.seq == seq
-                    && matches!(
-                        c.status,
-                        LinkStatus::NonIncreasingTime | LinkStatus::ImplausibleTime
-                    ) =>
-            {
-                self.record.set_reply(c);
-                Ok(())
-            }
-            answer => Err(PilError::FaultNotRejected {
-                seq,
-                fault: RejectedFault::Stale,
-                answer,
-            }),
         }
     }
 }

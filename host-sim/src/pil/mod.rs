@@ -26,6 +26,7 @@
 mod campaign;
 mod check;
 mod faults;
+mod faulty_link;
 mod fifo;
 mod guidance;
 mod qemu;

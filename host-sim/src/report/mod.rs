@@ -6,6 +6,7 @@
 pub mod campaign;
 pub mod chart;
 mod csv;
+mod error;
 mod plot;
 pub mod run_dir;
 mod summary;
@@ -16,40 +17,13 @@ use std::path::{Path, PathBuf};
 use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
+pub use error::ReportError;
 pub use plot::{PlotLimits, Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, begin_in_place, clean_stale};
 pub use summary::{
     FinalState, LinkFaultsOut, PeakOut, PilOut, SummaryReport, TargetOut, ViolationsOut,
     summary_report,
 };
-
-/// Output failures (always naming the path).
-#[derive(Debug, thiserror::Error)]
-pub enum ReportError {
-    /// A file or directory could not be written.
-    #[error("cannot write {path}: {source}")]
-    Io {
-        /// The path.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
-    /// JSON serialisation failed.
-    #[error("cannot serialise summary: {0}")]
-    Json(#[from] serde_json::Error),
-    /// A stop was requested (Ctrl-C) while a run directory was being written: nothing was
-    /// put in place and the temporary directory is removed.
-    #[error("interrupted while writing {0}")]
-    Interrupted(PathBuf),
-    /// A plot could not be drawn.
-    #[error("cannot draw plot {name}: {source}")]
-    Plot {
-        /// The plot's file name.
-        name: String,
-        /// The plotting library's error.
-        source: Box<dyn std::error::Error + Send + Sync>,
-    },
-}
 
 /// Write `contents` to `path` atomically: a temporary file next to it, flushed and synced,
 /// then renamed over `path`.

@@ -114,8 +114,9 @@ pub enum ScenarioError {
     Stack {
         /// File name (or built-in scenario).
         file: String,
-        /// The set-up's error.
-        source: Box<crate::campaign::CampaignError>,
+        /// The set-up's error, a `campaign::CampaignError` (boxed as an error object: the
+        /// campaign's error wraps this one, so this one does not name it; downcast to read it).
+        source: Box<dyn std::error::Error + Send + Sync>,
     },
     /// The vehicle could not be loaded.
     #[error(transparent)]

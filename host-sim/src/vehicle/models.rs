@@ -4,34 +4,7 @@
 use super::table::CoefficientTable;
 use super::{AeroCoefficients, Aerodynamics};
 
-/// Parabolic drag polar C_D = C_D0 + K C_L^2 (thesis eq. 3.19).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DragPolar {
-    /// Zero-lift drag coefficient C_D0 [-].
-    pub cd0: f64,
-    /// Induced-drag factor K [-].
-    pub k: f64,
-}
-
-impl DragPolar {
-    /// C_D at lift coefficient `cl`.
-    #[must_use]
-    pub fn cd(&self, cl: f64) -> f64 {
-        self.cd0 + self.k * cl * cl
-    }
-
-    /// Maximum lift-to-drag ratio E* = 1 / (2 sqrt(K C_D0)) (thesis eq. 3.18).
-    #[must_use]
-    pub fn max_lift_to_drag(&self) -> f64 {
-        0.5 / (self.k * self.cd0).sqrt()
-    }
-
-    /// Lift coefficient of maximum L/D, C_L* = sqrt(C_D0 / K) (denominator of eq. 3.21).
-    #[must_use]
-    pub fn cl_at_max_lift_to_drag(&self) -> f64 {
-        (self.cd0 / self.k).sqrt()
-    }
-}
+pub use super::types::DragPolar;
 
 /// Drag polars tabulated against Mach, interpolated linearly in Mach (as the thesis does,
 /// sec. 8.1.2) and clamped to the first/last Mach number.

@@ -122,45 +122,9 @@ fn layering_checker_detects_imports() {
 /// on a stale entry), and a new cycle, or one that grew, fails the test.
 const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
     (
-        &[
-            "campaign",
-            "campaign::draw",
-            "campaign::fingerprint",
-            "campaign::flight",
-            "campaign::imu",
-            "campaign::settings",
-            "campaign::setup",
-            "scenario",
-            "scenario::error",
-            "scenario::guidance",
-            "scenario::guidance_layers",
-        ],
-        "campaign's facade (mod.rs) holds the layer selection that scenario::guidance_layers, \
-         settings, flight and setup use, while it calls fingerprint, which uses flight and setup; \
-         scenario::guidance_layers names campaign's layer type. Breaking it means moving the \
-         layer selection into a leaf module shared by scenario and campaign (issue 21 item 5). \
-         scenario::error wraps CampaignError since simulate flies the campaign's builder.",
-    ),
-    (
-        &[
-            "cli",
-            "cli::atmosphere_cmd",
-            "cli::dispersions_cmd",
-            "cli::hypervolume_cmd",
-            "cli::simulate_cmd",
-            "cli::vehicles_cmd",
-        ],
-        "cli/mod.rs dispatches to the subcommands, which use its CliError and output helpers; \
-         those would move to a leaf cli module.",
-    ),
-    (
         &["compare::case", "compare::metrics"],
         "case flies a case and scores it with metrics; metrics matches on case::Case. Case \
          would move to a leaf module.",
-    ),
-    (
-        &["dynamics", "dynamics::frames"],
-        "frames uses STATE_LEN of dynamics/mod.rs, which uses frames::local_axes.",
     ),
     (
         &[
@@ -174,37 +138,8 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
          recursion.",
     ),
     (
-        &["pil::faults", "pil::guidance"],
-        "the fault injector and the PIL guidance link use each other's types.",
-    ),
-    (
         &["pil::reference", "pil::scenario"],
         "the reference flight is built from the PIL scenario, which names the reference type.",
-    ),
-    (
-        &[
-            "report::campaign",
-            "report::campaign::footprint",
-            "report::campaign::limits",
-            "report::campaign::miss_cdf",
-            "report::campaign::time_to_go",
-            "report::campaign::worst",
-        ],
-        "the figure modules take the data types of report/campaign/mod.rs, which calls them; \
-         the types would move to a leaf module.",
-    ),
-    (
-        &[
-            "report::chart",
-            "report::chart::bounds",
-            "report::chart::render",
-        ],
-        "bounds and render take the chart types of report/chart/mod.rs, which calls them; the \
-         types would move to a leaf module.",
-    ),
-    (
-        &["report", "report::run_dir"],
-        "run_dir uses the report facade's writers, which write into run directories.",
     ),
     (
         &[
@@ -219,15 +154,6 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
         ],
         "resolve and its per-section resolve_* helpers call each other, and file calls \
          resolve_layers; the helpers would take their shared context from a leaf module.",
-    ),
-    (
-        &[
-            "vehicle",
-            "vehicle::horus2b",
-            "vehicle::models",
-            "vehicle::srm",
-        ],
-        "the built-in vehicles use the vehicle types of the facade, which lists the built-ins.",
     ),
 ];
 

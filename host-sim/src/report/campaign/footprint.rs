@@ -5,8 +5,8 @@
 //! would otherwise hide the distribution.
 
 use super::ellipse::{Gaussian2, normal_fraction_inside};
+use super::types::{LABELLED_WORST, ModeReport, flights_note};
 use super::worst::worst_flights;
-use super::{LABELLED_WORST, ModeReport, flights_note};
 use crate::report::chart::{BLACK, Figure, Layer, Legend, Mark, PALETTE, Panel, Rgb};
 
 /// Colours of the 1-, 2- and 3-sigma ellipses.

@@ -2,7 +2,7 @@
 //! with the limit (ratio 1) as a line and the count of flights over it in the title.
 
 use super::histogram::histogram;
-use super::{ModeReport, flights_note};
+use super::types::{ModeReport, flights_note};
 use crate::report::chart::{Figure, LIMIT_RED, Layer, Legend, Mark, PALETTE, Panel};
 
 /// The quantities, in the order of the flights' `limit_ratios`.

@@ -4,7 +4,7 @@
 //! axis would squeeze the body of the distribution against the origin for).
 
 use super::cdf::{ecdf_steps, nearest_rank, sorted};
-use super::{ModeReport, flights_note};
+use super::types::{ModeReport, flights_note};
 use crate::report::chart::{Figure, Layer, Legend, Mark, PALETTE, Panel};
 
 /// The marked percentiles: (fraction, label, colour index in the palette).

@@ -2,7 +2,7 @@
 //! line per flight; time to go runs down to 0 at the right, where each line ends at the
 //! flight's footprint point).
 
-use super::ModeReport;
+use super::types::{ModeReport, TracePoint};
 use crate::report::chart::{Figure, Layer, Legend, Mark, PALETTE, Panel};
 
 /// The error-history figure of `r`.
@@ -14,7 +14,7 @@ pub fn figure(r: &ModeReport) -> Figure {
         .flat_map(|t| t.points.iter().map(|q| q.time_to_go_s))
         .filter(|s| s.is_finite())
         .fold(0.0, f64::max);
-    let panel = |what: &str, note: &str, legend: Legend, pick: fn(&super::TracePoint) -> f64| {
+    let panel = |what: &str, note: &str, legend: Legend, pick: fn(&TracePoint) -> f64| {
         let mut p = Panel::new(
             format!(
                 "{} {}: {what} error of the {} worst flights ({})",

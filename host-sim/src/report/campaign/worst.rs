@@ -1,6 +1,6 @@
 //! The worst flights of a campaign: the largest misses first.
 
-use super::Flight;
+use super::types::Flight;
 
 /// Positions in `flights` of the `n` largest misses, largest first; a non-finite miss counts
 /// as the largest, equal misses go by case id.

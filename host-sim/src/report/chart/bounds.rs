@@ -2,7 +2,7 @@
 //! ranges, rounded out to nice tick steps, and widened to equal units per pixel when the panel
 //! asks for an equal aspect.
 
-use super::{Mark, Panel};
+use super::types::{Mark, Panel};
 use crate::report::plot::{nice_range, widen};
 
 /// Axis ranges and tick steps of a panel: `((x0, x1, x_step), (y0, y1, y_step))`.
@@ -113,7 +113,7 @@ fn nice_or_fixed(lo: f64, hi: f64, n: f64, fixed: bool) -> (f64, f64, f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Layer, PALETTE};
+    use super::super::types::{Layer, PALETTE};
     use super::*;
 
     fn panel(points: Vec<(f64, f64)>) -> Panel {

@@ -7,7 +7,7 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use super::bounds::ranges;
-use super::{Figure, Layer, Legend, Mark, Panel, Rgb};
+use super::types::{Figure, Layer, Legend, Mark, Panel, Rgb};
 use crate::report::plot::{PlotError, encode_png, ensure_font, fmt_tick};
 
 /// Margin around a panel \[px\].
