@@ -1,6 +1,5 @@
-//! What the `host-sim optimize` runs share, below all of them: the arguments, the re-entry run
-//! file ([`ReentryRunConfig`]) and the errors, and the test problems' settings, summary and
-//! output files. The test-problem run ([`super::optimize_cmd`]), the re-entry run
+//! What the `host-sim optimize` runs share, below all of them: the arguments and the errors,
+//! and the test problems' settings, summary and output files. The test-problem run ([`super::optimize_cmd`]), the re-entry run
 //! ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
 //! module and not each other's arguments, so the four files form no import cycle.
 
@@ -9,9 +8,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::design::{DesignConfig, DesignError};
 use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
 use crate::optim::{
@@ -347,7 +345,7 @@ pub enum OptimizeError {
     Io(#[from] std::io::Error),
     /// A re-entry design run failed.
     #[error(transparent)]
-    Reentry(#[from] super::optimize_common::ReentryError),
+    Reentry(#[from] crate::design::run::ReentryError),
 }
 
 /// The summary JSON.
@@ -572,170 +570,6 @@ pub(super) fn print_summary(
         front_points,
         100.0 * summary.feasible_fraction
     )
-}
-
-/// A re-entry optimisation run: algorithm settings and the problem (file units).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReentryRunConfig {
-    /// `moead`, `nsga2`, `scea` (variable length: 4 to `problem.encoding.nodes` nodes),
-    /// `mhaco` (feasible candidates first) or `mhaco-objectives` (MHACO with the constraints
-    /// as extra objectives, the thesis' sec. 9.3.2: `c / c_max` capped at 2, 0.5 added to
-    /// every objective per violated constraint).
-    pub algorithm: String,
-    /// Population size.
-    pub population: usize,
-    /// Generations after the initial population.
-    pub generations: u64,
-    /// Seed.
-    pub seed: u64,
-    /// Evaluation threads (the result does not depend on it).
-    pub threads: usize,
-    /// MOEA/D offspring per batch (1: pagmo's steady state; larger: parallel evaluation).
-    pub batch_size: usize,
-    /// MOEA/D neighbourhood size (thesis: 20).
-    pub neighbours: usize,
-    /// MOEA/D replacement limit (thesis: 1).
-    pub limit: usize,
-    /// MOEA/D per-variable mutation probability (thesis: 1 / population; default
-    /// 1 / variables).
-    pub mutation_probability: Option<f64>,
-    /// SCEA: source of the genes of appended nodes, `random` (the thesis) or `population`
-    /// (history-based, the thesis' recommendation sec. 10.2; the default, also for files
-    /// written before the field existed).
-    #[serde(default = "history_genes")]
-    pub scea_genes: NewGenes,
-    /// MOEA/D, NSGA-II and SCEA: capacity of the external archive of the feasible
-    /// non-dominated solutions found during the run (Zhang & Li 2007's external population,
-    /// hypervolume truncation; not in pagmo), whose front is then the run's front (front.csv,
-    /// the member scenarios, the recorded front and hypervolume). Absent (default): pagmo's
-    /// semantics, the final population's front.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub archive: Option<usize>,
-    /// Hypervolume reference point `[f_r, f_Q]` (objective units).
-    pub reference: Vec<f64>,
-    /// The design problem.
-    pub problem: DesignConfig,
-}
-
-pub(super) fn history_genes() -> NewGenes {
-    NewGenes::Population
-}
-
-impl ReentryRunConfig {
-    /// The thesis' settings (sec. 9.1) on a preset problem.
-    ///
-    /// # Errors
-    /// [`DesignError::UnknownPreset`].
-    pub fn thesis(preset: &str) -> Result<Self, DesignError> {
-        let problem = DesignConfig::preset(preset)?;
-        let m = 2 + usize::from(problem.objectives.skips);
-        let mut reference = vec![0.0, 2.0];
-        reference.resize(m, 10.0);
-        Ok(Self {
-            algorithm: "moead".into(),
-            population: 64,
-            generations: 128,
-            seed: 123,
-            threads: 1,
-            batch_size: 1,
-            neighbours: 20,
-            limit: 1,
-            mutation_probability: Some(1.0 / 64.0),
-            scea_genes: history_genes(),
-            archive: None,
-            reference,
-            problem,
-        })
-    }
-}
-
-/// Failures of a re-entry run; each names the field or file and what to change.
-#[derive(Debug, thiserror::Error)]
-pub enum ReentryError {
-    /// The problem could not be built.
-    #[error(transparent)]
-    Design(#[from] DesignError),
-    /// A bad setting.
-    #[error("{source_name}: field `{field}` = {value}: {reason}")]
-    Setting {
-        /// Command line or file.
-        source_name: String,
-        /// Field.
-        field: &'static str,
-        /// Value.
-        value: String,
-        /// What to change.
-        reason: String,
-    },
-    /// A file could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// A TOML file is not valid TOML.
-    #[error("{}: {source}", path.display())]
-    Toml {
-        /// The file.
-        path: PathBuf,
-        /// The parser's error (line, column, offending text).
-        source: crate::toml_input::TomlSyntax,
-    },
-    /// A field of a TOML file is unknown, missing or of the wrong type.
-    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
-    Field {
-        /// The file.
-        path: PathBuf,
-        /// Dotted path of the field.
-        field: String,
-        /// Its value as written, or `(missing)`.
-        value: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A JSON file is malformed, or a configuration cannot be printed as TOML.
-    #[error("{path}: {message}")]
-    Parse {
-        /// The file.
-        path: PathBuf,
-        /// Parser message (with the field).
-        message: String,
-    },
-    /// The run directory cannot be written.
-    #[error("run directory {path}: cannot write: {source}; choose a writable --out")]
-    RunDir {
-        /// The directory.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// The optimiser refused its settings or failed.
-    #[error("optimiser: {0}")]
-    Optim(#[from] OptimError),
-    /// An evaluation failed outright.
-    #[error("evaluation: {0}")]
-    Eval(#[from] crate::optim::EvalError),
-    /// Output could not be written.
-    #[error(transparent)]
-    Report(#[from] ReportError),
-    /// The console could not be written.
-    #[error("cannot write output: {0}")]
-    Io(#[from] std::io::Error),
-    /// Ctrl-C: the run stopped at a generation boundary without a final file.
-    #[error(
-        "stopped before generation {generation} (Ctrl-C); the checkpoint of the last complete \
-         generation is kept in {}: continue with --resume",
-        dir.display()
-    )]
-    Interrupted {
-        /// The generation that was not completed.
-        generation: u64,
-        /// The run directory.
-        dir: PathBuf,
-    },
 }
 
 /// Where SCEA takes the genes of a node it appends (`--scea-genes`).
