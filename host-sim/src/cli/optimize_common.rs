@@ -3,15 +3,13 @@
 //! ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
 //! module and not each other's arguments, so the four files form no import cycle.
 
-use std::fmt::Write as _;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
-use serde::Serialize;
 
 use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
+use crate::optim::run::{RunSummary, front_csv};
 use crate::optim::{
     ConstraintHandling, Individual, MhacoConfig, MoeadConfig, NewGenes, OptimError, Threads,
     ThreadsError, WeightGeneration,
@@ -348,41 +346,6 @@ pub enum OptimizeError {
     Reentry(#[from] crate::design::run::ReentryError),
 }
 
-/// The summary JSON.
-#[derive(Debug, Serialize)]
-pub(super) struct Summary<'a> {
-    pub(super) problem: &'a str,
-    pub(super) algorithm: &'static str,
-    pub(super) population: usize,
-    pub(super) generations: u64,
-    pub(super) seed: u64,
-    pub(super) objectives: usize,
-    pub(super) variables: usize,
-    pub(super) constraints: usize,
-    pub(super) evaluations: u64,
-    pub(super) reference_point: &'a [f64],
-    pub(super) hypervolume: f64,
-    pub(super) true_front_hypervolume: Option<f64>,
-    pub(super) hypervolume_ratio: Option<f64>,
-    pub(super) feasible_fraction: f64,
-    /// What the front (front.csv, hypervolume, front_size) is taken from: "population" (the
-    /// final population; pagmo's semantics) or "archive" (the external archive, `--archive`).
-    pub(super) front_source: &'static str,
-    /// Capacity of the external archive (`--archive`), if any.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) archive_capacity: Option<usize>,
-    /// MOEA/D-DRA's resource allocation was on (`--resource-allocation`).
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub(super) resource_allocation: bool,
-    /// MOEA/D's variation when not pagmo's DE (`--moead-operator sbx`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) moead_operator: Option<&'static str>,
-    pub(super) front_size: usize,
-    /// Wall time of the evolution alone (no problem set-up, no output) [s].
-    pub(super) wall_time_s: f64,
-    pub(super) threads: usize,
-}
-
 pub(super) struct Outcome {
     pub(super) population: Vec<Individual<Vec<f64>>>,
     /// The external archive's members, when the run kept one (the result front).
@@ -504,72 +467,21 @@ pub(super) fn reference(
     }
 }
 
+/// Write the run directory of a test-problem run: `population` (the population CSV text),
+/// front.csv and summary.json.
 pub(super) fn write_outputs(
     dir: &Path,
-    pop: &[Individual<Vec<f64>>],
+    population: &str,
     front: &[&[f64]],
-    summary: &Summary<'_>,
+    summary: &RunSummary<'_>,
 ) -> Result<(), OptimizeError> {
     let mut rd = RunDir::begin(dir)?;
-    let nf = summary.objectives;
-    let mut csv = String::new();
-    let header: Vec<String> = (1..=summary.variables)
-        .map(|i| format!("x{i}"))
-        .chain((1..=nf).map(|i| format!("f{i}")))
-        .chain((1..=summary.constraints).map(|i| format!("g{i}")))
-        .chain(["violation".to_string()])
-        .collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for ind in pop {
-        let row: Vec<String> = ind
-            .decision
-            .iter()
-            .chain(&ind.objectives)
-            .chain(&ind.constraints)
-            .chain(std::iter::once(&ind.violation))
-            .map(|v| format!("{v:e}"))
-            .collect();
-        let _ = writeln!(csv, "{}", row.join(","));
-    }
-    rd.write("population.csv", csv.as_bytes())?;
-    let mut csv = String::new();
-    let header: Vec<String> = (1..=nf).map(|i| format!("f{i}")).collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for f in front {
-        let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
-        let _ = writeln!(csv, "{}", row.join(","));
-    }
-    rd.write("front.csv", csv.as_bytes())?;
+    rd.write("population.csv", population.as_bytes())?;
+    rd.write("front.csv", front_csv(front, summary.objectives).as_bytes())?;
     let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
     rd.write("summary.json", json.as_bytes())?;
     rd.commit()?;
     Ok(())
-}
-
-/// The one-line result of an optimisation run (both `optimize` paths print it).
-pub(super) fn print_summary(
-    out: &mut dyn Write,
-    summary: &Summary,
-    hv: f64,
-    reference: &[f64],
-    front_points: usize,
-) -> std::io::Result<()> {
-    let ratio = summary
-        .hypervolume_ratio
-        .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
-    writeln!(
-        out,
-        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
-        summary.algorithm,
-        summary.problem,
-        summary.evaluations,
-        summary.wall_time_s,
-        hv,
-        ratio,
-        reference,
-        front_points,
-        100.0 * summary.feasible_fraction
-    )
 }
 
 /// Where SCEA takes the genes of a node it appends (`--scea-genes`).

@@ -1,16 +1,19 @@
 //! What a recorded optimisation run keeps, whatever its problem: the per-generation
 //! [`Record`] (counts, feasible fraction, front and its hypervolume), the [`Checkpoint`] of
 //! an algorithm's state with the records so far (checked on restore by [`check_records`]),
-//! the result front's order ([`front_order`]) and the population CSV text
-//! ([`population_csv`]). The files themselves are written by the problem's run (the re-entry
-//! runs: `crate::design::run`); this module, like all of `optim`, imports nothing else of
-//! host-sim.
+//! the result front's order ([`front_order`]), the population CSV text
+//! ([`population_csv`], [`chromosome_csv`]), and a run's [`RunSummary`] (summary.json of
+//! `optimize` on a test problem) with its [`front_csv`] and one-line [`RunSummary::line`].
+//! The files themselves are written by the caller (atomically, through host-sim's report
+//! module; the re-entry runs: `crate::design::run`); this module, like all of `optim`,
+//! imports nothing else of host-sim.
 
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
 use super::algorithm::Algorithm;
+use super::chromosome::Chromosome;
 use super::error::StateError;
 use super::hypervolume::hypervolume;
 use super::population::{Individual, feasible_fraction, feasible_front_indices};
@@ -204,4 +207,174 @@ pub fn check_records<P: Problem, A: Algorithm<P>>(
         }
     }
     Ok(())
+}
+
+/// The summary of a run on a test problem (summary.json).
+#[derive(Debug, Serialize)]
+pub struct RunSummary<'a> {
+    /// Problem name.
+    pub problem: &'a str,
+    /// Algorithm name.
+    pub algorithm: &'static str,
+    /// Population size.
+    pub population: usize,
+    /// Generations after the initial population.
+    pub generations: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Objectives.
+    pub objectives: usize,
+    /// Decision variables (a variable-length problem: the longest chromosome's genes).
+    pub variables: usize,
+    /// Constraints.
+    pub constraints: usize,
+    /// Evaluations, initial population included.
+    pub evaluations: u64,
+    /// Hypervolume reference point.
+    pub reference_point: &'a [f64],
+    /// Hypervolume of the feasible front.
+    pub hypervolume: f64,
+    /// Hypervolume of the problem's true front, when known.
+    pub true_front_hypervolume: Option<f64>,
+    /// `hypervolume / true_front_hypervolume`.
+    pub hypervolume_ratio: Option<f64>,
+    /// Fraction of feasible individuals in the final population.
+    pub feasible_fraction: f64,
+    /// What the front (front.csv, hypervolume, front_size) is taken from: "population" (the
+    /// final population; pagmo's semantics) or "archive" (the external archive).
+    pub front_source: &'static str,
+    /// Capacity of the external archive, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub archive_capacity: Option<usize>,
+    /// MOEA/D-DRA's resource allocation was on.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub resource_allocation: bool,
+    /// MOEA/D's variation when not pagmo's DE ("sbx").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moead_operator: Option<&'static str>,
+    /// Points of the feasible front.
+    pub front_size: usize,
+    /// Wall time of the evolution alone (no problem set-up, no output) [s].
+    pub wall_time_s: f64,
+    /// Evaluation threads.
+    pub threads: usize,
+}
+
+impl RunSummary<'_> {
+    /// The one-line result of the run (no newline).
+    #[must_use]
+    pub fn line(&self) -> String {
+        let ratio = self
+            .hypervolume_ratio
+            .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
+        format!(
+            "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
+            self.algorithm,
+            self.problem,
+            self.evaluations,
+            self.wall_time_s,
+            self.hypervolume,
+            ratio,
+            self.reference_point,
+            self.front_size,
+            100.0 * self.feasible_fraction
+        )
+    }
+}
+
+/// The front's objective vectors as CSV text (header `f1,f2,...` for `objectives`).
+#[must_use]
+pub fn front_csv(front: &[&[f64]], objectives: usize) -> String {
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=objectives).map(|i| format!("f{i}")).collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for f in front {
+        let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    csv
+}
+
+fn joined(values: impl Iterator<Item = f64>) -> String {
+    values
+        .map(|v| format!("{v:e}"))
+        .collect::<Vec<_>>()
+        .join(";")
+}
+
+/// A variable-length population as CSV text, one chromosome per row: objectives,
+/// constraints, violation, then `x` (fixed genes), `nodes` (node count of each leg) and
+/// `genes` (all node genes), each a `;`-separated list.
+#[must_use]
+pub fn chromosome_csv(
+    pop: &[Individual<Chromosome>],
+    objectives: usize,
+    constraints: usize,
+) -> String {
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=objectives)
+        .map(|i| format!("f{i}"))
+        .chain((1..=constraints).map(|i| format!("g{i}")))
+        .chain(["violation", "x", "nodes", "genes"].map(String::from))
+        .collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for ind in pop {
+        let mut row: Vec<String> = ind
+            .objectives
+            .iter()
+            .chain(&ind.constraints)
+            .chain(std::iter::once(&ind.violation))
+            .map(|v| format!("{v:e}"))
+            .collect();
+        let c = &ind.decision;
+        row.push(joined(c.fixed.iter().copied()));
+        row.push(
+            c.node_counts()
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(";"),
+        );
+        row.push(joined(c.legs.iter().flatten().flatten().copied()));
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    csv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ind(decision: Vec<f64>, objectives: Vec<f64>, violation: f64) -> Individual<Vec<f64>> {
+        Individual {
+            decision,
+            objectives,
+            constraints: vec![violation],
+            violation,
+        }
+    }
+
+    #[test]
+    fn population_csv_pads_shorter_decisions_and_front_order_drops_repeats() {
+        let pop = [
+            ind(vec![1.0, 2.0], vec![0.5, 0.25], 0.0),
+            ind(vec![3.0], vec![0.25, 0.5], 0.0),
+            ind(vec![3.0], vec![0.25, 0.5], 0.0),
+            ind(vec![4.0], vec![0.1, 0.1], 2.0),
+        ];
+        let csv = population_csv(&pop);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], "x1,x2,f1,f2,g1,violation");
+        assert_eq!(lines[2], "3e0,,2.5e-1,5e-1,0e0,0e0");
+        // Feasible, sorted by f1, the repeated member once, the infeasible one out.
+        assert_eq!(front_order(&pop), vec![1, 0]);
+        let r = record_of(0, 4, &pop, &pop, &[1.0, 1.0]);
+        assert_eq!(r.front, vec![vec![0.25, 0.5], vec![0.5, 0.25]]);
+        assert_eq!(r.feasible_fraction, 0.75);
+        assert_eq!(r.min_violation, 0.0);
+        assert_eq!(
+            front_csv(&[&[0.5, 0.25]], 2),
+            "f1,f2\n5e-1,2.5e-1\n".to_string()
+        );
+    }
 }
