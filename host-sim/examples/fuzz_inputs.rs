@@ -140,7 +140,7 @@ fn seeds(target: Target, examples: &Path) -> Vec<(String, String)> {
         Target::RunConfig => ["horus-2b", "srm", "srm-analytical"]
             .iter()
             .map(|p| {
-                let c = host_sim::cli::ReentryRunConfig::thesis(p).expect("a preset");
+                let c = host_sim::design::run::ReentryRunConfig::thesis(p).expect("a preset");
                 (
                     (*p).to_string(),
                     toml::to_string(&c).expect("a config serialises"),
@@ -357,7 +357,7 @@ fn read(target: Target, text: &str, dir: &Path) -> Result<String, String> {
         Target::Settings => host_sim::campaign::parse_settings(text, "fuzz.toml")
             .map(|s| format!("{s:?}"))
             .map_err(|e| e.to_string()),
-        Target::RunConfig => host_sim::cli::check_run_config(text, &dir.join("fuzz.toml"))
+        Target::RunConfig => host_sim::design::run::check_run_config(text, &dir.join("fuzz.toml"))
             .map(|c| format!("{c:?}"))
             .map_err(|e| e.to_string()),
     }

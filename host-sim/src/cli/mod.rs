@@ -11,7 +11,6 @@ mod hypervolume_cmd;
 mod optimize_cmd;
 mod optimize_common;
 mod optimize_reentry;
-mod optimize_reentry_out;
 #[cfg(test)]
 mod optimize_reentry_tests;
 #[cfg(test)]

@@ -7,6 +7,7 @@ use std::io::Write;
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::TestProblem;
+use crate::optim::run::{RunSummary, population_csv};
 use crate::optim::{
     Algorithm, Budget, Executor, Mhaco, Moead, MoeadSbx, Nsga2, Nsga2Config, OptimError, Problem,
     SbxVariation, Threads,
@@ -16,8 +17,8 @@ pub use super::optimize_common::{
     AlgorithmName, MoeadOperatorArg, OptimizeArgs, OptimizeError, WeightsArg,
 };
 use super::optimize_common::{
-    Outcome, Summary, check_archive, check_resource_allocation, generations_to_run, mhaco_config,
-    moead_config, print_summary, reference, threads, write_outputs,
+    Outcome, check_archive, check_resource_allocation, generations_to_run, mhaco_config,
+    moead_config, reference, threads, write_outputs,
 };
 
 fn drive<A: Algorithm<TestProblem>>(
@@ -126,7 +127,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         .collect();
     let hv = hypervolume(&front, &reference)?;
     let true_hv = problem.front_hypervolume(&reference, 20_000);
-    let summary = Summary {
+    let summary = RunSummary {
         problem: &a.problem,
         algorithm: a.algorithm.as_str(),
         population: a.population,
@@ -153,9 +154,9 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         wall_time_s: outcome.wall_time_s,
         threads: a.threads,
     };
-    print_summary(out, &summary, hv, &reference, front.len())?;
+    writeln!(out, "{}", summary.line())?;
     if let Some(dir) = &a.out {
-        write_outputs(dir, pop, &front, &summary)?;
+        write_outputs(dir, &population_csv(pop), &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())

@@ -1,19 +1,15 @@
-//! What the `host-sim optimize` runs share, below all of them: the arguments, the re-entry run
-//! file ([`ReentryRunConfig`]) and the errors, and the test problems' settings, summary and
-//! output files. The test-problem run ([`super::optimize_cmd`]), the re-entry run
+//! What the `host-sim optimize` runs share, below all of them: the arguments and the errors,
+//! and the test problems' settings, summary and output files. The test-problem run ([`super::optimize_cmd`]), the re-entry run
 //! ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
 //! module and not each other's arguments, so the four files form no import cycle.
 
-use std::fmt::Write as _;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
-use serde::{Deserialize, Serialize};
 
-use crate::design::{DesignConfig, DesignError};
 use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
+use crate::optim::run::{RunSummary, front_csv};
 use crate::optim::{
     ConstraintHandling, Individual, MhacoConfig, MoeadConfig, NewGenes, OptimError, Threads,
     ThreadsError, WeightGeneration,
@@ -347,42 +343,7 @@ pub enum OptimizeError {
     Io(#[from] std::io::Error),
     /// A re-entry design run failed.
     #[error(transparent)]
-    Reentry(#[from] super::optimize_common::ReentryError),
-}
-
-/// The summary JSON.
-#[derive(Debug, Serialize)]
-pub(super) struct Summary<'a> {
-    pub(super) problem: &'a str,
-    pub(super) algorithm: &'static str,
-    pub(super) population: usize,
-    pub(super) generations: u64,
-    pub(super) seed: u64,
-    pub(super) objectives: usize,
-    pub(super) variables: usize,
-    pub(super) constraints: usize,
-    pub(super) evaluations: u64,
-    pub(super) reference_point: &'a [f64],
-    pub(super) hypervolume: f64,
-    pub(super) true_front_hypervolume: Option<f64>,
-    pub(super) hypervolume_ratio: Option<f64>,
-    pub(super) feasible_fraction: f64,
-    /// What the front (front.csv, hypervolume, front_size) is taken from: "population" (the
-    /// final population; pagmo's semantics) or "archive" (the external archive, `--archive`).
-    pub(super) front_source: &'static str,
-    /// Capacity of the external archive (`--archive`), if any.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) archive_capacity: Option<usize>,
-    /// MOEA/D-DRA's resource allocation was on (`--resource-allocation`).
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub(super) resource_allocation: bool,
-    /// MOEA/D's variation when not pagmo's DE (`--moead-operator sbx`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) moead_operator: Option<&'static str>,
-    pub(super) front_size: usize,
-    /// Wall time of the evolution alone (no problem set-up, no output) [s].
-    pub(super) wall_time_s: f64,
-    pub(super) threads: usize,
+    Reentry(#[from] crate::design::run::ReentryError),
 }
 
 pub(super) struct Outcome {
@@ -506,236 +467,21 @@ pub(super) fn reference(
     }
 }
 
+/// Write the run directory of a test-problem run: `population` (the population CSV text),
+/// front.csv and summary.json.
 pub(super) fn write_outputs(
     dir: &Path,
-    pop: &[Individual<Vec<f64>>],
+    population: &str,
     front: &[&[f64]],
-    summary: &Summary<'_>,
+    summary: &RunSummary<'_>,
 ) -> Result<(), OptimizeError> {
     let mut rd = RunDir::begin(dir)?;
-    let nf = summary.objectives;
-    let mut csv = String::new();
-    let header: Vec<String> = (1..=summary.variables)
-        .map(|i| format!("x{i}"))
-        .chain((1..=nf).map(|i| format!("f{i}")))
-        .chain((1..=summary.constraints).map(|i| format!("g{i}")))
-        .chain(["violation".to_string()])
-        .collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for ind in pop {
-        let row: Vec<String> = ind
-            .decision
-            .iter()
-            .chain(&ind.objectives)
-            .chain(&ind.constraints)
-            .chain(std::iter::once(&ind.violation))
-            .map(|v| format!("{v:e}"))
-            .collect();
-        let _ = writeln!(csv, "{}", row.join(","));
-    }
-    rd.write("population.csv", csv.as_bytes())?;
-    let mut csv = String::new();
-    let header: Vec<String> = (1..=nf).map(|i| format!("f{i}")).collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for f in front {
-        let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
-        let _ = writeln!(csv, "{}", row.join(","));
-    }
-    rd.write("front.csv", csv.as_bytes())?;
+    rd.write("population.csv", population.as_bytes())?;
+    rd.write("front.csv", front_csv(front, summary.objectives).as_bytes())?;
     let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
     rd.write("summary.json", json.as_bytes())?;
     rd.commit()?;
     Ok(())
-}
-
-/// The one-line result of an optimisation run (both `optimize` paths print it).
-pub(super) fn print_summary(
-    out: &mut dyn Write,
-    summary: &Summary,
-    hv: f64,
-    reference: &[f64],
-    front_points: usize,
-) -> std::io::Result<()> {
-    let ratio = summary
-        .hypervolume_ratio
-        .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
-    writeln!(
-        out,
-        "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
-        summary.algorithm,
-        summary.problem,
-        summary.evaluations,
-        summary.wall_time_s,
-        hv,
-        ratio,
-        reference,
-        front_points,
-        100.0 * summary.feasible_fraction
-    )
-}
-
-/// A re-entry optimisation run: algorithm settings and the problem (file units).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReentryRunConfig {
-    /// `moead`, `nsga2`, `scea` (variable length: 4 to `problem.encoding.nodes` nodes),
-    /// `mhaco` (feasible candidates first) or `mhaco-objectives` (MHACO with the constraints
-    /// as extra objectives, the thesis' sec. 9.3.2: `c / c_max` capped at 2, 0.5 added to
-    /// every objective per violated constraint).
-    pub algorithm: String,
-    /// Population size.
-    pub population: usize,
-    /// Generations after the initial population.
-    pub generations: u64,
-    /// Seed.
-    pub seed: u64,
-    /// Evaluation threads (the result does not depend on it).
-    pub threads: usize,
-    /// MOEA/D offspring per batch (1: pagmo's steady state; larger: parallel evaluation).
-    pub batch_size: usize,
-    /// MOEA/D neighbourhood size (thesis: 20).
-    pub neighbours: usize,
-    /// MOEA/D replacement limit (thesis: 1).
-    pub limit: usize,
-    /// MOEA/D per-variable mutation probability (thesis: 1 / population; default
-    /// 1 / variables).
-    pub mutation_probability: Option<f64>,
-    /// SCEA: source of the genes of appended nodes, `random` (the thesis) or `population`
-    /// (history-based, the thesis' recommendation sec. 10.2; the default, also for files
-    /// written before the field existed).
-    #[serde(default = "history_genes")]
-    pub scea_genes: NewGenes,
-    /// MOEA/D, NSGA-II and SCEA: capacity of the external archive of the feasible
-    /// non-dominated solutions found during the run (Zhang & Li 2007's external population,
-    /// hypervolume truncation; not in pagmo), whose front is then the run's front (front.csv,
-    /// the member scenarios, the recorded front and hypervolume). Absent (default): pagmo's
-    /// semantics, the final population's front.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub archive: Option<usize>,
-    /// Hypervolume reference point `[f_r, f_Q]` (objective units).
-    pub reference: Vec<f64>,
-    /// The design problem.
-    pub problem: DesignConfig,
-}
-
-pub(super) fn history_genes() -> NewGenes {
-    NewGenes::Population
-}
-
-impl ReentryRunConfig {
-    /// The thesis' settings (sec. 9.1) on a preset problem.
-    ///
-    /// # Errors
-    /// [`DesignError::UnknownPreset`].
-    pub fn thesis(preset: &str) -> Result<Self, DesignError> {
-        let problem = DesignConfig::preset(preset)?;
-        let m = 2 + usize::from(problem.objectives.skips);
-        let mut reference = vec![0.0, 2.0];
-        reference.resize(m, 10.0);
-        Ok(Self {
-            algorithm: "moead".into(),
-            population: 64,
-            generations: 128,
-            seed: 123,
-            threads: 1,
-            batch_size: 1,
-            neighbours: 20,
-            limit: 1,
-            mutation_probability: Some(1.0 / 64.0),
-            scea_genes: history_genes(),
-            archive: None,
-            reference,
-            problem,
-        })
-    }
-}
-
-/// Failures of a re-entry run; each names the field or file and what to change.
-#[derive(Debug, thiserror::Error)]
-pub enum ReentryError {
-    /// The problem could not be built.
-    #[error(transparent)]
-    Design(#[from] DesignError),
-    /// A bad setting.
-    #[error("{source_name}: field `{field}` = {value}: {reason}")]
-    Setting {
-        /// Command line or file.
-        source_name: String,
-        /// Field.
-        field: &'static str,
-        /// Value.
-        value: String,
-        /// What to change.
-        reason: String,
-    },
-    /// A file could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// A TOML file is not valid TOML.
-    #[error("{}: {source}", path.display())]
-    Toml {
-        /// The file.
-        path: PathBuf,
-        /// The parser's error (line, column, offending text).
-        source: crate::toml_input::TomlSyntax,
-    },
-    /// A field of a TOML file is unknown, missing or of the wrong type.
-    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
-    Field {
-        /// The file.
-        path: PathBuf,
-        /// Dotted path of the field.
-        field: String,
-        /// Its value as written, or `(missing)`.
-        value: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A JSON file is malformed, or a configuration cannot be printed as TOML.
-    #[error("{path}: {message}")]
-    Parse {
-        /// The file.
-        path: PathBuf,
-        /// Parser message (with the field).
-        message: String,
-    },
-    /// The run directory cannot be written.
-    #[error("run directory {path}: cannot write: {source}; choose a writable --out")]
-    RunDir {
-        /// The directory.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// The optimiser refused its settings or failed.
-    #[error("optimiser: {0}")]
-    Optim(#[from] OptimError),
-    /// An evaluation failed outright.
-    #[error("evaluation: {0}")]
-    Eval(#[from] crate::optim::EvalError),
-    /// Output could not be written.
-    #[error(transparent)]
-    Report(#[from] ReportError),
-    /// The console could not be written.
-    #[error("cannot write output: {0}")]
-    Io(#[from] std::io::Error),
-    /// Ctrl-C: the run stopped at a generation boundary without a final file.
-    #[error(
-        "stopped before generation {generation} (Ctrl-C); the checkpoint of the last complete \
-         generation is kept in {}: continue with --resume",
-        dir.display()
-    )]
-    Interrupted {
-        /// The generation that was not completed.
-        generation: u64,
-        /// The run directory.
-        dir: PathBuf,
-    },
 }
 
 /// Where SCEA takes the genes of a node it appends (`--scea-genes`).

@@ -182,13 +182,22 @@ fn fronts_have_no_repeated_members() {
         ind(0.3, [1.0, 0.0]),
         ind(0.2, [1.0, 0.0]),
     ];
-    let r = super::optimize_reentry_out::record_of(0, 5, &pop, &pop, &[2.0, 2.0]);
+    let r = crate::optim::run::record_of(0, 5, &pop, &pop, &[2.0, 2.0]);
     assert_eq!(r.front, vec![vec![0.0, 1.0], vec![1.0, 0.0]]);
     let dir = tmp("dedup");
     std::fs::create_dir_all(&dir).unwrap();
     let c = super::optimize_reentry::ReentryRunConfig::thesis("srm-analytical").unwrap();
     let scenarios = vec![None; pop.len()];
-    super::optimize_reentry_out::write_final(&dir, &scenarios, &pop, &pop, &[r], &c, None).unwrap();
+    crate::design::run::files::write_final(
+        &dir,
+        &scenarios,
+        &pop,
+        &pop,
+        &[r],
+        &c.problem.base,
+        None,
+    )
+    .unwrap();
     let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();
     let rows: Vec<&str> = front.lines().skip(1).collect();
     assert_eq!(rows.len(), 3, "{front}");

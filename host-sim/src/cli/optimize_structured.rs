@@ -1,25 +1,22 @@
 //! `host-sim optimize` with SCEA: on the fixed-length test problems (as chromosomes of fixed
 //! genes only) and on the variable-length problems of Li & Deb (`vlmop1` ... `vlmop5`). The
-//! variable-length population CSV holds one chromosome per row: objectives, constraints,
-//! violation, then `x` (fixed genes), `nodes` (node count of each leg) and `genes` (all node
-//! genes), each a `;`-separated list.
+//! variable-length population CSV is [`crate::optim::run::chromosome_csv`]'s: one chromosome
+//! per row.
 
-use std::fmt::Write as _;
 use std::io::Write;
-use std::path::Path;
 
 use super::optimize_common::{
-    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, Summary, moead_config, print_summary,
-    reference, threads,
+    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, moead_config, reference, threads,
+    write_outputs,
 };
 use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::{TestProblem, Vlmop};
+use crate::optim::run::{RunSummary, chromosome_csv};
 use crate::optim::{
     Algorithm, Budget, Executor, Individual, OptimError, Problem, Scea, SceaConfig, Threads,
 };
-use crate::report::write_atomic;
 
 pub use super::optimize_common::SceaGenesArg;
 
@@ -85,13 +82,6 @@ pub(super) fn drive_scea(
     })
 }
 
-fn joined(values: impl Iterator<Item = f64>) -> String {
-    values
-        .map(|v| format!("{v:e}"))
-        .collect::<Vec<_>>()
-        .join(";")
-}
-
 /// `optimize` on a variable-length problem (SCEA only).
 pub(super) fn run_variable_length(
     a: &OptimizeArgs,
@@ -117,7 +107,7 @@ pub(super) fn run_variable_length(
         .front_hypervolume(&reference)
         .or_else(|| hypervolume(&problem.pareto_front(2000), &reference).ok());
     let layout = problem.layout();
-    let summary = Summary {
+    let summary = RunSummary {
         problem: &a.problem,
         algorithm: a.algorithm.as_str(),
         population: a.population,
@@ -145,52 +135,12 @@ pub(super) fn run_variable_length(
         wall_time_s,
         threads: a.threads,
     };
-    print_summary(out, &summary, hv, &reference, front.len())?;
+    writeln!(out, "{}", summary.line())?;
     if let Some(dir) = &a.out {
-        write_variable_length(dir, &pop, &front, &summary)?;
+        let population = chromosome_csv(&pop, m, problem.constraints());
+        write_outputs(dir, &population, &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
-    Ok(())
-}
-
-fn write_variable_length(
-    dir: &Path,
-    pop: &[Individual<Chromosome>],
-    front: &[&[f64]],
-    summary: &Summary<'_>,
-) -> Result<(), OptimizeError> {
-    // Front and summary as for the fixed-length problems (no decisions in the population
-    // file there), then the chromosome file over it.
-    let flat: Vec<Individual<Vec<f64>>> = Vec::new();
-    super::optimize_common::write_outputs(dir, &flat, front, summary)?;
-    let mut csv = String::new();
-    let header: Vec<String> = (1..=summary.objectives)
-        .map(|i| format!("f{i}"))
-        .chain((1..=summary.constraints).map(|i| format!("g{i}")))
-        .chain(["violation", "x", "nodes", "genes"].map(String::from))
-        .collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for ind in pop {
-        let mut row: Vec<String> = ind
-            .objectives
-            .iter()
-            .chain(&ind.constraints)
-            .chain(std::iter::once(&ind.violation))
-            .map(|v| format!("{v:e}"))
-            .collect();
-        let c = &ind.decision;
-        row.push(joined(c.fixed.iter().copied()));
-        row.push(
-            c.node_counts()
-                .iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join(";"),
-        );
-        row.push(joined(c.legs.iter().flatten().flatten().copied()));
-        let _ = writeln!(csv, "{}", row.join(","));
-    }
-    write_atomic(&dir.join("population.csv"), csv.as_bytes())?;
     Ok(())
 }
 

@@ -9,7 +9,9 @@
 //! * [`problem`]: [`ReentryProblem`] (objectives, constraints with `g <= 0` feasible);
 //! * [`config`]: the problem as a file section and the thesis presets;
 //! * [`analytical`]: which simulator evaluates (numerical closed loop or the analytical
-//!   node-guided glide).
+//!   node-guided glide);
+//! * [`run`]: a recorded, resumable optimisation run of a problem (run file, checkpoint,
+//!   records, run directory).
 
 pub mod analytical;
 #[cfg(test)]
@@ -17,6 +19,7 @@ mod analytical_tests;
 pub mod config;
 pub mod encoding;
 pub mod problem;
+pub mod run;
 pub mod sample;
 #[cfg(test)]
 mod tests;

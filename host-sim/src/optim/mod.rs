@@ -15,6 +15,7 @@
 //! * [`archive`]: [`ParetoArchive`], the bounded external archive of non-dominated solutions
 //!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
 //! * [`hypervolume`]: exact hypervolume, contributions, least contributor;
+//! * [`run`]: a recorded run's per-generation records, checkpoint and population CSV;
 //! * [`nonfinite`]: serde of `f64`s that may be NaN or infinite (checkpoints, records).
 //!
 //! See docs/reference/optimisers.md for the semantics and the measured convergence.
@@ -37,6 +38,7 @@ pub mod problems;
 pub mod restore;
 pub mod rng;
 pub mod root;
+pub mod run;
 pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};

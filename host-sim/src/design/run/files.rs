@@ -1,139 +1,19 @@
-//! Files of a re-entry optimisation run: per-generation records (generations.csv and .json),
-//! populations (population/gen_NNNN.csv), the final front (front.csv and one scenario file per
-//! member in front/, flyable by `host-sim simulate --scenario`), the trajectories of three
-//! chosen members (front/member_NN/) and plots (fronts.svg, hypervolume.svg, feasible.svg,
-//! objectives.svg, trajectories.svg).
+//! Files of a re-entry optimisation run ([`super`]): per-generation records (generations.csv
+//! and .json), populations (population/gen_NNNN.csv), the final front (front.csv and one
+//! scenario file per member in front/, flyable by `host-sim simulate --scenario`), the
+//! trajectories of three chosen members (front/member_NN/) and plots (fronts.svg,
+//! hypervolume.svg, feasible.svg, objectives.svg, trajectories.svg).
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use serde::{Deserialize, Serialize};
-
-use super::optimize_common::ReentryRunConfig;
 use crate::design::AnalyticalModel;
 use crate::optim::Individual;
-use crate::optim::hypervolume::hypervolume;
-use crate::optim::population::{feasible_fraction, feasible_front_indices};
+use crate::optim::run::{Record, front_order, population_csv};
 use crate::report::{ReportError, RunDir, write_atomic};
 use crate::report::{Series, line_plot_svg};
 use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
 use crate::sim::SimResult;
-
-/// One generation's record.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Record {
-    /// Generation (0: the initial population).
-    pub generation: u64,
-    /// Evaluations so far.
-    pub evaluations: u64,
-    /// Fraction of feasible individuals.
-    #[serde(with = "crate::optim::nonfinite::scalar")]
-    pub feasible_fraction: f64,
-    /// Hypervolume of the feasible front (0 without feasible members): of the external
-    /// archive when the run keeps one (`archive` in config.toml).
-    #[serde(with = "crate::optim::nonfinite::scalar")]
-    pub hypervolume: f64,
-    /// Smallest violation in the population.
-    #[serde(with = "crate::optim::nonfinite::scalar")]
-    pub min_violation: f64,
-    /// Best (smallest) feasible value per objective (NaN: none feasible).
-    #[serde(with = "crate::optim::nonfinite::vec")]
-    pub best: Vec<f64>,
-    /// Mean feasible value per objective (NaN: none feasible).
-    #[serde(with = "crate::optim::nonfinite::vec")]
-    pub mean: Vec<f64>,
-    /// The feasible front's objective vectors (the external archive's, if any).
-    #[serde(with = "crate::optim::nonfinite::vec2")]
-    pub front: Vec<Vec<f64>>,
-}
-
-/// The record of a population; the front and its hypervolume are those of `result` (the
-/// population itself, or the run's external archive).
-pub fn record_of(
-    generation: u64,
-    evaluations: u64,
-    pop: &[Individual<Vec<f64>>],
-    result: &[Individual<Vec<f64>>],
-    reference: &[f64],
-) -> Record {
-    let m = reference.len();
-    let feas: Vec<&Individual<Vec<f64>>> = pop.iter().filter(|i| i.violation == 0.0).collect();
-    let mut best = vec![f64::NAN; m];
-    let mut mean = vec![f64::NAN; m];
-    if !feas.is_empty() {
-        for k in 0..m {
-            best[k] = feas
-                .iter()
-                .map(|i| i.objectives[k])
-                .fold(f64::INFINITY, f64::min);
-            mean[k] = feas.iter().map(|i| i.objectives[k]).sum::<f64>() / feas.len() as f64;
-        }
-    }
-    // Each distinct objective vector once (members with equal values are one point).
-    let mut front: Vec<Vec<f64>> = front_order(result)
-        .into_iter()
-        .map(|i| result[i].objectives.clone())
-        .collect();
-    front.sort_by(|a, b| {
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| x.total_cmp(y))
-            .find(|o| o.is_ne())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
-    front.dedup_by(|a, b| {
-        a.iter()
-            .zip(b.iter())
-            .all(|(x, y)| x.to_bits() == y.to_bits())
-    });
-    Record {
-        generation,
-        evaluations,
-        feasible_fraction: feasible_fraction(pop),
-        hypervolume: hypervolume(&front, reference).unwrap_or(f64::NAN),
-        min_violation: pop
-            .iter()
-            .map(|i| i.violation)
-            .fold(f64::INFINITY, f64::min),
-        best,
-        mean,
-        front,
-    }
-}
-
-fn csv_of(pop: &[Individual<Vec<f64>>]) -> String {
-    let mut s = String::new();
-    // Variable-length decisions (SCEA) are padded with empty fields to the longest.
-    let n = pop.iter().map(|i| i.decision.len()).max().unwrap_or(0);
-    let (m, c) = pop
-        .first()
-        .map_or((0, 0), |i| (i.objectives.len(), i.constraints.len()));
-    let head: Vec<String> = (1..=n)
-        .map(|i| format!("x{i}"))
-        .chain((1..=m).map(|i| format!("f{i}")))
-        .chain((1..=c).map(|i| format!("g{i}")))
-        .chain(["violation".into()])
-        .collect();
-    let _ = writeln!(s, "{}", head.join(","));
-    for ind in pop {
-        let pad = n - ind.decision.len();
-        let row: Vec<String> = ind
-            .decision
-            .iter()
-            .map(|v| format!("{v:e}"))
-            .chain(std::iter::repeat_n(String::new(), pad))
-            .chain(
-                ind.objectives
-                    .iter()
-                    .chain(&ind.constraints)
-                    .chain(std::iter::once(&ind.violation))
-                    .map(|v| format!("{v:e}")),
-            )
-            .collect();
-        let _ = writeln!(s, "{}", row.join(","));
-    }
-    s
-}
 
 /// Write one generation's population (population/gen_NNNN.csv).
 ///
@@ -147,7 +27,7 @@ pub fn write_generation(
     write_atomic(
         &dir.join("population")
             .join(format!("gen_{generation:04}.csv")),
-        csv_of(pop).as_bytes(),
+        population_csv(pop).as_bytes(),
     )
 }
 
@@ -201,31 +81,13 @@ fn member_run(
     Some(run.result)
 }
 
-/// The indices of `result`'s feasible front sorted by the first objective, each distinct
-/// member once (identical decisions with identical values are one member).
-fn front_order(result: &[Individual<Vec<f64>>]) -> Vec<usize> {
-    let mut idx = feasible_front_indices(result);
-    idx.sort_by(|&a, &b| result[a].objectives[0].total_cmp(&result[b].objectives[0]));
-    let bits = |i: &Individual<Vec<f64>>| -> Vec<u64> {
-        i.decision
-            .iter()
-            .chain(&i.objectives)
-            .chain(&i.constraints)
-            .map(|v| v.to_bits())
-            .collect()
-    };
-    let mut seen = std::collections::HashSet::new();
-    idx.retain(|&i| seen.insert(bits(&result[i])));
-    idx
-}
-
 /// The front directory (front/): one scenario file per member and the trajectories of three
 /// chosen members, written into a staging directory and put in place whole (no member of a
 /// previous front is left beside them). Returns the chosen trajectories' series.
 fn write_front_dir(
     dir: &Path,
     front_scenarios: Vec<Option<Scenario>>,
-    c: &ReentryRunConfig,
+    base: &str,
     analytical: Option<&AnalyticalModel>,
 ) -> Result<Vec<Series>, ReportError> {
     let n = front_scenarios.len();
@@ -235,7 +97,7 @@ fn write_front_dir(
         let Some(mut sc) = sc else {
             continue;
         };
-        sc.name = format!("{}-member-{k:02}", c.problem.base);
+        sc.name = format!("{base}-member-{k:02}");
         fdir.write(
             format!("member_{k:02}.toml"),
             scenario_to_toml(&sc).as_bytes(),
@@ -263,8 +125,8 @@ fn write_front_dir(
 
 /// Write the final files: records, population, front (the feasible front of `result`: the
 /// population, or the external archive), member scenarios (`scenarios`: one per `result`
-/// member), chosen trajectories (flown by the problem's simulator: `analytical` for an
-/// analytical problem), plots.
+/// member, named after the problem's `base`), chosen trajectories (flown by the problem's
+/// simulator: `analytical` for an analytical problem), plots.
 ///
 /// # Errors
 /// [`ReportError`].
@@ -275,7 +137,7 @@ pub fn write_final(
     pop: &[Individual<Vec<f64>>],
     result: &[Individual<Vec<f64>>],
     records: &[Record],
-    c: &ReentryRunConfig,
+    base: &str,
     analytical: Option<&AnalyticalModel>,
 ) -> Result<(), ReportError> {
     // The front, sorted by range objective, without repeated members, with one scenario file
@@ -288,7 +150,7 @@ pub fn write_final(
         .collect();
     // The front directory first: its flights are the long part, and a Ctrl-C during them
     // leaves no final file.
-    let traj = write_front_dir(dir, front_scenarios, c, analytical)?;
+    let traj = write_front_dir(dir, front_scenarios, base, analytical)?;
     let mut csv = String::from(
         "generation,evaluations,feasible_fraction,hypervolume,min_violation,best_f1,best_f2,mean_f1,mean_f2,front_size\n",
     );
@@ -311,8 +173,8 @@ pub fn write_final(
     write_atomic(&dir.join("generations.csv"), csv.as_bytes())?;
     let json = serde_json::to_string_pretty(records).map_err(ReportError::Json)?;
     write_atomic(&dir.join("generations.json"), json.as_bytes())?;
-    write_atomic(&dir.join("population.csv"), csv_of(pop).as_bytes())?;
-    write_atomic(&dir.join("front.csv"), csv_of(&front).as_bytes())?;
+    write_atomic(&dir.join("population.csv"), population_csv(pop).as_bytes())?;
+    write_atomic(&dir.join("front.csv"), population_csv(&front).as_bytes())?;
     if !traj.is_empty() {
         plot(
             dir,

@@ -1,0 +1,625 @@
+//! The re-entry design runs ([`super`]'s problems under the generic optimisers of
+//! [`crate::optim`]): the run file ([`ReentryRunConfig`], config.toml) and its checks, the
+//! algorithm it names, and the run directory: config.toml, checkpoint.json written atomically
+//! after every generation, per-generation records and populations, the final front with one
+//! scenario file per member, plots ([`files`]). A run resumed from its directory
+//! ([`run`] with `resume`) continues from its last checkpoint to the same final front as an
+//! uninterrupted run. `host-sim optimize` maps its flags to a [`ReentryRunConfig`] and
+//! prints; everything else is here.
+
+pub mod files;
+
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use self::files::{write_final, write_generation};
+use super::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
+use crate::optim::chromosome::Chromosome;
+use crate::optim::run::{Checkpoint, Record, check_records, record_of};
+use crate::optim::{
+    Algorithm, Budget, ConstraintHandling, Executor, Individual, Mhaco, MhacoConfig, Moead,
+    MoeadConfig, NewGenes, Nsga2, Nsga2Config, OptimError, Problem, Scea, SceaConfig, Stop,
+    Threads,
+};
+use crate::report::{ReportError, write_atomic};
+use crate::scenario::Scenario;
+
+/// A re-entry optimisation run: algorithm settings and the problem (file units).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReentryRunConfig {
+    /// `moead`, `nsga2`, `scea` (variable length: 4 to `problem.encoding.nodes` nodes),
+    /// `mhaco` (feasible candidates first) or `mhaco-objectives` (MHACO with the constraints
+    /// as extra objectives, the thesis' sec. 9.3.2: `c / c_max` capped at 2, 0.5 added to
+    /// every objective per violated constraint).
+    pub algorithm: String,
+    /// Population size.
+    pub population: usize,
+    /// Generations after the initial population.
+    pub generations: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Evaluation threads (the result does not depend on it).
+    pub threads: usize,
+    /// MOEA/D offspring per batch (1: pagmo's steady state; larger: parallel evaluation).
+    pub batch_size: usize,
+    /// MOEA/D neighbourhood size (thesis: 20).
+    pub neighbours: usize,
+    /// MOEA/D replacement limit (thesis: 1).
+    pub limit: usize,
+    /// MOEA/D per-variable mutation probability (thesis: 1 / population; default
+    /// 1 / variables).
+    pub mutation_probability: Option<f64>,
+    /// SCEA: source of the genes of appended nodes, `random` (the thesis) or `population`
+    /// (history-based, the thesis' recommendation sec. 10.2; the default, also for files
+    /// written before the field existed).
+    #[serde(default = "history_genes")]
+    pub scea_genes: NewGenes,
+    /// MOEA/D, NSGA-II and SCEA: capacity of the external archive of the feasible
+    /// non-dominated solutions found during the run (Zhang & Li 2007's external population,
+    /// hypervolume truncation; not in pagmo), whose front is then the run's front (front.csv,
+    /// the member scenarios, the recorded front and hypervolume). Absent (default): pagmo's
+    /// semantics, the final population's front.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archive: Option<usize>,
+    /// Hypervolume reference point `[f_r, f_Q]` (objective units).
+    pub reference: Vec<f64>,
+    /// The design problem.
+    pub problem: DesignConfig,
+}
+
+fn history_genes() -> NewGenes {
+    NewGenes::Population
+}
+
+impl ReentryRunConfig {
+    /// The thesis' settings (sec. 9.1) on a preset problem.
+    ///
+    /// # Errors
+    /// [`DesignError::UnknownPreset`].
+    pub fn thesis(preset: &str) -> Result<Self, DesignError> {
+        let problem = DesignConfig::preset(preset)?;
+        let m = 2 + usize::from(problem.objectives.skips);
+        let mut reference = vec![0.0, 2.0];
+        reference.resize(m, 10.0);
+        Ok(Self {
+            algorithm: "moead".into(),
+            population: 64,
+            generations: 128,
+            seed: 123,
+            threads: 1,
+            batch_size: 1,
+            neighbours: 20,
+            limit: 1,
+            mutation_probability: Some(1.0 / 64.0),
+            scea_genes: history_genes(),
+            archive: None,
+            reference,
+            problem,
+        })
+    }
+}
+
+/// Failures of a re-entry run; each names the field or file and what to change.
+#[derive(Debug, thiserror::Error)]
+pub enum ReentryError {
+    /// The problem could not be built.
+    #[error(transparent)]
+    Design(#[from] DesignError),
+    /// A bad setting.
+    #[error("{source_name}: field `{field}` = {value}: {reason}")]
+    Setting {
+        /// Command line or file.
+        source_name: String,
+        /// Field.
+        field: &'static str,
+        /// Value.
+        value: String,
+        /// What to change.
+        reason: String,
+    },
+    /// A file could not be read.
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// A TOML file is not valid TOML.
+    #[error("{}: {source}", path.display())]
+    Toml {
+        /// The file.
+        path: PathBuf,
+        /// The parser's error (line, column, offending text).
+        source: crate::toml_input::TomlSyntax,
+    },
+    /// A field of a TOML file is unknown, missing or of the wrong type.
+    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
+    Field {
+        /// The file.
+        path: PathBuf,
+        /// Dotted path of the field.
+        field: String,
+        /// Its value as written, or `(missing)`.
+        value: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A JSON file is malformed, or a configuration cannot be printed as TOML.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// Parser message (with the field).
+        message: String,
+    },
+    /// The run directory cannot be written.
+    #[error("run directory {path}: cannot write: {source}; choose a writable --out")]
+    RunDir {
+        /// The directory.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// The optimiser refused its settings or failed.
+    #[error("optimiser: {0}")]
+    Optim(#[from] OptimError),
+    /// An evaluation failed outright.
+    #[error("evaluation: {0}")]
+    Eval(#[from] crate::optim::EvalError),
+    /// Output could not be written.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// The console could not be written.
+    #[error("cannot write output: {0}")]
+    Io(#[from] std::io::Error),
+    /// Ctrl-C: the run stopped at a generation boundary without a final file.
+    #[error(
+        "stopped before generation {generation} (Ctrl-C); the checkpoint of the last complete \
+         generation is kept in {}: continue with --resume",
+        dir.display()
+    )]
+    Interrupted {
+        /// The generation that was not completed.
+        generation: u64,
+        /// The run directory.
+        dir: PathBuf,
+    },
+}
+
+fn read_text(path: &Path) -> Result<String, ReentryError> {
+    std::fs::read_to_string(path).map_err(|source| ReentryError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// A run configuration file (config.toml, `--config`), read through host-sim's one TOML reading path
+/// ([`crate::toml_input`]): errors name the file, the field and the value as written.
+///
+/// # Errors
+/// [`ReentryError`] naming the file and the field.
+pub fn parse_toml(path: &Path) -> Result<ReentryRunConfig, ReentryError> {
+    parse_text(&read_text(path)?, path)
+}
+
+/// [`parse_toml`] of the text of `path`.
+fn parse_text(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError> {
+    use crate::toml_input::TomlInputError;
+    match crate::toml_input::parse(text) {
+        Ok((c, _)) => Ok(c),
+        Err(TomlInputError::Syntax(source)) => Err(ReentryError::Toml {
+            path: path.to_path_buf(),
+            source,
+        }),
+        Err(TomlInputError::Field {
+            field,
+            value,
+            reason,
+        }) => Err(ReentryError::Field {
+            path: path.to_path_buf(),
+            field,
+            value,
+            reason,
+        }),
+    }
+}
+
+/// A run configuration as `optimize --config FILE` reads it before its run: `text` parsed as
+/// the file `path`, its settings checked, its design problem built (a base scenario file
+/// relative to `path`'s folder). The input fuzzer's entry point
+/// (`host-sim/examples/fuzz_inputs.rs`).
+///
+/// # Errors
+/// [`ReentryError`] naming the file, the field and the value.
+pub fn check_run_config(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError> {
+    let c = parse_text(text, path)?;
+    check(&c, &path.display().to_string())?;
+    c.problem.problem(path.parent().unwrap_or(Path::new(".")))?;
+    Ok(c)
+}
+
+/// Check a run configuration read from `src` (a file or the command line).
+///
+/// # Errors
+/// [`ReentryError::Setting`] naming `src`, the field and the value.
+pub fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
+    let bad = |field, value: String, reason: String| {
+        Err(ReentryError::Setting {
+            source_name: src.to_string(),
+            field,
+            value,
+            reason,
+        })
+    };
+    if !matches!(
+        c.algorithm.as_str(),
+        "moead" | "nsga2" | "scea" | "mhaco" | "mhaco-objectives"
+    ) {
+        return bad(
+            "algorithm",
+            c.algorithm.clone(),
+            "use moead, nsga2, scea, mhaco or mhaco-objectives".into(),
+        );
+    }
+    if c.population > crate::optim::algorithms::MAX_POPULATION {
+        return bad(
+            "population",
+            c.population.to_string(),
+            "use at most 100000".into(),
+        );
+    }
+    if c.threads == 0 || c.threads > crate::optim::evaluate::MAX_THREADS {
+        return bad("threads", c.threads.to_string(), "use 1 to 1024".into());
+    }
+    if let Some(p) = c.mutation_probability
+        && !(p > 0.0 && p <= 1.0)
+    {
+        return bad(
+            "mutation_probability",
+            crate::num_fmt::compact(p),
+            "use a probability in (0, 1]".into(),
+        );
+    }
+    match c.archive {
+        Some(0) => {
+            return bad(
+                "archive",
+                "0".into(),
+                "the archive's capacity must be at least 1 (or leave the field out)".into(),
+            );
+        }
+        Some(n) if c.algorithm.starts_with("mhaco") => {
+            return bad(
+                "archive",
+                n.to_string(),
+                format!(
+                    "applies to moead, nsga2 and scea, not {}; leave it out",
+                    c.algorithm
+                ),
+            );
+        }
+        _ => {}
+    }
+    let m = 2 + usize::from(c.problem.objectives.skips);
+    if c.reference.len() != m || !c.reference.iter().all(|v| v.is_finite()) {
+        return bad(
+            "reference",
+            format!("{:?}", c.reference),
+            format!("give {m} finite values (one per objective)"),
+        );
+    }
+    if c.problem.objectives.target_range_deg.is_some() && c.reference[0] <= 0.0 {
+        return bad(
+            "reference",
+            format!("{:?}", c.reference),
+            "with objectives.target_range_deg the first objective is a miss distance >= 0: \
+             give a first value > 0 (e.g. 1)"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// What a run reports while it goes: the generations to make (the initial population
+/// included) and those done already (a resumed run), then each generation's record once its
+/// checkpoint is written, and the end of the evolution (before the final files). Every
+/// method defaults to nothing.
+pub trait Progress {
+    /// The run makes `total` generations records, `done` of them already (resumed).
+    fn start(&mut self, total: u64, done: u64) {
+        let _ = (total, done);
+    }
+    /// A generation is complete and checkpointed.
+    fn record(&mut self, record: &Record) {
+        let _ = record;
+    }
+    /// The evolution reached its budget (the final files follow).
+    fn finish(&mut self) {}
+}
+
+/// No progress reports.
+impl Progress for () {}
+
+/// The end of a complete run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finished {
+    /// The last generation's record (`None`: no generation was recorded).
+    pub last: Option<Record>,
+    /// Wall time of the evolution in this process [s].
+    pub wall_time_s: f64,
+}
+
+/// Run `c` (read from `src`, a file name or "command line", for the error messages) in the
+/// run directory `dir`: a new run (`resume` false) replaces a previous run there and writes
+/// config.toml; a resumed run continues from `dir`'s checkpoint (from the start when it has
+/// none). A base scenario file of the problem is relative to `base_dir`. Ctrl-C stops the run
+/// at the next generation boundary ([`ReentryError::Interrupted`]).
+///
+/// # Errors
+/// [`ReentryError`] naming the file, field and value, or the directory.
+pub fn run(
+    c: &ReentryRunConfig,
+    src: &str,
+    dir: &Path,
+    resume: bool,
+    base_dir: &Path,
+    progress: &mut dyn Progress,
+) -> Result<Finished, ReentryError> {
+    check(c, src)?;
+    let problem = c.problem.problem(base_dir)?;
+    if !resume {
+        // A new run: never into a directory that is not a run; a previous run there is
+        // removed whole (no population or front file of it is left beside the new run's).
+        crate::report::begin_in_place(dir).map_err(|e| match e {
+            ReportError::Io { path, source } => ReentryError::RunDir { path, source },
+            e => e.into(),
+        })?;
+    }
+    std::fs::create_dir_all(dir.join("population")).map_err(|source| ReentryError::RunDir {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    if !resume {
+        let text = toml::to_string(c).map_err(|e| ReentryError::Parse {
+            path: dir.join("config.toml"),
+            message: e.to_string(),
+        })?;
+        write_atomic(&dir.join("config.toml"), text.as_bytes())?;
+    }
+    let pool = Threads::new(c.threads).map_err(|e| ReentryError::Setting {
+        source_name: src.to_string(),
+        field: "threads",
+        value: c.threads.to_string(),
+        reason: e.to_string(),
+    })?;
+    let moead = MoeadConfig {
+        population: c.population,
+        neighbours: c.neighbours,
+        limit: c.limit,
+        mutation_probability: c.mutation_probability,
+        batch_size: c.batch_size,
+        archive: c.archive,
+        ..MoeadConfig::default()
+    };
+    if c.algorithm == "scea" {
+        let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
+        let vproblem = VariableReentry::new(problem, nodes)?;
+        let ctx = Ctx {
+            c,
+            dir,
+            problem: &vproblem,
+            pool,
+            resume,
+        };
+        let cfg = SceaConfig {
+            moead,
+            new_genes: c.scea_genes,
+            ..SceaConfig::default()
+        };
+        return drive(&ctx, Scea::new(cfg, c.seed), progress);
+    }
+    let ctx = Ctx {
+        c,
+        dir,
+        problem: &problem,
+        pool,
+        resume,
+    };
+    match c.algorithm.as_str() {
+        "nsga2" => {
+            let cfg = Nsga2Config {
+                population: c.population,
+                archive: c.archive,
+                ..Nsga2Config::default()
+            };
+            drive(&ctx, Nsga2::new(cfg, c.seed), progress)
+        }
+        "mhaco" | "mhaco-objectives" => {
+            let constraints = if c.algorithm == "mhaco" {
+                ConstraintHandling::FeasibilityFirst
+            } else {
+                // The problem's constraints are already c / c_max - 1 (scale 1).
+                ConstraintHandling::AsObjectives {
+                    scales: None,
+                    cap: 2.0,
+                    penalty: 0.5,
+                }
+            };
+            let cfg = MhacoConfig {
+                population: c.population,
+                ker: c.population.min(MhacoConfig::default().ker),
+                constraints,
+                ..MhacoConfig::default()
+            };
+            drive(&ctx, Mhaco::new(cfg, c.seed), progress)
+        }
+        _ => drive(&ctx, Moead::new(moead, c.seed), progress),
+    }
+}
+
+/// What the run directory needs of a design problem's decisions: their genes as a flat row
+/// and the scenario they fly.
+pub trait RunProblem: Problem {
+    /// The decision's genes, flat (a variable-length decision gives a shorter row).
+    fn genes(d: &Self::Decision) -> Vec<f64>;
+    /// The scenario the decision flies.
+    fn scenario(&self, d: &Self::Decision) -> Option<Scenario>;
+    /// The fixed-length problem (its simulator flies the chosen front members).
+    fn reentry(&self) -> &ReentryProblem;
+}
+
+impl RunProblem for ReentryProblem {
+    fn genes(d: &Vec<f64>) -> Vec<f64> {
+        d.clone()
+    }
+    fn scenario(&self, d: &Vec<f64>) -> Option<Scenario> {
+        self.scenario_of(d).ok()
+    }
+    fn reentry(&self) -> &ReentryProblem {
+        self
+    }
+}
+
+impl RunProblem for VariableReentry {
+    fn genes(d: &Chromosome) -> Vec<f64> {
+        d.fixed
+            .iter()
+            .chain(d.legs.iter().flatten().flatten())
+            .copied()
+            .collect()
+    }
+    fn scenario(&self, d: &Chromosome) -> Option<Scenario> {
+        let (table, h) = self.table_of(d).ok()?;
+        Some(self.inner().scenario_of_table(table, h))
+    }
+    fn reentry(&self) -> &ReentryProblem {
+        self.inner()
+    }
+}
+
+fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f64>>> {
+    pop.iter()
+        .map(|i| Individual {
+            decision: P::genes(&i.decision),
+            objectives: i.objectives.clone(),
+            constraints: i.constraints.clone(),
+            violation: i.violation,
+        })
+        .collect()
+}
+
+struct Ctx<'a, P> {
+    c: &'a ReentryRunConfig,
+    dir: &'a Path,
+    problem: &'a P,
+    pool: Threads,
+    resume: bool,
+}
+
+fn drive<P, A>(
+    ctx: &Ctx<'_, P>,
+    fresh: A,
+    progress: &mut dyn Progress,
+) -> Result<Finished, ReentryError>
+where
+    P: RunProblem,
+    A: Algorithm<P> + Serialize + DeserializeOwned,
+{
+    let ck_path = ctx.dir.join("checkpoint.json");
+    if ctx.resume {
+        // Leftovers of a killed run (temporary files of atomic writes, a staged front).
+        crate::report::clean_stale(ctx.dir);
+        crate::report::clean_stale(&ctx.dir.join("population"));
+    }
+    // A run stopped before its first checkpoint (during the initial population) resumes
+    // from the start.
+    let resume = ctx.resume && ck_path.exists();
+    let (alg, mut records) = if resume {
+        let text = read_text(&ck_path)?;
+        let mut de = serde_json::Deserializer::from_str(&text);
+        let ck: Checkpoint<A> =
+            serde_path_to_error::deserialize(&mut de).map_err(|e| ReentryError::Parse {
+                path: ck_path.clone(),
+                message: format!("field `{}`: {}", e.path(), e.inner()),
+            })?;
+        // A checkpoint that was edited or corrupted must not panic or run forever: the state
+        // is checked against itself and the problem, and the records against the state.
+        let invalid = |e: &dyn std::fmt::Display| ReentryError::Parse {
+            path: ck_path.clone(),
+            message: e.to_string(),
+        };
+        ck.algorithm
+            .validate(ctx.problem)
+            .map_err(|e| invalid(&e))?;
+        check_records(&ck.records, &ck.algorithm, ctx.c.reference.len())
+            .map_err(|e| invalid(&e))?;
+        (ck.algorithm, ck.records)
+    } else {
+        (fresh, Vec::new())
+    };
+    let total = ctx.c.generations;
+    progress.start(total + 1, records.len() as u64);
+    let mut save = |alg: &A, records: &mut Vec<Record>| -> Result<(), ReentryError> {
+        let pop = flat::<P>(alg.population());
+        let result = alg.external_archive().map(flat::<P>);
+        let rec = record_of(
+            alg.generation(),
+            alg.evaluations(),
+            &pop,
+            result.as_deref().unwrap_or(&pop),
+            &ctx.c.reference,
+        );
+        progress.record(&rec);
+        write_generation(ctx.dir, &pop, rec.generation)?;
+        records.push(rec);
+        let ck = Checkpoint {
+            algorithm: alg,
+            records: records.clone(),
+        };
+        let json = serde_json::to_string(&ck).map_err(ReportError::Json)?;
+        write_atomic(&ck_path, json.as_bytes())?;
+        Ok(())
+    };
+    // Ctrl-C asks the run to stop (it does not exit the process while this lives): a flight
+    // it interrupts is no evaluation (`EvalError::Interrupted`), and the run stops at the next
+    // generation boundary with the last complete generation's checkpoint and no final file.
+    let _active = crate::sim::ActiveRun::start();
+    let stop = crate::sim::stop_requested;
+    let run = Executor::new(ctx.problem, alg)
+        .budget(Budget::Generations(ctx.c.generations))
+        .threads(ctx.pool.clone())
+        .stop_when(&stop)
+        .run_with(|alg: &A| save(alg, &mut records))?;
+    let (alg, wall) = (run.algorithm, run.wall_time_s);
+    if run.stop == Stop::Interrupted {
+        return Err(ReentryError::Interrupted {
+            generation: alg.generation() + u64::from(alg.is_initialised()),
+            dir: ctx.dir.to_path_buf(),
+        });
+    }
+    progress.finish();
+    let last = records.last().cloned();
+    // The front's members: the external archive's when the run keeps one.
+    let scenarios: Vec<Option<Scenario>> = alg
+        .result()
+        .iter()
+        .map(|i| ctx.problem.scenario(&i.decision))
+        .collect();
+    write_final(
+        ctx.dir,
+        &scenarios,
+        &flat::<P>(alg.population()),
+        &flat::<P>(alg.result()),
+        &records,
+        &ctx.c.problem.base,
+        ctx.problem.reentry().analytical(),
+    )?;
+    Ok(Finished {
+        last,
+        wall_time_s: wall,
+    })
+}

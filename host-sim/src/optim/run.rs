@@ -1,0 +1,380 @@
+//! What a recorded optimisation run keeps, whatever its problem: the per-generation
+//! [`Record`] (counts, feasible fraction, front and its hypervolume), the [`Checkpoint`] of
+//! an algorithm's state with the records so far (checked on restore by [`check_records`]),
+//! the result front's order ([`front_order`]), the population CSV text
+//! ([`population_csv`], [`chromosome_csv`]), and a run's [`RunSummary`] (summary.json of
+//! `optimize` on a test problem) with its [`front_csv`] and one-line [`RunSummary::line`].
+//! The files themselves are written by the caller (atomically, through host-sim's report
+//! module; the re-entry runs: `crate::design::run`); this module, like all of `optim`,
+//! imports nothing else of host-sim.
+
+use std::fmt::Write as _;
+
+use serde::{Deserialize, Serialize};
+
+use super::algorithm::Algorithm;
+use super::chromosome::Chromosome;
+use super::error::StateError;
+use super::hypervolume::hypervolume;
+use super::population::{Individual, feasible_fraction, feasible_front_indices};
+use super::problem::Problem;
+
+/// One generation's record.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Record {
+    /// Generation (0: the initial population).
+    pub generation: u64,
+    /// Evaluations so far.
+    pub evaluations: u64,
+    /// Fraction of feasible individuals.
+    #[serde(with = "super::nonfinite::scalar")]
+    pub feasible_fraction: f64,
+    /// Hypervolume of the feasible front (0 without feasible members): of the external
+    /// archive when the run keeps one.
+    #[serde(with = "super::nonfinite::scalar")]
+    pub hypervolume: f64,
+    /// Smallest violation in the population.
+    #[serde(with = "super::nonfinite::scalar")]
+    pub min_violation: f64,
+    /// Best (smallest) feasible value per objective (NaN: none feasible).
+    #[serde(with = "super::nonfinite::vec")]
+    pub best: Vec<f64>,
+    /// Mean feasible value per objective (NaN: none feasible).
+    #[serde(with = "super::nonfinite::vec")]
+    pub mean: Vec<f64>,
+    /// The feasible front's objective vectors (the external archive's, if any).
+    #[serde(with = "super::nonfinite::vec2")]
+    pub front: Vec<Vec<f64>>,
+}
+
+/// The record of a population; the front and its hypervolume are those of `result` (the
+/// population itself, or the run's external archive).
+#[must_use]
+pub fn record_of(
+    generation: u64,
+    evaluations: u64,
+    pop: &[Individual<Vec<f64>>],
+    result: &[Individual<Vec<f64>>],
+    reference: &[f64],
+) -> Record {
+    let m = reference.len();
+    let feas: Vec<&Individual<Vec<f64>>> = pop.iter().filter(|i| i.violation == 0.0).collect();
+    let mut best = vec![f64::NAN; m];
+    let mut mean = vec![f64::NAN; m];
+    if !feas.is_empty() {
+        for k in 0..m {
+            best[k] = feas
+                .iter()
+                .map(|i| i.objectives[k])
+                .fold(f64::INFINITY, f64::min);
+            mean[k] = feas.iter().map(|i| i.objectives[k]).sum::<f64>() / feas.len() as f64;
+        }
+    }
+    // Each distinct objective vector once (members with equal values are one point).
+    let mut front: Vec<Vec<f64>> = front_order(result)
+        .into_iter()
+        .map(|i| result[i].objectives.clone())
+        .collect();
+    front.sort_by(|a, b| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    front.dedup_by(|a, b| {
+        a.iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    });
+    Record {
+        generation,
+        evaluations,
+        feasible_fraction: feasible_fraction(pop),
+        hypervolume: hypervolume(&front, reference).unwrap_or(f64::NAN),
+        min_violation: pop
+            .iter()
+            .map(|i| i.violation)
+            .fold(f64::INFINITY, f64::min),
+        best,
+        mean,
+        front,
+    }
+}
+
+/// The population as CSV text: a header `x1..,f1..,g1..,violation`, then one row per
+/// individual in `{:e}` form. Variable-length decisions (SCEA) are padded with empty fields
+/// to the longest.
+#[must_use]
+pub fn population_csv(pop: &[Individual<Vec<f64>>]) -> String {
+    let mut s = String::new();
+    let n = pop.iter().map(|i| i.decision.len()).max().unwrap_or(0);
+    let (m, c) = pop
+        .first()
+        .map_or((0, 0), |i| (i.objectives.len(), i.constraints.len()));
+    let head: Vec<String> = (1..=n)
+        .map(|i| format!("x{i}"))
+        .chain((1..=m).map(|i| format!("f{i}")))
+        .chain((1..=c).map(|i| format!("g{i}")))
+        .chain(["violation".into()])
+        .collect();
+    let _ = writeln!(s, "{}", head.join(","));
+    for ind in pop {
+        let pad = n - ind.decision.len();
+        let row: Vec<String> = ind
+            .decision
+            .iter()
+            .map(|v| format!("{v:e}"))
+            .chain(std::iter::repeat_n(String::new(), pad))
+            .chain(
+                ind.objectives
+                    .iter()
+                    .chain(&ind.constraints)
+                    .chain(std::iter::once(&ind.violation))
+                    .map(|v| format!("{v:e}")),
+            )
+            .collect();
+        let _ = writeln!(s, "{}", row.join(","));
+    }
+    s
+}
+
+/// The indices of `result`'s feasible front sorted by the first objective, each distinct
+/// member once (identical decisions with identical values are one member).
+#[must_use]
+pub fn front_order(result: &[Individual<Vec<f64>>]) -> Vec<usize> {
+    let mut idx = feasible_front_indices(result);
+    idx.sort_by(|&a, &b| result[a].objectives[0].total_cmp(&result[b].objectives[0]));
+    let bits = |i: &Individual<Vec<f64>>| -> Vec<u64> {
+        i.decision
+            .iter()
+            .chain(&i.objectives)
+            .chain(&i.constraints)
+            .map(|v| v.to_bits())
+            .collect()
+    };
+    let mut seen = std::collections::HashSet::new();
+    idx.retain(|&i| seen.insert(bits(&result[i])));
+    idx
+}
+
+/// A run's checkpoint (checkpoint.json): the algorithm's whole state and the records of the
+/// generations so far.
+#[derive(Serialize, Deserialize)]
+pub struct Checkpoint<A> {
+    /// The algorithm's state.
+    pub algorithm: A,
+    /// One record per completed generation.
+    pub records: Vec<Record>,
+}
+
+/// The records of a restored checkpoint: one per generation up to the state's, each with
+/// `objectives` values.
+///
+/// # Errors
+/// [`StateError`] naming the record and field.
+pub fn check_records<P: Problem, A: Algorithm<P>>(
+    records: &[Record],
+    alg: &A,
+    objectives: usize,
+) -> Result<(), StateError> {
+    use super::restore::{bad, count};
+    let want = if alg.is_initialised() {
+        alg.generation() + 1
+    } else {
+        0
+    };
+    count(
+        "records.len()",
+        records.len(),
+        usize::try_from(want).unwrap_or(usize::MAX),
+    )?;
+    let m = objectives;
+    for (i, r) in records.iter().enumerate() {
+        count(
+            &format!("records[{i}].generation"),
+            r.generation as usize,
+            i,
+        )?;
+        count(&format!("records[{i}].best.len()"), r.best.len(), m)?;
+        count(&format!("records[{i}].mean.len()"), r.mean.len(), m)?;
+        if let Some(k) = r.front.iter().position(|f| f.len() != m) {
+            return Err(bad(
+                format!("records[{i}].front[{k}].len()"),
+                r.front[k].len(),
+                format!("must be {m}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The summary of a run on a test problem (summary.json).
+#[derive(Debug, Serialize)]
+pub struct RunSummary<'a> {
+    /// Problem name.
+    pub problem: &'a str,
+    /// Algorithm name.
+    pub algorithm: &'static str,
+    /// Population size.
+    pub population: usize,
+    /// Generations after the initial population.
+    pub generations: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Objectives.
+    pub objectives: usize,
+    /// Decision variables (a variable-length problem: the longest chromosome's genes).
+    pub variables: usize,
+    /// Constraints.
+    pub constraints: usize,
+    /// Evaluations, initial population included.
+    pub evaluations: u64,
+    /// Hypervolume reference point.
+    pub reference_point: &'a [f64],
+    /// Hypervolume of the feasible front.
+    pub hypervolume: f64,
+    /// Hypervolume of the problem's true front, when known.
+    pub true_front_hypervolume: Option<f64>,
+    /// `hypervolume / true_front_hypervolume`.
+    pub hypervolume_ratio: Option<f64>,
+    /// Fraction of feasible individuals in the final population.
+    pub feasible_fraction: f64,
+    /// What the front (front.csv, hypervolume, front_size) is taken from: "population" (the
+    /// final population; pagmo's semantics) or "archive" (the external archive).
+    pub front_source: &'static str,
+    /// Capacity of the external archive, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub archive_capacity: Option<usize>,
+    /// MOEA/D-DRA's resource allocation was on.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub resource_allocation: bool,
+    /// MOEA/D's variation when not pagmo's DE ("sbx").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moead_operator: Option<&'static str>,
+    /// Points of the feasible front.
+    pub front_size: usize,
+    /// Wall time of the evolution alone (no problem set-up, no output) [s].
+    pub wall_time_s: f64,
+    /// Evaluation threads.
+    pub threads: usize,
+}
+
+impl RunSummary<'_> {
+    /// The one-line result of the run (no newline).
+    #[must_use]
+    pub fn line(&self) -> String {
+        let ratio = self
+            .hypervolume_ratio
+            .map_or_else(String::new, |r| format!(" ({r:.4} of the true front)"));
+        format!(
+            "{} on {}: {} evaluations in {:.3} s, hypervolume {:.6}{} w.r.t. {:?}, {} front points, feasible {:.0} %",
+            self.algorithm,
+            self.problem,
+            self.evaluations,
+            self.wall_time_s,
+            self.hypervolume,
+            ratio,
+            self.reference_point,
+            self.front_size,
+            100.0 * self.feasible_fraction
+        )
+    }
+}
+
+/// The front's objective vectors as CSV text (header `f1,f2,...` for `objectives`).
+#[must_use]
+pub fn front_csv(front: &[&[f64]], objectives: usize) -> String {
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=objectives).map(|i| format!("f{i}")).collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for f in front {
+        let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    csv
+}
+
+fn joined(values: impl Iterator<Item = f64>) -> String {
+    values
+        .map(|v| format!("{v:e}"))
+        .collect::<Vec<_>>()
+        .join(";")
+}
+
+/// A variable-length population as CSV text, one chromosome per row: objectives,
+/// constraints, violation, then `x` (fixed genes), `nodes` (node count of each leg) and
+/// `genes` (all node genes), each a `;`-separated list.
+#[must_use]
+pub fn chromosome_csv(
+    pop: &[Individual<Chromosome>],
+    objectives: usize,
+    constraints: usize,
+) -> String {
+    let mut csv = String::new();
+    let header: Vec<String> = (1..=objectives)
+        .map(|i| format!("f{i}"))
+        .chain((1..=constraints).map(|i| format!("g{i}")))
+        .chain(["violation", "x", "nodes", "genes"].map(String::from))
+        .collect();
+    let _ = writeln!(csv, "{}", header.join(","));
+    for ind in pop {
+        let mut row: Vec<String> = ind
+            .objectives
+            .iter()
+            .chain(&ind.constraints)
+            .chain(std::iter::once(&ind.violation))
+            .map(|v| format!("{v:e}"))
+            .collect();
+        let c = &ind.decision;
+        row.push(joined(c.fixed.iter().copied()));
+        row.push(
+            c.node_counts()
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(";"),
+        );
+        row.push(joined(c.legs.iter().flatten().flatten().copied()));
+        let _ = writeln!(csv, "{}", row.join(","));
+    }
+    csv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ind(decision: Vec<f64>, objectives: Vec<f64>, violation: f64) -> Individual<Vec<f64>> {
+        Individual {
+            decision,
+            objectives,
+            constraints: vec![violation],
+            violation,
+        }
+    }
+
+    #[test]
+    fn population_csv_pads_shorter_decisions_and_front_order_drops_repeats() {
+        let pop = [
+            ind(vec![1.0, 2.0], vec![0.5, 0.25], 0.0),
+            ind(vec![3.0], vec![0.25, 0.5], 0.0),
+            ind(vec![3.0], vec![0.25, 0.5], 0.0),
+            ind(vec![4.0], vec![0.1, 0.1], 2.0),
+        ];
+        let csv = population_csv(&pop);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], "x1,x2,f1,f2,g1,violation");
+        assert_eq!(lines[2], "3e0,,2.5e-1,5e-1,0e0,0e0");
+        // Feasible, sorted by f1, the repeated member once, the infeasible one out.
+        assert_eq!(front_order(&pop), vec![1, 0]);
+        let r = record_of(0, 4, &pop, &pop, &[1.0, 1.0]);
+        assert_eq!(r.front, vec![vec![0.25, 0.5], vec![0.5, 0.25]]);
+        assert_eq!(r.feasible_fraction, 0.75);
+        assert_eq!(r.min_violation, 0.0);
+        assert_eq!(
+            front_csv(&[&[0.5, 0.25]], 2),
+            "f1,f2\n5e-1,2.5e-1\n".to_string()
+        );
+    }
+}
