@@ -197,7 +197,7 @@ impl<S: Real> ReplanConfig<S> {
     /// tolerance [`DEFAULT_TOLERANCE_M`], [`DEFAULT_MAX_ITERATIONS`] iterations,
     /// [`DEFAULT_MAX_SKIPS`] skips, [`PredictorMode::Hybrid`] (the closed forms where their
     /// prediction is in the validated domain, else the numerical predictor). These are the
-    /// defaults of host-sim's `[replanning]` section and campaigns.
+    /// defaults of host-sim's `[guidance.replanning]` layer (scenarios and campaigns).
     ///
     /// ```
     /// use guidance_core::replan::{PredictorMode, ReplanConfig};

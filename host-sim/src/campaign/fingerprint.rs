@@ -126,7 +126,6 @@ impl Fields {
             interface_altitude_m,
             g_rate_window_s,
             nose_radius_m,
-            replanning,
             layers,
         } = sc;
         let EnvSpec {
@@ -152,7 +151,6 @@ impl Fields {
         self.debug("scenario.interface_altitude_m", interface_altitude_m);
         self.debug("scenario.g_rate_window_s", g_rate_window_s);
         self.debug("scenario.nose_radius_m", nose_radius_m);
-        self.debug("scenario.replanning", replanning);
         self.debug("scenario.layers", layers);
     }
 

@@ -29,9 +29,9 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub quiet: bool,
     /// Processor in the loop: fly the scenario with the guidance of this firmware ELF
-    /// (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`): the scenario's
-    /// guidance is uploaded as set-up frames; a hard-float ELF runs on the Cortex-M4F (`f32`),
-    /// a soft-float one on the Cortex-M3 (fixed point).
+    /// (`onboard-demo`'s `pil` binary) running in QEMU (see `host_sim::pil`): the stack the
+    /// scenario flies in SIL is uploaded as one set-up image; a hard-float ELF runs on the
+    /// Cortex-M4F (`f32`), a soft-float one on the Cortex-M3 (fixed-point tick, `f32` layers).
     #[arg(long, value_name = "ELF")]
     pub pil: Option<PathBuf>,
     /// With --pil: inject seeded link faults on the nav frames, each of drop, corruption and
@@ -62,7 +62,13 @@ fn pil_run(
     let mut cfg = pil::PilConfig::new(elf.to_path_buf());
     cfg.faults = faults;
     let (run, record) = pil::fly_scenario_pil(sc, file, cfg);
-    let (result, stats) = match run {
+    let pil::ScenarioPil {
+        result,
+        stats,
+        twin,
+        stack,
+        image_bytes,
+    } = match run {
         Ok(r) => r,
         Err(e) => {
             // Keep the record up to the failure, marked, beside (not in) the run directory.
@@ -102,6 +108,17 @@ fn pil_run(
             "PIL tick timing (firmware tick timer; under QEMU emulator wall time): {ticks} ticks, {overruns} over the guidance period, longest {max_us} us"
         )?;
     }
+    writeln!(
+        out,
+        "PIL set-up image {image_bytes} B; host twin (the image in the firmware's scalars): {} of {} ticks differ{}",
+        twin.mismatches,
+        twin.ticks,
+        twin.first
+            .as_ref()
+            .map_or_else(String::new, |(t, what)| format!(
+                ", first at t = {t} s: {what}"
+            ))
+    )?;
     if faults.is_some() {
         let f = stats.faults;
         writeln!(
@@ -121,7 +138,7 @@ fn pil_run(
         result,
         vehicle: sc.load_vehicle()?,
         environment: sc.environment.build(),
-        stack: None,
+        stack,
     };
     Ok(write_flight(
         sc,

@@ -1,4 +1,5 @@
-//! A campaign case in PIL: the mode's whole stack (`CampaignSetup::stack_of`) uploaded to
+//! A campaign case in PIL (and, through [`start_stack`], any scenario's stack:
+//! `super::fly_scenario_pil`): the mode's whole stack (`CampaignSetup::stack_of`) uploaded to
 //! the firmware as one set-up image (protocol v2, `guidance_core::setup::image`) and flown in
 //! the case's dispersed world, with the case's IMU feeding sensed accelerations through the
 //! nav frames ([`fly_case_pil`]).
@@ -14,17 +15,19 @@ use guidance_core::estimate::SensedAero;
 use guidance_core::guidance::Command;
 use guidance_core::nodes::DEFAULT_NODE_CAPACITY;
 use guidance_core::setup::image::{decode, encode, image_capacity};
-use guidance_core::stack::{FlightStack, Layers};
+use guidance_core::stack::{FlightStack, HostStackConfig, Layers};
 use guidance_core::{Fixed, NavState, Scalar};
 use onboard_spec::machines::CORTEX_M4F;
 
 use crate::campaign::draw::CaseDraw;
 use crate::campaign::flight::{CaseCounts, CaseSource, fly_case_with};
 use crate::campaign::{CampaignError, CampaignSetup, CaseResult, Mode};
-use crate::sim::AttitudeSource;
+use crate::sim::{AttitudeSource, SimResult};
 
-use super::reference::unwrap_pil_error;
-use super::{FrameLimits, PilConfig, PilError, PilGuidance, PilStats, machine_of_elf};
+use super::{
+    FrameLimits, PilConfig, PilError, PilGuidance, PilRecord, PilStats, machine_of_elf,
+    unwrap_pil_error,
+};
 
 /// Node capacity of the firmware's tables (the `pil` binary's).
 const CAPACITY: usize = DEFAULT_NODE_CAPACITY;
@@ -96,12 +99,12 @@ pub struct TwinCheck {
     pub first: Option<(f64, String)>,
 }
 
-/// The firmware and its twin as a campaign case's guidance.
-struct PilCaseSource {
-    pil: PilGuidance,
+/// The firmware and its twin as a flight's guidance (a campaign case's or a scenario's).
+pub(super) struct PilCaseSource {
+    pub(super) pil: PilGuidance,
     twin: Twin,
     sensed: Option<SensedAero<f64>>,
-    check: TwinCheck,
+    pub(super) check: TwinCheck,
     counts: (u32, u32),
 }
 
@@ -190,6 +193,66 @@ pub struct PilCase {
     pub image_bytes: usize,
 }
 
+/// The set-up image of `config` (protocol v2, `guidance_core::setup::image`).
+///
+/// # Errors
+/// [`PilError::Image`] if the stack has no image for the firmware (e.g. more than its
+/// [`DEFAULT_NODE_CAPACITY`] nodes).
+pub(super) fn stack_image(config: &HostStackConfig<f64>) -> Result<Vec<u8>, PilError> {
+    let mut buf = vec![0u8; image_capacity(config.profile.table.len())];
+    let n = encode(config, &mut buf).map_err(PilError::Image)?;
+    buf.truncate(n);
+    Ok(buf)
+}
+
+/// The frame limits of a stack: its profile's bounds, rates, initial attitude and period.
+pub(super) fn stack_limits(config: &HostStackConfig<f64>) -> FrameLimits {
+    let p = &config.profile;
+    FrameLimits {
+        bounds: p.table.bounds(),
+        rates: p.guidance.rates,
+        initial: p.initial,
+        period_s: p.guidance.period_s,
+    }
+}
+
+/// Start the firmware `cfg.elf` on the stack `config` (its set-up image uploaded) beside its
+/// host twin, as a flight's guidance; `file` names the scenario in errors. Also returns the
+/// image's size \[bytes\].
+pub(super) fn start_stack(
+    config: &HostStackConfig<f64>,
+    cfg: PilConfig,
+    file: &str,
+) -> Result<(PilCaseSource, usize), PilError> {
+    let image = stack_image(config)?;
+    let machine = cfg.machine.unwrap_or_else(|| machine_of_elf(&cfg.elf));
+    let refused = |source| {
+        PilError::Campaign(Box::new(CampaignError::Stack {
+            file: file.to_string(),
+            source,
+        }))
+    };
+    let twin = if machine == CORTEX_M4F {
+        let c = decode(&image, Layers::ALL).map_err(PilError::Image)?;
+        Twin::F32(FlightStack::new(&c).map_err(refused)?)
+    } else {
+        let c = decode(&image, Layers::ALL).map_err(PilError::Image)?;
+        Twin::Fixed(FlightStack::new(&c).map_err(refused)?)
+    };
+    let senses = twin.uses_sensed();
+    let pil = PilGuidance::start_with_image(cfg, stack_limits(config), &image, senses)?;
+    Ok((
+        PilCaseSource {
+            pil,
+            twin,
+            sensed: None,
+            check: TwinCheck::default(),
+            counts: (0, 0),
+        },
+        image.len(),
+    ))
+}
+
 /// Fly case `draw` (`None`: the nominal world) of the campaign `setup` in `mode` in PIL: the
 /// mode's stack uploaded to the firmware `cfg.elf` as a set-up image, the case's world, IMU
 /// and terminal interface as [`crate::campaign::flight::fly_case`] flies them in SIL.
@@ -204,62 +267,46 @@ pub fn fly_case_pil(
     mode: Mode,
     cfg: PilConfig,
 ) -> Result<PilCase, PilError> {
-    let config = setup.stack_of(mode);
-    let mut buf = vec![0u8; image_capacity(config.profile.table.len())];
-    let n = encode(&config, &mut buf).map_err(PilError::Image)?;
-    let image = buf.get(..n).ok_or(PilError::Image(
-        guidance_core::setup::image::ImageError::Size,
-    ))?;
-    let machine = cfg.machine.unwrap_or_else(|| machine_of_elf(&cfg.elf));
-    let twin = if machine == CORTEX_M4F {
-        Twin::F32(
-            FlightStack::new(&decode(image, Layers::ALL).map_err(PilError::Image)?)
-                .map_err(|e| PilError::Campaign(Box::new(stack_error(setup, e))))?,
-        )
-    } else {
-        Twin::Fixed(
-            FlightStack::new(&decode(image, Layers::ALL).map_err(PilError::Image)?)
-                .map_err(|e| PilError::Campaign(Box::new(stack_error(setup, e))))?,
-        )
-    };
-    let p = &config.profile;
-    let limits = FrameLimits {
-        bounds: p.table.bounds(),
-        rates: p.guidance.rates,
-        initial: p.initial,
-        period_s: p.guidance.period_s,
-    };
-    let senses = twin.uses_sensed();
-    let pil = PilGuidance::start_with_image(cfg, limits, image, senses)?;
-    let source = PilCaseSource {
-        pil,
-        twin,
-        sensed: None,
-        check: TwinCheck::default(),
-        counts: (0, 0),
-    };
-    let (result, source, _) =
-        fly_case_with(setup, draw, mode, 0.0, &mut |_| {}, move |_| Ok(source)).map_err(
-            |e| match e {
-                CampaignError::Sim { source, .. } => unwrap_pil_error(source),
-                e => PilError::Campaign(Box::new(e)),
-            },
-        )?;
-    let stats = source.pil.finish()?;
-    Ok(PilCase {
-        result,
-        twin: source.check,
-        stats,
-        image_bytes: n,
-    })
+    let mut record = PilRecord::default();
+    fly_case_pil_run(setup, draw, mode, cfg, 0.0, &mut record).map(|(case, _)| case)
 }
 
-fn stack_error(
+/// [`fly_case_pil`], also returning the run (samples every `output_interval_s`, or at the
+/// guidance ticks for 0); `record` becomes the handle of the frame record (complete up to a
+/// failure, whose exchange is marked) once the firmware is started.
+///
+/// # Errors
+/// As [`fly_case_pil`].
+pub(super) fn fly_case_pil_run(
     setup: &CampaignSetup,
-    source: guidance_core::stack::StackBuildError,
-) -> CampaignError {
-    CampaignError::Stack {
-        file: setup.file.clone(),
-        source,
-    }
+    draw: Option<&CaseDraw>,
+    mode: Mode,
+    cfg: PilConfig,
+    output_interval_s: f64,
+    record: &mut PilRecord,
+) -> Result<(PilCase, SimResult), PilError> {
+    let (source, image_bytes) = start_stack(&setup.stack_of(mode), cfg, &setup.file)?;
+    *record = source.pil.record();
+    let (result, source, run) = fly_case_with(
+        setup,
+        draw,
+        mode,
+        output_interval_s,
+        &mut |_| {},
+        move |_| Ok(source),
+    )
+    .map_err(|e| match e {
+        CampaignError::Sim { source, .. } => unwrap_pil_error(source),
+        e => PilError::Campaign(Box::new(e)),
+    })?;
+    let stats = source.pil.finish()?;
+    Ok((
+        PilCase {
+            result,
+            twin: source.check,
+            stats,
+            image_bytes,
+        },
+        run,
+    ))
 }

@@ -53,7 +53,7 @@ pub use reference::{
     fly_reference, fly_reference_pil, fly_reference_pil_recorded, fly_reference_sil,
     reference_sil_guidance,
 };
-pub use scenario::{fly_scenario_pil, scenario_setup};
+pub use scenario::{ScenarioPil, fly_scenario_pil, scenario_setup};
 
 /// Where the firmware ELF is looked for by default (relative to the workspace root).
 pub const DEFAULT_ELF: &str = "target/thumbv7em-none-eabihf/firmware/pil";
@@ -286,6 +286,17 @@ pub enum PilError {
     /// host (e.g. its vehicle did not load): not a firmware error.
     #[error("scenario: {0}")]
     Scenario(#[from] ScenarioError),
+}
+
+/// The firmware link's own error, as it was raised (not wrapped as a guidance failure).
+pub(super) fn unwrap_pil_error(e: sim::SimError) -> PilError {
+    match e {
+        sim::SimError::Guidance { source, time_s } => match source.downcast::<PilError>() {
+            Ok(e) => *e,
+            Err(source) => PilError::Sim(sim::SimError::Guidance { time_s, source }),
+        },
+        e => PilError::Sim(e),
+    }
 }
 
 /// `": guidance error: ..."` for a status that stands for a guidance error, else nothing.

@@ -9,17 +9,17 @@ use crate::vehicle::Vehicle;
 
 use super::{PilConfig, PilError, PilRecord, PilStats};
 
-/// The HORUS-2B reference mission's models and settings (the default scenario, full
-/// environment), as flown by SIL and PIL.
+/// The HORUS-2B reference mission's stored profile (`Scenario::horus_2b_stored`: the default
+/// scenario without its layers, full environment), as flown by SIL and PIL.
 fn reference_setup() -> Result<(Scenario, Environment, Vehicle), ScenarioError> {
-    let sc = Scenario::default();
+    let sc = Scenario::horus_2b_stored();
     let env = sc.environment.build();
     let veh = sc.load_vehicle()?;
     Ok((sc, env, veh))
 }
 
 /// The SIL guidance of the reference mission: `guidance-core`'s `Guidance<f64>` built from the
-/// default scenario (the same table, rates, period and initial attitude as the firmware).
+/// stored profile (the same table, rates, period and initial attitude as the firmware).
 ///
 /// # Errors
 /// [`ScenarioError`] if the reference mission cannot be set up.
@@ -32,7 +32,7 @@ pub fn reference_sil_guidance() -> Result<sim::CoreGuidance, ScenarioError> {
     )?))
 }
 
-/// Fly the HORUS-2B reference mission (default scenario: full environment, HORUS-2B vehicle,
+/// Fly the HORUS-2B reference mission's stored profile (full environment, HORUS-2B vehicle,
 /// its termination, tolerances and output settings) with any attitude source.
 ///
 /// # Errors
@@ -62,21 +62,11 @@ pub fn fly_reference_pil(cfg: PilConfig) -> Result<(SimResult, PilStats), PilErr
 }
 
 /// As [`fly_reference_pil`], also returning the record of the frames exchanged (complete up to
-/// a failure, whose exchange is marked). The mission is uploaded as set-up frames, like any
-/// scenario.
+/// a failure, whose exchange is marked). The stored profile is uploaded as a set-up image,
+/// like any scenario's stack ([`super::fly_scenario_pil`] of `Scenario::horus_2b_stored`).
 pub fn fly_reference_pil_recorded(
     cfg: PilConfig,
 ) -> (Result<(SimResult, PilStats), PilError>, PilRecord) {
-    super::fly_scenario_pil(&Scenario::default(), "(built-in)", cfg)
-}
-
-/// The firmware link's own error, as it was raised (not wrapped as a guidance failure).
-pub(super) fn unwrap_pil_error(e: sim::SimError) -> PilError {
-    match e {
-        sim::SimError::Guidance { source, time_s } => match source.downcast::<PilError>() {
-            Ok(e) => *e,
-            Err(source) => PilError::Sim(sim::SimError::Guidance { time_s, source }),
-        },
-        e => PilError::Sim(e),
-    }
+    let (run, record) = super::fly_scenario_pil(&Scenario::horus_2b_stored(), "(built-in)", cfg);
+    (run.map(|r| (r.result, r.stats)), record)
 }

@@ -8,11 +8,6 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use guidance_core::replan::{
-    DEFAULT_EVERY_N_TICKS, DEFAULT_LAMBDA, DEFAULT_MAX_ITERATIONS, DEFAULT_MAX_SKIPS,
-    DEFAULT_MAX_VERTICAL_FRACTION, DEFAULT_MIN_VERTICAL_FRACTION, DEFAULT_TOLERANCE_M,
-};
-
 /// The file's header comment.
 const HEADER: &str = "\
 # host-sim scenario file (docs/reference/scenario.md, docs/reference/inputs.md). A file states
@@ -61,10 +56,6 @@ const SECTIONS: &[(&str, &str)] = &[
     ("integrator", "RKF4(5), adaptive"),
     ("monitors", ""),
     ("output", ""),
-    (
-        "replanning",
-        "onboard re-planning (guidance_core::replan::ReplanningGuidance); needs independent = \"energy\"",
-    ),
     (
         "guidance.lateral",
         "layer on: bank reversals in a heading corridor, terminal crossrange law",
@@ -266,82 +257,7 @@ const KEYS: &[(&str, &str, &str)] = &[
         "interval_s",
         "[s]: 0 = one sample per guidance tick, else [0.001, 1e6]",
     ),
-    (
-        "replanning",
-        "target_latitude_deg",
-        "target point [deg], [-90, 90] (with target_longitude_deg; or range_km)",
-    ),
-    (
-        "replanning",
-        "target_longitude_deg",
-        "target point [deg], [-360, 360]",
-    ),
-    (
-        "replanning",
-        "range_km",
-        "total flown range from the entry [km], (0, 1e5] (or a target point)",
-    ),
-    (
-        "replanning",
-        "final_speed_m_s",
-        "required: the predictor's end [m/s], (0, entry speed)",
-    ),
-    (
-        "replanning",
-        "heat_flux_limit_kw_m2",
-        "[kW/m^2], > 0; default: the vehicle's",
-    ),
-    (
-        "replanning",
-        "g_load_limit",
-        "[-], > 0; default: the vehicle's",
-    ),
-    ("replanning", "max_skips", "integer in [0, 8]"),
-    (
-        "replanning",
-        "predictor",
-        "\"chain\", \"glide\", \"auto\", \"auto-sink\", \"numerical\", \"hybrid\" or \"hybrid-sink\"; default \"hybrid\"",
-    ),
-    (
-        "replanning",
-        "apply_out_of_reach",
-        "apply the nearest end when out of reach; default true",
-    ),
-    (
-        "replanning",
-        "polar_mach",
-        "Mach number of the vehicle's polar [-], (0, 100]; default 20",
-    ),
 ];
-
-/// The re-planning keys whose defaults are the core's constants.
-fn replanning_default_note(key: &str) -> Option<String> {
-    Some(match key {
-        "every_n_ticks" => {
-            format!("re-plan every N ticks, integer in [1, 65535]; default {DEFAULT_EVERY_N_TICKS}")
-        }
-        "steps_per_tick" => {
-            "predictor steps per tick, [0, 255]; 0 = the whole solve in its tick; default 0".into()
-        }
-        "lambda" => {
-            format!("total lift parameter C_L/C_L* [-], [0, 10]; default {DEFAULT_LAMBDA:?}")
-        }
-        "min_vertical_fraction" => format!(
-            "smallest cos(bank) [-], (0, 1], <= max_vertical_fraction; default {DEFAULT_MIN_VERTICAL_FRACTION:?}"
-        ),
-        "max_vertical_fraction" => {
-            format!("largest cos(bank) [-], (0, 1]; default {DEFAULT_MAX_VERTICAL_FRACTION:?}")
-        }
-        "tolerance_m" => format!("accepted range miss [m], > 0; default {DEFAULT_TOLERANCE_M:?}"),
-        "max_iterations" => {
-            format!(
-                "predictions per range search, integer in [1, 40]; default {DEFAULT_MAX_ITERATIONS}"
-            )
-        }
-        "max_skips" => format!("integer in [0, 8]; default {DEFAULT_MAX_SKIPS}"),
-        _ => return None,
-    })
-}
 
 /// `section.key -> value` of the plain (unannotated) TOML `text` (first line of arrays).
 fn values(text: &str) -> HashMap<String, String> {
@@ -362,11 +278,6 @@ fn values(text: &str) -> HashMap<String, String> {
 
 /// The note of `key` in `section`, with the default scenario's value where it sets it.
 fn note(section: &str, key: &str, defaults: &HashMap<String, String>) -> Option<String> {
-    if section == "replanning"
-        && let Some(n) = replanning_default_note(key)
-    {
-        return Some(n);
-    }
     if let Some(layer) = section.strip_prefix("guidance.") {
         // The layers' keys: one table of names, units and ranges (docs/reference/guidance-stack.md).
         let known = crate::scenario::guidance_layers::LAYER_KEYS
@@ -409,11 +320,9 @@ pub(super) fn annotate(plain: &str, default_plain: &str) -> String {
     let mut out = String::from(HEADER);
     out.push('\n');
     let mut section = String::new();
-    let mut has_replanning = false;
     for line in plain.lines() {
         if let Some(s) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
             section = s.to_string();
-            has_replanning |= s == "replanning";
             let n = SECTIONS
                 .iter()
                 .find(|(k, _)| *k == s)
@@ -428,13 +337,6 @@ pub(super) fn annotate(plain: &str, default_plain: &str) -> String {
         } else {
             let _ = writeln!(out, "{line}");
         }
-    }
-    if !has_replanning {
-        out.push_str(
-            "\n# [replanning]                          # optional: onboard re-planning to a range or a point;\n\
-             # range_km = 8000.0                     #   its keys: docs/reference/scenario.md\n\
-             # final_speed_m_s = 2500.0\n",
-        );
     }
     out
 }

@@ -79,7 +79,6 @@ impl Default for Scenario {
             interface_altitude_m: sim.interface_altitude_m,
             g_rate_window_s: sim.g_rate_window_s,
             nose_radius_m: None,
-            replanning: None,
             layers: Some(horus_stack()),
         }
     }

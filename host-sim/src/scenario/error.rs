@@ -55,22 +55,6 @@ pub enum ScenarioError {
         /// The core's error.
         source: GuidanceError,
     },
-    /// `guidance-core` rejected the re-planning settings of the scenario.
-    #[error("{file}: section `[replanning]`: rejected by guidance-core: {source}")]
-    Replanning {
-        /// File name (or built-in scenario).
-        file: String,
-        /// The core's error.
-        source: GuidanceError,
-    },
-    /// The re-planner's predictor model could not be built from the vehicle and environment.
-    #[error("{file}: section `[replanning]`: predictor model: {source}")]
-    Predictor {
-        /// File name (or built-in scenario).
-        file: String,
-        /// The cause.
-        source: crate::analytic::AnalyticError,
-    },
     /// The entry state does not define a normalised energy.
     #[error("{file}: field `entry` (with `environment.planet`): no normalised energy: {source}")]
     Entry {

@@ -35,8 +35,9 @@ pub struct ScenarioFile {
     pub output: Option<OutputFile>,
     /// `[heat_flux]`.
     pub heat_flux: Option<HeatFluxFile>,
-    /// `[replanning]`: onboard re-planning of the bank-angle magnitude.
-    pub replanning: Option<ReplanningFile>,
+    /// `[replanning]`: the former re-planning section, refused (any keys: the error names
+    /// the layer key of each, `super::old_replanning`).
+    pub replanning: Option<toml::Table>,
 }
 
 /// `[environment]`: a preset, then single models.
@@ -247,69 +248,4 @@ pub struct MonitorsFile {
 pub struct OutputFile {
     /// Sample interval \[s\] (0: per tick).
     pub interval_s: Option<Num>,
-}
-
-/// Predictor of the re-planner.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum PredictorFile {
-    /// The full chain (skips, arcs, final glide).
-    Chain,
-    /// Equilibrium glide only.
-    Glide,
-    /// The chain, the glide when the chain is out of its domain.
-    Auto,
-    /// As `auto`, the glide with the sink to its equilibrium (`"auto-sink"`).
-    #[serde(rename = "auto-sink")]
-    AutoSink,
-    /// Numerical integration of the predictor model from the navigated state (`"numerical"`).
-    Numerical,
-    /// The closed forms as `auto` where both ends are in their validated domain, else
-    /// `numerical` for the whole solve (`"hybrid"`).
-    Hybrid,
-    /// As `hybrid`, with `auto-sink` as its closed-form part (`"hybrid-sink"`).
-    #[serde(rename = "hybrid-sink")]
-    HybridSink,
-}
-
-/// `[replanning]`: `guidance_core::replan::ReplanningGuidance` on the scenario's (energy-indexed)
-/// table.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReplanningFile {
-    /// Re-plan every N guidance ticks.
-    pub every_n_ticks: Option<Num>,
-    /// Predictor calls per tick (0: the whole solve in its tick).
-    pub steps_per_tick: Option<Num>,
-    /// Target point latitude \[deg\] (with `target_longitude_deg`).
-    pub target_latitude_deg: Option<Num>,
-    /// Target point longitude \[deg\].
-    pub target_longitude_deg: Option<Num>,
-    /// Or: total range along the path from the entry \[km\].
-    pub range_km: Option<Num>,
-    /// Predictor final speed \[m/s\].
-    pub final_speed_m_s: Option<Num>,
-    /// Peak heat-flux limit \[kW/m^2\] (default: the vehicle's).
-    pub heat_flux_limit_kw_m2: Option<Num>,
-    /// Peak g-load limit \[g\] (default: the vehicle's).
-    pub g_load_limit: Option<Num>,
-    /// Total lift parameter \[-\].
-    pub lambda: Option<Num>,
-    /// Smallest vertical lift fraction \[-\].
-    pub min_vertical_fraction: Option<Num>,
-    /// Largest vertical lift fraction \[-\].
-    pub max_vertical_fraction: Option<Num>,
-    /// Accepted range miss \[m\].
-    pub tolerance_m: Option<Num>,
-    /// Corrector iterations.
-    pub max_iterations: Option<Num>,
-    /// Predictor skip budget.
-    pub max_skips: Option<Num>,
-    /// `"chain"`, `"glide"`, `"auto"`, `"auto-sink"`, `"numerical"`, `"hybrid"` or
-    /// `"hybrid-sink"` (default `"hybrid"`).
-    pub predictor: Option<PredictorFile>,
-    /// Apply the nearest end when the target is out of reach.
-    pub apply_out_of_reach: Option<bool>,
-    /// Mach number of the vehicle polar the predictor uses \[-\].
-    pub polar_mach: Option<Num>,
 }

@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use guidance_core::replan::{RangeTarget, TargetPoint};
-use guidance_core::stack::{FlightStack, Layer, StackBuildError};
+use guidance_core::replan::TargetPoint;
+use guidance_core::stack::{FlightStack, StackBuildError};
 
 use super::{Scenario, ScenarioError, build_stack};
 use crate::campaign::flight::{CaseResult, fly_case_run};
@@ -104,6 +104,8 @@ impl std::fmt::Debug for Flight {
 ///   interval; [`Flight::stack`] holds the record (miss against the target included);
 /// * without, the stored profile as written ([`build_stack`]), ended by `[termination]`.
 ///
+/// `crate::pil::fly_scenario_pil` flies the same stack on the firmware.
+///
 /// # Errors
 /// [`ScenarioError`] for vehicle, guidance or simulation failures.
 ///
@@ -134,7 +136,7 @@ pub fn fly(
     let vehicle = sc.load_vehicle()?;
     let environment = sc.environment.build();
     let dynm = Dynamics::from_environment(&environment, &vehicle);
-    let config = build_stack(sc, &environment, &vehicle, file)?;
+    let config = build_stack(sc, &environment.planet, file)?;
     let stack = FlightStack::new(&config).map_err(|e| stack_error(e, file))?;
     let source = StackSource::new(stack);
     let result = sim::simulate(dynm, source, &sc.sim_config(), progress)?.0;
@@ -146,16 +148,18 @@ pub fn fly(
     })
 }
 
-/// [`fly`] of a scenario with guidance layers: the campaign's nominal case in its fullest mode.
-fn fly_layers(
-    sc: &Scenario,
-    file: &str,
-    progress: &mut dyn FnMut(sim::Progress),
-) -> Result<Flight, ScenarioError> {
+/// The campaign set-up of a scenario with guidance layers (`CampaignSetup::new`, the one
+/// builder of the layers) whose fullest mode (`CampaignSetup::full_mode`) flies every layer
+/// written: what [`fly`] flies in SIL and `crate::pil::fly_scenario_pil` uploads to the
+/// firmware, as the nominal case in that mode.
+///
+/// # Errors
+/// The set-up's errors as scenario errors; [`ScenarioError::Field`] naming
+/// `guidance.lateral` when the layers make no campaign mode (re-planning flies with bank
+/// reversals): every layer written flies, or the flight is refused (never silently less).
+pub fn stack_setup(sc: &Scenario, file: &str) -> Result<CampaignSetup, ScenarioError> {
     let setup = CampaignSetup::new(sc, file, None).map_err(|e| campaign_error(e, file))?;
-    let mode = setup.full_mode();
-    // Every layer written flies, or the flight is refused (never silently less).
-    if setup.stack_of(mode).layers() != setup.stack.layers() {
+    if setup.stack_of(setup.full_mode()).layers() != setup.stack.layers() {
         return Err(ScenarioError::Field {
             file: file.to_string(),
             field: "guidance.lateral".into(),
@@ -167,6 +171,17 @@ fn fly_layers(
             ),
         });
     }
+    Ok(setup)
+}
+
+/// [`fly`] of a scenario with guidance layers: the campaign's nominal case in its fullest mode.
+fn fly_layers(
+    sc: &Scenario,
+    file: &str,
+    progress: &mut dyn FnMut(sim::Progress),
+) -> Result<Flight, ScenarioError> {
+    let setup = stack_setup(sc, file)?;
+    let mode = setup.full_mode();
     let run = fly_case_run(&setup, None, mode, sc.output_interval_s, progress)
         .map_err(|e| campaign_error(e, file))?;
     Ok(Flight {
@@ -212,28 +227,19 @@ fn campaign_error(e: CampaignError, file: &str) -> ScenarioError {
     }
 }
 
-/// The scenario error of a stack the core refuses: the profile's as a `[guidance]` error, any
-/// other layer's as a `[replanning]` error.
+/// The scenario error of a stored-profile stack ([`build_stack`]) the core refuses, as a
+/// `[guidance]` error (it has no other layer).
 fn stack_error(e: StackBuildError, file: &str) -> ScenarioError {
-    match e {
-        StackBuildError::Rejected {
-            layer: Layer::Profile,
-            source,
-        } => ScenarioError::Guidance {
-            file: file.to_string(),
-            field: "interpolation",
-            source,
-        },
-        StackBuildError::Rejected { source, .. } => ScenarioError::Replanning {
-            file: file.to_string(),
-            source,
-        },
+    let source = match e {
+        StackBuildError::Rejected { source, .. } => source,
         StackBuildError::NeedsReplan(_) | StackBuildError::NeedsTarget(_) => {
-            ScenarioError::Replanning {
-                file: file.to_string(),
-                source: guidance_core::GuidanceError::InvalidConfig,
-            }
+            guidance_core::GuidanceError::InvalidConfig
         }
+    };
+    ScenarioError::Guidance {
+        file: file.to_string(),
+        field: "interpolation",
+        source,
     }
 }
 
@@ -272,15 +278,13 @@ pub fn write_flight(
         ..
     } = flight;
     // The rate limits drawn are the guidance's (what its rate limiter flies), the target the
-    // re-planner's point if it aims at one.
+    // stack's if it aims at one.
     let limits = report::PlotLimits {
         alpha_rate_rad_s: sc.guidance.alpha_rate_rad_s,
         sigma_rate_rad_s: sc.guidance.sigma_rate_rad_s,
-        target: match (&stack, sc.replanning.as_ref().map(|r| r.target)) {
-            (Some(s), _) => Some((s.target.latitude_rad, s.target.longitude_rad)),
-            (None, Some(RangeTarget::Point(p))) => Some((p.latitude_rad, p.longitude_rad)),
-            (None, _) => None,
-        },
+        target: stack
+            .as_ref()
+            .map(|s| (s.target.latitude_rad, s.target.longitude_rad)),
         ..report::PlotLimits::of_vehicle(&veh.limits)
     };
     let files = report::write_run(out_dir, &result, &summary, &limits)?;

@@ -1,24 +1,18 @@
-//! The guidance of a scenario: `guidance-core`'s flight [`Guidance`] in `f64`, or with a
-//! `[replanning]` section its [`ReplanningGuidance`], as the closed loop's attitude source.
+//! The guidance of a scenario's stored profile: `guidance-core`'s flight [`Guidance`] in `f64`
+//! and the profile-only stack ([`build_stack`]); the layers beyond it are built by the
+//! campaign set-up (`crate::campaign::CampaignSetup::new`).
 
 use guidance_core::energy::EnergyNormalizer;
 use guidance_core::guidance::{Guidance, GuidanceConfig, HostGuidance, RateLimits};
 use guidance_core::interp::Interpolation;
 use guidance_core::nodes::{AngleBounds, HostNodeTable, Node};
-
-use guidance_core::replan::{
-    HostReplanningGuidance, ReplanConfig, ReplanLimits, ReplanningConfig, ReplanningGuidance,
-};
-use guidance_core::stack::{HostStackConfig, ProfileLayer, ReplanLayer, StackConfig};
-use guidance_core::vinh::PredictorConfig;
+use guidance_core::stack::{HostStackConfig, ProfileLayer, StackConfig};
 
 use super::{InterpolationKind, Scenario, ScenarioError};
-use crate::env::{Environment, ExponentialAtmosphere, Planet};
-use crate::replan_loop::predictor_model;
-use crate::vehicle::Vehicle;
+use crate::env::Planet;
 
 /// Build the guidance of a scenario: `guidance-core`'s flight [`Guidance`] in `f64` (the
-/// stored profile; [`build_replanning_guidance`] adds the scenario's re-planning).
+/// stored profile).
 ///
 /// # Errors
 /// [`ScenarioError::Guidance`] or [`ScenarioError::Entry`] when the core rejects the
@@ -98,103 +92,19 @@ fn parts(sc: &Scenario, planet: &Planet, file: &str) -> Result<Parts, ScenarioEr
 /// re-planner's predictor uses \[m\] (as the dispersion campaigns).
 pub const PREDICTOR_FIT_ALTITUDES_M: (f64, f64) = (50e3, 100e3);
 
-/// The re-planning settings of a scenario (`None` without a `[replanning]` section): the
-/// section's values, the vehicle's limits where the section sets none, and the predictor model
-/// from `vehicle` (its polar at the section's Mach number), `env`'s planet and an exponential
-/// fit of `env`'s atmosphere between [`PREDICTOR_FIT_ALTITUDES_M`].
+/// The onboard stack of a scenario's stored profile alone (`guidance_core::stack::StackConfig`
+/// with no layer beyond the profile): what a scenario without `[guidance.*]` layers flies, in
+/// SIL ([`super::fly`]) and in PIL (its set-up image, `crate::pil::fly_scenario_pil`). A
+/// scenario with layers flies the campaign set-up's stack (`CampaignSetup::stack_of`).
 ///
 /// # Errors
-/// [`ScenarioError::Predictor`] if the predictor model cannot be built (no polar, or an
-/// atmosphere that does not fit).
-pub fn build_replanning(
-    sc: &Scenario,
-    env: &Environment,
-    vehicle: &Vehicle,
-    file: &str,
-) -> Result<Option<ReplanningConfig<f64>>, ScenarioError> {
-    let Some(r) = &sc.replanning else {
-        return Ok(None);
-    };
-    let perr = |source| ScenarioError::Predictor {
-        file: file.to_string(),
-        source,
-    };
-    let (h1, h2) = PREDICTOR_FIT_ALTITUDES_M;
-    let fit = ExponentialAtmosphere::fitted_to(env.atmosphere.as_ref(), h1, h2)
-        .map_err(|e| perr(e.into()))?;
-    let model = predictor_model(vehicle, &fit, &env.planet, r.polar_mach).map_err(perr)?;
-    Ok(Some(ReplanningConfig {
-        every_n_ticks: r.every_n_ticks,
-        target: r.target,
-        limits: ReplanLimits {
-            heat_flux_w_m2: r
-                .heat_flux_limit_w_m2
-                .unwrap_or(vehicle.limits.heat_flux_w_m2),
-            g_load: r.g_load_limit.unwrap_or(vehicle.limits.g_load),
-        },
-        solver: ReplanConfig {
-            lambda: r.lambda,
-            min_vertical_fraction: r.min_vertical_fraction,
-            max_vertical_fraction: r.max_vertical_fraction,
-            tolerance_m: r.tolerance_m,
-            max_iterations: r.max_iterations,
-            predictor: PredictorConfig {
-                final_speed_m_s: r.final_speed_m_s,
-                max_skips: r.max_skips,
-            },
-            mode: r.mode,
-        },
-        model,
-        apply_out_of_reach: r.apply_out_of_reach,
-        steps_per_tick: r.steps_per_tick,
-    }))
-}
-
-/// The scenario's guidance with its re-planning: `guidance-core`'s [`ReplanningGuidance`] in
-/// `f64` on the scenario's table (`None` without a `[replanning]` section).
-///
-/// # Errors
-/// As [`build_guidance`] and [`build_replanning`]; [`ScenarioError::Replanning`] if the core
-/// rejects the re-planning settings.
-pub fn build_replanning_guidance(
-    sc: &Scenario,
-    env: &Environment,
-    vehicle: &Vehicle,
-    file: &str,
-) -> Result<Option<HostReplanningGuidance<f64>>, ScenarioError> {
-    let Some(config) = build_replanning(sc, env, vehicle, file)? else {
-        return Ok(None);
-    };
-    let p = parts(sc, &env.planet, file)?;
-    ReplanningGuidance::new(
-        p.config,
-        p.table,
-        p.kind,
-        p.energy,
-        sc.guidance.initial,
-        config,
-    )
-    .map(Some)
-    .map_err(|source| ScenarioError::Replanning {
-        file: file.to_string(),
-        source,
-    })
-}
-
-/// The onboard stack of a scenario (`guidance_core::stack::StackConfig`, the one description
-/// every flight of the scenario flies): its stored profile and, with a `[replanning]` section,
-/// the re-planner ([`build_replanning`]) aimed at the section's target.
-///
-/// # Errors
-/// As [`build_guidance`] and [`build_replanning`].
+/// As [`build_guidance`].
 pub fn build_stack(
     sc: &Scenario,
-    env: &Environment,
-    vehicle: &Vehicle,
+    planet: &Planet,
     file: &str,
 ) -> Result<HostStackConfig<f64>, ScenarioError> {
-    let p = parts(sc, &env.planet, file)?;
-    let replan = build_replanning(sc, env, vehicle, file)?;
+    let p = parts(sc, planet, file)?;
     Ok(StackConfig {
         profile: ProfileLayer {
             guidance: p.config,
@@ -203,19 +113,8 @@ pub fn build_stack(
             energy: p.energy,
             initial: sc.guidance.initial,
         },
-        target: replan.map(|r| r.target),
-        replan: replan.map(|r| ReplanLayer {
-            every_n_ticks: r.every_n_ticks,
-            limits: r.limits,
-            solver: r.solver,
-            model: r.model,
-            apply_out_of_reach: r.apply_out_of_reach,
-            steps_per_tick: r.steps_per_tick,
-            lift_schedule: None,
-            start_normalized_energy: None,
-            numerical_rotation: false,
-            final_energy_j_kg: None,
-        }),
+        target: None,
+        replan: None,
         lateral: None,
         estimator: None,
         barrier: None,

@@ -85,32 +85,14 @@
 //! [output]
 //! interval_s = 0.0                # 0: one sample per guidance tick; else [0.001, 1e6] s
 //!                                 # and >= termination.max_time_s / 1e7 (10 million samples)
-//!
-//! # [replanning]                  # onboard re-planning (guidance_core::replan), energy tables
-//! # every_n_ticks = 5             # integer in [1, 65535]
-//! # steps_per_tick = 0            # predictor calls per tick, [0, 255]; 0: whole solve per tick
-//! # range_km = 18034.65           # total flown range from the entry, (0, 1e5] km; or
-//! # target_latitude_deg = -27.9   # a target point: latitude [-90, 90] deg and
-//! # target_longitude_deg = 155.3  #   longitude [-360, 360] deg
-//! # final_speed_m_s = 2500.0      # required: the predictor's end, (0, entry speed) m/s
-//! # heat_flux_limit_kw_m2 = 500.0 # > 0; default: the vehicle's
-//! # g_load_limit = 3.0            # > 0; default: the vehicle's
-//! # lambda = 1.0                  # total lift parameter, [0, 10]
-//! # min_vertical_fraction = 0.05  # (0, 1], <= max_vertical_fraction
-//! # max_vertical_fraction = 1.0   # (0, 1]
-//! # tolerance_m = 1000.0          # > 0
-//! # max_iterations = 20           # integer in [1, 40]
-//! # max_skips = 4                 # integer in [0, 8]
-//! # predictor = "hybrid"          # "chain", "glide", "auto", "auto-sink", "numerical",
-//! #                               # "hybrid" or "hybrid-sink"; default "hybrid": the closed
-//! #                               # forms where InDomain, else the numerical predictor
-//! # apply_out_of_reach = true
-//! # polar_mach = 20.0             # Mach number of the vehicle polar, (0, 100]
 //! ```
 //!
-//! With `[replanning]` the scenario flies `guidance_core::replan::ReplanningGuidance` (SIL and
-//! PIL); its predictor model is the vehicle's polar at `polar_mach` and an exponential fit of
-//! the environment's atmosphere between [`PREDICTOR_FIT_ALTITUDES_M`] ([`build_replanning`]).
+//! The onboard layers beyond the stored profile (re-planner, bank reversals, estimator,
+//! path-limit barrier) and their target are the `[guidance.lateral]`, `[guidance.replanning]`,
+//! `[guidance.estimator]`, `[guidance.barrier]` and `[guidance.target]` sections
+//! ([`GuidanceLayers`]; keys: [`guidance_layers::LAYER_KEYS`], docs/reference/guidance-stack.md).
+//! The former top-level `[replanning]` section is refused, naming for each of its keys the
+//! layer key that replaced it ([`old_replanning::OLD_KEYS`]).
 //!
 //! Ranges are checked before the run (the cross-field ones once every section is read), so a
 //! setting that would only fail after millions of integrator steps or samples ("maximum
@@ -134,7 +116,6 @@ mod resolve;
 mod resolve_environment;
 mod resolve_guidance;
 mod resolve_layers;
-mod resolve_replanning;
 mod to_toml;
 pub mod warnings;
 
@@ -142,8 +123,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use guidance_core::guidance::Command;
-use guidance_core::nodes::Independent;
-use guidance_core::replan::{PredictorMode, RangeTarget};
 
 use crate::dynamics::SphericalState;
 use crate::env::{
@@ -155,11 +134,10 @@ use crate::sim::{SimConfig, Termination};
 
 pub use builtin::{horus_stack, srm_stack};
 pub use error::ScenarioError;
-pub use flight::{Flight, RunOutput, StackOutcome, fly, simulate_scenario, write_flight};
-pub use guidance::{
-    PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_replanning, build_replanning_guidance,
-    build_stack, guidance_bounds,
+pub use flight::{
+    Flight, RunOutput, StackOutcome, fly, simulate_scenario, stack_setup, write_flight,
 };
+pub use guidance::{PREDICTOR_FIT_ALTITUDES_M, build_guidance, build_stack, guidance_bounds};
 pub use resolve::{parse_scenario, read_scenario};
 pub use to_toml::scenario_to_toml;
 pub use warnings::{Limit, Warning, flight_warnings, input_warnings};
@@ -182,7 +160,7 @@ pub enum InterpolationKind {
 #[derive(Clone, Debug, PartialEq)]
 pub struct GuidanceSpec {
     /// Node independent variable (the core's).
-    pub independent: Independent,
+    pub independent: guidance_core::nodes::Independent,
     /// Interpolation.
     pub interpolation: InterpolationKind,
     /// Guidance period \[s\].
@@ -419,8 +397,6 @@ pub struct Scenario {
     pub g_rate_window_s: f64,
     /// Nose radius replacing the vehicle's \[m\] (`[heat_flux] nose_radius_m`).
     pub nose_radius_m: Option<f64>,
-    /// Onboard re-planning (`[replanning]`; `None`: the stored profile is flown as is).
-    pub replanning: Option<ReplanningSpec>,
     /// The onboard layers beyond the stored profile that campaigns fly
     /// (`[guidance.lateral]`, `[guidance.replanning]`, `[guidance.estimator]`,
     /// `[guidance.barrier]`; `None`: the stored profile alone).
@@ -464,44 +440,6 @@ pub enum TargetSpec {
         /// Crossrange \[rad\].
         crossrange_rad: f64,
     },
-}
-
-/// The `[replanning]` section, resolved (SI units, radians): the settings of
-/// `guidance_core::replan::ReplanningGuidance` except the predictor model, which
-/// [`build_replanning`] derives from the vehicle and the environment when the scenario is
-/// flown.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ReplanningSpec {
-    /// Re-plan every N guidance ticks \[ticks\].
-    pub every_n_ticks: u16,
-    /// Predictor calls per tick (0: the whole solve in its tick).
-    pub steps_per_tick: u8,
-    /// Target: a point, or the total range angle along the path \[rad\].
-    pub target: RangeTarget<f64>,
-    /// Predictor final speed \[m/s\].
-    pub final_speed_m_s: f64,
-    /// Peak heat-flux limit \[W/m^2\] (`None`: the vehicle's).
-    pub heat_flux_limit_w_m2: Option<f64>,
-    /// Peak g-load limit \[-\] (`None`: the vehicle's).
-    pub g_load_limit: Option<f64>,
-    /// Total lift parameter \[-\].
-    pub lambda: f64,
-    /// Smallest vertical lift fraction \[-\].
-    pub min_vertical_fraction: f64,
-    /// Largest vertical lift fraction \[-\].
-    pub max_vertical_fraction: f64,
-    /// Accepted range miss \[m\].
-    pub tolerance_m: f64,
-    /// Corrector iterations.
-    pub max_iterations: u8,
-    /// Predictor skip budget.
-    pub max_skips: u8,
-    /// Predictor.
-    pub mode: PredictorMode,
-    /// Apply the nearest end of the interval when the target is out of reach.
-    pub apply_out_of_reach: bool,
-    /// Mach number of the vehicle polar the predictor uses \[-\].
-    pub polar_mach: f64,
 }
 
 impl Scenario {

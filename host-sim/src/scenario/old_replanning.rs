@@ -1,13 +1,10 @@
-//! The former simulate-only `[replanning]` section against the scenario's guidance layers: a
-//! scenario with `[guidance.*]` layers writes its re-planner in `[guidance.replanning]` and
-//! its target in `[guidance.target]`, so a `[replanning]` section beside them (a second set of
-//! names and defaults for the same settings) is refused, with the new key of each old one it
-//! holds ([`OLD_KEYS`]). A scenario without layers still flies `[replanning]` (`simulate`, and
-//! PIL, whose upload carries it).
+//! The former top-level `[replanning]` section: a scenario writes its re-planner in
+//! `[guidance.replanning]`, its target in `[guidance.target]` and flies it with bank reversals
+//! (`[guidance.lateral]`), one set of names for the stack every flight of it flies (SIL, PIL,
+//! campaigns). A `[replanning]` section is refused, with the new key of each old one it holds
+//! ([`OLD_KEYS`]).
 
 use super::ScenarioError;
-use super::file::ReplanningFile;
-use super::resolve::Fields;
 
 /// Each `[replanning]` key and where its setting is written in the guidance layers.
 pub const OLD_KEYS: [(&str, &str); 17] = [
@@ -60,57 +57,32 @@ pub const OLD_KEYS: [(&str, &str); 17] = [
     ),
 ];
 
-/// The keys `t` holds, in [`OLD_KEYS`] order.
-fn present(t: &ReplanningFile) -> Vec<&'static str> {
-    let has = [
-        t.every_n_ticks.is_some(),
-        t.steps_per_tick.is_some(),
-        t.target_latitude_deg.is_some(),
-        t.target_longitude_deg.is_some(),
-        t.range_km.is_some(),
-        t.final_speed_m_s.is_some(),
-        t.heat_flux_limit_kw_m2.is_some(),
-        t.g_load_limit.is_some(),
-        t.lambda.is_some(),
-        t.min_vertical_fraction.is_some(),
-        t.max_vertical_fraction.is_some(),
-        t.tolerance_m.is_some(),
-        t.max_iterations.is_some(),
-        t.max_skips.is_some(),
-        t.predictor.is_some(),
-        t.apply_out_of_reach.is_some(),
-        t.polar_mach.is_some(),
-    ];
-    OLD_KEYS
+/// The error of a `[replanning]` section `t` in the scenario file `file`: names the section
+/// and, for each key it holds (in [`OLD_KEYS`] order, then any other key), the new key.
+pub(super) fn refuse(file: &str, t: &toml::Table) -> ScenarioError {
+    let mut moves: Vec<String> = OLD_KEYS
         .iter()
-        .zip(has)
-        .filter_map(|(&(k, _), h)| h.then_some(k))
-        .collect()
-}
-
-/// The error of a `[replanning]` section `t` in a scenario with guidance layers: names the
-/// section and, for each key it holds, the new key.
-pub(super) fn refuse(f: &Fields<'_>, t: &ReplanningFile) -> ScenarioError {
-    let moves: Vec<String> = present(t)
-        .into_iter()
-        .filter_map(|k| {
-            OLD_KEYS
-                .iter()
-                .find(|(o, _)| *o == k)
-                .map(|(o, n)| format!("replanning.{o} -> {n}"))
-        })
+        .filter(|(o, _)| t.contains_key(*o))
+        .map(|(o, n)| format!("replanning.{o} -> {n}"))
         .collect();
+    moves.extend(
+        t.keys()
+            .filter(|k| OLD_KEYS.iter().all(|(o, _)| o != k))
+            .map(|k| format!("replanning.{k} -> none: not a key of the former section")),
+    );
     let moves = if moves.is_empty() {
         String::new()
     } else {
         format!(": {}", moves.join("; "))
     };
-    f.err(
-        "replanning",
-        "(section)",
-        &format!(
-            "a scenario with [guidance.*] layers writes its re-planner in [guidance.replanning] \
-             and its target in [guidance.target]; remove [replanning]{moves}"
+    ScenarioError::Field {
+        file: file.to_string(),
+        field: "replanning".into(),
+        value: "(section)".into(),
+        reason: format!(
+            "the section is gone: the re-planner is written in [guidance.replanning] (with \
+             [guidance.lateral] for the bank reversals it flies with) and its target in \
+             [guidance.target] (docs/reference/guidance-stack.md); remove [replanning]{moves}"
         ),
-    )
+    }
 }

@@ -97,6 +97,9 @@ pub fn read_scenario(path: &Path) -> Result<Scenario, ScenarioError> {
 /// [`ScenarioError`] naming file, field and value.
 pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
     let sf = read_file(text, file)?;
+    if let Some(t) = &sf.replanning {
+        return Err(super::old_replanning::refuse(file, t));
+    }
     let f = Fields { file };
     super::required::check(&f, &sf)?;
     // The generic defaults (integrator, monitors, output, environment preset, heat-flux
@@ -171,12 +174,6 @@ pub fn parse_scenario(text: &str, file: &str, base_dir: &Path) -> Result<Scenari
     }
     if let Some(t) = sf.output {
         output(&f, t, &mut sc)?;
-    }
-    if let Some(t) = sf.replanning {
-        if sc.layers.is_some() {
-            return Err(super::old_replanning::refuse(&f, &t));
-        }
-        super::resolve_replanning::replanning(&f, t, &mut sc)?;
     }
     cross_checks(&f, &sc)?;
     Ok(sc)

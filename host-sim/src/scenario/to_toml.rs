@@ -1,9 +1,8 @@
 //! The scenario as TOML text (the inverse of [`parse_scenario`](super::parse_scenario)).
 
 use guidance_core::nodes::Independent;
-use guidance_core::replan::{PredictorMode, RangeTarget};
 
-use super::{AtmosphereSpec, InterpolationKind, ReplanningSpec, Scenario, VehicleSpec};
+use super::{AtmosphereSpec, InterpolationKind, Scenario, VehicleSpec};
 
 /// Rounding to 10 decimals for printing degree values (keeps 40.0 from printing as
 /// 39.99999999999999 after a radian round trip).
@@ -164,9 +163,6 @@ fn plain_toml(sc: &Scenario) -> String {
         sc.g_rate_window_s
     );
     let _ = writeln!(s, "\n[output]\ninterval_s = {:?}", sc.output_interval_s);
-    if let Some(rp) = &sc.replanning {
-        replanning(&mut s, rp, r);
-    }
     if let Some(l) = &sc.layers {
         layers(&mut s, l);
         target(&mut s, l.target, r);
@@ -278,57 +274,6 @@ fn layers(s: &mut String, l: &super::GuidanceLayers) {
     }
 }
 
-/// The `[replanning]` section (planet radius `r` \[m\] for a range target).
-fn replanning(s: &mut String, rp: &ReplanningSpec, r: f64) {
-    use std::fmt::Write as _;
-    let _ = writeln!(
-        s,
-        "\n[replanning]\nevery_n_ticks = {}\nsteps_per_tick = {}",
-        rp.every_n_ticks, rp.steps_per_tick
-    );
-    match rp.target {
-        RangeTarget::Point(p) => {
-            let _ = writeln!(
-                s,
-                "target_latitude_deg = {:?}\ntarget_longitude_deg = {:?}",
-                p.latitude_rad.to_degrees(),
-                p.longitude_rad.to_degrees()
-            );
-        }
-        RangeTarget::FlownRangeAngle { total_rad } => {
-            let _ = writeln!(s, "range_km = {:?}", total_rad * r / 1e3);
-        }
-    }
-    let _ = writeln!(s, "final_speed_m_s = {:?}", rp.final_speed_m_s);
-    if let Some(q) = rp.heat_flux_limit_w_m2 {
-        let _ = writeln!(s, "heat_flux_limit_kw_m2 = {:?}", q / 1e3);
-    }
-    if let Some(n) = rp.g_load_limit {
-        let _ = writeln!(s, "g_load_limit = {n:?}");
-    }
-    let _ = writeln!(
-        s,
-        "lambda = {:?}\nmin_vertical_fraction = {:?}\nmax_vertical_fraction = {:?}\ntolerance_m = {:?}\nmax_iterations = {}\nmax_skips = {}\npredictor = {:?}\napply_out_of_reach = {}\npolar_mach = {:?}",
-        rp.lambda,
-        rp.min_vertical_fraction,
-        rp.max_vertical_fraction,
-        rp.tolerance_m,
-        rp.max_iterations,
-        rp.max_skips,
-        match rp.mode {
-            PredictorMode::Chain => "chain",
-            PredictorMode::Glide => "glide",
-            PredictorMode::Auto => "auto",
-            PredictorMode::AutoSink => "auto-sink",
-            PredictorMode::Numerical => "numerical",
-            PredictorMode::Hybrid => "hybrid",
-            PredictorMode::HybridSink => "hybrid-sink",
-        },
-        rp.apply_out_of_reach,
-        rp.polar_mach
-    );
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -344,7 +289,7 @@ mod tests {
         .unwrap();
         let replanning = parse_scenario(&text, "x.toml", std::path::Path::new(".")).unwrap();
         let exponential = parse_scenario(
-            "vehicle = \"horus-2b\"\n[environment]\natmosphere = \"exponential\"\n[entry]\naltitude_km = 122.0\nlongitude_deg = -106.7\nlatitude_deg = -22.3\nspeed_m_s = 7435.5\nflight_path_angle_deg = -1.43\nheading_deg = 70.75\n[guidance]\nindependent = \"energy\"\ninterpolation = \"hermite\"\ntension = 0.5\nperiod_s = 2.0\nalpha_rate_deg_s = 5.0\nsigma_rate_deg_s = 15.0\ninitial_alpha_deg = 40.0\ninitial_sigma_deg = 0.0\nnodes = [[1.0, 40.0, 0.0], [0.5, 30.0, 50.0], [0.0, 10.0, 0.0]]\n[termination]\nmax_time_s = 2500.0\nmach = 3.0\nnormalized_energy = 0.01\n[replanning]\ntarget_latitude_deg = 1.0\ntarget_longitude_deg = 2.0\nfinal_speed_m_s = 2000.0\nheat_flux_limit_kw_m2 = 400.0\ng_load_limit = 2.5\n",
+            "vehicle = \"horus-2b\"\n[environment]\natmosphere = \"exponential\"\n[entry]\naltitude_km = 122.0\nlongitude_deg = -106.7\nlatitude_deg = -22.3\nspeed_m_s = 7435.5\nflight_path_angle_deg = -1.43\nheading_deg = 70.75\n[guidance]\nindependent = \"energy\"\ninterpolation = \"hermite\"\ntension = 0.5\nperiod_s = 2.0\nalpha_rate_deg_s = 5.0\nsigma_rate_deg_s = 15.0\ninitial_alpha_deg = 40.0\ninitial_sigma_deg = 0.0\nnodes = [[1.0, 40.0, 0.0], [0.5, 30.0, 50.0], [0.0, 10.0, 0.0]]\n[termination]\nmax_time_s = 2500.0\nmach = 3.0\nnormalized_energy = 0.01\n",
             "x.toml",
             std::path::Path::new("."),
         )

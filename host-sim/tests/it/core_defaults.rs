@@ -7,11 +7,11 @@ use guidance_core::lateral::{
     DEFAULT_MAX_REVERSALS, DEFAULT_WIDTH_ENTRY_DEG, DEFAULT_WIDTH_FINAL_DEG,
 };
 use guidance_core::missions::{self, HORUS2B_LIMITS, SRM_LIMITS};
-use guidance_core::replan::{DEFAULT_EVERY_N_TICKS, ReplanConfig, ReplanningConfig};
+use guidance_core::replan::{DEFAULT_EVERY_N_TICKS, ReplanConfig};
 use guidance_core::vinh::nondim::VehicleParams;
 use host_sim::analytic::AnalyticVehicle;
-use host_sim::campaign::CampaignGuidance;
-use host_sim::scenario::{Scenario, build_replanning, parse_scenario};
+use host_sim::campaign::{CampaignGuidance, CampaignSetup};
+use host_sim::scenario::{Scenario, parse_scenario};
 use host_sim::vehicle::{Vehicle, by_name as builtin};
 
 fn close(a: f64, b: f64) -> bool {
@@ -103,7 +103,9 @@ fn core_srm_glide_is_the_builtin_scenario() {
     );
 }
 
-/// A `[replanning]` section with only its required keys resolves to the core's defaults.
+/// An empty `[guidance.replanning]` section (with `[guidance.lateral]` and a target) builds
+/// the core's default re-planner: `ReplanConfig::new` at the interface speed, the vehicle's
+/// limits, re-planning every `DEFAULT_EVERY_N_TICKS` ticks.
 #[test]
 fn scenario_replanning_defaults_are_the_cores() {
     let text = r#"
@@ -128,20 +130,22 @@ initial_sigma_deg = 0.0
 nodes = [[1.0, 0.0, 0.0], [0.5, 0.0, 50.0], [0.0, 0.0, 0.0]]
 [termination]
 max_time_s = 3000.0
-[replanning]
-range_km = 8000.0
-final_speed_m_s = 2500.0
+[guidance.replanning]
+[guidance.lateral]
+[guidance.target]
+downrange_km = 8000.0
+crossrange_km = 0.0
+interface_speed_m_s = 2500.0
 "#;
     let sc = parse_scenario(text, "test.toml", std::path::Path::new(".")).unwrap();
-    let env = sc.environment.build();
-    let vehicle = sc.load_vehicle().unwrap();
-    let got = build_replanning(&sc, &env, &vehicle, "test.toml")
-        .unwrap()
-        .unwrap();
-    let want = ReplanningConfig::new(got.target, 2500.0, SRM_LIMITS.load_limits(), got.model);
-    assert_eq!(got, want);
+    let setup = CampaignSetup::new(&sc, "test.toml", None).unwrap();
+    let got = setup.stack.replan.unwrap();
+    assert_eq!(setup.interface_speed_m_s, 2500.0);
     assert_eq!(got.solver, ReplanConfig::new(2500.0));
+    assert_eq!(got.limits, SRM_LIMITS.load_limits());
     assert_eq!(got.every_n_ticks, DEFAULT_EVERY_N_TICKS);
+    assert!(got.apply_out_of_reach);
+    assert_eq!(got.steps_per_tick, 0);
 }
 
 /// The campaigns' default lateral logic and estimator are the core's defaults.

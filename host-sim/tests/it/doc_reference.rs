@@ -90,8 +90,8 @@ fn scenario_reference_is_current() {
         .join("srm-glide-replanning.toml");
     let replanning = scenario_to_toml(&read_scenario(&example).expect("the example reads"));
     let section = &replanning[replanning
-        .find("[replanning]")
-        .expect("the example has [replanning]")..];
+        .find("[guidance.lateral]")
+        .expect("the example has guidance layers")..];
     let doc = with_generated(&stored, "print-scenario", &template);
     let doc = with_generated(&doc, "print-scenario-replanning", section);
     check_or_update("scenario.md", &doc);

@@ -138,19 +138,13 @@ const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
          recursion.",
     ),
     (
-        &["pil::reference", "pil::scenario"],
-        "the reference flight is built from the PIL scenario, which names the reference type.",
-    ),
-    (
         &[
             "scenario::file",
-            "scenario::old_replanning",
             "scenario::required",
             "scenario::resolve",
             "scenario::resolve_environment",
             "scenario::resolve_guidance",
             "scenario::resolve_layers",
-            "scenario::resolve_replanning",
         ],
         "resolve and its per-section resolve_* helpers call each other, and file calls \
          resolve_layers; the helpers would take their shared context from a leaf module.",

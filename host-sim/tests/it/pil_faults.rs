@@ -1,5 +1,5 @@
 //! PIL under link faults (issue 13.5): seeded drops, corruptions and frames delayed past their
-//! tick on the HORUS-2B reference mission (Cortex-M4F). The run finishes; the firmware flies its
+//! tick on the HORUS-2B reference mission with its whole stack (Cortex-M4F). The run finishes; the firmware flies its
 //! held command and counts exactly the faults it saw (every corrupted and every late frame);
 //! the record holds every attempt; the same seed gives the same run.
 
@@ -24,7 +24,7 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
     };
     let (r, record) = run();
     let (res, stats) = match r {
-        Ok(r) => r,
+        Ok(r) => (r.result, r.stats),
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
         {
@@ -69,7 +69,8 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
     assert_eq!(res.summary.ticks, stats.frames + f.missed_ticks, "{f:?}");
     // Same seed, same run.
     let (again, _) = run();
-    let (res2, stats2) = again.unwrap();
+    let again = again.unwrap();
+    let (res2, stats2) = (again.result, again.stats);
     assert_eq!(stats2.faults, f);
     let (a, b) = (res.samples.last().unwrap(), res2.samples.last().unwrap());
     assert_eq!(a.state.speed_m_s.to_bits(), b.state.speed_m_s.to_bits());
@@ -92,7 +93,7 @@ fn pil_cli_prints_and_writes_the_link_fault_counts() {
     let mut cfg = PilConfig::new(elf.clone());
     cfg.faults = Some(faults);
     let stats = match fly_scenario_pil(&Scenario::default(), "(test)", cfg).0 {
-        Ok((_, stats)) => stats,
+        Ok(r) => r.stats,
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
         {

@@ -1,6 +1,8 @@
-//! PIL for any scenario: the HORUS-2B reference mission (time-indexed, linear) and the SRM
-//! glide (energy-indexed) uploaded as set-up frames and flown on the Cortex-M4F (`f32`) and on
-//! the Cortex-M3 (fixed point), each against SIL (`f64` in-process) with a derived bound.
+//! PIL for any scenario's stored profile (a scenario without `[guidance.*]` layers): the HORUS-2B
+//! reference mission (time-indexed, linear) and the SRM glide (energy-indexed) uploaded as a
+//! set-up image of their profile-only stack and flown on the Cortex-M4F (`f32`) and on the
+//! Cortex-M3 (fixed point), each against its host twin (bit for bit) and against SIL (`f64`
+//! in-process) with a derived bound. A scenario with layers: `pil_replanning.rs`.
 //!
 //! Attitude bound (per run, from the scenario's own numbers):
 //!   e <= C u A + L dx + R r,
@@ -95,7 +97,7 @@ fn attitude_bound(sc: &Scenario, fixed: bool) -> f64 {
 fn check(sc: &Scenario, target: &str, fixed: bool) {
     let name = format!("{} on {target}", sc.name);
     let elf = pil_elf(target);
-    let (pil, stats) = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf.clone())).0 {
+    let run = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf.clone())).0 {
         Ok(r) => r,
         Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
             if std::env::var_os("PIL_REQUIRED").is_none() =>
@@ -105,6 +107,14 @@ fn check(sc: &Scenario, target: &str, fixed: bool) {
         }
         Err(e) => panic!("{name}: PIL run failed: {e}"),
     };
+    assert!(
+        run.stack.is_none(),
+        "{name}: a stored profile has no target"
+    );
+    // The firmware computes what its host twin (the image in its scalars) computes.
+    assert_eq!(run.twin.mismatches, 0, "{name}: {:?}", run.twin.first);
+    assert_eq!(u64::from(run.twin.ticks), run.stats.frames, "{name}");
+    let (pil, stats) = (run.result, run.stats);
     // The firmware's whole-run stack (painted), and the image's static RAM plus it, within
     // their budgets.
     let stack = stats
@@ -154,25 +164,25 @@ fn check(sc: &Scenario, target: &str, fixed: bool) {
     }
 }
 
+/// The SRM glide's stored profile alone (the built-in without its layers).
+fn srm_glide_stored() -> Scenario {
+    Scenario {
+        layers: None,
+        ..Scenario::srm_glide()
+    }
+}
+
 #[test]
 fn pil_srm_glide_m4f_matches_sil() {
-    check(
-        &Scenario::try_builtin("srm-glide").unwrap(),
-        "thumbv7em-none-eabihf",
-        false,
-    );
+    check(&srm_glide_stored(), "thumbv7em-none-eabihf", false);
 }
 
 #[test]
 fn pil_srm_glide_m3_fixed_point_matches_sil() {
-    check(
-        &Scenario::try_builtin("srm-glide").unwrap(),
-        "thumbv7m-none-eabi",
-        true,
-    );
+    check(&srm_glide_stored(), "thumbv7m-none-eabi", true);
 }
 
 #[test]
 fn pil_reference_mission_m3_fixed_point_matches_sil() {
-    check(&Scenario::default(), "thumbv7m-none-eabi", true);
+    check(&Scenario::horus_2b_stored(), "thumbv7m-none-eabi", true);
 }

@@ -284,87 +284,87 @@ fn host_scenarios_take_256_nodes() {
     assert!(e.contains("guidance.nodes") && e.contains("256"), "{e}");
 }
 
-/// The re-planning example (`[replanning]`): it parses into the core's settings, prints back
-/// to the same scenario, and flies to its flown-range target: the stored profile alone ends
-/// hundreds of km short, re-planning within 10 km.
+/// The re-planning example (`[guidance.replanning]` with `[guidance.lateral]`, aimed at a
+/// downrange target): it parses into the layers, prints back to the same scenario, and flies
+/// to its target: the stored profile alone ends hundreds of km short, the stack within 10 km.
 #[test]
 fn replanning_example_flies_to_its_target() {
+    use host_sim::scenario::TargetSpec;
     let sc = read_scenario(&examples().join("srm-glide-replanning.toml")).unwrap();
-    let rp = sc.replanning.expect("a [replanning] section");
-    let guidance_core::replan::RangeTarget::FlownRangeAngle { total_rad } = rp.target else {
-        panic!("flown-range target expected: {:?}", rp.target);
+    let l = sc.layers.as_ref().expect("guidance layers");
+    assert!(l.layers.replan && l.layers.lateral && !l.layers.estimator && !l.layers.barrier);
+    let radius = sc.environment.planet.radius_m;
+    let TargetSpec::Range {
+        downrange_rad,
+        crossrange_rad,
+    } = l.target
+    else {
+        panic!("downrange target expected: {:?}", l.target);
     };
-    assert!(rel(total_rad * sc.environment.planet.radius_m, 18_034.65e3) < 1e-15);
-    assert_eq!(rp.every_n_ticks, 5);
-    assert_eq!(rp.mode, guidance_core::replan::PredictorMode::Hybrid);
-    assert!(!rp.apply_out_of_reach);
+    assert!(rel(downrange_rad * radius, 18_034.65e3) < 1e-15);
+    assert_eq!(crossrange_rad, 0.0);
+    assert_eq!(l.interface_speed_m_s, Some(2500.0));
+    assert_eq!(l.settings.replan_every_n_ticks, 5);
+    assert_eq!(
+        l.settings.predictor,
+        host_sim::scenario::guidance_layers::CampaignPredictor::Hybrid
+    );
     let text = host_sim::scenario::scenario_to_toml(&sc);
     let back = parse_scenario(&text, "printed.toml", Path::new(".")).unwrap();
-    assert_eq!(back.replanning, sc.replanning);
-    let radius = sc.environment.planet.radius_m;
-    let flown = |sc: &Scenario| {
-        fly(sc, "(test)", &mut |_| {})
-            .unwrap()
-            .result
-            .summary
-            .flown_range_angle_rad
-            * radius
-    };
-    let r = flown(&sc);
+    assert_eq!(back.layers, sc.layers);
+    let flight = fly(&sc, "(test)", &mut |_| {}).unwrap();
+    let case = &flight.stack.as_ref().expect("the stack's outcome").case;
     let stored = Scenario {
-        replanning: None,
+        layers: None,
         ..sc.clone()
     };
-    let s = flown(&stored);
-    let target = total_rad * radius;
+    let s = fly(&stored, "(test)", &mut |_| {})
+        .unwrap()
+        .result
+        .summary
+        .range_angle_rad
+        * radius;
+    let target = downrange_rad * radius;
     println!(
-        "flown-range miss: stored {:.1} km, re-planned {:.1} km",
-        (s - target) / 1e3,
-        (r - target) / 1e3
+        "miss: stored profile {:.1} km short, stack {:.2} km ({} reversals, {} re-plans)",
+        (target - s) / 1e3,
+        case.miss_m / 1e3,
+        case.reversals,
+        case.replans
     );
-    assert!((s - target).abs() > 300e3);
-    assert!((r - target).abs() < 10e3);
+    assert!(target - s > 300e3);
+    assert!(case.reached_interface, "{}", case.termination);
+    assert!(case.miss_m < 10e3);
+    assert!(case.replans > 0);
 }
 
-/// `[replanning]` errors name the file, the field and the value.
+/// The former top-level `[replanning]` section is refused with or without layers, the error
+/// naming the file, the section and, for each key it holds, the key that replaced it.
 #[test]
-fn bad_replanning_settings_are_named() {
+fn old_replanning_section_is_refused() {
     let energy =
         "[guidance]\nindependent = \"energy\"\nnodes = [[1, 0, 0], [0.5, 0, 40], [0, 0, 0]]\n";
     let cases: &[(String, &[&str])] = &[
         (
             "[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\n".into(),
-            &["s.toml", "guidance.independent", "energy-indexed"],
+            &[
+                "s.toml",
+                "`replanning`",
+                "replanning.range_km -> [guidance.target] downrange_km",
+                "replanning.final_speed_m_s -> [guidance.target] interface_speed_m_s",
+            ],
         ),
         (
-            format!("{energy}[replanning]\nrange_km = 1000\n"),
-            &["s.toml", "replanning.final_speed_m_s", "missing"],
+            format!("{energy}[replanning]\npredictor = \"auto\"\nevery = 3\n"),
+            &[
+                "s.toml",
+                "replanning.predictor -> [guidance.replanning] predictor",
+                "replanning.every -> none",
+            ],
         ),
         (
-            format!("{energy}[replanning]\nfinal_speed_m_s = 2500\n"),
-            &["s.toml", "replanning.range_km", "either"],
-        ),
-        (
-            format!(
-                "{energy}[replanning]\nrange_km = 1000\ntarget_latitude_deg = 1\ntarget_longitude_deg = 2\nfinal_speed_m_s = 2500\n"
-            ),
-            &["s.toml", "replanning.range_km", "1000"],
-        ),
-        (
-            format!(
-                "{energy}[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\nmin_vertical_fraction = 0\n"
-            ),
-            &["s.toml", "replanning.min_vertical_fraction", "0", "(0, 1]"],
-        ),
-        (
-            format!(
-                "{energy}[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\nmax_iterations = 2.5\n"
-            ),
-            &["s.toml", "replanning.max_iterations", "2.5", "integer"],
-        ),
-        (
-            format!("{energy}[replanning]\nrange_km = 1000\nfinal_speed_m_s = 2500\nevery = 3\n"),
-            &["s.toml", "replanning.every"],
+            format!("{energy}[replanning]\n"),
+            &["s.toml", "`replanning`", "[guidance.replanning]"],
         ),
     ];
     for (text, words) in cases {
@@ -375,77 +375,4 @@ fn bad_replanning_settings_are_named() {
             assert!(e.contains(w), "{text}: `{e}` lacks `{w}`");
         }
     }
-}
-
-/// Every `[replanning] predictor` name reaches its `PredictorMode` and prints back to itself;
-/// an unknown name is an error naming the file, the field and the value.
-#[test]
-fn replanning_predictor_names_parse_and_round_trip() {
-    use guidance_core::replan::PredictorMode;
-    let base = std::fs::read_to_string(examples().join("srm-glide-replanning.toml")).unwrap();
-    let line = "predictor = \"hybrid\"";
-    assert!(base.contains(line), "the example sets the predictor");
-    let with = |name: &str| {
-        base.lines()
-            .map(|l| {
-                if l.trim_start().starts_with("predictor =") {
-                    format!("predictor = \"{name}\"")
-                } else {
-                    l.to_owned()
-                }
-            })
-            .collect::<Vec<_>>()
-            .join("\n")
-    };
-    for (name, mode) in [
-        ("chain", PredictorMode::Chain),
-        ("glide", PredictorMode::Glide),
-        ("auto", PredictorMode::Auto),
-        ("auto-sink", PredictorMode::AutoSink),
-        ("numerical", PredictorMode::Numerical),
-        ("hybrid", PredictorMode::Hybrid),
-        ("hybrid-sink", PredictorMode::HybridSink),
-    ] {
-        let sc = parse_scenario(&with(name), "p.toml", &examples()).unwrap();
-        let rp = sc.replanning.as_ref().expect("a [replanning] section");
-        assert_eq!(rp.mode, mode, "{name}");
-        let text = host_sim::scenario::scenario_to_toml(&sc);
-        assert!(
-            text.contains(&format!("predictor = \"{name}\"")),
-            "{name} printed as: {text}"
-        );
-        let back = parse_scenario(&text, "printed.toml", &examples()).unwrap();
-        assert_eq!(back.replanning, sc.replanning, "{name}");
-    }
-    let e = parse_scenario(&with("numeric"), "p.toml", &examples())
-        .unwrap_err()
-        .to_string();
-    for w in [
-        "p.toml",
-        "replanning.predictor",
-        "numeric",
-        "unknown variant",
-    ] {
-        assert!(e.contains(w), "`{e}` lacks `{w}`");
-    }
-}
-
-/// Without a `predictor` line `[replanning]` flies the hybrid predictor (the closed forms where
-/// the prediction is `InDomain`, else the numerical one: docs/validation/vinh-numerical.md, issue 10 item 5); `auto`
-/// stays selectable.
-#[test]
-fn replanning_predictor_defaults_to_hybrid() {
-    use guidance_core::replan::PredictorMode;
-    let base = std::fs::read_to_string(examples().join("srm-glide-replanning.toml")).unwrap();
-    let without: String = base
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("predictor ="))
-        .collect::<Vec<_>>()
-        .join("\n");
-    assert_ne!(without.len(), base.len(), "the example sets the predictor");
-    let sc = parse_scenario(&without, "p.toml", &examples()).unwrap();
-    assert_eq!(sc.replanning.unwrap().mode, PredictorMode::Hybrid);
-    let auto = without.replace("[replanning]\n", "[replanning]\npredictor = \"auto\"\n");
-    let sc = parse_scenario(&auto, "p.toml", &examples()).unwrap();
-    assert_eq!(sc.replanning.unwrap().mode, PredictorMode::Auto);
 }

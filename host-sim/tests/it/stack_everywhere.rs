@@ -104,7 +104,8 @@ fn simulate_refuses_layers_that_make_no_mode() {
     );
 }
 
-/// A `[replanning]` section beside the guidance layers is refused, naming the new key of each
+/// A `[replanning]` section (here beside the guidance layers; without them too:
+/// `scenario_files::old_replanning_section_is_refused`) is refused, naming the new key of each
 /// old one it holds (one set of names per setting).
 #[test]
 fn replanning_beside_the_layers_names_the_new_keys() {
