@@ -376,3 +376,29 @@ fn old_replanning_section_is_refused() {
         }
     }
 }
+
+/// Every scenario file under examples/ (top level and examples/validation/) reads on its own,
+/// as `host-sim simulate --scenario FILE` and `dispersions --scenario FILE` read it: a file the
+/// docs name as a scenario is complete, not an overlay. Vehicle and dispersion-settings files
+/// are told apart by name.
+#[test]
+fn every_example_scenario_reads_on_its_own() {
+    let mut read = 0;
+    for dir in [examples(), examples().join("validation")] {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if path.extension().is_none_or(|e| e != "toml")
+                || name.ends_with("-vehicle.toml")
+                || name.starts_with("dispersions")
+            {
+                continue;
+            }
+            if let Err(e) = read_scenario(&path) {
+                panic!("{}: {e}", path.display());
+            }
+            read += 1;
+        }
+    }
+    assert!(read >= 15, "{read} example scenarios read");
+}
