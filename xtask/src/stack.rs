@@ -42,20 +42,24 @@ pub fn stack() -> Result<(), String> {
     let mut over = Vec::new();
     for m in &MACHINES {
         let fw = build_firmware(m.target)?;
-        let bench = fw.with_file_name("stack-bench");
-        let out = qemu(m, &bench, false)
-            .output()
-            .map_err(|e| format!("cannot run QEMU on {}: {e}", bench.display()))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        if !out.status.success() {
-            return Err(format!(
-                "stack-bench on {} failed ({}): {stdout}{}",
-                m.description,
-                out.status,
-                String::from_utf8_lossy(&out.stderr)
-            ));
+        // The layers' measurements, then the full stack's (a binary of its own).
+        let mut rows = Vec::new();
+        for bin in ["stack-bench", "stack-bench-flight"] {
+            let bench = fw.with_file_name(bin);
+            let out = qemu(m, &bench, false)
+                .output()
+                .map_err(|e| format!("cannot run QEMU on {}: {e}", bench.display()))?;
+            let stdout = String::from_utf8_lossy(&out.stdout);
+            if !out.status.success() {
+                return Err(format!(
+                    "{bin} on {} failed ({}): {stdout}{}",
+                    m.description,
+                    out.status,
+                    String::from_utf8_lossy(&out.stderr)
+                ));
+            }
+            rows.extend(parse(&stdout)?);
         }
-        let rows = parse(&stdout)?;
         let pil = fw.with_file_name("pil");
         let bytes = std::fs::read(&pil).map_err(|e| format!("{}: {e}", pil.display()))?;
         let ram = onboard_spec::footprint::footprint(&bytes)

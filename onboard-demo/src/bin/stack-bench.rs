@@ -2,12 +2,9 @@
 //! of one guidance tick (HORUS-2B reference mission: `f32` on the Cortex-M4F, fixed point on
 //! the Cortex-M3), of the onboard navigation conversion (`f32`), and of a re-planning solve
 //! (`f32`: hardware float on the M4F, soft float on the M3; a converging solve and the
-//! solver's worst case), and of each vehicle's full campaign stack (`flight_stack_horus`,
-//! `flight_stack_srm`: the set-up image decoded, the `FlightStack` built and every tick of its
-//! recorded flight, `onboard_demo::flights`). Prints one `stack NAME: N bytes` line each and
-//! exits 0; `cargo xtask stack` (a step of `cargo xtask test`) reads them and checks static
-//! RAM plus the largest against `onboard-demo/size-budget.toml` (the full stack against the
-//! full-stack PIL row).
+//! solver's worst case). Prints one `stack NAME: N bytes` line each and exits 0; `cargo xtask
+//! stack` (a step of `cargo xtask test`) reads them and checks static RAM plus the largest
+//! against `onboard-demo/size-budget.toml`.
 //!
 //! Firmware only: built for the host this binary is a stub that exits 2.
 #![cfg_attr(target_os = "none", no_std)]
@@ -173,50 +170,12 @@ mod firmware {
         Ok((conv, worst))
     }
 
-    /// Each vehicle's campaign stack (`onboard_demo::flights`): the image decoded, the
-    /// `FlightStack` built, and every tick of its recorded flight, all in one measurement (what
-    /// the flight application does after the set-up image's last chunk and then per nav frame).
-    fn flight_stacks() -> Result<bool, &'static str> {
-        use guidance_core::nodes::DEFAULT_NODE_CAPACITY;
-        use guidance_core::setup::image::decode;
-        use guidance_core::stack::{FlightStack, Layers};
-        use onboard_demo::flights::{Recorded, VEHICLES};
-        let mut ok = true;
-        for (vehicle, bytes) in VEHICLES {
-            let f = Recorded::parse(bytes).ok_or("bad flight file")?;
-            let (d, r) = max_stack_bytes(|| {
-                let config = decode::<Num, DEFAULT_NODE_CAPACITY, f32>(
-                    core::hint::black_box(f.image),
-                    Layers::ALL,
-                )
-                .ok()?;
-                let mut stack = FlightStack::new(&config).ok()?;
-                let mut every = true;
-                for (nav, sensed) in f.ticks() {
-                    every &= stack.tick(&nav.to_scalar::<Num>(), sensed.as_ref()).is_ok();
-                }
-                Some(every)
-            });
-            if r != Some(true) {
-                return Err("full-stack flight failed");
-            }
-            let name = if vehicle == "horus" {
-                "flight_stack_horus"
-            } else {
-                "flight_stack_srm"
-            };
-            ok &= report(name, d);
-        }
-        Ok(ok)
-    }
-
     fn run() -> Result<bool, &'static str> {
         let mut ok = report("guidance_tick", tick()?);
         ok &= report("navconv_f32", navconv()?);
         let (conv, worst) = replans()?;
         ok &= report("replan_converged_f32", conv);
         ok &= report("replan_worst_case_f32", worst);
-        ok &= flight_stacks()?;
         Ok(ok)
     }
 
