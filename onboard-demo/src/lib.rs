@@ -18,6 +18,8 @@ extern crate std;
 pub mod app;
 pub mod clock;
 #[cfg(target_os = "none")]
+pub mod flights;
+#[cfg(target_os = "none")]
 pub mod insn;
 #[cfg(target_os = "none")]
 pub mod stack;

@@ -529,32 +529,37 @@ fn pil() -> Result<(), String> {
     run(c, "PIL closed loop (host-sim tests)")
 }
 
-/// Run the instruction-count firmware (`insn-bench`) on each machine under `-icount shift=0`
+/// Run the instruction-count firmware (`insn-bench`, then `insn-bench-stack`) on each machine under `-icount shift=0`
 /// and collect its counts (the firmware checks its own calibration and exits 1 if it is off).
 /// Its output goes to stderr; with `json`, the counts go to stdout as one JSON object.
 fn bench_firmware(json: bool) -> Result<insn::Counts, String> {
     let mut counts = insn::Counts::new();
     for m in &MACHINES {
         build_firmware(m.target)?;
-        let elf = firmware_elf(m.target).with_file_name("insn-bench");
-        eprintln!(
-            "xtask: instruction counts on {} ({}):",
-            m.description, m.target
-        );
-        let what = format!("insn-bench on {}", m.description);
-        let mut cmd = qemu(m, &elf, true);
-        eprintln!("xtask: {what}: {cmd:?}");
-        let out = cmd
-            .output()
-            .map_err(|e| format!("{what}: cannot start {cmd:?}: {e}"))?;
-        let text = String::from_utf8_lossy(&out.stdout);
-        eprint!("{text}{}", String::from_utf8_lossy(&out.stderr));
-        if !out.status.success() {
-            return Err(format!("{what} failed ({})", out.status));
-        }
-        let parsed = insn::parse(&text);
-        if parsed.is_empty() {
-            return Err(format!("{what}: no `bench` lines in its output"));
+        let mut parsed = insn::TargetCounts::new();
+        // The core's benchmarks, then the full flight stack's (a binary of its own).
+        for bin in ["insn-bench", "insn-bench-stack"] {
+            let elf = firmware_elf(m.target).with_file_name(bin);
+            eprintln!(
+                "xtask: instruction counts on {} ({}), {bin}:",
+                m.description, m.target
+            );
+            let what = format!("{bin} on {}", m.description);
+            let mut cmd = qemu(m, &elf, true);
+            eprintln!("xtask: {what}: {cmd:?}");
+            let out = cmd
+                .output()
+                .map_err(|e| format!("{what}: cannot start {cmd:?}: {e}"))?;
+            let text = String::from_utf8_lossy(&out.stdout);
+            eprint!("{text}{}", String::from_utf8_lossy(&out.stderr));
+            if !out.status.success() {
+                return Err(format!("{what} failed ({})", out.status));
+            }
+            let counts = insn::parse(&text);
+            if counts.is_empty() {
+                return Err(format!("{what}: no `bench` lines in its output"));
+            }
+            parsed.extend(counts);
         }
         counts.insert(m.target.to_string(), parsed);
     }
@@ -587,7 +592,10 @@ fn budget_value(text: &str, key: &str, file: &Path) -> Result<u64, String> {
         .map_err(|e| format!("{}: field `{key}` {e}", file.display()))
 }
 
-/// Check the release footprint of each firmware image against onboard-demo/size-budget.toml.
+/// Check the release footprint of the firmware images against onboard-demo/size-budget.toml:
+/// the smoke firmware (`<target>_flash_bytes`, `<target>_ram_bytes`) and the flight
+/// application that flies the full stack in PIL (`pil`: `<target>_pil_flash_bytes`,
+/// `<target>_pil_ram_bytes`).
 fn size() -> Result<(), String> {
     let budget_file = root().join("onboard-demo").join("size-budget.toml");
     let text = std::fs::read_to_string(&budget_file)
@@ -595,22 +603,33 @@ fn size() -> Result<(), String> {
     let mut over = Vec::new();
     for m in &MACHINES {
         let target = m.target;
-        let elf = build_firmware(target)?;
-        let bytes = std::fs::read(&elf).map_err(|e| format!("{}: {e}", elf.display()))?;
-        let fp = onboard_spec::footprint::footprint(&bytes)
-            .map_err(|e| format!("{}: {e}", elf.display()))?;
-        let key = target.replace('-', "_");
-        let flash_max = budget_value(&text, &format!("{key}_flash_bytes"), &budget_file)?;
-        let ram_max = budget_value(&text, &format!("{key}_ram_bytes"), &budget_file)?;
-        println!(
-            "xtask: size {target}: flash {} / {flash_max} bytes, static RAM {} / {ram_max} bytes",
-            fp.flash, fp.ram
-        );
-        if fp.flash > flash_max {
-            over.push(format!("{target} flash {} > budget {flash_max}", fp.flash));
-        }
-        if fp.ram > ram_max {
-            over.push(format!("{target} RAM {} > budget {ram_max}", fp.ram));
+        let smoke = build_firmware(target)?;
+        let pil = smoke.with_file_name("pil");
+        for (elf, image, prefix) in [(&smoke, "onboard-demo", ""), (&pil, "pil", "pil_")] {
+            let bytes = std::fs::read(elf).map_err(|e| format!("{}: {e}", elf.display()))?;
+            let fp = onboard_spec::footprint::footprint(&bytes)
+                .map_err(|e| format!("{}: {e}", elf.display()))?;
+            let key = target.replace('-', "_");
+            let flash_max =
+                budget_value(&text, &format!("{key}_{prefix}flash_bytes"), &budget_file)?;
+            let ram_max = budget_value(&text, &format!("{key}_{prefix}ram_bytes"), &budget_file)?;
+            println!(
+                "xtask: size {target} {image}: flash {} / {flash_max} bytes, static RAM {} / \
+                 {ram_max} bytes",
+                fp.flash, fp.ram
+            );
+            if fp.flash > flash_max {
+                over.push(format!(
+                    "{target} {image} flash {} > budget {flash_max}",
+                    fp.flash
+                ));
+            }
+            if fp.ram > ram_max {
+                over.push(format!(
+                    "{target} {image} RAM {} > budget {ram_max}",
+                    fp.ram
+                ));
+            }
         }
     }
     if over.is_empty() {

@@ -1,7 +1,9 @@
 //! `cargo xtask stack`: the measured maximum stack of the guidance tick, the navigation
 //! conversion and a re-plan on both machines (`onboard-demo`'s `stack-bench`, stack painting),
 //! and static RAM of the flight application (the `pil` firmware) plus the largest of them
-//! against `<target>_ram_plus_stack_bytes` in `onboard-demo/size-budget.toml`. (The `pil`
+//! against `<target>_ram_plus_stack_bytes` in `onboard-demo/size-budget.toml`; and each
+//! vehicle's full campaign stack (`flight_stack_*`: image decoded, stack built, its recorded
+//! flight ticked) plus that static RAM against `<target>_pil_ram_plus_stack_bytes`. (The `pil`
 //! image's static RAM plus the deepest stack of a whole PIL run, which the firmware measures
 //! itself, is checked against `<target>_pil_ram_plus_stack_bytes` by host-sim's PIL tests,
 //! the `cargo xtask pil` step.)
@@ -40,42 +42,61 @@ pub fn stack() -> Result<(), String> {
     let mut over = Vec::new();
     for m in &MACHINES {
         let fw = build_firmware(m.target)?;
-        let bench = fw.with_file_name("stack-bench");
-        let out = qemu(m, &bench, false)
-            .output()
-            .map_err(|e| format!("cannot run QEMU on {}: {e}", bench.display()))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        if !out.status.success() {
-            return Err(format!(
-                "stack-bench on {} failed ({}): {stdout}{}",
-                m.description,
-                out.status,
-                String::from_utf8_lossy(&out.stderr)
-            ));
+        // The layers' measurements, then the full stack's (a binary of its own).
+        let mut rows = Vec::new();
+        for bin in ["stack-bench", "stack-bench-flight"] {
+            let bench = fw.with_file_name(bin);
+            let out = qemu(m, &bench, false)
+                .output()
+                .map_err(|e| format!("cannot run QEMU on {}: {e}", bench.display()))?;
+            let stdout = String::from_utf8_lossy(&out.stdout);
+            if !out.status.success() {
+                return Err(format!(
+                    "{bin} on {} failed ({}): {stdout}{}",
+                    m.description,
+                    out.status,
+                    String::from_utf8_lossy(&out.stderr)
+                ));
+            }
+            rows.extend(parse(&stdout)?);
         }
-        let rows = parse(&stdout)?;
         let pil = fw.with_file_name("pil");
         let bytes = std::fs::read(&pil).map_err(|e| format!("{}: {e}", pil.display()))?;
         let ram = onboard_spec::footprint::footprint(&bytes)
             .map_err(|e| format!("{}: {e}", pil.display()))?
             .ram;
-        let key = format!("{}_ram_plus_stack_bytes", m.target.replace('-', "_"));
-        let max = budget_value(&text, &key, &budget_file)?;
-        let deepest = rows.iter().map(|(_, b)| *b).max().unwrap_or(0);
         for (name, b) in &rows {
             println!("xtask: stack {} {name}: {b} bytes", m.target);
         }
-        println!(
-            "xtask: stack {}: static RAM (pil) {ram} + deepest stack {deepest} = {} / {max} bytes",
-            m.target,
-            ram + deepest
-        );
-        if ram + deepest > max {
-            over.push(format!(
-                "{} RAM + stack {} > budget {max}",
+        // The full-stack flights against the full-stack PIL budget, the rest against the
+        // layers' budget.
+        let (flights, parts): (Vec<_>, Vec<_>) = rows
+            .iter()
+            .partition(|(name, _)| name.starts_with("flight_stack"));
+        for (what, rows, key) in [
+            ("deepest stack", parts, "ram_plus_stack_bytes"),
+            (
+                "deepest full-stack flight",
+                flights,
+                "pil_ram_plus_stack_bytes",
+            ),
+        ] {
+            let key = format!("{}_{key}", m.target.replace('-', "_"));
+            let max = budget_value(&text, &key, &budget_file)?;
+            let deepest = rows.iter().map(|(_, b)| *b).max().unwrap_or(0);
+            println!(
+                "xtask: stack {}: static RAM (pil) {ram} + {what} {deepest} = {} / {max} bytes \
+                 ({key})",
                 m.target,
                 ram + deepest
-            ));
+            );
+            if ram + deepest > max {
+                over.push(format!(
+                    "{} RAM + {what} {} > budget {max} ({key})",
+                    m.target,
+                    ram + deepest
+                ));
+            }
         }
     }
     if over.is_empty() {

@@ -10,6 +10,7 @@ mod doc_reference;
 mod dynamics_validation;
 mod env_validation;
 mod event_accuracy;
+mod firmware_bench_flights;
 mod guidance_layers;
 mod hypervolume;
 mod hypervolume_cli;
