@@ -254,7 +254,7 @@ pub struct RunSummary<'a> {
     pub moead_operator: Option<&'static str>,
     /// Points of the feasible front.
     pub front_size: usize,
-    /// Wall time of the evolution alone (no problem set-up, no output) [s].
+    /// Wall time of the evolution alone (no problem set-up, no output) \[s\].
     pub wall_time_s: f64,
     /// Evaluation threads.
     pub threads: usize,

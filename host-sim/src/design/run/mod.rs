@@ -349,7 +349,7 @@ impl Progress for () {}
 pub struct Finished {
     /// The last generation's record (`None`: no generation was recorded).
     pub last: Option<Record>,
-    /// Wall time of the evolution in this process [s].
+    /// Wall time of the evolution in this process \[s\].
     pub wall_time_s: f64,
 }
 
