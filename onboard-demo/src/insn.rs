@@ -45,3 +45,33 @@ impl InsnCounter {
         self.syst
     }
 }
+
+/// Instructions per SysTick tick on the M4F board (`mps2-an386`: SysTick at 25 MHz under
+/// `-icount shift=0`).
+#[cfg(target_abi = "eabihf")]
+pub const INSN_PER_TICK: u32 = 40;
+/// Instructions per SysTick tick on the M3 board (`lm3s6965evb`: SysTick at 12.5 MHz under
+/// QEMU, as calibrated).
+#[cfg(not(target_abi = "eabihf"))]
+pub const INSN_PER_TICK: u32 = 80;
+
+/// Time 10 000 `nop`s, print `bench calibration_10000_nop: N insn/call` over semihosting, and
+/// return whether `N` is within one tick ([`INSN_PER_TICK`] instructions, the resolution plus
+/// one tick of phase) of 10 000: the check every instruction-count binary runs first.
+pub fn calibrate(c: &mut InsnCounter) -> bool {
+    let t = c.ticks(|| {
+        #[allow(unsafe_code)]
+        // SAFETY: 10 000 `nop` instructions: no memory, register or flag effects.
+        unsafe {
+            core::arch::asm!(
+                ".rept 10000",
+                "nop",
+                ".endr",
+                options(nomem, nostack, preserves_flags)
+            );
+        }
+    });
+    let calibrated = t * INSN_PER_TICK;
+    cortex_m_semihosting::hprintln!("bench calibration_10000_nop: {} insn/call", calibrated);
+    calibrated.abs_diff(10_000) <= INSN_PER_TICK
+}

@@ -85,3 +85,19 @@ pub fn max_stack_bytes<R>(f: impl FnOnce() -> R) -> (StackDepth, R) {
         r,
     )
 }
+
+/// Print `stack NAME: N bytes` (or that the painted region was exceeded) over semihosting;
+/// true unless the measurement overflowed.
+pub fn report(name: &str, d: StackDepth) -> bool {
+    if d.overflowed {
+        cortex_m_semihosting::hprintln!(
+            "stack {}: over {} bytes (painted region exceeded)",
+            name,
+            d.bytes
+        );
+        false
+    } else {
+        cortex_m_semihosting::hprintln!("stack {}: {} bytes", name, d.bytes);
+        true
+    }
+}

@@ -24,26 +24,12 @@ fn main() {
 mod firmware {
     use cortex_m_rt::{ExceptionFrame, entry, exception};
     use cortex_m_semihosting::hprintln;
-    use onboard_demo::stack::{StackDepth, max_stack_bytes};
+    use onboard_demo::stack::{max_stack_bytes, report};
 
     #[cfg(target_abi = "eabihf")]
     type Num = f32;
     #[cfg(not(target_abi = "eabihf"))]
     type Num = guidance_core::Fixed;
-
-    fn report(name: &str, d: StackDepth) -> bool {
-        if d.overflowed {
-            hprintln!(
-                "stack {}: over {} bytes (painted region exceeded)",
-                name,
-                d.bytes
-            );
-            false
-        } else {
-            hprintln!("stack {}: {} bytes", name, d.bytes);
-            true
-        }
-    }
 
     /// Each vehicle's campaign stack (`onboard_demo::flights`): the image decoded, the
     /// `FlightStack` built, and every tick of its recorded flight, all in one measurement (what

@@ -31,26 +31,12 @@ mod firmware {
     use guidance_core::vinh::predict::{PredictorConfig, predict};
     use guidance_core::{NavState, Scalar};
     use nalgebra::Vector3;
-    use onboard_demo::stack::{StackDepth, max_stack_bytes};
+    use onboard_demo::stack::{StackDepth, max_stack_bytes, report};
 
     #[cfg(target_abi = "eabihf")]
     type Num = f32;
     #[cfg(not(target_abi = "eabihf"))]
     type Num = guidance_core::Fixed;
-
-    fn report(name: &str, d: StackDepth) -> bool {
-        if d.overflowed {
-            hprintln!(
-                "stack {}: over {} bytes (painted region exceeded)",
-                name,
-                d.bytes
-            );
-            false
-        } else {
-            hprintln!("stack {}: {} bytes", name, d.bytes);
-            true
-        }
-    }
 
     fn tick() -> Result<StackDepth, &'static str> {
         let mission = horus2b_reference::<Num>().map_err(|_| "mission")?;

@@ -31,7 +31,6 @@ mod flight;
 #[cfg(target_os = "none")]
 mod firmware {
     use cortex_m_rt::{ExceptionFrame, entry, exception};
-    use cortex_m_semihosting::hprintln;
     use onboard_demo::insn::InsnCounter;
 
     /// The guidance scalar: `f32` on the M4F, fixed point on the M3.
@@ -41,12 +40,7 @@ mod firmware {
     #[cfg(not(target_abi = "eabihf"))]
     pub(crate) type Num = guidance_core::Fixed;
 
-    /// Instructions per SysTick tick (as `insn-bench`).
-    #[cfg(target_abi = "eabihf")]
-    pub(crate) const INSN_PER_TICK: u32 = 40; // mps2-an386: 25 MHz
-    /// Instructions per SysTick tick (as `insn-bench`).
-    #[cfg(not(target_abi = "eabihf"))]
-    pub(crate) const INSN_PER_TICK: u32 = 80; // lm3s6965evb: SysTick at 12.5 MHz under QEMU
+    pub(crate) use onboard_demo::insn::INSN_PER_TICK;
 
     #[entry]
     fn main() -> ! {
@@ -54,21 +48,7 @@ mod firmware {
             onboard_demo::exit(false)
         };
         let mut c = InsnCounter::new(p.SYST);
-        let t = c.ticks(|| {
-            #[allow(unsafe_code)]
-            // SAFETY: 10 000 `nop` instructions: no memory, register or flag effects.
-            unsafe {
-                core::arch::asm!(
-                    ".rept 10000",
-                    "nop",
-                    ".endr",
-                    options(nomem, nostack, preserves_flags)
-                );
-            }
-        });
-        let calibrated = t * INSN_PER_TICK;
-        hprintln!("bench calibration_10000_nop: {} insn/call", calibrated);
-        if calibrated.abs_diff(10_000) > INSN_PER_TICK {
+        if !onboard_demo::insn::calibrate(&mut c) {
             onboard_demo::exit(false)
         }
         onboard_demo::exit(crate::flight::bench_flight_stacks(&mut c))

@@ -54,11 +54,7 @@ mod firmware {
     #[cfg(not(target_abi = "eabihf"))]
     type Num = guidance_core::Fixed;
 
-    /// Instructions per SysTick tick: 1 ns per instruction (`-icount shift=0`) over the CPU clock.
-    #[cfg(target_abi = "eabihf")]
-    pub(crate) const INSN_PER_TICK: u32 = 40; // mps2-an386: 25 MHz
-    #[cfg(not(target_abi = "eabihf"))]
-    pub(crate) const INSN_PER_TICK: u32 = 80; // lm3s6965evb: SysTick at 12.5 MHz under QEMU (calibrated)
+    pub(crate) use onboard_demo::insn::INSN_PER_TICK;
 
     /// Calls per measurement of the per-call benchmarks.
     pub(crate) const REPS: u32 = 100;
@@ -213,22 +209,7 @@ mod firmware {
             onboard_demo::exit(false)
         };
         let mut c = InsnCounter::new(p.SYST);
-        let t = c.ticks(|| {
-            #[allow(unsafe_code)]
-            // SAFETY: 10 000 `nop` instructions: no memory, register or flag effects.
-            unsafe {
-                core::arch::asm!(
-                    ".rept 10000",
-                    "nop",
-                    ".endr",
-                    options(nomem, nostack, preserves_flags)
-                );
-            }
-        });
-        let calibrated = t * INSN_PER_TICK;
-        hprintln!("bench calibration_10000_nop: {} insn/call", calibrated);
-        // Resolution is one tick; allow one tick of phase.
-        if calibrated.abs_diff(10_000) > INSN_PER_TICK {
+        if !onboard_demo::insn::calibrate(&mut c) {
             onboard_demo::exit(false)
         }
         let mut ok = bench_guidance(&mut c, "linear", Interpolation::Linear);
