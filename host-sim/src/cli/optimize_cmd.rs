@@ -156,7 +156,8 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     };
     writeln!(out, "{}", summary.line())?;
     if let Some(dir) = &a.out {
-        write_outputs(dir, &population_csv(pop), &front, &summary)?;
+        let population = population_csv(pop).map_err(crate::report::ReportError::from)?;
+        write_outputs(dir, &population, &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())

@@ -477,7 +477,12 @@ pub(super) fn write_outputs(
 ) -> Result<(), OptimizeError> {
     let mut rd = RunDir::begin(dir)?;
     rd.write("population.csv", population.as_bytes())?;
-    rd.write("front.csv", front_csv(front, summary.objectives).as_bytes())?;
+    rd.write(
+        "front.csv",
+        front_csv(front, summary.objectives)
+            .map_err(ReportError::from)?
+            .as_bytes(),
+    )?;
     let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
     rd.write("summary.json", json.as_bytes())?;
     rd.commit()?;

@@ -137,7 +137,8 @@ pub(super) fn run_variable_length(
     };
     writeln!(out, "{}", summary.line())?;
     if let Some(dir) = &a.out {
-        let population = chromosome_csv(&pop, m, problem.constraints());
+        let population = chromosome_csv(&pop, m, problem.constraints())
+            .map_err(crate::report::ReportError::from)?;
         write_outputs(dir, &population, &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
     }

@@ -2,7 +2,6 @@
 //! evaluated in parallel (closed-loop flights), written as samples.csv (decision, objectives,
 //! constraints, violation; one row per point in design order, whatever the thread count).
 
-use std::fmt::Write as _;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -11,6 +10,7 @@ use rayon::prelude::*;
 use super::optimize_reentry::ReentryError;
 use crate::design::{DesignConfig, latin_hypercube};
 use crate::optim::population::sanitize;
+use crate::optim::rows::{Exp, PopulationRow, population_header, write_csv};
 use crate::optim::{Problem, RealProblem};
 use crate::report::write_atomic;
 
@@ -65,14 +65,8 @@ pub fn run(a: &SampleArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
         .map_err(|e| bad("--threads", a.threads.to_string(), &e.to_string()))?;
     let evals: Vec<_> = pool.install(|| pts.par_iter().map(|x| p.evaluate(x)).collect());
     let (m, c) = (p.objectives(), p.constraints());
-    let mut csv = String::new();
-    let head: Vec<String> = (1..=p.bounds().dim())
-        .map(|i| format!("x{i}"))
-        .chain((1..=m).map(|i| format!("f{i}")))
-        .chain((1..=c).map(|i| format!("g{i}")))
-        .chain(["violation".into()])
-        .collect();
-    let _ = writeln!(csv, "{}", head.join(","));
+    let exps = |v: &[f64]| v.iter().copied().map(Exp).collect::<Vec<_>>();
+    let mut rows = Vec::with_capacity(pts.len());
     let mut feasible = 0usize;
     for (x, e) in pts.iter().zip(evals) {
         let e = e?;
@@ -84,15 +78,15 @@ pub fn run(a: &SampleArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
             v => v,
         };
         feasible += usize::from(v == 0.0);
-        let row: Vec<String> = x
-            .iter()
-            .chain(&e.objectives)
-            .chain(&e.constraints)
-            .chain(std::iter::once(&v))
-            .map(|v| format!("{v:e}"))
-            .collect();
-        let _ = writeln!(csv, "{}", row.join(","));
+        rows.push(PopulationRow {
+            x: x.iter().map(|&v| Some(Exp(v))).collect(),
+            f: exps(&e.objectives),
+            g: exps(&e.constraints),
+            violation: Exp(v),
+        });
     }
+    let csv = write_csv(&population_header(p.bounds().dim(), m, c), rows)
+        .map_err(crate::report::ReportError::from)?;
     write_atomic(&a.out, csv.as_bytes())?;
     writeln!(
         out,

@@ -38,6 +38,7 @@ pub mod problems;
 pub mod restore;
 pub mod rng;
 pub mod root;
+pub mod rows;
 pub mod run;
 pub mod weights;
 

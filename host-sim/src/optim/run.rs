@@ -1,14 +1,14 @@
 //! What a recorded optimisation run keeps, whatever its problem: the per-generation
 //! [`Record`] (counts, feasible fraction, front and its hypervolume), the [`Checkpoint`] of
 //! an algorithm's state with the records so far (checked on restore by [`check_records`]),
-//! the result front's order ([`front_order`]), the population CSV text
-//! ([`population_csv`], [`chromosome_csv`]), and a run's [`RunSummary`] (summary.json of
-//! `optimize` on a test problem) with its [`front_csv`] and one-line [`RunSummary::line`].
+//! the result front's order ([`front_order`]), the CSV text of the records
+//! ([`records_csv`]) and populations ([`population_csv`], [`chromosome_csv`]), and a run's
+//! [`RunSummary`] (summary.json of `optimize` on a test problem) with its [`front_csv`] and
+//! one-line [`RunSummary::line`]. Every CSV file is written through its serde row type of
+//! [`super::rows`] (the `csv` crate).
 //! The files themselves are written by the caller (atomically, through host-sim's report
 //! module; the re-entry runs: `crate::design::run`); this module, like all of `optim`,
 //! imports nothing else of host-sim.
-
-use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
@@ -18,6 +18,10 @@ use super::error::StateError;
 use super::hypervolume::hypervolume;
 use super::population::{Individual, feasible_fraction, feasible_front_indices};
 use super::problem::Problem;
+use super::rows::{
+    ChromosomeRow, Dec, Exp, FrontRow, PopulationRow, RECORD_HEADER, RecordRow, RowsError, Semi,
+    population_header, write_csv,
+};
 
 /// One generation's record.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -102,41 +106,26 @@ pub fn record_of(
     }
 }
 
-/// The population as CSV text: a header `x1..,f1..,g1..,violation`, then one row per
-/// individual in `{:e}` form. Variable-length decisions (SCEA) are padded with empty fields
-/// to the longest.
-#[must_use]
-pub fn population_csv(pop: &[Individual<Vec<f64>>]) -> String {
-    let mut s = String::new();
+/// The population as CSV text ([`PopulationRow`]): a header `x1..,f1..,g1..,violation`,
+/// then one row per individual in `{:e}` form. Variable-length decisions (SCEA) are padded
+/// with empty fields to the longest.
+///
+/// # Errors
+/// [`RowsError`] (not expected: every row has the header's length).
+pub fn population_csv(pop: &[Individual<Vec<f64>>]) -> Result<String, RowsError> {
     let n = pop.iter().map(|i| i.decision.len()).max().unwrap_or(0);
     let (m, c) = pop
         .first()
         .map_or((0, 0), |i| (i.objectives.len(), i.constraints.len()));
-    let head: Vec<String> = (1..=n)
-        .map(|i| format!("x{i}"))
-        .chain((1..=m).map(|i| format!("f{i}")))
-        .chain((1..=c).map(|i| format!("g{i}")))
-        .chain(["violation".into()])
-        .collect();
-    let _ = writeln!(s, "{}", head.join(","));
-    for ind in pop {
-        let pad = n - ind.decision.len();
-        let row: Vec<String> = ind
-            .decision
-            .iter()
-            .map(|v| format!("{v:e}"))
-            .chain(std::iter::repeat_n(String::new(), pad))
-            .chain(
-                ind.objectives
-                    .iter()
-                    .chain(&ind.constraints)
-                    .chain(std::iter::once(&ind.violation))
-                    .map(|v| format!("{v:e}")),
-            )
-            .collect();
-        let _ = writeln!(s, "{}", row.join(","));
-    }
-    s
+    let rows = pop.iter().map(|ind| PopulationRow {
+        x: (0..n)
+            .map(|k| ind.decision.get(k).copied().map(Exp))
+            .collect(),
+        f: ind.objectives.iter().copied().map(Exp).collect(),
+        g: ind.constraints.iter().copied().map(Exp).collect(),
+        violation: Exp(ind.violation),
+    });
+    write_csv(&population_header(n, m, c), rows)
 }
 
 /// The indices of `result`'s feasible front sorted by the first objective, each distinct
@@ -282,63 +271,84 @@ impl RunSummary<'_> {
     }
 }
 
-/// The front's objective vectors as CSV text (header `f1,f2,...` for `objectives`).
-#[must_use]
-pub fn front_csv(front: &[&[f64]], objectives: usize) -> String {
-    let mut csv = String::new();
+/// The front's objective vectors as CSV text ([`FrontRow`]; header `f1,f2,...` for
+/// `objectives`).
+///
+/// # Errors
+/// [`RowsError`] if a point has another number of objectives.
+pub fn front_csv(front: &[&[f64]], objectives: usize) -> Result<String, RowsError> {
     let header: Vec<String> = (1..=objectives).map(|i| format!("f{i}")).collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for f in front {
-        let row: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
-        let _ = writeln!(csv, "{}", row.join(","));
-    }
-    csv
+    let rows = front.iter().map(|f| FrontRow {
+        f: f.iter().copied().map(Exp).collect(),
+    });
+    write_csv(&header, rows)
 }
 
-fn joined(values: impl Iterator<Item = f64>) -> String {
-    values
-        .map(|v| format!("{v:e}"))
-        .collect::<Vec<_>>()
-        .join(";")
-}
-
-/// A variable-length population as CSV text, one chromosome per row: objectives,
-/// constraints, violation, then `x` (fixed genes), `nodes` (node count of each leg) and
-/// `genes` (all node genes), each a `;`-separated list.
-#[must_use]
+/// A variable-length population as CSV text ([`ChromosomeRow`]), one chromosome per row:
+/// objectives, constraints, violation, then `x` (fixed genes), `nodes` (node count of each
+/// leg) and `genes` (all node genes), each a `;`-separated list.
+///
+/// # Errors
+/// [`RowsError`] if an individual has another number of objectives or constraints.
 pub fn chromosome_csv(
     pop: &[Individual<Chromosome>],
     objectives: usize,
     constraints: usize,
-) -> String {
-    let mut csv = String::new();
+) -> Result<String, RowsError> {
     let header: Vec<String> = (1..=objectives)
         .map(|i| format!("f{i}"))
         .chain((1..=constraints).map(|i| format!("g{i}")))
         .chain(["violation", "x", "nodes", "genes"].map(String::from))
         .collect();
-    let _ = writeln!(csv, "{}", header.join(","));
-    for ind in pop {
-        let mut row: Vec<String> = ind
-            .objectives
-            .iter()
-            .chain(&ind.constraints)
-            .chain(std::iter::once(&ind.violation))
-            .map(|v| format!("{v:e}"))
-            .collect();
+    let exps = |v: &[f64]| v.iter().copied().map(Exp).collect::<Vec<_>>();
+    let rows = pop.iter().map(|ind| {
         let c = &ind.decision;
-        row.push(joined(c.fixed.iter().copied()));
-        row.push(
-            c.node_counts()
-                .iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join(";"),
-        );
-        row.push(joined(c.legs.iter().flatten().flatten().copied()));
-        let _ = writeln!(csv, "{}", row.join(","));
+        ChromosomeRow {
+            f: exps(&ind.objectives),
+            g: exps(&ind.constraints),
+            violation: Exp(ind.violation),
+            x: Semi(exps(&c.fixed)),
+            nodes: Semi(c.node_counts()),
+            genes: Semi(
+                c.legs
+                    .iter()
+                    .flatten()
+                    .flatten()
+                    .copied()
+                    .map(Exp)
+                    .collect(),
+            ),
+        }
+    });
+    write_csv(&header, rows)
+}
+
+impl From<&Record> for RecordRow {
+    /// The record of a two-objective run (NaN for a missing objective).
+    fn from(r: &Record) -> Self {
+        let at = |v: &[f64], k: usize| Exp(v.get(k).copied().unwrap_or(f64::NAN));
+        Self {
+            generation: r.generation,
+            evaluations: r.evaluations,
+            feasible_fraction: Dec(r.feasible_fraction),
+            hypervolume: Exp(r.hypervolume),
+            min_violation: Exp(r.min_violation),
+            best_f1: at(&r.best, 0),
+            best_f2: at(&r.best, 1),
+            mean_f1: at(&r.mean, 0),
+            mean_f2: at(&r.mean, 1),
+            front_size: r.front.len(),
+        }
     }
-    csv
+}
+
+/// The records of a two-objective run as CSV text ([`RecordRow`]; generations.csv).
+///
+/// # Errors
+/// [`RowsError`] (not expected: the row type fixes the columns).
+pub fn records_csv(records: &[Record]) -> Result<String, RowsError> {
+    let header: Vec<String> = RECORD_HEADER.split(',').map(String::from).collect();
+    write_csv(&header, records.iter().map(RecordRow::from))
 }
 
 #[cfg(test)]
@@ -362,7 +372,7 @@ mod tests {
             ind(vec![3.0], vec![0.25, 0.5], 0.0),
             ind(vec![4.0], vec![0.1, 0.1], 2.0),
         ];
-        let csv = population_csv(&pop);
+        let csv = population_csv(&pop).unwrap();
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], "x1,x2,f1,f2,g1,violation");
         assert_eq!(lines[2], "3e0,,2.5e-1,5e-1,0e0,0e0");
@@ -373,8 +383,88 @@ mod tests {
         assert_eq!(r.feasible_fraction, 0.75);
         assert_eq!(r.min_violation, 0.0);
         assert_eq!(
-            front_csv(&[&[0.5, 0.25]], 2),
+            front_csv(&[&[0.5, 0.25]], 2).unwrap(),
             "f1,f2\n5e-1,2.5e-1\n".to_string()
         );
+    }
+
+    /// A generation without a feasible member (NaN best and mean, infinite smallest
+    /// violation of an empty population, a negative infinity of a broken objective) survives
+    /// generations.csv and checkpoint.json bit for bit.
+    #[test]
+    fn records_with_non_finite_values_round_trip_through_csv_and_checkpoint() {
+        let none = Record {
+            generation: 0,
+            evaluations: 8,
+            feasible_fraction: 0.0,
+            hypervolume: 0.0,
+            min_violation: f64::INFINITY,
+            best: vec![f64::NAN, f64::NAN],
+            mean: vec![f64::NAN, f64::NAN],
+            front: vec![],
+        };
+        let some = Record {
+            generation: 1,
+            evaluations: 16,
+            feasible_fraction: 0.375,
+            hypervolume: 1.0 / 3.0,
+            min_violation: 0.0,
+            best: vec![f64::NEG_INFINITY, 0.1],
+            mean: vec![-0.5, f64::INFINITY],
+            front: vec![vec![f64::NEG_INFINITY, 0.1], vec![-0.5, 0.2]],
+        };
+        let records = vec![none, some];
+        let text = records_csv(&records).unwrap();
+        assert_eq!(
+            text.lines().nth(1).unwrap(),
+            "0,8,0,0e0,inf,NaN,NaN,NaN,NaN,0"
+        );
+        assert_eq!(
+            text.lines().nth(2).unwrap(),
+            "1,16,0.375,3.333333333333333e-1,0e0,-inf,1e-1,-5e-1,inf,2"
+        );
+        let rows = crate::optim::rows::read_records(&text).unwrap();
+        let fields = |r: &RecordRow| {
+            [
+                r.feasible_fraction.0,
+                r.hypervolume.0,
+                r.min_violation.0,
+                r.best_f1.0,
+                r.best_f2.0,
+                r.mean_f1.0,
+                r.mean_f2.0,
+            ]
+            .map(f64::to_bits)
+        };
+        for (r, row) in records.iter().zip(&rows) {
+            assert_eq!(fields(&RecordRow::from(r)), fields(row));
+            assert_eq!(
+                (row.generation, row.front_size),
+                (r.generation, r.front.len())
+            );
+        }
+        let header: Vec<String> = RECORD_HEADER.split(',').map(String::from).collect();
+        assert_eq!(write_csv(&header, rows).unwrap(), text);
+        // checkpoint.json: the records come back with the same bits.
+        let ck = Checkpoint {
+            algorithm: 7u8,
+            records: records.clone(),
+        };
+        let json = serde_json::to_string(&ck).unwrap();
+        let back: Checkpoint<u8> = serde_json::from_str(&json).unwrap();
+        let all = |r: &Record| -> Vec<u64> {
+            [r.feasible_fraction, r.hypervolume, r.min_violation]
+                .iter()
+                .chain(&r.best)
+                .chain(&r.mean)
+                .chain(r.front.iter().flatten())
+                .map(|v| v.to_bits())
+                .collect()
+        };
+        assert_eq!(back.records.len(), 2);
+        for (a, b) in records.iter().zip(&back.records) {
+            assert_eq!(all(a), all(b));
+        }
+        assert_eq!(serde_json::to_string(&back).unwrap(), json);
     }
 }

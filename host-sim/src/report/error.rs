@@ -17,6 +17,9 @@ pub enum ReportError {
     /// JSON serialisation failed.
     #[error("cannot serialise summary: {0}")]
     Json(#[from] serde_json::Error),
+    /// A run's CSV file could not be written (a row of another length than its header).
+    #[error("cannot write CSV: {0}")]
+    Csv(#[from] crate::optim::rows::RowsError),
     /// A stop was requested (Ctrl-C) while a run directory was being written: nothing was
     /// put in place and the temporary directory is removed.
     #[error("interrupted while writing {0}")]

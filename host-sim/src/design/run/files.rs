@@ -4,12 +4,11 @@
 //! trajectories of three chosen members (front/member_NN/) and plots (fronts.svg,
 //! hypervolume.svg, feasible.svg, objectives.svg, trajectories.svg).
 
-use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::design::AnalyticalModel;
 use crate::optim::Individual;
-use crate::optim::run::{Record, front_order, population_csv};
+use crate::optim::run::{Record, front_order, population_csv, records_csv};
 use crate::report::{ReportError, RunDir, write_atomic};
 use crate::report::{Series, line_plot_svg};
 use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
@@ -27,7 +26,7 @@ pub fn write_generation(
     write_atomic(
         &dir.join("population")
             .join(format!("gen_{generation:04}.csv")),
-        population_csv(pop).as_bytes(),
+        population_csv(pop)?.as_bytes(),
     )
 }
 
@@ -151,30 +150,14 @@ pub fn write_final(
     // The front directory first: its flights are the long part, and a Ctrl-C during them
     // leaves no final file.
     let traj = write_front_dir(dir, front_scenarios, base, analytical)?;
-    let mut csv = String::from(
-        "generation,evaluations,feasible_fraction,hypervolume,min_violation,best_f1,best_f2,mean_f1,mean_f2,front_size\n",
-    );
-    for r in records {
-        let _ = writeln!(
-            csv,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{}",
-            r.generation,
-            r.evaluations,
-            r.feasible_fraction,
-            r.hypervolume,
-            r.min_violation,
-            r.best[0],
-            r.best[1],
-            r.mean[0],
-            r.mean[1],
-            r.front.len()
-        );
-    }
-    write_atomic(&dir.join("generations.csv"), csv.as_bytes())?;
+    write_atomic(
+        &dir.join("generations.csv"),
+        records_csv(records)?.as_bytes(),
+    )?;
     let json = serde_json::to_string_pretty(records).map_err(ReportError::Json)?;
     write_atomic(&dir.join("generations.json"), json.as_bytes())?;
-    write_atomic(&dir.join("population.csv"), population_csv(pop).as_bytes())?;
-    write_atomic(&dir.join("front.csv"), population_csv(&front).as_bytes())?;
+    write_atomic(&dir.join("population.csv"), population_csv(pop)?.as_bytes())?;
+    write_atomic(&dir.join("front.csv"), population_csv(&front)?.as_bytes())?;
     if !traj.is_empty() {
         plot(
             dir,
