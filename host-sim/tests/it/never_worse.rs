@@ -8,8 +8,8 @@
 //! layering allow-lists it may only shrink: the test fails when a mission outside the list is
 //! worse, and when a listed one is no longer worse (then remove it from the list). Each flight
 //! is the nominal world of a campaign (`host-sim dispersions --scenario FILE`, the `nominal`
-//! records of its summary.json), so the figures are those of the held-out table. About 30 s in
-//! a release build:
+//! records of its summary.json), so the figures are those of the held-out table. About 1 s in
+//! a release build (ignored: much slower in a debug build):
 //!
 //! ```sh
 //! cargo test --release -p host-sim --test it nominal_guidance_no_worse_than_stored -- --ignored --nocapture
@@ -43,7 +43,7 @@ const KNOWN_WORSE: [&str; 5] = [
 ];
 
 #[test]
-#[ignore = "24 flights of 1300-2500 s; run in release with --ignored --nocapture (module docs)"]
+#[ignore = "24 flights, slow in a debug build; run in release with --ignored --nocapture (module docs)"]
 fn nominal_guidance_no_worse_than_stored_on_the_held_out_set() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/validation");
     let mut worse = Vec::new();
