@@ -23,6 +23,7 @@ mod layering;
 mod lift_down;
 mod module_graph;
 mod navconv;
+mod never_worse;
 mod pil;
 mod pil_campaign;
 mod pil_faults;

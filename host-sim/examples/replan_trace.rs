@@ -1,0 +1,62 @@
+//! Trace the re-plans of a scenario's undispersed campaign flight (the nominal world) in the
+//! best mode, against the stored profile with reversals.
+//!
+//! ```sh
+//! cargo run --release -p host-sim --example replan_trace -- examples/validation/horus-2b-nominal.toml
+//! ```
+
+use std::path::Path;
+
+use host_sim::campaign::flight::fly_case_logged;
+use host_sim::campaign::{CampaignSetup, Mode};
+use host_sim::scenario::read_scenario;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let path = std::env::args()
+        .nth(1)
+        .ok_or("usage: replan_trace SCENARIO [quiet]")?;
+    let quiet = std::env::args().nth(2).is_some();
+    let sc = read_scenario(Path::new(&path))?;
+    let setup = CampaignSetup::new(&sc, &path, None)?;
+    let (stored, _) = fly_case_logged(&setup, None, Mode::StoredReversals)?;
+    let mode = setup.full_mode();
+    let (guided, log) = fly_case_logged(&setup, None, mode)?;
+    println!(
+        "{path}: stored+reversals miss {:.3} km ratios {:.3?}; {mode:?} miss {:.3} km ratios {:.3?} ({} re-plans)",
+        stored.miss_m / 1e3,
+        stored.limit_ratios,
+        guided.miss_m / 1e3,
+        guided.limit_ratios,
+        log.len()
+    );
+    if quiet {
+        return Ok(());
+    }
+    println!(
+        "tick t_s e_hat alt_km v_m_s gamma_deg rtg_km case bank_deg pred_km pred-rtg_km applied bound est"
+    );
+    for (r, c) in &log {
+        println!(
+            "{} {:.0} {:.4} {:.2} {:.1} {:.3} {:.1} {:?} {:.2} {} {} {} {} {:?}",
+            r.tick,
+            r.time_s,
+            r.normalized_energy,
+            (c.nav.radius_m - setup.planet_radius_m) / 1e3,
+            c.nav.speed_m_s,
+            c.nav.flight_path_angle_rad.to_degrees(),
+            r.range_to_go_m / 1e3,
+            r.case,
+            r.bank_rad.to_degrees(),
+            r.predicted_range_m
+                .map_or("-".into(), |p| format!("{:.1}", p / 1e3)),
+            r.predicted_range_m.map_or("-".into(), |p| format!(
+                "{:.1}",
+                (p - r.range_to_go_m) / 1e3
+            )),
+            r.applied,
+            r.path_bound_active,
+            c.aero_scales.map(|a| (a.lift_to_drag, a.drag)),
+        );
+    }
+    Ok(())
+}
