@@ -94,15 +94,8 @@ pub enum HypervolumeCmdError {
         expected: usize,
     },
     /// The `--ref` argument is malformed.
-    #[error("command line: --ref {value:?}: coordinate {coordinate}: {reason}")]
-    Reference {
-        /// The argument's text.
-        value: String,
-        /// Coordinate number, from 1.
-        coordinate: usize,
-        /// What is wrong with it.
-        reason: &'static str,
-    },
+    #[error(transparent)]
+    Reference(#[from] super::reference_arg::ReferenceArgError),
     /// The hypervolume could not be computed.
     #[error("{path}: {source}")]
     Hypervolume {

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::error::{CliError, HypervolumeCmdError};
+use super::reference_arg::parse_reference;
 use crate::optim::hypervolume::{contributions, hypervolume};
 
 /// Arguments of `hypervolume`.
@@ -34,7 +35,7 @@ pub struct HypervolumeArgs {
 
 /// Run `hypervolume` with arguments `a`, writing the results to `out`.
 pub(super) fn run(a: &HypervolumeArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let reference = parse_reference(&a.reference)?;
+    let reference = parse_reference(&a.reference).map_err(HypervolumeCmdError::from)?;
     let text = std::fs::read_to_string(&a.front).map_err(|source| HypervolumeCmdError::Read {
         path: a.front.clone(),
         source,
@@ -87,23 +88,6 @@ fn median(v: &mut [f64]) -> f64 {
     } else {
         0.5 * (v[m - 1] + v[m])
     }
-}
-
-/// Parse `--ref`: comma-separated finite numbers.
-fn parse_reference(s: &str) -> Result<Vec<f64>, HypervolumeCmdError> {
-    let bad = |coordinate, reason| HypervolumeCmdError::Reference {
-        value: s.to_string(),
-        coordinate,
-        reason,
-    };
-    s.split(',')
-        .enumerate()
-        .map(|(k, f)| match f.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(bad(k + 1, "must be finite")),
-            Err(_) => Err(bad(k + 1, "not a number")),
-        })
-        .collect()
 }
 
 /// Parse the front: `d` finite numbers per data line.

@@ -235,9 +235,17 @@ mod tests {
             "{e}"
         );
         let mut a = args("zdt1", AlgorithmName::Moead, None);
-        a.reference = Some(vec![1.0]);
+        a.reference = Some("1".into());
         let e = run(&a, &mut out).unwrap_err();
         assert!(e.to_string().contains("--ref has 1 values"), "{e}");
+        // The same parser as `hypervolume --ref`: the first bad coordinate is named.
+        a.reference = Some("1,nan".into());
+        let e = run(&a, &mut out).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("--ref \"1,nan\": coordinate 2: must be finite"),
+            "{e}"
+        );
         let mut a = args("zdt1", AlgorithmName::Nsga2, None);
         a.population = 22;
         let e = run(&a, &mut out).unwrap_err();

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
 
+use super::reference_arg::parse_reference;
 use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
 use crate::optim::run::{RunSummary, front_csv};
@@ -155,13 +156,8 @@ pub struct OptimizeArgs {
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
     /// Hypervolume reference point, comma-separated (default: the problem's).
-    #[arg(
-        long = "ref",
-        value_name = "R1,R2,...",
-        value_delimiter = ',',
-        allow_negative_numbers = true
-    )]
-    pub reference: Option<Vec<f64>>,
+    #[arg(long = "ref", value_name = "R1,R2,...", allow_hyphen_values = true)]
+    pub reference: Option<String>,
     /// Write population.csv, front.csv and summary.json here (re-entry problems: the run
     /// directory, default `runs/optimize-<problem>`).
     #[arg(long, value_name = "DIR")]
@@ -241,9 +237,9 @@ pub enum OptimizeError {
         /// Cause.
         source: TestProblemError,
     },
-    /// A reference point of the wrong dimension or with non-finite values.
+    /// A reference point of the wrong dimension.
     #[error(
-        "command line: --ref has {got} values {values:?}; the problem has {expected} objectives and every value must be finite"
+        "command line: --ref has {got} values {values:?}; the problem has {expected} objectives"
     )]
     Reference {
         /// Objectives of the problem.
@@ -253,6 +249,9 @@ pub enum OptimizeError {
         /// The values.
         values: Vec<f64>,
     },
+    /// A malformed `--ref` (not a number, not finite).
+    #[error(transparent)]
+    ReferenceText(#[from] super::reference_arg::ReferenceArgError),
     /// A fixed-length algorithm on a variable-length problem.
     #[error(
         "command line: --algorithm {algorithm} cannot run the variable-length problem {problem}; use --algorithm scea"
@@ -456,12 +455,12 @@ pub(super) fn reference(
     m: usize,
     default: impl FnOnce() -> Vec<f64>,
 ) -> Result<Vec<f64>, OptimizeError> {
-    match &a.reference {
-        Some(r) if r.len() == m && r.iter().all(|v| v.is_finite()) => Ok(r.clone()),
+    match a.reference.as_deref().map(parse_reference).transpose()? {
+        Some(r) if r.len() == m => Ok(r),
         Some(r) => Err(OptimizeError::Reference {
             expected: m,
             got: r.len(),
-            values: r.clone(),
+            values: r,
         }),
         None => Ok(default()),
     }

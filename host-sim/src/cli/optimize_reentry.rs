@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::optimize_common::{MhacoConstraintsArg, OptimizeArgs};
+use super::reference_arg::parse_reference;
 use crate::design::run::{Progress, parse_toml, run as design_run};
 pub use crate::design::run::{ReentryError, ReentryRunConfig, check_run_config};
 use crate::optim::MhacoConfig;
@@ -51,7 +52,12 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     c.scea_genes = a.scea_genes.new_genes();
     c.archive = a.archive;
     if let Some(r) = &a.reference {
-        c.reference.clone_from(r);
+        c.reference = parse_reference(r).map_err(|e| ReentryError::Setting {
+            source_name: "command line".into(),
+            field: "reference",
+            value: e.value.clone(),
+            reason: format!("--ref coordinate {}: {}", e.coordinate, e.reason),
+        })?;
     }
     Ok(c)
 }
