@@ -3,55 +3,12 @@
 
 use guidance_core::vinh::VinhError;
 
-use super::metrics::{analytic_metrics, numerical_metrics};
+use super::metrics::{Case, analytic_metrics, numerical_metrics};
 use super::numerical::energy_below_speed;
-use super::{
-    CompareError, GLIDE_METRICS_ALTITUDE_END, GLIDE_METRICS_SPEED_END, Metric, NumericalSettings,
-    Preset, SKIP_METRICS, numerical_run,
-};
-use crate::analytic::{
-    self, AnalyticError, AnalyticRun, AnalyticVehicle, GlideEnd, LiftSetting, Placement,
-};
-use crate::dynamics::SphericalState;
+use super::{CompareError, NumericalSettings, Preset, numerical_run};
+use crate::analytic::{self, AnalyticError, AnalyticRun, AnalyticVehicle, GlideEnd, LiftSetting};
 use crate::env::ExponentialAtmosphere;
 use crate::sim::{SimResult, Termination, TerminationReason};
-
-/// The compared case of one run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Case {
-    /// Skip from this entry state (descending) to the return to its altitude.
-    Skip {
-        /// Planet-relative entry state.
-        entry: SphericalState,
-    },
-    /// Glide from this altitude (entry speed and flight-path angle imposed) to `end`.
-    Glide {
-        /// Entry altitude \[m\].
-        entry_altitude_m: f64,
-        /// Where the trajectory starts on the sphere.
-        placement: Placement,
-        /// End of the glide.
-        end: GlideEnd,
-    },
-}
-
-impl Case {
-    /// The metrics of this case.
-    #[must_use]
-    pub fn metrics(&self) -> &'static [Metric] {
-        match self {
-            Case::Skip { .. } => &SKIP_METRICS,
-            Case::Glide {
-                end: GlideEnd::Altitude { .. },
-                ..
-            } => &GLIDE_METRICS_ALTITUDE_END,
-            Case::Glide {
-                end: GlideEnd::SpeedFraction { .. },
-                ..
-            } => &GLIDE_METRICS_SPEED_END,
-        }
-    }
-}
 
 /// Numerical outcome of one environment.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,9 +1,47 @@
-//! The compared quantities ([`Metric`]), their values read from an analytical trajectory and
-//! from a numerical run, and the error measure between them ([`metric_error`]).
+//! The compared cases ([`Case`]) and quantities ([`Metric`]), their values read from an
+//! analytical trajectory and from a numerical run, and the error measure between them
+//! ([`metric_error`]).
 
-use super::case::Case;
-use crate::analytic::{AnalyticRun, GlideEnd};
+use crate::analytic::{AnalyticRun, GlideEnd, Placement};
+use crate::dynamics::SphericalState;
 use crate::sim::{Sample, SampleKind, SimResult, TerminationReason};
+
+/// The compared case of one run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Case {
+    /// Skip from this entry state (descending) to the return to its altitude.
+    Skip {
+        /// Planet-relative entry state.
+        entry: SphericalState,
+    },
+    /// Glide from this altitude (entry speed and flight-path angle imposed) to `end`.
+    Glide {
+        /// Entry altitude \[m\].
+        entry_altitude_m: f64,
+        /// Where the trajectory starts on the sphere.
+        placement: Placement,
+        /// End of the glide.
+        end: GlideEnd,
+    },
+}
+
+impl Case {
+    /// The metrics of this case.
+    #[must_use]
+    pub fn metrics(&self) -> &'static [Metric] {
+        match self {
+            Case::Skip { .. } => &SKIP_METRICS,
+            Case::Glide {
+                end: GlideEnd::Altitude { .. },
+                ..
+            } => &GLIDE_METRICS_ALTITUDE_END,
+            Case::Glide {
+                end: GlideEnd::SpeedFraction { .. },
+                ..
+            } => &GLIDE_METRICS_SPEED_END,
+        }
+    }
+}
 
 /// A compared quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

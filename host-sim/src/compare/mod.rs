@@ -42,14 +42,14 @@ use crate::analytic::AnalyticError;
 use crate::env::Preset;
 use crate::report::ReportError;
 
-pub use case::{AnalyticOutcome, Case, CaseRuns, Outcome, compare_case};
+pub use case::{AnalyticOutcome, CaseRuns, Outcome, compare_case};
 pub use csv::grid_csv;
 pub use grid::{
     CompareConfig, CompareGrid, GridKind, GridPoint, PointHook, run_grid, run_grid_with,
 };
 pub use heatmap::heat_map_svg;
 pub use metrics::{
-    GLIDE_METRICS_ALTITUDE_END, GLIDE_METRICS_SPEED_END, Metric, SKIP_METRICS, metric_error,
+    Case, GLIDE_METRICS_ALTITUDE_END, GLIDE_METRICS_SPEED_END, Metric, SKIP_METRICS, metric_error,
 };
 pub use numerical::numerical_run;
 pub use output::{write_case, write_case_into, write_grid, write_grid_into};

@@ -122,11 +122,6 @@ fn layering_checker_detects_imports() {
 /// on a stale entry), and a new cycle, or one that grew, fails the test.
 const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
     (
-        &["compare::case", "compare::metrics"],
-        "case flies a case and scores it with metrics; metrics matches on case::Case. Case \
-         would move to a leaf module.",
-    ),
-    (
         &[
             "optim::hypervolume",
             "optim::hypervolume::hv2d",
