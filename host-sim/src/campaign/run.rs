@@ -233,26 +233,6 @@ pub fn run_campaign(
     settings: &DispersionSettings,
     opts: &RunOptions,
 ) -> Result<CampaignOutput, CampaignError> {
-    run_campaign_with(setup, settings, opts, |draw, mode| fly_case(setup, draw, mode))
-}
-
-/// [`run_campaign`] with the flights flown by `fly` (`draw` `None`: the nominal flight of the
-/// mode): the same resume, records, failure handling and stop requests whoever flies them
-/// (the SIL flight [`fly_case`], or the firmware in PIL: `crate::pil::run_campaign_pil`).
-/// `fly` runs on `opts.threads` rayon threads.
-///
-/// # Errors
-/// As [`run_campaign`]; a failed nominal flight is `fly`'s error.
-pub fn run_campaign_with<E, F>(
-    setup: &CampaignSetup,
-    settings: &DispersionSettings,
-    opts: &RunOptions,
-    fly: F,
-) -> Result<CampaignOutput, E>
-where
-    E: From<CampaignError> + std::error::Error + Send,
-    F: Fn(Option<&CaseDraw>, Mode) -> Result<CaseResult, E> + Sync,
-{
     settings.validate(&setup.file)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = opts.threads
@@ -263,32 +243,27 @@ where
             field: "threads".into(),
             value: t.to_string(),
             reason: "use 1 to 1024 threads".into(),
-        }
-        .into());
+        });
     }
     if let Some(t) = opts.threads {
         pool = pool.num_threads(t);
     }
-    let pool = pool.build().map_err(CampaignError::from)?;
+    let pool = pool.build()?;
     let nominal = pool.install(|| {
         opts.modes
             .par_iter()
-            .map(|&m| fly(None, m))
-            .collect::<Result<Vec<_>, E>>()
+            .map(|&m| fly_case(setup, None, m))
+            .collect::<Result<Vec<_>, _>>()
     })?;
     if let Some(dir) = &opts.out_dir {
-        let record = || -> Result<(), CampaignError> {
-            check_and_record(dir, &Fingerprint::of(setup, settings, &nominal)?)?;
-            for m in &opts.modes {
-                let d = dir.join("cases").join(m.name());
-                std::fs::create_dir_all(&d).map_err(|source| crate::report::ReportError::Io {
-                    path: d.clone(),
-                    source,
-                })?;
-            }
-            Ok(())
-        };
-        record()?;
+        check_and_record(dir, &Fingerprint::of(setup, settings, &nominal)?)?;
+        for m in &opts.modes {
+            let d = dir.join("cases").join(m.name());
+            std::fs::create_dir_all(&d).map_err(|source| crate::report::ReportError::Io {
+                path: d.clone(),
+                source,
+            })?;
+        }
     }
     let n = settings.cases;
     let jobs: Vec<(Mode, u32)> = opts
@@ -336,7 +311,7 @@ where
                     return Ok(Err(CaseFailure::new(mode, index, draw, &Stopped)));
                 }
                 // A failed flight is recorded with its error; the campaign goes on.
-                let r = match fly(Some(&draw), mode) {
+                let r = match fly_case(setup, Some(&draw), mode) {
                     Ok(r) => r,
                     Err(e) => {
                         bar.inc(1);
@@ -361,15 +336,14 @@ where
         return Err(CampaignError::Interrupted {
             done,
             total: jobs.len(),
-        }
-        .into());
+        });
     }
     let mut by_mode: Vec<(Mode, Vec<CaseResult>)> =
         opts.modes.iter().map(|&m| (m, Vec::new())).collect();
     let mut resumed = 0;
     let mut failed = Vec::new();
     for r in results {
-        let (c, reused) = match r.map_err(E::from)? {
+        let (c, reused) = match r? {
             Ok(x) => x,
             Err(f) => {
                 failed.push(f);

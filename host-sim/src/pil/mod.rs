@@ -45,8 +45,8 @@ use crate::sim;
 
 pub use campaign::{PilCase, TwinCheck, fly_case_pil};
 pub use campaign_run::{
-    PIL_CASES_DIR, PilCampaign, PilCaseCheck, SilComparison, miss_bound_m, run_campaign_pil,
-    write_pil_checks,
+    PIL_CHECKS_FILE, PilCaseCheck, PilSilComparison, check_pil_cases, fly_campaign_pil,
+    miss_bound_m, pil_mode, write_pil_checks,
 };
 pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
 pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES, RejectedFault};
@@ -110,8 +110,8 @@ pub fn machine_of_elf(elf: &std::path::Path) -> onboard_spec::machines::QemuMach
 
 impl PilConfig {
     /// Whether a PIL run can start: QEMU (`qemu --version` runs and succeeds) and the firmware
-    /// ELF (a file) are there. Every run checks it before it starts QEMU; a campaign checks
-    /// it once before its first flight.
+    /// ELF (a file) are there. Every run checks it before it starts QEMU; a campaign's PIL leg
+    /// ([`fly_campaign_pil`]) and `host-sim dispersions --pil` check it before any flight.
     ///
     /// # Errors
     /// [`PilError::QemuMissing`] or [`PilError::ElfMissing`].
@@ -265,10 +265,6 @@ pub enum PilError {
     /// A campaign case could not be set up or flown (not a link or firmware failure).
     #[error("campaign case: {0}")]
     Campaign(Box<crate::campaign::CampaignError>),
-    /// A campaign flown in PIL failed as a campaign (settings, output directory, resume,
-    /// stop request): [`run_campaign_pil`].
-    #[error("{0}")]
-    CampaignRun(Box<crate::campaign::CampaignError>),
     /// The stack of a campaign case cannot be written as a set-up image.
     #[error("set-up image: {0}")]
     Image(guidance_core::setup::image::ImageError),
