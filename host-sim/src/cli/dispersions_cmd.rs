@@ -7,6 +7,10 @@ use super::error::CliError;
 use crate::campaign::output::write_campaign;
 use crate::campaign::run::{Replay, RunOptions, replay_case};
 use crate::campaign::{CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign};
+use crate::pil::{
+    PilCaseCheck, PilConfig, PilError, check_pil_cases, fly_campaign_pil, machine_of_elf, pil_mode,
+    write_pil_checks,
+};
 use crate::scenario::{Scenario, read_scenario};
 
 /// Arguments of `dispersions`.
@@ -48,6 +52,22 @@ pub struct DispersionsArgs {
     /// the one in the output directory (`--out`): "reproduces" when byte for byte equal.
     #[arg(long, value_name = "ID")]
     pub case: Option<u32>,
+    /// Processor in the loop: after the campaign, fly its nominal flight and cases 0..K
+    /// (`--pil-cases K`) again with the guidance in this `pil` firmware ELF under QEMU, in the
+    /// fullest re-planning mode of `--modes`, and compare each with its SIL record (twin bit
+    /// for bit, same reversals and re-plans, same ending, miss within the re-planner's plus
+    /// the terminal law's tolerance). Writes `pil-cases.csv`; exits non-zero if a flight
+    /// breaks a tolerance (docs/guides/pil.md).
+    #[arg(
+        long,
+        value_name = "ELF",
+        requires = "pil_cases",
+        conflicts_with = "case"
+    )]
+    pub pil: Option<PathBuf>,
+    /// With --pil: how many of the campaign's cases (from 0) to fly in PIL, 1 to -n.
+    #[arg(long, value_name = "K", requires = "pil")]
+    pub pil_cases: Option<u32>,
 }
 
 /// Wrap a campaign error for the CLI.
@@ -177,6 +197,25 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     if let Some(index) = a.case {
         return replay(&setup, &settings, &modes, index, &dir, out);
     }
+    // The PIL leg's inputs, checked before the campaign flies.
+    let pil = match (&a.pil, a.pil_cases) {
+        (Some(elf), Some(k)) => {
+            check_pil_cases(k, &settings)?;
+            let cfg = PilConfig::new(elf.clone());
+            cfg.check_tools().map_err(|e| match e {
+                PilError::ElfMissing(p) => CliError::Argument {
+                    field: "--pil",
+                    value: p.display().to_string(),
+                    reason: "no such firmware ELF (build it: cargo xtask pil, or cargo build -p \
+                             onboard-demo --profile firmware --target thumbv7em-none-eabihf: \
+                             target/thumbv7em-none-eabihf/firmware/pil)",
+                },
+                e => CliError::Pil(e),
+            })?;
+            Some((cfg, k, pil_mode(&setup, &modes)?))
+        }
+        _ => None,
+    };
     let opts = RunOptions {
         modes,
         out_dir: Some(dir.clone()),
@@ -254,5 +293,87 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         )?;
     }
     writeln!(out, "wrote {} files to {}", files.len(), dir.display())?;
+    match pil {
+        Some((cfg, k, mode)) => pil_leg(&setup, &settings, &res, mode, k, &cfg, &dir, out),
+        None => Ok(()),
+    }
+}
+
+/// `--pil ELF --pil-cases K`: the campaign's PIL leg ([`fly_campaign_pil`]), one line per
+/// flight, `pil-cases.csv` in `dir`; an error if a flight breaks a tolerance.
+#[allow(clippy::too_many_arguments)]
+fn pil_leg(
+    setup: &CampaignSetup,
+    settings: &DispersionSettings,
+    res: &crate::campaign::run::CampaignOutput,
+    mode: Mode,
+    k: u32,
+    cfg: &PilConfig,
+    dir: &std::path::Path,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let started = std::time::Instant::now();
+    let machine = machine_of_elf(&cfg.elf);
+    writeln!(
+        out,
+        "PIL: {} ({}), {}: the nominal flight and {} against their SIL records",
+        cfg.elf.display(),
+        machine.description,
+        mode.name(),
+        if k == 1 {
+            "case 0".to_string()
+        } else {
+            format!("cases 0-{}", k - 1)
+        }
+    )?;
+    let checks = fly_campaign_pil(setup, settings, res, mode, k, cfg)?;
+    for c in &checks {
+        writeln!(out, "{}", pil_line(c))?;
+    }
+    let file = write_pil_checks(dir, &checks)?;
+    let failed = checks.iter().filter(|c| !c.passed()).count();
+    writeln!(
+        out,
+        "PIL: {} of {} flights within the tolerances in {:.1} s; wrote {}",
+        checks.len() - failed,
+        checks.len(),
+        started.elapsed().as_secs_f64(),
+        file.display()
+    )?;
+    if failed > 0 {
+        return Err(CliError::PilTolerance {
+            failed,
+            total: checks.len(),
+            file,
+        });
+    }
     Ok(())
+}
+
+/// One flight of the PIL leg, as printed.
+fn pil_line(c: &PilCaseCheck) -> String {
+    let case = c
+        .index
+        .map_or_else(|| "nominal".to_string(), |i| format!("case {i}"));
+    match &c.outcome {
+        Err(e) => format!("  {case:<10} FAILED: {e}"),
+        Ok(s) => format!(
+            "  {case:<10} twin {}/{} ticks equal; reversals {}/{}, re-plans {}/{} (PIL/SIL): {}; \
+             interface {}/{}; miss {:.3}/{:.3} km, |diff| {:.3} km (bound {:.3} km): {}",
+            s.twin.ticks - s.twin.mismatches,
+            s.twin.ticks,
+            s.pil_reversals,
+            s.sil_reversals,
+            s.pil_replans,
+            s.sil_replans,
+            if s.same_counts { "same" } else { "DIFFER" },
+            s.pil_reached_interface,
+            s.sil_reached_interface,
+            s.pil_miss_m / 1e3,
+            s.sil_miss_m / 1e3,
+            s.miss_diff_m / 1e3,
+            s.bound_m / 1e3,
+            if c.passed() { "ok" } else { "OUTSIDE" },
+        ),
+    }
 }

@@ -54,6 +54,19 @@ pub enum CliError {
     /// A dispersion campaign failed.
     #[error("{0}")]
     Campaign(Box<crate::campaign::CampaignError>),
+    /// `dispersions --pil`: flights of the PIL leg break a PIL-vs-SIL tolerance (or failed).
+    #[error(
+        "PIL: {failed} of {total} flights break a PIL-vs-SIL tolerance (twin, counts, ending or miss bound) or failed: {}",
+        file.display()
+    )]
+    PilTolerance {
+        /// Flights outside the tolerances or failed.
+        failed: usize,
+        /// Flights flown.
+        total: usize,
+        /// The per-flight comparison (`pil-cases.csv`).
+        file: PathBuf,
+    },
 }
 
 /// Failures of `hypervolume`; each names the file and line, or the argument.

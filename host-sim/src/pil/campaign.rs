@@ -88,7 +88,7 @@ impl Twin {
 }
 
 /// The comparison of every command frame with the host twin ([`fly_case_pil`]).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TwinCheck {
     /// Ticks compared.
     pub ticks: u32,

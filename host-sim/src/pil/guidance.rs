@@ -4,7 +4,6 @@
 use std::fs::{File, OpenOptions};
 use std::io::{Read, Write};
 use std::path::PathBuf;
-use std::process::Stdio;
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
@@ -82,20 +81,7 @@ impl PilGuidance {
         limits: FrameLimits,
         setup: &[SetupItem],
     ) -> Result<Self, PilError> {
-        let probe = std::process::Command::new(&cfg.qemu)
-            .arg("--version")
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .status();
-        if !probe.as_ref().is_ok_and(|s| s.success()) {
-            return Err(PilError::QemuMissing {
-                program: cfg.qemu.clone().into(),
-                source: probe.err(),
-            });
-        }
-        if !cfg.elf.is_file() {
-            return Err(PilError::ElfMissing(cfg.elf.clone()));
-        }
+        cfg.check_tools()?;
         let dir = FifoDir::create(&cfg.fifo_parent)?;
         let faults = cfg.faults.map(super::faults::FaultInjector::new);
         let mut me = Self {

@@ -24,6 +24,7 @@
 //! [`PilRecord`] that outlives a failed run.
 
 mod campaign;
+mod campaign_run;
 mod check;
 mod faults;
 mod faulty_link;
@@ -43,6 +44,10 @@ use crate::scenario::ScenarioError;
 use crate::sim;
 
 pub use campaign::{PilCase, TwinCheck, fly_case_pil};
+pub use campaign_run::{
+    PIL_CHECKS_FILE, PilCaseCheck, PilSilComparison, check_pil_cases, fly_campaign_pil,
+    miss_bound_m, pil_mode, write_pil_checks,
+};
 pub use check::{ANGLE_SLACK_RAD, FrameLimits, FrameViolation, RELATIVE_SLACK};
 pub use faults::{FaultConfig, FaultCounts, MAX_RETRIES, RejectedFault};
 pub use fifo::{FIFO_DIR_PREFIX, OWNER_FILE};
@@ -104,6 +109,30 @@ pub fn machine_of_elf(elf: &std::path::Path) -> onboard_spec::machines::QemuMach
 }
 
 impl PilConfig {
+    /// Whether a PIL run can start: QEMU (`qemu --version` runs and succeeds) and the firmware
+    /// ELF (a file) are there. Every run checks it before it starts QEMU; a campaign's PIL leg
+    /// ([`fly_campaign_pil`]) and `host-sim dispersions --pil` check it before any flight.
+    ///
+    /// # Errors
+    /// [`PilError::QemuMissing`] or [`PilError::ElfMissing`].
+    pub fn check_tools(&self) -> Result<(), PilError> {
+        let probe = std::process::Command::new(&self.qemu)
+            .arg("--version")
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .status();
+        if !probe.as_ref().is_ok_and(std::process::ExitStatus::success) {
+            return Err(PilError::QemuMissing {
+                program: self.qemu.clone().into(),
+                source: probe.err(),
+            });
+        }
+        if !self.elf.is_file() {
+            return Err(PilError::ElfMissing(self.elf.clone()));
+        }
+        Ok(())
+    }
+
     /// Settings for `elf`, the FIFO directory made in the system temporary directory.
     #[must_use]
     pub fn new(elf: PathBuf) -> Self {

@@ -20,14 +20,18 @@
 //! `cargo xtask pil` / `cargo xtask test` on the Cortex-M4F; the Cortex-M3 (fixed-point tick,
 //! `f32` layers) checks the twin and the budgets on the same cases. 50 cases per vehicle:
 //! `pil_campaign_50_cases` (ignored; docs/guides/pil.md has its figures).
+//!
+//! The comparison and the bound are the library's (`host_sim::pil::PilSilComparison`,
+//! `host_sim::pil::miss_bound_m`), the ones `host-sim dispersions --pil ELF --pil-cases K`
+//! prints; `pil_dispersions_cli_reference_mission_m4f` runs that command.
 
 use host_sim::campaign::draw::draw_case;
 use host_sim::campaign::flight::fly_case;
 use host_sim::campaign::{CampaignSetup, CaseResult, DispersionSettings, Mode};
-use host_sim::pil::{PilCase, PilConfig, PilError, fly_case_pil};
+use host_sim::pil::{PilCase, PilConfig, PilError, PilSilComparison, fly_case_pil, miss_bound_m};
 use host_sim::scenario::Scenario;
 
-use crate::pil_support::{check_pil_memory_budget, pil_elf};
+use crate::pil_support::{check_pil_memory_budget, pil_elf, pil_required};
 
 const M4F: &str = "thumbv7em-none-eabihf";
 const M3: &str = "thumbv7m-none-eabi";
@@ -37,26 +41,13 @@ fn setup(name: &str) -> CampaignSetup {
     CampaignSetup::new(&sc, &format!("builtin:{name}"), None).unwrap()
 }
 
-/// The miss bound of the module docs \[m\]: the corrector's range tolerance plus the terminal
-/// law's crossrange tolerance (0 without the law).
-fn miss_bound_m(setup: &CampaignSetup, mode: Mode) -> f64 {
-    let c = setup.stack_of(mode);
-    let range = c.replan.map_or(0.0, |r| r.solver.tolerance_m);
-    let cross = c.lateral.and_then(|l| l.terminal).map_or(0.0, |t| {
-        t.tolerance_rad * c.replan.map_or(0.0, |r| r.model.planet.radius_m)
-    });
-    range + cross
-}
-
 /// One case in PIL on `target`; `None` if QEMU or the ELF is missing (and not required).
 fn pil_case(setup: &CampaignSetup, index: Option<u32>, target: &str) -> Option<PilCase> {
     let draw = index.map(|i| draw_case(&DispersionSettings::default(), i));
     let cfg = PilConfig::new(pil_elf(target));
     match fly_case_pil(setup, draw.as_ref(), Mode::ReplanEstimation, cfg) {
         Ok(r) => Some(r),
-        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
-            if std::env::var_os("PIL_REQUIRED").is_none() =>
-        {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) if !pil_required() => {
             println!("SKIPPED {} case {index:?} on {target}: {e}", setup.file);
             None
         }
@@ -69,34 +60,26 @@ fn sil_case(setup: &CampaignSetup, index: Option<u32>) -> CaseResult {
     fly_case(setup, draw.as_ref(), Mode::ReplanEstimation).unwrap()
 }
 
-/// What one case gives against SIL: (same counts, |miss difference| \[m\]).
-struct Compared {
-    same_counts: bool,
-    miss_diff_m: f64,
-}
-
-fn compare(label: &str, pil: &PilCase, sil: &CaseResult) -> Compared {
-    let p = &pil.result;
-    let miss_diff_m = (p.miss_m - sil.miss_m).abs();
+/// The case against SIL (the library's comparison, `host_sim::pil::PilSilComparison`, the one
+/// `host-sim dispersions --pil` prints), printed.
+fn compare(label: &str, pil: &PilCase, sil: &CaseResult, bound_m: f64) -> PilSilComparison {
+    let c = PilSilComparison::new(pil, sil, bound_m);
     println!(
         "{label}: image {} B; twin {}/{} ticks differ; PIL miss {:.3} km, {} reversals, {} re-plans; \
          SIL miss {:.3} km, {} reversals, {} re-plans; |miss diff| {:.3} km; stack {:?} B",
-        pil.image_bytes,
-        pil.twin.mismatches,
-        pil.twin.ticks,
-        p.miss_m / 1e3,
-        p.reversals,
-        p.replans,
-        sil.miss_m / 1e3,
-        sil.reversals,
-        sil.replans,
-        miss_diff_m / 1e3,
-        pil.stats.firmware_stack_bytes,
+        c.image_bytes,
+        c.twin.mismatches,
+        c.twin.ticks,
+        c.pil_miss_m / 1e3,
+        c.pil_reversals,
+        c.pil_replans,
+        c.sil_miss_m / 1e3,
+        c.sil_reversals,
+        c.sil_replans,
+        c.miss_diff_m / 1e3,
+        c.firmware_stack_bytes,
     );
-    Compared {
-        same_counts: p.reversals == sil.reversals && p.replans == sil.replans,
-        miss_diff_m,
-    }
+    c
 }
 
 /// The reference case and cases 0-4 of `vehicle` on `target`; `against_sil`: also assert the
@@ -112,7 +95,7 @@ fn campaign_cases(vehicle: &str, target: &str, against_sil: bool) {
             return;
         };
         let sil = sil_case(&setup, index);
-        let c = compare(&label, &pil, &sil);
+        let c = compare(&label, &pil, &sil, bound);
         assert_eq!(pil.twin.mismatches, 0, "{label}: {:?}", pil.twin.first);
         assert!(pil.twin.ticks > 100, "{label}: {} ticks", pil.twin.ticks);
         assert!(
@@ -126,7 +109,7 @@ fn campaign_cases(vehicle: &str, target: &str, against_sil: bool) {
                 "{label}: reversal or re-plan count differs from SIL"
             );
             assert!(
-                c.miss_diff_m <= bound,
+                c.within_bound,
                 "{label}: |miss PIL - SIL| {} m > {bound} m",
                 c.miss_diff_m
             );
@@ -191,10 +174,10 @@ fn pil_campaign_50_cases() {
                 return;
             };
             let sil = sil_case(&setup, Some(i));
-            let c = compare(&format!("{vehicle} case {i}"), &pil, &sil);
+            let c = compare(&format!("{vehicle} case {i}"), &pil, &sil, bound);
             twin_bad += u32::from(pil.twin.mismatches > 0);
             counts_bad += u32::from(!c.same_counts);
-            over += u32::from(c.miss_diff_m > bound);
+            over += u32::from(!c.within_bound);
             worst = worst.max(c.miss_diff_m);
         }
         println!(
@@ -204,4 +187,147 @@ fn pil_campaign_50_cases() {
             bound / 1e3
         );
     }
+}
+
+/// `host-sim dispersions --pil ELF --pil-cases 2` on the reference mission (2 cases,
+/// `replan-estimation`, the Cortex-M4F): exits 0, prints one line per flight (the nominal and
+/// cases 0-1) and writes `pil-cases.csv`, whose SIL columns are the campaign's own records
+/// (`cases/`) and whose PIL columns are `fly_case_pil`'s flight of the same case. Skipped
+/// (with a message on stderr) without QEMU or the ELF, unless `PIL_REQUIRED` or `CI=true`.
+#[test]
+fn pil_dispersions_cli_reference_mission_m4f() {
+    let elf = pil_elf(M4F);
+    if let Err(e) = PilConfig::new(elf.clone()).check_tools() {
+        assert!(
+            !pil_required(),
+            "PIL required (PIL_REQUIRED or CI=true): {e}"
+        );
+        eprintln!("SKIPPED pil_dispersions_cli_reference_mission_m4f: {e}");
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("host-sim-it-pil-cli-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let t0 = std::time::Instant::now();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args([
+            "dispersions",
+            "-n",
+            "2",
+            "--modes",
+            "replan-estimation",
+            "--quiet",
+        ])
+        .arg("--pil")
+        .arg(&elf)
+        .args(["--pil-cases", "2", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    println!("{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    println!("dispersions --pil: {:.1} s", t0.elapsed().as_secs_f64());
+    assert!(out.status.success(), "{}", out.status);
+    assert!(
+        stdout.contains("PIL: 3 of 3 flights within the tolerances"),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(dir.join("pil-cases.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |row: &[&str], name: &str| -> String {
+        let i = header.iter().position(|h| *h == name).unwrap();
+        row[i].to_string()
+    };
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 3, "{csv}");
+    let setup = setup("horus-2b-reference");
+    let settings = DispersionSettings {
+        cases: 2,
+        ..DispersionSettings::default()
+    };
+    for (row, index) in rows.iter().zip([None, Some(0), Some(1)]) {
+        assert_eq!(row.len(), header.len(), "{csv}");
+        let case = index.map_or_else(|| "nominal".to_string(), |i| i.to_string());
+        assert_eq!(col(row, "case"), case);
+        assert_eq!(col(row, "passed"), "true", "{csv}");
+        assert_eq!(col(row, "twin_mismatches"), "0", "{csv}");
+        assert_eq!(col(row, "bound_km"), "3", "{csv}");
+        // The SIL columns are the campaign's record of the case, the PIL ones the firmware's
+        // flight of it.
+        let draw = index.map(|i| draw_case(&settings, i));
+        let sil = fly_case(&setup, draw.as_ref(), Mode::ReplanEstimation).unwrap();
+        assert_eq!(col(row, "sil_miss_km"), (sil.miss_m / 1e3).to_string());
+        assert_eq!(col(row, "sil_reversals"), sil.reversals.to_string());
+        let pil = fly_case_pil(
+            &setup,
+            draw.as_ref(),
+            Mode::ReplanEstimation,
+            PilConfig::new(elf.clone()),
+        )
+        .unwrap();
+        assert_eq!(
+            col(row, "pil_miss_km"),
+            (pil.result.miss_m / 1e3).to_string()
+        );
+        assert_eq!(col(row, "pil_replans"), pil.result.replans.to_string());
+    }
+    // The SIL campaign wrote its records as without --pil.
+    let records = dir.join("cases").join(Mode::ReplanEstimation.name());
+    assert_eq!(
+        records.read_dir().unwrap().count(),
+        2,
+        "{}",
+        records.display()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `dispersions --pil` refuses before flying: K = 0, K > n, a missing ELF (naming `--pil`
+/// and the path), a campaign without a re-planning mode; and `--pil` without `--pil-cases`.
+#[test]
+fn pil_dispersions_cli_refuses_bad_arguments() {
+    let elf = pil_elf(M4F);
+    let run = |extra: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args(["dispersions", "-n", "2", "--quiet", "--out"])
+            .arg(std::env::temp_dir().join(format!("host-sim-it-pil-bad-{}", std::process::id())))
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{extra:?} succeeded");
+        String::from_utf8_lossy(&out.stderr).to_string()
+    };
+    let e = elf.to_str().unwrap();
+    let msg = run(&["--pil", "/nonexistent/pil", "--pil-cases", "1"]);
+    assert!(
+        (msg.contains("`--pil` = /nonexistent/pil") && msg.contains("no such firmware ELF"))
+            || msg.contains("QEMU"),
+        "{msg}"
+    );
+    let msg = run(&["--pil", e]);
+    assert!(msg.contains("--pil-cases"), "{msg}");
+    if PilConfig::new(elf.clone()).check_tools().is_err() {
+        assert!(!pil_required(), "PIL required: {}", elf.display());
+        eprintln!("SKIPPED the rest of pil_dispersions_cli_refuses_bad_arguments: no QEMU or ELF");
+        return;
+    }
+    for k in ["0", "3"] {
+        let msg = run(&["--pil", e, "--pil-cases", k]);
+        assert!(
+            msg.contains(&format!("--pil-cases = {k}: fly 1 to 2 cases")),
+            "{msg}"
+        );
+    }
+    let msg = run(&[
+        "--pil",
+        e,
+        "--pil-cases",
+        "1",
+        "--modes",
+        "stored,stored-reversals",
+    ]);
+    assert!(
+        msg.contains("modes = stored,stored-reversals") && msg.contains("re-planning mode"),
+        "{msg}"
+    );
 }

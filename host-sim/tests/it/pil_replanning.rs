@@ -18,8 +18,7 @@
 
 use std::path::Path;
 
-use host_sim::campaign::CampaignSetup;
-use host_sim::pil::{PilConfig, PilError, fly_scenario_pil};
+use host_sim::pil::{PilConfig, PilError, fly_scenario_pil, miss_bound_m};
 use host_sim::scenario::{Scenario, fly, read_scenario, stack_setup};
 
 use crate::pil_support::{check_pil_memory_budget, pil_elf};
@@ -27,17 +26,6 @@ use crate::pil_support::{check_pil_memory_budget, pil_elf};
 fn scenario() -> Scenario {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/srm-glide-replanning.toml");
     read_scenario(&p).unwrap()
-}
-
-/// The miss bound of `pil_campaign.rs` \[m\]: the corrector's range tolerance plus the
-/// terminal law's crossrange tolerance (0 without the law), of the mode flown.
-fn miss_bound_m(setup: &CampaignSetup) -> f64 {
-    let c = setup.stack_of(setup.full_mode());
-    let range = c.replan.map_or(0.0, |r| r.solver.tolerance_m);
-    let cross = c.lateral.and_then(|l| l.terminal).map_or(0.0, |t| {
-        t.tolerance_rad * c.replan.map_or(0.0, |r| r.model.planet.radius_m)
-    });
-    range + cross
 }
 
 fn check(target: &str) {
@@ -64,7 +52,9 @@ fn check(target: &str) {
         &pil.stack.as_ref().expect("the stack's outcome").case,
         &sil.stack.as_ref().expect("the stack's outcome").case,
     );
-    let bound = miss_bound_m(&stack_setup(&sc, "(test)").unwrap());
+    // The bound of `pil_campaign.rs` (`host_sim::pil::miss_bound_m`), of the mode flown.
+    let setup = stack_setup(&sc, "(test)").unwrap();
+    let bound = miss_bound_m(&setup, setup.full_mode());
     let diff = (p.miss_m - s.miss_m).abs();
     println!(
         "{name}: image {} B, {} ticks bit for bit with the twin; PIL miss {:.3} km, {} reversals, \

@@ -19,6 +19,12 @@ pub fn pil_elf(target: &str) -> PathBuf {
         .join("firmware/pil")
 }
 
+/// Whether a missing QEMU or ELF fails a PIL test instead of skipping it: `PIL_REQUIRED` set
+/// (`cargo xtask pil` / `cargo xtask test`) or `CI=true`.
+pub fn pil_required() -> bool {
+    std::env::var_os("PIL_REQUIRED").is_some() || std::env::var("CI").is_ok_and(|v| v == "true")
+}
+
 /// The Cortex-M4F `pil` firmware: `$PIL_ELF`, else [`pil_elf`] of `thumbv7em-none-eabihf`.
 pub fn reference_pil_elf() -> PathBuf {
     std::env::var_os("PIL_ELF").map_or_else(|| pil_elf("thumbv7em-none-eabihf"), PathBuf::from)

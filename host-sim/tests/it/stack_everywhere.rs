@@ -4,11 +4,28 @@
 //! (`scenario::fly`, the library call), a 1-case campaign with every dispersion zero, and the
 //! `--case` replay of that case (`campaign::run::replay_case`, what `host-sim dispersions
 //! ... --case ID` calls). They fly one stack built in one place, so the records agree bit for
-//! bit.
+//! bit. In PIL (`pil_flies_the_one_file_stack_on_both_targets`): `simulate --pil`'s flight on
+//! the Cortex-M4F and the Cortex-M3, and the 1-case campaign's PIL leg (`dispersions --pil
+//! ELF --pil-cases 1`) on the M4F, against their twin and the SIL flights above.
 
 use host_sim::campaign::run::{Replay, RunOptions, replay_case};
 use host_sim::campaign::{CampaignSetup, DispersionSettings, Mode, run_campaign};
-use host_sim::scenario::{fly, parse_scenario};
+use host_sim::pil::{PilConfig, fly_campaign_pil, fly_scenario_pil};
+use host_sim::scenario::{Scenario, fly, parse_scenario};
+
+use crate::pil_support::{pil_elf, pil_required};
+
+const FILE: &str = "horus-2b-stack.toml";
+
+/// `examples/horus-2b-stack.toml` over the complete HORUS-2B scenario.
+fn scenario() -> Scenario {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/horus-2b-stack.toml"
+    );
+    let text = crate::support::complete_scenario(&std::fs::read_to_string(path).unwrap());
+    parse_scenario(&text, FILE, std::path::Path::new(".")).unwrap()
+}
 
 fn zero_dispersions() -> DispersionSettings {
     let text = "[dispersions]\ncases = 1\nseed = 11\n\
@@ -24,13 +41,8 @@ fn zero_dispersions() -> DispersionSettings {
 
 #[test]
 fn simulate_a_one_case_campaign_and_its_replay_fly_the_same_stack() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../examples/horus-2b-stack.toml"
-    );
-    let text = crate::support::complete_scenario(&std::fs::read_to_string(path).unwrap());
-    let file = "horus-2b-stack.toml";
-    let sc = parse_scenario(&text, file, std::path::Path::new(".")).unwrap();
+    let file = FILE;
+    let sc = scenario();
     let l = sc.layers.as_ref().unwrap().layers;
     assert_eq!(l, guidance_core::stack::Layers::ALL, "every layer on");
     assert_eq!(
@@ -87,6 +99,87 @@ fn simulate_a_one_case_campaign_and_its_replay_fly_the_same_stack() {
     assert_eq!(replay, Replay::Same);
     assert_eq!(&replayed, case);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The same file in PIL. `simulate --pil` (`fly_scenario_pil`) on the Cortex-M4F (`f32`) and
+/// the Cortex-M3 (fixed-point tick, `f32` layers): every command frame equals the host twin.
+/// On the M4F, against the `f64` flights: the 1-case campaign's PIL leg (`fly_campaign_pil`,
+/// what `dispersions --pil ELF --pil-cases 1` runs) passes its tolerances for the nominal
+/// flight and the undispersed case 0 (same counts, same ending, miss within the bound), and
+/// its nominal PIL flight is `simulate --pil`'s, bit for bit. The M3 against the `f64` SIL is
+/// printed, not asserted (as in `pil_campaign.rs`: its counts can differ, docs/guides/pil.md).
+#[test]
+fn pil_flies_the_one_file_stack_on_both_targets() {
+    let sc = scenario();
+    let sil = fly(&sc, FILE, &mut |_| {}).unwrap();
+    let sil = &sil.stack.as_ref().unwrap().case;
+    for target in ["thumbv7em-none-eabihf", "thumbv7m-none-eabi"] {
+        let cfg = PilConfig::new(pil_elf(target));
+        if let Err(e) = cfg.check_tools() {
+            assert!(
+                !pil_required(),
+                "PIL required (PIL_REQUIRED or CI=true): {e}"
+            );
+            eprintln!("SKIPPED pil_flies_the_one_file_stack_on_both_targets on {target}: {e}");
+            continue;
+        }
+        let t0 = std::time::Instant::now();
+        let (run, _record) = fly_scenario_pil(&sc, FILE, cfg.clone());
+        let pil = run.unwrap_or_else(|e| panic!("{target}: {e}"));
+        let p = &pil.stack.as_ref().unwrap().case;
+        println!(
+            "{target}: simulate --pil in {:.1} s: twin {}/{} ticks differ; PIL miss {:.3} km, {} \
+             reversals, {} re-plans; SIL miss {:.3} km, {} reversals, {} re-plans",
+            t0.elapsed().as_secs_f64(),
+            pil.twin.mismatches,
+            pil.twin.ticks,
+            p.miss_m / 1e3,
+            p.reversals,
+            p.replans,
+            sil.miss_m / 1e3,
+            sil.reversals,
+            sil.replans
+        );
+        assert_eq!(pil.twin.mismatches, 0, "{target}: {:?}", pil.twin.first);
+        assert!(pil.twin.ticks > 100, "{target}: {} ticks", pil.twin.ticks);
+        assert_eq!(p.mode, Mode::ReplanEstimation, "{target}");
+        if target != "thumbv7em-none-eabihf" {
+            continue;
+        }
+        // The 1-case campaign (every dispersion zero) and its PIL leg.
+        let settings = zero_dispersions();
+        let setup = CampaignSetup::new(&sc, FILE, None).unwrap();
+        let out = run_campaign(
+            &setup,
+            &settings,
+            &RunOptions {
+                modes: vec![Mode::ReplanEstimation],
+                out_dir: None,
+                threads: Some(1),
+                progress: false,
+            },
+        )
+        .unwrap();
+        let checks =
+            fly_campaign_pil(&setup, &settings, &out, Mode::ReplanEstimation, 1, &cfg).unwrap();
+        assert_eq!(checks.len(), 2);
+        for c in &checks {
+            let s = c.outcome.as_ref().unwrap();
+            println!("{target}: campaign PIL leg {:?}: {s:?}", c.index);
+            assert!(c.passed(), "{target} {:?}: {s:?}", c.index);
+            // The campaign's PIL flights are `simulate --pil`'s, and its SIL records
+            // `simulate`'s (the case is undispersed).
+            assert_eq!(s.pil_miss_m.to_bits(), p.miss_m.to_bits(), "{:?}", c.index);
+            assert_eq!((s.pil_reversals, s.pil_replans), (p.reversals, p.replans));
+            assert_eq!(
+                s.sil_miss_m.to_bits(),
+                sil.miss_m.to_bits(),
+                "{:?}",
+                c.index
+            );
+            assert_eq!(s.twin.ticks, pil.twin.ticks);
+        }
+    }
 }
 
 /// A scenario whose layers make no campaign mode (re-planning without bank reversals) is
