@@ -202,58 +202,14 @@ pub struct PyVariableDesignProblem {
     inner: VariableReentry,
     config: DesignConfig,
     base_dir: PathBuf,
-    nodes: [usize; 2],
 }
 
 impl PyVariableDesignProblem {
-    fn genes_per_node(&self) -> usize {
-        self.inner.inner().encoding().genes_per_node()
-    }
-
-    fn has_altitude(&self) -> bool {
-        self.inner.inner().encoding().entry_altitude_km.is_some()
-    }
-
-    /// The padded vector's length: max free nodes x genes, altitude, count.
-    fn padded_dim(&self) -> usize {
-        (self.nodes[1] - 2) * self.genes_per_node() + usize::from(self.has_altitude()) + 1
-    }
-
-    /// The chromosome of a padded decision.
+    /// The chromosome of a padded decision (the library's padded encoding).
     fn chromosome_of_padded(&self, x: &[f64]) -> Result<Chromosome, String> {
-        let dim = self.padded_dim();
-        if x.len() != dim {
-            return Err(format!(
-                "decision has {} variables, the padded encoding expects {dim}",
-                x.len()
-            ));
-        }
-        let g = self.genes_per_node();
-        let (lo, hi) = (self.nodes[0] - 2, self.nodes[1] - 2);
-        let raw = x[dim - 1];
-        let count = raw.round();
-        if !(count >= lo as f64 && count <= hi as f64) {
-            return Err(format!(
-                "free-node count (last variable) = {raw}: must round to {lo} ..= {hi}"
-            ));
-        }
-        // In range, checked above: an exact small integer.
-        let count = count as usize;
-        let node_genes = &x[..hi * g];
-        let nodes: Vec<Vec<f64>> = node_genes
-            .chunks_exact(g)
-            .take(count)
-            .map(<[f64]>::to_vec)
-            .collect();
-        let fixed = if self.has_altitude() {
-            vec![x[hi * g]]
-        } else {
-            Vec::new()
-        };
-        Ok(Chromosome {
-            fixed,
-            legs: vec![nodes],
-        })
+        self.inner
+            .chromosome_of_padded(x)
+            .map_err(|e| e.to_string())
     }
 
     fn evaluate_chromosome_inner(&self, c: &Chromosome) -> Result<Evaluation, String> {
@@ -284,7 +240,6 @@ impl PyVariableDesignProblem {
             inner,
             config,
             base_dir,
-            nodes,
         })
     }
 
@@ -302,37 +257,20 @@ impl PyVariableDesignProblem {
     /// `(min, max)` table nodes, fixed end nodes included.
     #[getter]
     fn nodes(&self) -> (usize, usize) {
-        (self.nodes[0], self.nodes[1])
+        let [lo, hi] = self.inner.nodes();
+        (lo, hi)
     }
 
     /// Genes per free node: `[E-hat, alpha_deg, sigma_deg]` (3) or `[E-hat, sigma_deg]` (2).
     #[getter]
     fn node_genes(&self) -> usize {
-        self.genes_per_node()
+        self.inner.inner().encoding().genes_per_node()
     }
 
     /// Bounds of the padded decision: `max - 2` free nodes' genes, the entry altitude \[km\]
     /// if a variable, then the free-node count in `[min - 2, max - 2]`.
     fn get_bounds(&self) -> (Vec<f64>, Vec<f64>) {
-        let e = self.inner.inner().encoding();
-        let (mut lo, mut hi) = (Vec::new(), Vec::new());
-        for _ in 0..self.nodes[1] - 2 {
-            lo.push(e.energy[0]);
-            hi.push(e.energy[1]);
-            if e.free_alpha {
-                lo.push(e.alpha_deg[0]);
-                hi.push(e.alpha_deg[1]);
-            }
-            lo.push(e.sigma_deg[0]);
-            hi.push(e.sigma_deg[1]);
-        }
-        if let Some([a, b]) = e.entry_altitude_km {
-            lo.push(a);
-            hi.push(b);
-        }
-        lo.push((self.nodes[0] - 2) as f64);
-        hi.push((self.nodes[1] - 2) as f64);
-        (lo, hi)
+        self.inner.padded_bounds()
     }
 
     /// Number of objectives.

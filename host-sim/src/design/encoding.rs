@@ -160,22 +160,38 @@ impl Encoding {
     /// # Errors
     /// [`DesignError::Bounds`] if the bounds are invalid (see [`Encoding::validate`]).
     pub fn bounds(&self) -> Result<Bounds, DesignError> {
-        let (mut lo, mut hi) = (Vec::new(), Vec::new());
-        for _ in 0..self.free_nodes() {
-            lo.push(self.energy[0]);
-            hi.push(self.energy[1]);
-            if self.free_alpha {
-                lo.push(self.alpha_deg[0]);
-                hi.push(self.alpha_deg[1]);
-            }
-            lo.push(self.sigma_deg[0]);
-            hi.push(self.sigma_deg[1]);
+        let (lo, hi) = self.bounds_of(self.free_nodes());
+        Ok(Bounds::new(lo, hi)?)
+    }
+
+    /// The genes' bounds of one free node: `[E-hat, alpha_deg, sigma_deg]` or
+    /// `[E-hat, sigma_deg]` (lower, upper).
+    #[must_use]
+    pub fn node_bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let mut lo = vec![self.energy[0]];
+        let mut hi = vec![self.energy[1]];
+        if self.free_alpha {
+            lo.push(self.alpha_deg[0]);
+            hi.push(self.alpha_deg[1]);
         }
+        lo.push(self.sigma_deg[0]);
+        hi.push(self.sigma_deg[1]);
+        (lo, hi)
+    }
+
+    /// The bounds (lower, upper) of `free_nodes` free nodes' genes, then the entry altitude
+    /// \[km\] when it is a variable: the decision vector of [`Encoding::bounds`] for any node
+    /// count (the padded encoding of [`super::VariableReentry`] uses its largest).
+    #[must_use]
+    pub fn bounds_of(&self, free_nodes: usize) -> (Vec<f64>, Vec<f64>) {
+        let (node_lo, node_hi) = self.node_bounds();
+        let mut lo = node_lo.repeat(free_nodes);
+        let mut hi = node_hi.repeat(free_nodes);
         if let Some([a, b]) = self.entry_altitude_km {
             lo.push(a);
             hi.push(b);
         }
-        Ok(Bounds::new(lo, hi)?)
+        (lo, hi)
     }
 
     /// The node table `[E-hat, alpha_rad, sigma_rad]` (flight order, fixed end nodes

@@ -65,6 +65,16 @@ pub enum DesignError {
         /// Given.
         got: usize,
     },
+    /// The free-node count of a padded decision (its last variable) out of range.
+    #[error("free-node count (last variable) = {value}: must round to {min} ..= {max}")]
+    PaddedCount {
+        /// The value given.
+        value: f64,
+        /// Fewest free nodes.
+        min: usize,
+        /// Most free nodes.
+        max: usize,
+    },
     /// Invalid decision bounds.
     #[error("problem: encoding bounds: {0}")]
     Bounds(#[from] BoundsError),

@@ -165,6 +165,44 @@ fn variable_length_problem_flies_its_table() {
     assert!(v.evaluate(&short).is_err());
 }
 
+/// The padded encoding: the bounds are the largest node count's genes, then the count; a
+/// padded decision keeps only its first `count` nodes; a bad length or count is an error.
+#[test]
+fn padded_encoding_keeps_the_first_count_nodes() {
+    let v = VariableReentry::new(horus(), [4, 8]).unwrap();
+    let e = v.inner().encoding().clone();
+    assert_eq!(v.nodes(), [4, 8]);
+    assert_eq!(v.padded_dim(), 6 * 3 + 1);
+    let (lo, hi) = v.padded_bounds();
+    assert_eq!((lo.len(), hi.len()), (19, 19));
+    assert_eq!(&lo[..3], &[e.energy[0], e.alpha_deg[0], e.sigma_deg[0]]);
+    assert_eq!(&hi[15..18], &[e.energy[1], e.alpha_deg[1], e.sigma_deg[1]]);
+    assert_eq!((lo[18], hi[18]), (2.0, 6.0));
+    let b = e.bounds().unwrap();
+    assert_eq!(b.lower(), &lo[..18]);
+    assert_eq!(b.upper(), &hi[..18]);
+    let mut x: Vec<f64> = (0..18).map(f64::from).collect();
+    x.push(2.6);
+    let c = v.chromosome_of_padded(&x).unwrap();
+    assert!(c.fixed.is_empty());
+    assert_eq!(
+        c.legs,
+        vec![vec![
+            vec![0.0, 1.0, 2.0],
+            vec![3.0, 4.0, 5.0],
+            vec![6.0, 7.0, 8.0]
+        ]]
+    );
+    x[18] = 6.6;
+    let err = v.chromosome_of_padded(&x).unwrap_err().to_string();
+    assert!(err.contains("= 6.6: must round to 2 ..= 6"), "{err}");
+    x[18] = f64::NAN;
+    assert!(v.chromosome_of_padded(&x).is_err());
+    let err = v.chromosome_of_padded(&x[..5]).unwrap_err().to_string();
+    assert!(err.contains("decision has 5 variables"), "{err}");
+    assert!(v.chromosome_of_padded(&[]).is_err());
+}
+
 /// With a target range the first objective is the miss distance |theta - target| / pi of
 /// the same flight, the heat load and constraints unchanged; a bad target names the field.
 #[test]

@@ -13,6 +13,7 @@ use crate::optim::{Bounds, EvalError, Evaluation, Problem};
 pub struct VariableReentry {
     inner: ReentryProblem,
     layout: Layout,
+    nodes: [usize; 2],
 }
 
 impl VariableReentry {
@@ -31,14 +32,7 @@ impl VariableReentry {
             });
         }
         let e = inner.encoding();
-        let mut l = vec![e.energy[0]];
-        let mut u = vec![e.energy[1]];
-        if e.free_alpha {
-            l.push(e.alpha_deg[0]);
-            u.push(e.alpha_deg[1]);
-        }
-        l.push(e.sigma_deg[0]);
-        u.push(e.sigma_deg[1]);
+        let (l, u) = e.node_bounds();
         let fixed = match e.entry_altitude_km {
             Some([a, b]) => Some(Bounds::new(vec![a], vec![b])?),
             None => None,
@@ -52,7 +46,83 @@ impl VariableReentry {
             },
             Bounds::new(l, u)?,
         )?;
-        Ok(Self { inner, layout })
+        Ok(Self {
+            inner,
+            layout,
+            nodes,
+        })
+    }
+
+    /// `[min, max]` table nodes, fixed ends included.
+    #[must_use]
+    pub fn nodes(&self) -> [usize; 2] {
+        self.nodes
+    }
+
+    /// The length of the padded encoding's decision: the genes of the largest number of free
+    /// nodes, the entry altitude \[km\] when it is a variable, then the free-node count.
+    ///
+    /// The padded encoding is this problem over a fixed-length vector, for the fixed-length
+    /// algorithms (pygmo's, or MOEA/D and NSGA-II through Python): only the first `count`
+    /// nodes reach the chromosome ([`VariableReentry::chromosome_of_padded`]).
+    #[must_use]
+    pub fn padded_dim(&self) -> usize {
+        let e = self.inner.encoding();
+        (self.nodes[1] - 2) * e.genes_per_node() + usize::from(e.entry_altitude_km.is_some()) + 1
+    }
+
+    /// The padded decision's bounds (lower, upper): the largest number of free nodes' genes,
+    /// the entry altitude \[km\] if a variable, and the free-node count in
+    /// `[min - 2, max - 2]`.
+    #[must_use]
+    pub fn padded_bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let (mut lo, mut hi) = self.inner.encoding().bounds_of(self.nodes[1] - 2);
+        lo.push((self.nodes[0] - 2) as f64);
+        hi.push((self.nodes[1] - 2) as f64);
+        (lo, hi)
+    }
+
+    /// The chromosome of a padded decision `x` ([`VariableReentry::padded_dim`] values; the
+    /// last, the free-node count, rounded to the nearest integer).
+    ///
+    /// # Errors
+    /// [`DesignError::Dimension`] for another length; [`DesignError::PaddedCount`] for a count
+    /// that does not round into `[min - 2, max - 2]` (or is not finite).
+    pub fn chromosome_of_padded(&self, x: &[f64]) -> Result<Chromosome, DesignError> {
+        let dim = self.padded_dim();
+        let (Some(&raw), true) = (x.last(), x.len() == dim) else {
+            return Err(DesignError::Dimension {
+                expected: dim,
+                got: x.len(),
+            });
+        };
+        let e = self.inner.encoding();
+        let g = e.genes_per_node();
+        let (lo, hi) = (self.nodes[0] - 2, self.nodes[1] - 2);
+        let count = raw.round();
+        if !(count >= lo as f64 && count <= hi as f64) {
+            return Err(DesignError::PaddedCount {
+                value: raw,
+                min: lo,
+                max: hi,
+            });
+        }
+        // In range, checked above: an exact small integer.
+        let count = count as usize;
+        let nodes = x[..hi * g]
+            .chunks_exact(g)
+            .take(count)
+            .map(<[f64]>::to_vec)
+            .collect();
+        let fixed = if e.entry_altitude_km.is_some() {
+            vec![x[hi * g]]
+        } else {
+            Vec::new()
+        };
+        Ok(Chromosome {
+            fixed,
+            legs: vec![nodes],
+        })
     }
 
     /// The fixed-length problem it wraps.
