@@ -212,12 +212,17 @@ class _Algorithm:
 
 
 class Moead(_Algorithm):
-    """MOEA/D-DE with pagmo's defaults (host-sim ``Moead``; docs/reference/optimisers.md).
+    """MOEA/D with pagmo's defaults (host-sim ``AlgorithmSpec`` ``moead`` / ``moead-sbx``;
+    docs/reference/optimisers.md).
 
-    ``weights``: ``"grid"``, ``"low-discrepancy"``, ``"random"``; ``decomposition``:
-    ``"tchebycheff"``, ``"weighted"``, ``"pbi"``; ``batch_size`` offspring per ask (1:
-    pagmo's steady state); ``neighbours`` defaults to 20, or ``population - 1`` for smaller
-    populations. Bad settings raise :class:`OptimError` at the first ``ask``."""
+    ``operator``: ``"de"`` (pagmo's DE variation, ``cr`` and ``f``) or ``"sbx"`` (Zhang &
+    Li's SBX, ``eta_c`` and ``crossover_probability``), as ``host-sim optimize
+    --moead-operator``; ``weights``: ``"grid"``, ``"low-discrepancy"``, ``"random"``;
+    ``decomposition``: ``"tchebycheff"``, ``"weighted"``, ``"pbi"``; ``batch_size``
+    offspring per ask (1: pagmo's steady state); ``neighbours`` defaults to 20, or
+    ``population - 1`` for smaller populations; ``archive``: capacity of an external archive
+    of the feasible non-dominated solutions (``None``: none, pagmo's semantics). Bad settings
+    raise :class:`OptimError` at the first ``ask``."""
 
     def __init__(
         self,
@@ -234,7 +239,13 @@ class Moead(_Algorithm):
         preserve_diversity: bool = True,
         mutation_probability: Optional[float] = None,
         batch_size: int = 1,
+        operator: str = "de",
+        eta_c: float = 20.0,
+        crossover_probability: float = 1.0,
+        archive: Optional[int] = None,
     ):
+        if operator not in ("de", "sbx"):
+            raise ValueError(f"operator = {operator!r}: use 'de' or 'sbx'")
         if neighbours is None:
             # The thesis' 20, or population - 1 for small populations (host-sim's
             # MoeadConfig::default_neighbours).
@@ -253,11 +264,21 @@ class Moead(_Algorithm):
             mutation_probability=mutation_probability,
             batch_size=batch_size,
         )
-        super().__init__(_native.Optimizer.moead(json.dumps(config), int(seed)))
+        if archive is not None:
+            config["archive"] = archive
+        if operator == "sbx":
+            spec = dict(
+                moead=config, sbx=dict(eta_c=eta_c, crossover_probability=crossover_probability)
+            )
+            native = _native.Optimizer.from_spec("moead-sbx", json.dumps(spec), int(seed))
+        else:
+            native = _native.Optimizer.moead(json.dumps(config), int(seed))
+        super().__init__(native)
 
 
 class Nsga2(_Algorithm):
-    """NSGA-II with pagmo's defaults (host-sim ``Nsga2``; population a multiple of 4)."""
+    """NSGA-II with pagmo's defaults (host-sim ``Nsga2``; population a multiple of 4;
+    ``archive`` as for :class:`Moead`)."""
 
     def __init__(
         self,
@@ -267,8 +288,11 @@ class Nsga2(_Algorithm):
         eta_c: float = 10.0,
         m: float = 0.01,
         eta_m: float = 50.0,
+        archive: Optional[int] = None,
     ):
         config = dict(population=population, cr=cr, eta_c=eta_c, m=m, eta_m=eta_m)
+        if archive is not None:
+            config["archive"] = archive
         super().__init__(_native.Optimizer.nsga2(json.dumps(config), int(seed)))
 
 

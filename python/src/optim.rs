@@ -1,6 +1,7 @@
 //! The optimisers through ask/tell, the test problems and the hypervolume.
 //!
-//! [`Optimizer`] holds a host-sim `Moead`, `Nsga2` or `Mhaco` and the shape of the problem it runs on
+//! [`Optimizer`] holds a host-sim `RealAlgorithm` (built from an `AlgorithmSpec`: MOEA/D with
+//! DE or SBX, NSGA-II, MHACO) and the shape of the problem it runs on
 //! ([`OpenProblem`]: bounds, objectives, constraints), read from any Python object with
 //! pygmo's user-defined-problem methods (`get_bounds`, `get_nobj`, `get_nic`). Evaluations
 //! happen outside (in Python, in Rust through [`PyTestProblem`], or on Dask workers) and come
@@ -9,8 +10,8 @@
 use host_sim::optim::hypervolume::hypervolume as hv;
 use host_sim::optim::problems::{NAMES, TestProblem};
 use host_sim::optim::{
-    Algorithm, Bounds, EvalError, Evaluation, Mhaco, MhacoConfig, Moead, MoeadConfig, NoObserver,
-    Nsga2, Nsga2Config, Problem, RealProblem, Serial, evolve,
+    Algorithm, AlgorithmSpec, Bounds, EvalError, Evaluation, NoObserver, Problem, RealAlgorithm,
+    RealProblem, SPEC_NAMES, Serial, evolve,
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -85,39 +86,18 @@ fn open_problem(problem: &Bound<'_, PyAny>) -> PyResult<OpenProblem> {
     })
 }
 
-/// The algorithm an [`Optimizer`] runs (one per Python object: the size difference between
-/// the variants does not matter).
-#[allow(clippy::large_enum_variant)]
-#[derive(Clone, Debug, Serialize, Deserialize)]
-enum Algo {
-    Moead(Moead),
-    Nsga2(Nsga2),
-    Mhaco(Mhaco),
-}
-
 /// What [`Optimizer::to_json`] writes: the algorithm's whole state and the problem shape.
 #[derive(Serialize, Deserialize)]
 struct Checkpoint {
-    algorithm: Algo,
+    algorithm: RealAlgorithm,
     problem: Option<OpenProblem>,
 }
 
 /// An ask/tell optimiser (host-sim MOEA/D, NSGA-II or MHACO).
 #[pyclass(module = "reentry._native")]
 pub struct Optimizer {
-    algo: Algo,
+    algo: RealAlgorithm,
     problem: Option<OpenProblem>,
-}
-
-/// Run `$body` with `$a` bound to the algorithm inside `$algo` (an `Algo` place).
-macro_rules! with_algo {
-    ($algo:expr, $a:ident => $body:expr) => {
-        match $algo {
-            Algo::Moead($a) => $body,
-            Algo::Nsga2($a) => $body,
-            Algo::Mhaco($a) => $body,
-        }
-    };
 }
 
 impl Optimizer {
@@ -130,8 +110,7 @@ impl Optimizer {
             Some(_) => Ok(()),
             None => {
                 // A state restored without a problem is checked against the first one.
-                with_algo!(&self.algo, a => Algorithm::<OpenProblem>::validate(a, &shape))
-                    .map_err(state_error)?;
+                Algorithm::<OpenProblem>::validate(&self.algo, &shape).map_err(state_error)?;
                 self.problem = Some(shape);
                 Ok(())
             }
@@ -153,57 +132,59 @@ fn config_error(e: &serde_json::Error) -> PyErr {
     PyValueError::new_err(format!("optimiser settings: {e}"))
 }
 
-/// An algorithm's settings: its defaults, overwritten by the fields of `json` (an object).
-fn config<C: Default + Serialize + serde::de::DeserializeOwned>(json: &str) -> PyResult<C> {
-    let mut over: serde_json::Value = serde_json::from_str(json).map_err(|e| config_error(&e))?;
-    let mut full = serde_json::to_value(C::default()).map_err(|e| config_error(&e))?;
-    merge(&mut full, &mut over);
-    serde_json::from_value(full).map_err(|e| config_error(&e))
-}
-
 #[pymethods]
 impl Optimizer {
+    /// The algorithm `name` (`moead`, `moead-sbx`, `nsga2`, `mhaco`: host-sim's
+    /// `AlgorithmSpec`) with the settings of `config_json` over its defaults (pagmo's; for
+    /// `moead-sbx` the tables `moead` and `sbx`, each over its defaults) and the run's seed.
+    #[staticmethod]
+    fn from_spec(name: &str, config_json: &str, seed: u64) -> PyResult<Self> {
+        let Some(defaults) = AlgorithmSpec::defaults(name) else {
+            return Err(PyValueError::new_err(format!(
+                "optimiser settings: algorithm {name:?}: use one of {}",
+                SPEC_NAMES.join(", ")
+            )));
+        };
+        let mut over: serde_json::Value =
+            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
+        let mut full = serde_json::to_value(&defaults).map_err(|e| config_error(&e))?;
+        if let Some(o) = over.as_object_mut() {
+            // The spec's own tag; the nested tables of moead-sbx merge table by table.
+            o.remove("algorithm");
+            for table in ["moead", "sbx"] {
+                if let (Some(b), Some(t)) = (full.get_mut(table), o.remove(table)) {
+                    let mut t = t;
+                    merge(b, &mut t);
+                }
+            }
+        }
+        merge(&mut full, &mut over);
+        let spec: AlgorithmSpec = serde_json::from_value(full).map_err(|e| config_error(&e))?;
+        Ok(Self {
+            algo: spec.build(seed),
+            problem: None,
+        })
+    }
+
     /// MHACO with the settings of `config_json` (host-sim `MhacoConfig` fields; missing fields
     /// take pagmo's `maco` defaults) and the run's seed.
     #[staticmethod]
     fn mhaco(config_json: &str, seed: u64) -> PyResult<Self> {
-        let config: MhacoConfig = config(config_json)?;
-        Ok(Self {
-            algo: Algo::Mhaco(Mhaco::new(config, seed)),
-            problem: None,
-        })
+        Self::from_spec("mhaco", config_json, seed)
     }
 
     /// MOEA/D with the settings of `config_json` (host-sim `MoeadConfig` fields; missing
     /// fields take pagmo's defaults) and the run's seed.
     #[staticmethod]
     fn moead(config_json: &str, seed: u64) -> PyResult<Self> {
-        let mut v: serde_json::Value =
-            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
-        let mut full =
-            serde_json::to_value(MoeadConfig::default()).map_err(|e| config_error(&e))?;
-        merge(&mut full, &mut v);
-        let config: MoeadConfig = serde_json::from_value(full).map_err(|e| config_error(&e))?;
-        Ok(Self {
-            algo: Algo::Moead(Moead::new(config, seed)),
-            problem: None,
-        })
+        Self::from_spec("moead", config_json, seed)
     }
 
     /// NSGA-II with the settings of `config_json` (host-sim `Nsga2Config` fields; missing
     /// fields take pagmo's defaults) and the run's seed.
     #[staticmethod]
     fn nsga2(config_json: &str, seed: u64) -> PyResult<Self> {
-        let mut v: serde_json::Value =
-            serde_json::from_str(config_json).map_err(|e| config_error(&e))?;
-        let mut full =
-            serde_json::to_value(Nsga2Config::default()).map_err(|e| config_error(&e))?;
-        merge(&mut full, &mut v);
-        let config: Nsga2Config = serde_json::from_value(full).map_err(|e| config_error(&e))?;
-        Ok(Self {
-            algo: Algo::Nsga2(Nsga2::new(config, seed)),
-            problem: None,
-        })
+        Self::from_spec("nsga2", config_json, seed)
     }
 
     /// The next batch of decisions to evaluate (the same batch again until all are told).
@@ -215,7 +196,7 @@ impl Optimizer {
         let Some(p) = problem.as_ref() else {
             return Ok(Vec::new());
         };
-        py.detach(|| with_algo!(algo, a => a.ask(p).map(<[Vec<f64>]>::to_vec)))
+        py.detach(|| algo.ask(p).map(<[Vec<f64>]>::to_vec))
             .map_err(errors::optim)
     }
 
@@ -231,19 +212,19 @@ impl Optimizer {
     ) -> PyResult<()> {
         let p = self.problem()?.clone();
         let e = Evaluation::with_constraints(objectives, constraints);
-        py.detach(|| with_algo!(&mut self.algo, a => a.tell(&p, index, e)))
+        py.detach(|| self.algo.tell(&p, index, e))
             .map_err(errors::optim)
     }
 
     /// Whether decision `index` of the open batch has been told.
     fn is_told(&self, index: usize) -> bool {
-        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::is_told(a, index))
+        Algorithm::<OpenProblem>::is_told(&self.algo, index)
     }
 
     /// The population: `(decisions, objectives, constraints, violations)`.
     #[allow(clippy::type_complexity)]
     fn population(&self) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>) {
-        let pop = with_algo!(&self.algo, a => Algorithm::<OpenProblem>::population(a));
+        let pop = Algorithm::<OpenProblem>::population(&self.algo);
         (
             pop.iter().map(|i| i.decision.clone()).collect(),
             pop.iter().map(|i| i.objectives.clone()).collect(),
@@ -255,25 +236,25 @@ impl Optimizer {
     /// Completed generations (0 until the initial population is complete).
     #[getter]
     fn generation(&self) -> u64 {
-        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::generation(a))
+        Algorithm::<OpenProblem>::generation(&self.algo)
     }
 
     /// Evaluations told so far.
     #[getter]
     fn evaluations(&self) -> u64 {
-        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::evaluations(a))
+        Algorithm::<OpenProblem>::evaluations(&self.algo)
     }
 
     /// Whether the initial population is complete.
     #[getter]
     fn is_initialised(&self) -> bool {
-        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::is_initialised(a))
+        Algorithm::<OpenProblem>::is_initialised(&self.algo)
     }
 
-    /// "moead", "nsga2" or "mhaco".
+    /// "moead", "moead-sbx", "nsga2" or "mhaco".
     #[getter]
     fn name(&self) -> &'static str {
-        with_algo!(&self.algo, a => Algorithm::<OpenProblem>::name(a))
+        Algorithm::<OpenProblem>::name(&self.algo)
     }
 
     /// Run `generations` generations on a test problem inside Rust (host-sim `evolve`, serial
@@ -291,10 +272,8 @@ impl Optimizer {
             constraints: p.constraints(),
         };
         self.adopt(shape)?;
-        py.detach(
-            || with_algo!(&mut self.algo, a => evolve(a, p, &Serial, generations, &mut NoObserver)),
-        )
-        .map_err(errors::optim)
+        py.detach(|| evolve(&mut self.algo, p, &Serial, generations, &mut NoObserver))
+            .map_err(errors::optim)
     }
 
     /// The whole state as JSON (algorithm, RNG, open batch, problem shape): resuming from it
@@ -317,8 +296,7 @@ impl Optimizer {
         // A tampered or corrupt state must not panic or hang later: it is checked against
         // itself and its problem (or, saved before the first ask, against the first problem).
         if let Some(p) = &c.problem {
-            with_algo!(&c.algorithm, a => Algorithm::<OpenProblem>::validate(a, p))
-                .map_err(state_error)?;
+            Algorithm::<OpenProblem>::validate(&c.algorithm, p).map_err(state_error)?;
         }
         Ok(Self {
             algo: c.algorithm,

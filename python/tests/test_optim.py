@@ -25,14 +25,19 @@ def same_state(a, b):
     [
         lambda: reentry.Moead(seed=3, population=30, batch_size=1),
         lambda: reentry.Moead(seed=3, population=30, batch_size=7),
+        lambda: reentry.Moead(seed=3, population=30, operator="sbx", eta_c=15.0, archive=40),
         lambda: reentry.Nsga2(seed=3, population=24),
+        lambda: reentry.Nsga2(seed=3, population=24, archive=30),
         lambda: reentry.Mhaco(seed=3, population=20, ker=10),
         lambda: reentry.Mhaco(
             seed=3, population=20, ker=10,
             constraints={"as-objectives": {"scales": None, "cap": 2.0, "penalty": 0.5}},
         ),
     ],
-    ids=["moead-steady", "moead-batch7", "nsga2", "mhaco", "mhaco-constraints-as-objectives"],
+    ids=[
+        "moead-steady", "moead-batch7", "moead-sbx-archive", "nsga2", "nsga2-archive", "mhaco",
+        "mhaco-constraints-as-objectives",
+    ],
 )
 @pytest.mark.parametrize("name", ["zdt1", "constr"])
 def test_python_loop_equals_rust_evolve(make, name):
@@ -68,6 +73,21 @@ def test_equals_host_sim_optimize_population_csv(host_sim, tmp_path):
     expected = np.array([[float(v) for v in r.split(",")] for r in rows])
     a = reentry.Nsga2(seed=9, population=20)
     reentry.evolve(a, reentry.TestProblem("zdt2"), 6)
+    pop = a.population
+    got = np.hstack([pop.x, pop.f, pop.violation[:, None]])
+    assert np.array_equal(got, expected)
+
+
+def test_moead_sbx_equals_host_sim_optimize_moead_operator_sbx(host_sim, tmp_path):
+    host_sim(
+        "optimize", "--problem", "zdt1", "--algorithm", "moead", "--moead-operator", "sbx",
+        "--population", "20", "--generations", "6", "--seed", "9", "--out", tmp_path,
+    )
+    rows = (tmp_path / "population.csv").read_text().splitlines()[1:]
+    expected = np.array([[float(v) for v in r.split(",")] for r in rows])
+    a = reentry.Moead(seed=9, population=20, operator="sbx")
+    assert a.name == "moead-sbx"
+    reentry.evolve(a, reentry.TestProblem("zdt1"), 6)
     pop = a.population
     got = np.hstack([pop.x, pop.f, pop.violation[:, None]])
     assert np.array_equal(got, expected)

@@ -9,8 +9,8 @@ use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::TestProblem;
 use crate::optim::run::{RunSummary, population_csv};
 use crate::optim::{
-    Algorithm, Budget, Executor, Mhaco, Moead, MoeadSbx, Nsga2, Nsga2Config, OptimError, Problem,
-    SbxVariation, Threads,
+    Algorithm, AlgorithmSpec, Budget, Executor, Nsga2Config, OptimError, Problem, SbxVariation,
+    Threads,
 };
 
 pub use super::optimize_common::{
@@ -37,6 +37,27 @@ fn drive<A: Algorithm<TestProblem>>(
         archive: alg.external_archive().map(<[_]>::to_vec),
         evaluations: alg.evaluations(),
         wall_time_s,
+    })
+}
+
+/// The real-vector algorithm of the arguments, as the library specifies it (`None`: SCEA,
+/// which runs on chromosomes).
+fn spec_of(a: &OptimizeArgs) -> Option<AlgorithmSpec> {
+    Some(match a.algorithm {
+        AlgorithmName::Moead => match a.moead_operator {
+            MoeadOperatorArg::De => AlgorithmSpec::Moead(moead_config(a)),
+            MoeadOperatorArg::Sbx => AlgorithmSpec::MoeadSbx {
+                moead: moead_config(a),
+                sbx: SbxVariation::default(),
+            },
+        },
+        AlgorithmName::Nsga2 => AlgorithmSpec::Nsga2(Nsga2Config {
+            population: a.population,
+            archive: a.archive,
+            ..Nsga2Config::default()
+        }),
+        AlgorithmName::Mhaco => AlgorithmSpec::Mhaco(mhaco_config(a)),
+        AlgorithmName::Scea => return None,
     })
 }
 
@@ -89,34 +110,9 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
     let pool = threads(a.threads)?;
-    let outcome = match a.algorithm {
-        AlgorithmName::Moead => {
-            let config = moead_config(a);
-            match a.moead_operator {
-                MoeadOperatorArg::De => {
-                    drive(Moead::new(config, a.seed), &problem, generations, &pool)?
-                }
-                MoeadOperatorArg::Sbx => drive(
-                    MoeadSbx::sbx(config, SbxVariation::default(), a.seed),
-                    &problem,
-                    generations,
-                    &pool,
-                )?,
-            }
-        }
-        AlgorithmName::Nsga2 => {
-            let config = Nsga2Config {
-                population: a.population,
-                archive: a.archive,
-                ..Nsga2Config::default()
-            };
-            drive(Nsga2::new(config, a.seed), &problem, generations, &pool)?
-        }
-        AlgorithmName::Mhaco => {
-            let config = mhaco_config(a);
-            drive(Mhaco::new(config, a.seed), &problem, a.generations, &pool)?
-        }
-        AlgorithmName::Scea => super::optimize_structured::drive_scea(a, &problem, &pool)?,
+    let outcome = match spec_of(a) {
+        Some(spec) => drive(spec.build(a.seed), &problem, generations, &pool)?,
+        None => super::optimize_structured::drive_scea(a, &problem, &pool)?,
     };
     let pop = &outcome.population;
     let result = outcome.archive.as_deref().unwrap_or(pop);

@@ -15,6 +15,8 @@
 //! * [`archive`]: [`ParetoArchive`], the bounded external archive of non-dominated solutions
 //!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
 //! * [`hypervolume`]: exact hypervolume, contributions, least contributor;
+//! * [`spec`]: [`AlgorithmSpec`], one algorithm specification (serde-tagged, checked), and
+//!   [`RealAlgorithm`], the running algorithm every front end drives;
 //! * [`run`]: a recorded run's per-generation records, checkpoint and population CSV;
 //! * [`nonfinite`]: serde of `f64`s that may be NaN or infinite (checkpoints, records).
 //!
@@ -40,6 +42,7 @@ pub mod rng;
 pub mod root;
 pub mod rows;
 pub mod run;
+pub mod spec;
 pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
@@ -55,4 +58,5 @@ pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Obser
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
 pub use rng::OptimRng;
+pub use spec::{AlgorithmSpec, RealAlgorithm, SPEC_NAMES};
 pub use weights::{Decomposition, WeightGeneration};

@@ -59,7 +59,7 @@ impl Default for Nsga2Config {
 }
 
 impl Nsga2Config {
-    fn check(&self) -> Result<(), ConfigError> {
+    pub(crate) fn check(&self) -> Result<(), ConfigError> {
         let n = self.population;
         super::check_size(NAME, "population", n)?;
         if n < 8 {

@@ -130,7 +130,7 @@ impl MoeadConfig {
         20.min(population.saturating_sub(1)).max(2)
     }
 
-    fn check(&self, objectives: usize) -> Result<(), ConfigError> {
+    pub(crate) fn check(&self, objectives: usize) -> Result<(), ConfigError> {
         if objectives < 2 {
             return Err(ConfigError::TooFewObjectives {
                 algorithm: NAME,

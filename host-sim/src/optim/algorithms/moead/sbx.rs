@@ -35,6 +35,21 @@ impl Default for SbxVariation {
 /// MOEA/D on real vectors with Zhang & Li's (2007) SBX variation.
 pub type MoeadSbx = MoeadWith<Vec<f64>, SbxVariation>;
 
+impl SbxVariation {
+    /// `eta_c` in \[1, 100\], `crossover_probability` in \[0, 1\].
+    pub(crate) fn check_ranges(&self) -> Result<(), ConfigError> {
+        check_range(NAME, "eta_c", self.eta_c, 1.0, 100.0, "[1, 100]")?;
+        check_range(
+            NAME,
+            "crossover_probability",
+            self.crossover_probability,
+            0.0,
+            1.0,
+            "[0, 1]",
+        )
+    }
+}
+
 impl MoeadSbx {
     /// A new run with `config` and the SBX variation of Zhang & Li (2007), seeded with
     /// `seed`.
@@ -55,15 +70,7 @@ impl<P: RealProblem> MoeadVariation<P> for SbxVariation {
     }
 
     fn check(&self, _problem: &P, _config: &MoeadConfig) -> Result<(), ConfigError> {
-        check_range(NAME, "eta_c", self.eta_c, 1.0, 100.0, "[1, 100]")?;
-        check_range(
-            NAME,
-            "crossover_probability",
-            self.crossover_probability,
-            0.0,
-            1.0,
-            "[0, 1]",
-        )
+        self.check_ranges()
     }
 
     fn random(&self, problem: &P, rng: &mut OptimRng) -> Vec<f64> {

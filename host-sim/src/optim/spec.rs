@@ -1,0 +1,274 @@
+//! One algorithm specification for the real-vector problems: [`AlgorithmSpec`], which
+//! algorithm with which settings (serde, tagged by `algorithm`: `moead`, `moead-sbx`,
+//! `nsga2`, `mhaco`), checked against a problem's shape by [`AlgorithmSpec::check`] and
+//! built into a [`RealAlgorithm`], the one enum over the running algorithms that every front
+//! end drives (the CLI's test-problem runs, the Python `Optimizer`). Each variant carries
+//! only its own configuration (MOEA/D's SBX settings exist only in `moead-sbx`, NSGA-II has
+//! no neighbourhood), so a combination the algorithms do not have cannot be built.
+//!
+//! SCEA and the variable-length MHACO run on chromosomes, not real vectors: they are not
+//! variants here.
+
+use serde::{Deserialize, Serialize};
+
+use super::algorithm::Algorithm;
+use super::algorithms::{
+    Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, Nsga2, Nsga2Config, SbxVariation,
+};
+use super::error::{ConfigError, OptimError, StateError};
+use super::population::Individual;
+use super::problem::{Evaluation, RealProblem};
+
+/// An algorithm and its settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "algorithm", rename_all = "kebab-case")]
+pub enum AlgorithmSpec {
+    /// MOEA/D with pagmo's DE variation.
+    Moead(MoeadConfig),
+    /// MOEA/D with Zhang & Li's (2007) SBX variation.
+    MoeadSbx {
+        /// MOEA/D's settings (its DE fields `cr` and `f` unused).
+        moead: MoeadConfig,
+        /// The SBX variation's settings.
+        sbx: SbxVariation,
+    },
+    /// NSGA-II (pagmo's).
+    Nsga2(Nsga2Config),
+    /// MHACO (pagmo's `maco`).
+    Mhaco(MhacoConfig),
+}
+
+/// The names [`AlgorithmSpec::defaults`] knows, as in the `algorithm` tag.
+pub const SPEC_NAMES: [&str; 4] = ["moead", "moead-sbx", "nsga2", "mhaco"];
+
+impl AlgorithmSpec {
+    /// The algorithm `name` (one of [`SPEC_NAMES`]) with its default settings (pagmo's).
+    #[must_use]
+    pub fn defaults(name: &str) -> Option<Self> {
+        Some(match name {
+            "moead" => Self::Moead(MoeadConfig::default()),
+            "moead-sbx" => Self::MoeadSbx {
+                moead: MoeadConfig::default(),
+                sbx: SbxVariation::default(),
+            },
+            "nsga2" => Self::Nsga2(Nsga2Config::default()),
+            "mhaco" => Self::Mhaco(MhacoConfig::default()),
+            _ => return None,
+        })
+    }
+
+    /// The `algorithm` tag.
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Moead(_) => "moead",
+            Self::MoeadSbx { .. } => "moead-sbx",
+            Self::Nsga2(_) => "nsga2",
+            Self::Mhaco(_) => "mhaco",
+        }
+    }
+
+    /// Population size.
+    #[must_use]
+    pub fn population(&self) -> usize {
+        match self {
+            Self::Moead(c) | Self::MoeadSbx { moead: c, .. } => c.population,
+            Self::Nsga2(c) => c.population,
+            Self::Mhaco(c) => c.population,
+        }
+    }
+
+    /// Check the settings for a problem of `objectives` objectives and `constraints`
+    /// constraints (what the algorithm's first `ask` would refuse).
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the algorithm, the field, its value and the range.
+    pub fn check(&self, objectives: usize, constraints: usize) -> Result<(), ConfigError> {
+        match self {
+            Self::Moead(c) => c.check(objectives),
+            Self::MoeadSbx { moead, sbx } => {
+                moead.check(objectives)?;
+                sbx.check_ranges()
+            }
+            Self::Nsga2(c) => c.check(),
+            Self::Mhaco(c) => c.check(objectives, constraints),
+        }
+    }
+
+    /// A new run of this algorithm seeded with `seed`.
+    #[must_use]
+    pub fn build(&self, seed: u64) -> RealAlgorithm {
+        match self {
+            Self::Moead(c) => RealAlgorithm::Moead(Moead::new(c.clone(), seed)),
+            Self::MoeadSbx { moead, sbx } => {
+                RealAlgorithm::MoeadSbx(MoeadSbx::sbx(moead.clone(), *sbx, seed))
+            }
+            Self::Nsga2(c) => RealAlgorithm::Nsga2(Nsga2::new(c.clone(), seed)),
+            Self::Mhaco(c) => RealAlgorithm::Mhaco(Mhaco::new(c.clone(), seed)),
+        }
+    }
+}
+
+/// A running real-vector algorithm: the state of any [`AlgorithmSpec`] (serde: the whole
+/// state, as a checkpoint keeps it).
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub enum RealAlgorithm {
+    /// MOEA/D (DE).
+    Moead(Moead),
+    /// MOEA/D (SBX).
+    MoeadSbx(MoeadSbx),
+    /// NSGA-II.
+    Nsga2(Nsga2),
+    /// MHACO.
+    Mhaco(Mhaco),
+}
+
+/// `$body` with `$a` bound to the algorithm inside `$algo`.
+macro_rules! each {
+    ($algo:expr, $a:ident => $body:expr) => {
+        match $algo {
+            RealAlgorithm::Moead($a) => $body,
+            RealAlgorithm::MoeadSbx($a) => $body,
+            RealAlgorithm::Nsga2($a) => $body,
+            RealAlgorithm::Mhaco($a) => $body,
+        }
+    };
+}
+
+impl<P: RealProblem> Algorithm<P> for RealAlgorithm {
+    fn name(&self) -> &'static str {
+        match self {
+            Self::MoeadSbx(_) => "moead-sbx",
+            _ => each!(self, a => Algorithm::<P>::name(a)),
+        }
+    }
+
+    fn ask(&mut self, problem: &P) -> Result<&[Vec<f64>], OptimError> {
+        each!(self, a => a.ask(problem))
+    }
+
+    fn tell(
+        &mut self,
+        problem: &P,
+        index: usize,
+        evaluation: Evaluation,
+    ) -> Result<(), OptimError> {
+        each!(self, a => a.tell(problem, index, evaluation))
+    }
+
+    fn population(&self) -> &[Individual<Vec<f64>>] {
+        each!(self, a => Algorithm::<P>::population(a))
+    }
+
+    fn external_archive(&self) -> Option<&[Individual<Vec<f64>>]> {
+        each!(self, a => Algorithm::<P>::external_archive(a))
+    }
+
+    fn is_initialised(&self) -> bool {
+        each!(self, a => Algorithm::<P>::is_initialised(a))
+    }
+
+    fn generation(&self) -> u64 {
+        each!(self, a => Algorithm::<P>::generation(a))
+    }
+
+    fn evaluations(&self) -> u64 {
+        each!(self, a => Algorithm::<P>::evaluations(a))
+    }
+
+    fn is_told(&self, index: usize) -> bool {
+        each!(self, a => Algorithm::<P>::is_told(a, index))
+    }
+
+    fn is_finished(&self) -> bool {
+        each!(self, a => Algorithm::<P>::is_finished(a))
+    }
+
+    fn validate(&self, problem: &P) -> Result<(), StateError> {
+        each!(self, a => a.validate(problem))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optim::problems::TestProblem;
+    use crate::optim::{NoObserver, Serial, evolve};
+
+    /// Every name round-trips through its tag, a spec reads back from JSON as written, and
+    /// the checks name the algorithm and the field.
+    #[test]
+    fn specs_are_tagged_checked_and_read_back() {
+        for name in SPEC_NAMES {
+            let s = AlgorithmSpec::defaults(name).unwrap();
+            assert_eq!(s.name(), name);
+            let json = serde_json::to_string(&s).unwrap();
+            assert!(
+                json.contains(&format!("\"algorithm\":\"{name}\"")),
+                "{json}"
+            );
+            let back: AlgorithmSpec = serde_json::from_str(&json).unwrap();
+            assert_eq!(back, s);
+            assert!(s.check(2, 0).is_ok(), "{name}");
+        }
+        assert!(AlgorithmSpec::defaults("scea").is_none());
+        let unknown: Result<AlgorithmSpec, _> =
+            serde_json::from_str(r#"{"algorithm": "scea", "population": 20}"#);
+        assert!(unknown.is_err());
+        let e = AlgorithmSpec::Nsga2(Nsga2Config {
+            population: 10,
+            ..Nsga2Config::default()
+        })
+        .check(2, 0)
+        .unwrap_err();
+        assert!(e.to_string().contains("nsga2"), "{e}");
+        let e = AlgorithmSpec::MoeadSbx {
+            moead: MoeadConfig::default(),
+            sbx: SbxVariation {
+                eta_c: 0.5,
+                ..SbxVariation::default()
+            },
+        }
+        .check(2, 0)
+        .unwrap_err();
+        assert!(e.to_string().contains("eta_c"), "{e}");
+        assert!(
+            AlgorithmSpec::defaults("moead")
+                .unwrap()
+                .check(1, 0)
+                .is_err()
+        );
+    }
+
+    /// A built algorithm runs as the algorithm itself does, bit for bit.
+    #[test]
+    fn built_algorithm_runs_as_the_algorithm_itself() {
+        let problem = TestProblem::by_name("zdt1", 2).unwrap().unwrap();
+        let config = MoeadConfig {
+            population: 20,
+            neighbours: 5,
+            ..MoeadConfig::default()
+        };
+        let spec = AlgorithmSpec::MoeadSbx {
+            moead: config.clone(),
+            sbx: SbxVariation::default(),
+        };
+        let mut built = spec.build(7);
+        let mut direct = MoeadSbx::sbx(config.clone(), SbxVariation::default(), 7);
+        evolve(&mut built, &problem, &Serial, 3, &mut NoObserver).unwrap();
+        evolve(&mut direct, &problem, &Serial, 3, &mut NoObserver).unwrap();
+        assert_eq!(
+            Algorithm::<TestProblem>::population(&built),
+            Algorithm::<TestProblem>::population(&direct)
+        );
+        assert_eq!(Algorithm::<TestProblem>::name(&built), "moead-sbx");
+        let mut nsga2 = AlgorithmSpec::Nsga2(Nsga2Config {
+            population: 24,
+            ..Nsga2Config::default()
+        })
+        .build(3);
+        evolve(&mut nsga2, &problem, &Serial, 2, &mut NoObserver).unwrap();
+        assert_eq!(Algorithm::<TestProblem>::generation(&nsga2), 2);
+    }
+}
