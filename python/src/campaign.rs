@@ -12,14 +12,8 @@
 
 use std::path::PathBuf;
 
-use host_sim::campaign::draw::draw_case;
-use host_sim::campaign::flight::fly_case;
 use host_sim::campaign::output::write_campaign;
-use host_sim::campaign::run::{CaseFailure, RunOptions};
-use host_sim::campaign::{
-    CampaignOutput, CampaignSetup, CaseResult, DispersionSettings, Mode, parse_settings,
-    run_campaign,
-};
+use host_sim::campaign::{Campaign, DispersionSettings, JobOutcome, Mode, parse_settings};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -39,25 +33,6 @@ struct Spec {
     modes: Vec<String>,
 }
 
-/// What one job gives: the flight's result, or the record of its failure (a failure's JSON
-/// has an `error` field, a result's has not; failures are tried first).
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(untagged)]
-#[allow(clippy::large_enum_variant)] // short-lived, one per job: boxing buys nothing
-enum Outcome {
-    Failed(CaseFailure),
-    Flown(CaseResult),
-}
-
-impl Outcome {
-    fn key(&self) -> (Mode, u32) {
-        match self {
-            Self::Failed(f) => (f.mode, f.index),
-            Self::Flown(c) => (c.mode, c.index),
-        }
-    }
-}
-
 /// A dispersion campaign: scenario, settings and modes, with its set-up built.
 #[pyclass(
     name = "DispersionCampaign",
@@ -67,20 +42,11 @@ impl Outcome {
 )]
 pub struct PyCampaign {
     spec: Spec,
-    setup: CampaignSetup,
-    modes: Vec<Mode>,
+    campaign: Campaign,
 }
 
 fn mode_of(name: &str) -> PyResult<Mode> {
-    Mode::ALL
-        .into_iter()
-        .find(|m| m.name() == name)
-        .ok_or_else(|| {
-            errors::CampaignError::new_err(format!(
-                "modes: {name:?}: unknown mode ({})",
-                campaign_modes().join(", ")
-            ))
-        })
+    Mode::by_name(name).map_err(|e| errors::campaign(&e))
 }
 
 fn json_error(e: &serde_json::Error) -> PyErr {
@@ -92,7 +58,7 @@ fn to_json<T: Serialize>(v: &T) -> PyResult<String> {
 }
 
 impl PyCampaign {
-    fn build(spec: Spec) -> PyResult<(Spec, CampaignSetup, Vec<Mode>)> {
+    fn build(spec: Spec) -> PyResult<Self> {
         let src = source(
             spec.builtin.clone(),
             spec.path.clone(),
@@ -106,37 +72,15 @@ impl PyCampaign {
             Source::Builtin(name) => format!("builtin:{name}"),
             _ => resolved,
         };
-        spec.settings
-            .validate("command line")
-            .map_err(|e| errors::campaign(&e))?;
-        let mut modes = Vec::new();
-        for m in &spec.modes {
-            modes.push(mode_of(m)?);
-        }
+        let modes = spec
+            .modes
+            .iter()
+            .map(|m| mode_of(m))
+            .collect::<PyResult<Vec<_>>>()?;
         // As the CLI: the scenario's guidance layers, the modes its stack can fly.
-        let setup = CampaignSetup::new(&sc, &file, spec.settings.interface_speed_m_s)
+        let campaign = Campaign::new(&sc, &file, spec.settings.clone(), "command line", modes)
             .map_err(|e| errors::campaign(&e))?;
-        if modes.is_empty() {
-            modes = setup.modes();
-        }
-        setup
-            .check_modes(&modes)
-            .map_err(|e| errors::campaign(&e))?;
-        Ok((spec, setup, modes))
-    }
-
-    fn fly_job(&self, mode: Mode, index: u32) -> Result<Outcome, String> {
-        if index >= self.spec.settings.cases {
-            return Err(format!(
-                "case {index}: outside the campaign (0 ..= {})",
-                self.spec.settings.cases - 1
-            ));
-        }
-        let draw = draw_case(&self.spec.settings, index);
-        Ok(match fly_case(&self.setup, Some(&draw), mode) {
-            Ok(c) => Outcome::Flown(c),
-            Err(e) => Outcome::Failed(CaseFailure::new(mode, index, draw, &e)),
-        })
+        Ok(Self { spec, campaign })
     }
 }
 
@@ -185,8 +129,7 @@ impl PyCampaign {
             }
             let spec: Spec = serde_json::from_str(text)
                 .map_err(|e| PyValueError::new_err(format!("campaign spec: {e}")))?;
-            let (spec, setup, modes) = py.detach(|| Self::build(spec))?;
-            return Ok(Self { spec, setup, modes });
+            return py.detach(|| Self::build(spec));
         }
         let mut settings = match &settings_toml {
             Some(text) => parse_settings(
@@ -216,8 +159,7 @@ impl PyCampaign {
             settings,
             modes: modes.unwrap_or_default(),
         };
-        let (spec, setup, modes) = py.detach(|| Self::build(spec))?;
-        Ok(Self { spec, setup, modes })
+        py.detach(|| Self::build(spec))
     }
 
     /// What rebuilds this campaign, as JSON text (scenario source, settings, modes).
@@ -239,12 +181,12 @@ impl PyCampaign {
     /// The modes flown, in report order.
     #[getter]
     fn modes(&self) -> Vec<&'static str> {
-        self.modes.iter().map(|m| m.name()).collect()
+        self.campaign.modes().iter().map(|m| m.name()).collect()
     }
 
     /// The target: `(latitude_rad, longitude_rad, downrange_m)` along the entry great circle.
     fn target(&self) -> (f64, f64, f64) {
-        let s = &self.setup;
+        let s = self.campaign.setup();
         (
             s.target().latitude_rad,
             s.target().longitude_rad,
@@ -255,7 +197,7 @@ impl PyCampaign {
     /// The terminal interface speed \[m/s\].
     #[getter]
     fn interface_speed_m_s(&self) -> f64 {
-        self.setup.interface_speed_m_s
+        self.campaign.setup().interface_speed_m_s
     }
 
     /// Fly the jobs `[(mode, index), ...]` (serially, in order, GIL released); one JSON text
@@ -269,22 +211,17 @@ impl PyCampaign {
         let results = py
             .detach(|| {
                 jobs.iter()
-                    .map(|&(m, i)| self.fly_job(m, i))
+                    .map(|&(m, i)| self.campaign.fly_job(m, i))
                     .collect::<Result<Vec<_>, _>>()
             })
-            .map_err(errors::CampaignError::new_err)?;
+            .map_err(|e| errors::campaign(&e))?;
         results.iter().map(to_json).collect()
     }
 
     /// The nominal (undispersed) flight of each mode, JSON text of `CaseResult`s.
     fn nominal(&self, py: Python<'_>) -> PyResult<Vec<String>> {
         let r = py
-            .detach(|| {
-                self.modes
-                    .iter()
-                    .map(|&m| fly_case(&self.setup, None, m))
-                    .collect::<Result<Vec<_>, _>>()
-            })
+            .detach(|| self.campaign.nominal())
             .map_err(|e| errors::campaign(&e))?;
         r.iter().map(to_json).collect()
     }
@@ -302,32 +239,9 @@ impl PyCampaign {
                 host_sim::optim::evaluate::MAX_THREADS
             )));
         }
-        let opts = RunOptions {
-            modes: self.modes.clone(),
-            out_dir: None,
-            threads,
-            progress: false,
-        };
-        let out = py
-            .detach(|| run_campaign(&self.setup, &self.spec.settings, &opts))
+        let all = py
+            .detach(|| self.campaign.run_local(threads))
             .map_err(|e| errors::campaign(&e))?;
-        // Jobs order (mode order, then index), failures in their places.
-        let mut all: Vec<Outcome> = out
-            .cases
-            .into_iter()
-            .flat_map(|(_, v)| v.into_iter().map(Outcome::Flown))
-            .chain(out.failed.into_iter().map(Outcome::Failed))
-            .collect();
-        let rank = |m: Mode| {
-            self.modes
-                .iter()
-                .position(|x| *x == m)
-                .unwrap_or(usize::MAX)
-        };
-        all.sort_by_key(|o| {
-            let (m, i) = o.key();
-            (rank(m), i)
-        });
         all.iter().map(to_json).collect()
     }
 
@@ -337,61 +251,17 @@ impl PyCampaign {
     /// `(mode, index)` of the campaign must be present exactly once. Returns the files
     /// written.
     fn write(&self, py: Python<'_>, dir: PathBuf, results: Vec<String>) -> PyResult<Vec<PathBuf>> {
-        let n = self.spec.settings.cases as usize;
-        let mut by_mode: Vec<(Mode, Vec<Option<Outcome>>)> =
-            self.modes.iter().map(|&m| (m, vec![None; n])).collect();
-        for text in &results {
-            let c: Outcome = serde_json::from_str(text).map_err(|e| json_error(&e))?;
-            let (mode, index) = c.key();
-            let slot = by_mode
-                .iter_mut()
-                .find(|(m, _)| *m == mode)
-                .and_then(|(_, v)| v.get_mut(index as usize))
-                .ok_or_else(|| {
-                    errors::CampaignError::new_err(format!(
-                        "case {index} of mode {}: not a job of this campaign",
-                        mode.name()
-                    ))
-                })?;
-            if slot.is_some() {
-                return Err(errors::CampaignError::new_err(format!(
-                    "case {index} of mode {}: given twice",
-                    mode.name()
-                )));
-            }
-            *slot = Some(c);
-        }
-        // As `run_campaign` gathers them: flown cases by mode then index, failures apart.
-        let mut cases = Vec::new();
-        let mut failed = Vec::new();
-        for (m, v) in by_mode {
-            let mut flown = Vec::with_capacity(n);
-            for (i, c) in v.into_iter().enumerate() {
-                match c {
-                    Some(Outcome::Flown(c)) => flown.push(c),
-                    Some(Outcome::Failed(f)) => failed.push(f),
-                    None => {
-                        return Err(errors::CampaignError::new_err(format!(
-                            "case {i} of mode {}: missing",
-                            m.name()
-                        )));
-                    }
-                }
-            }
-            cases.push((m, flown));
-        }
+        let outcomes = results
+            .iter()
+            .map(|text| serde_json::from_str::<JobOutcome>(text).map_err(|e| json_error(&e)))
+            .collect::<PyResult<Vec<_>>>()?;
         py.detach(|| {
-            let nominal = self
-                .modes
-                .iter()
-                .map(|&m| fly_case(&self.setup, None, m))
-                .collect::<Result<Vec<_>, _>>()?;
-            let out = CampaignOutput::new(nominal, cases, failed, 0);
+            let out = self.campaign.assemble(outcomes)?;
             std::fs::create_dir_all(&dir).map_err(|source| host_sim::report::ReportError::Io {
                 path: dir.clone(),
                 source,
             })?;
-            write_campaign(&dir, &self.setup, &self.spec.settings, &out)
+            write_campaign(&dir, self.campaign.setup(), self.campaign.settings(), &out)
         })
         .map_err(|e| errors::campaign(&e))
     }

@@ -69,6 +69,16 @@ pub enum CampaignError {
         /// The simulator's error.
         source: crate::sim::SimError,
     },
+    /// A job that is not one of the campaign's, given twice, or missing.
+    #[error("case {index} of mode {mode}: {reason}")]
+    Job {
+        /// The job's mode.
+        mode: &'static str,
+        /// The job's case index.
+        index: u32,
+        /// What is wrong.
+        reason: String,
+    },
     /// A flight produced no sample.
     #[error("a flight produced no sample")]
     EmptyFlight,

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use super::error::CliError;
 use crate::campaign::output::write_campaign;
-use crate::campaign::run::{Replay, RunOptions, replay_case};
-use crate::campaign::{CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign};
+use crate::campaign::run::{Replay, replay_case};
+use crate::campaign::{Campaign, CampaignSetup, DispersionSettings, Mode, parse_settings};
 use crate::pil::{
     PilCaseCheck, PilConfig, PilError, check_pil_cases, fly_campaign_pil, machine_of_elf, pil_mode,
     write_pil_checks,
@@ -165,18 +165,11 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         settings.seed = s;
     }
     settings.validate("command line")?;
-    let mut modes = Vec::new();
-    for m in &a.modes {
-        let mode = Mode::ALL
-            .into_iter()
-            .find(|x| x.name() == m)
-            .ok_or_else(|| CliError::Argument {
-                field: "modes",
-                value: m.clone(),
-                reason: "unknown mode (stored, stored-reversals, replan-reversals, replan-estimation)",
-            })?;
-        modes.push(mode);
-    }
+    let modes = a
+        .modes
+        .iter()
+        .map(|m| Mode::by_name(m))
+        .collect::<Result<Vec<_>, _>>()?;
     if a.threads == Some(0) {
         return Err(CliError::Argument {
             field: "threads",
@@ -189,18 +182,15 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("dispersions-{}", sc.name)));
     let started = std::time::Instant::now();
-    let setup = CampaignSetup::new(&sc, &file, settings.interface_speed_m_s)?;
-    if modes.is_empty() {
-        modes = setup.modes();
-    }
-    setup.check_modes(&modes)?;
+    let campaign = Campaign::new(&sc, &file, settings, "command line", modes)?;
+    let (setup, settings, modes) = (campaign.setup(), campaign.settings(), campaign.modes());
     if let Some(index) = a.case {
-        return replay(&setup, &settings, &modes, index, &dir, out);
+        return replay(setup, settings, modes, index, &dir, out);
     }
     // The PIL leg's inputs, checked before the campaign flies.
     let pil = match (&a.pil, a.pil_cases) {
         (Some(elf), Some(k)) => {
-            check_pil_cases(k, &settings)?;
+            check_pil_cases(k, settings)?;
             let cfg = PilConfig::new(elf.clone());
             cfg.check_tools().map_err(|e| match e {
                 PilError::ElfMissing(p) => CliError::Argument {
@@ -212,26 +202,21 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 },
                 e => CliError::Pil(e),
             })?;
-            Some((cfg, k, pil_mode(&setup, &modes)?))
+            Some((cfg, k, pil_mode(setup, modes)?))
         }
         _ => None,
     };
-    let opts = RunOptions {
-        modes,
-        out_dir: Some(dir.clone()),
-        threads: a.threads,
-        progress: !a.quiet && std::io::stderr().is_terminal(),
-    };
-    let res = run_campaign(&setup, &settings, &opts)?;
-    let files = write_campaign(&dir, &setup, &settings, &res)?;
+    let progress = !a.quiet && std::io::stderr().is_terminal();
+    let res = campaign.run(Some(dir.clone()), a.threads, progress)?;
+    let files = write_campaign(&dir, setup, settings, &res)?;
     let wall = started.elapsed().as_secs_f64();
-    let flown = settings.cases as usize * opts.modes.len() - res.resumed;
+    let flown = settings.cases as usize * modes.len() - res.resumed;
     writeln!(
         out,
         "{}: {} cases x {} modes ({} resumed) in {wall:.1} s ({:.2} flights/s); target {:.3} deg, {:.3} deg, downrange {:.1} km",
         sc.name,
         settings.cases,
-        opts.modes.len(),
+        modes.len(),
         res.resumed,
         flown as f64 / wall.max(1e-9),
         setup.target().latitude_rad.to_degrees(),
@@ -294,7 +279,7 @@ pub fn run(a: &DispersionsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     writeln!(out, "wrote {} files to {}", files.len(), dir.display())?;
     match pil {
-        Some((cfg, k, mode)) => pil_leg(&setup, &settings, &res, mode, k, &cfg, &dir, out),
+        Some((cfg, k, mode)) => pil_leg(setup, settings, &res, mode, k, &cfg, &dir, out),
         None => Ok(()),
     }
 }
