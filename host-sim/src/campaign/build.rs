@@ -207,7 +207,7 @@ impl CampaignSetup {
             },
             model,
             apply_out_of_reach: true,
-            steps_per_tick: 0,
+            steps_per_tick: gs.replan_solver_steps_per_tick,
             lift_schedule: match (gs.predictor_lift_profile, gs.predictor_aero_mach) {
                 (true, true) => profile_aero_schedule(&vehicle, &model, &nominal, v_f),
                 (true, false) => profile_lift_schedule(&vehicle, &model, &nominal, v_f),

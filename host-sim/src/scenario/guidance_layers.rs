@@ -68,6 +68,11 @@ pub struct CampaignGuidance {
     pub freeze_km: f64,
     /// Re-plan on every N-th 2 s guidance tick, `>= 1` (default 5).
     pub replan_every_n_ticks: u16,
+    /// Most solver steps of a re-plan per guidance tick, `[0, 255]` (default 0: a re-plan's
+    /// whole solve inside its tick; `k >= 1`: the solve spread over ticks, at most `k` solver
+    /// steps per tick; `guidance_core::replan::ReplanningConfig::steps_per_tick`).
+    #[serde(skip_serializing_if = "is_zero_u8")]
+    pub replan_solver_steps_per_tick: u8,
     /// Accepted range miss of a re-plan \[km\] (default 1).
     pub replan_tolerance_km: f64,
     /// Smallest vertical lift fraction `cos(sigma)` the corrector may command \[-\]
@@ -169,7 +174,7 @@ pub struct CampaignGuidance {
 /// The scenario key of every field of [`CampaignGuidance`]: `(field, layer section, key)`,
 /// the key written as `[guidance.<section>] <key>` (the one list of these names: the parser,
 /// the template and the docs' key table are checked against it).
-pub const LAYER_KEYS: [(&str, &str, &str); 31] = [
+pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
     (
         "corridor_width_entry_deg",
         "lateral",
@@ -196,6 +201,11 @@ pub const LAYER_KEYS: [(&str, &str, &str); 31] = [
         "terminal_reversal_lead_s",
     ),
     ("replan_every_n_ticks", "replanning", "every_n_ticks"),
+    (
+        "replan_solver_steps_per_tick",
+        "replanning",
+        "solver_steps_per_tick",
+    ),
     ("replan_tolerance_km", "replanning", "tolerance_km"),
     (
         "min_vertical_fraction",
@@ -267,6 +277,11 @@ fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if signature
+fn is_zero_u8(x: &u8) -> bool {
+    *x == 0
+}
+
 /// Whether `x` is 1 (the default terminal tolerance: not written).
 #[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
 fn is_one(x: &f64) -> bool {
@@ -294,6 +309,7 @@ impl Default for CampaignGuidance {
             max_reversals: lateral::DEFAULT_MAX_REVERSALS,
             freeze_km: lateral::DEFAULT_FREEZE_DISTANCE_M / 1e3,
             replan_every_n_ticks: replan::DEFAULT_EVERY_N_TICKS,
+            replan_solver_steps_per_tick: 0,
             replan_tolerance_km: replan::DEFAULT_TOLERANCE_M / 1e3,
             min_vertical_fraction: replan::DEFAULT_MIN_VERTICAL_FRACTION,
             max_vertical_fraction: replan::DEFAULT_MAX_VERTICAL_FRACTION,

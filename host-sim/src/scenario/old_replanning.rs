@@ -11,7 +11,7 @@ pub const OLD_KEYS: [(&str, &str); 17] = [
     ("every_n_ticks", "[guidance.replanning] every_n_ticks"),
     (
         "steps_per_tick",
-        "none: [guidance.replanning] solves in its tick",
+        "[guidance.replanning] solver_steps_per_tick",
     ),
     (
         "target_latitude_deg",

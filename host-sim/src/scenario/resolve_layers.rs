@@ -34,6 +34,7 @@ pub struct LateralFile {
 #[serde(deny_unknown_fields)]
 pub struct ReplanFile {
     every_n_ticks: Option<Num>,
+    solver_steps_per_tick: Option<Num>,
     tolerance_km: Option<Num>,
     min_vertical_fraction: Option<Num>,
     max_vertical_fraction: Option<Num>,
@@ -234,6 +235,10 @@ pub(super) fn layers(
         if let Some(v) = r.every_n_ticks {
             g.replan_every_n_ticks =
                 whole(f, "guidance.replanning.every_n_ticks", v, 65535.0)? as u16;
+        }
+        if let Some(v) = r.solver_steps_per_tick {
+            g.replan_solver_steps_per_tick =
+                whole(f, "guidance.replanning.solver_steps_per_tick", v, 255.0)? as u8;
         }
         set(&mut g.replan_tolerance_km, r.tolerance_km);
         set(&mut g.min_vertical_fraction, r.min_vertical_fraction);

@@ -243,6 +243,10 @@ fn layers(s: &mut String, l: &super::GuidanceLayers) {
             "replan_limit_scale",
             toml::Value::Array(g.replan_limit_scale.map(toml::Value::Float).to_vec()),
         ),
+        (
+            "replan_solver_steps_per_tick",
+            toml::Value::Integer(i64::from(g.replan_solver_steps_per_tick)),
+        ),
     ] {
         t.entry(field).or_insert(v);
     }

@@ -82,6 +82,16 @@ fn bad_layer_settings_name_file_field_value_and_range() {
             &["2.5", "integer"],
         ),
         (
+            "[guidance.replanning]\nsolver_steps_per_tick = 256\n",
+            "guidance.replanning.solver_steps_per_tick",
+            &["256", "[0, 255]"],
+        ),
+        (
+            "[guidance.replanning]\nsolver_steps_per_tick = 1.5\n",
+            "guidance.replanning.solver_steps_per_tick",
+            &["1.5", "integer"],
+        ),
+        (
             "[guidance.lateral]\nterminal_start_km = 5000\n",
             "guidance.lateral.terminal_start_km",
             &["5000", "2000"],

@@ -473,6 +473,7 @@ fn layer_changes() -> Vec<(String, Value, Vec<(&'static str, Value)>)> {
     add("lateral.terminal_tolerance_km", "0.2", vec![]);
     add("lateral.terminal_reversal_lead_s", "30.0", vec![]);
     add("replanning.every_n_ticks", "2", vec![]);
+    add("replanning.solver_steps_per_tick", "1", vec![]);
     add("replanning.tolerance_km", "20.0", vec![]);
     add("replanning.min_vertical_fraction", "0.5", vec![]);
     add("replanning.max_vertical_fraction", "0.6", vec![]);
