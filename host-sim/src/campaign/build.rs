@@ -19,10 +19,15 @@ use super::setup::{
     profile_lift_schedule,
 };
 use super::{CampaignError, Mode};
+use crate::dynamics::SphericalState;
+use crate::env::Planet;
 use crate::env::{Environment, ExponentialAtmosphere};
 use crate::replan_loop::predictor_model;
 use crate::scenario::guidance_layers::CampaignGuidance;
-use crate::scenario::{PREDICTOR_FIT_ALTITUDES_M, Scenario, TargetSpec, build_guidance};
+use crate::scenario::{
+    PREDICTOR_FIT_ALTITUDES_M, Scenario, TargetSpec, TerminalInterface, build_guidance,
+};
+use crate::sim::SimResult;
 
 impl CampaignSetup {
     /// Build from `sc` with the scenario's layers ([`Scenario::layers`]; none: the stored
@@ -31,9 +36,11 @@ impl CampaignSetup {
     /// end as the terminal interface, build the energy-indexed two-sided table, then place the
     /// target on the entry great circle at the downrange that the stored profile flown with
     /// bank reversals reaches (at most [`RETARGET_ITERATIONS`] nominal flights, until the
-    /// downrange error is below 100 m), so the nominal case is on target. With
-    /// `interface_speed_m_s` the terminal interface is where the nominal flight slows to that
-    /// speed (its energy), else the nominal end.
+    /// downrange error is below 100 m), so the nominal case is on target. The terminal
+    /// interface is where the nominal flight first slows to `interface_speed_m_s` (a
+    /// campaign's override) if given, else the scenario's own interface
+    /// ([`crate::scenario::GuidanceLayers::interface`]: a speed, an altitude or a normalised
+    /// energy), else the nominal end.
     ///
     /// # Errors
     /// [`CampaignError`] if the scenario cannot be flown or its guidance built.
@@ -43,12 +50,18 @@ impl CampaignSetup {
         interface_speed_m_s: Option<f64>,
     ) -> Result<Self, CampaignError> {
         let Some(l) = &sc.layers else {
-            let mut s =
-                Self::with_guidance(sc, file, interface_speed_m_s, &CampaignGuidance::default())?;
+            let mut s = Self::with_guidance(
+                sc,
+                file,
+                interface_speed_m_s.map(|speed_m_s| TerminalInterface::Speed { speed_m_s }),
+                &CampaignGuidance::default(),
+            )?;
             s.stack = s.stack.masked(Layers::PROFILE);
             return Ok(s);
         };
-        let interface = interface_speed_m_s.or(l.interface_speed_m_s);
+        let interface = interface_speed_m_s
+            .map(|speed_m_s| TerminalInterface::Speed { speed_m_s })
+            .or(l.interface);
         let mut s = Self::with_guidance(sc, file, interface, &l.settings)?;
         s.stack = s.stack.masked(l.layers);
         match l.target {
@@ -73,14 +86,16 @@ impl CampaignSetup {
     }
 
     /// [`CampaignSetup::new`] with every layer on, with the settings `gs` (whatever the
-    /// scenario's own layers).
+    /// scenario's own layers), ending at the terminal interface `interface` (`None`: the
+    /// nominal end).
     ///
     /// # Errors
-    /// As [`CampaignSetup::new`]; [`CampaignError::Setting`] for a bad `gs`.
+    /// As [`CampaignSetup::new`]; [`CampaignError::Setting`] for a bad `gs` or an interface
+    /// the nominal flight never reaches.
     pub fn with_guidance(
         sc: &Scenario,
         file: &str,
-        interface_speed_m_s: Option<f64>,
+        interface: Option<TerminalInterface>,
         gs: &CampaignGuidance,
     ) -> Result<Self, CampaignError> {
         gs.validate(file)?;
@@ -98,29 +113,25 @@ impl CampaignSetup {
             .last()
             .map(|s| s.state)
             .ok_or(CampaignError::EmptyFlight)?;
-        // The terminal interface: the nominal state where the speed first falls to the given
-        // interface speed (linear between output samples), else the nominal end.
-        let end = match interface_speed_m_s {
-            Some(v_if) => nominal
-                .samples
-                .windows(2)
-                .find_map(|w| match w {
-                    [a, b] if a.state.speed_m_s > v_if && b.state.speed_m_s <= v_if => {
-                        let f =
-                            (a.state.speed_m_s - v_if) / (a.state.speed_m_s - b.state.speed_m_s);
-                        let mut s = a.state;
-                        s.radius_m += f * (b.state.radius_m - a.state.radius_m);
-                        s.speed_m_s = v_if;
-                        Some(s)
-                    }
-                    _ => None,
-                })
-                .ok_or_else(|| CampaignError::Setting {
+        let end = match interface {
+            Some(i) => interface_crossing(&nominal, i, &planet, &sc.entry).ok_or_else(|| {
+                let (field, reason) = match i {
+                    TerminalInterface::Speed { .. } => (
+                        "dispersions.interface_speed_m_s".to_string(),
+                        "the nominal flight never slows down to it",
+                    ),
+                    _ => (
+                        format!("guidance.target.{}", i.key()),
+                        "the nominal flight never reaches it",
+                    ),
+                };
+                CampaignError::Setting {
                     file: file.into(),
-                    field: "dispersions.interface_speed_m_s".into(),
-                    value: v_if.to_string(),
-                    reason: "the nominal flight never slows down to it".into(),
-                })?,
+                    field,
+                    value: i.value().to_string(),
+                    reason: reason.into(),
+                }
+            })?,
             None => last,
         };
         let energy = EnergyNormalizer::new(
@@ -216,7 +227,7 @@ impl CampaignSetup {
             start_normalized_energy: gs.replan_start_normalized_energy,
             numerical_rotation: gs.predictor_rotation,
             // The terminal interface the flights end on: the nominal flight's energy where it
-            // slows to the interface speed.
+            // crosses the interface.
             final_energy_j_kg: Some(0.5 * v_f * v_f - planet.mu_m3_s2 / end.radius_m),
         };
         let barrier = gs.path_bound_limit_scale.map(|[q, g]| BarrierLayer {
@@ -251,6 +262,7 @@ impl CampaignSetup {
             file: file.into(),
             interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
             interface_speed_m_s: v_f,
+            interface,
             floor_altitude_m: (r_f - planet.radius_m - 10e3).max(1e3),
             planet_radius_m: planet.radius_m,
             target_downrange_rad: nominal.summary.range_angle_rad,
@@ -268,4 +280,60 @@ impl CampaignSetup {
         }
         Ok(setup)
     }
+}
+
+/// The terminal interface `interface` on the nominal flight `nominal` (entry state `entry`,
+/// planet `planet`): the state of the first output sample interval where the flight crosses
+/// it downwards, at the crossing (linear in the crossed quantity between the two samples),
+/// the other fields those of the interval's first sample. Speed: the speed is the one given,
+/// the radius interpolated. Altitude (above the planet's sphere): the radius is the one given,
+/// the speed interpolated. Normalised energy (E-hat of the nominal entry): the specific energy
+/// is the one given, the radius interpolated and the speed the one of that energy at that
+/// radius. `None` if the flight never crosses it.
+fn interface_crossing(
+    nominal: &SimResult,
+    interface: TerminalInterface,
+    planet: &Planet,
+    entry: &SphericalState,
+) -> Option<SphericalState> {
+    let mu = planet.mu_m3_s2;
+    let energy = |s: &SphericalState| 0.5 * s.speed_m_s * s.speed_m_s - mu / s.radius_m;
+    // The crossed quantity of a state, and its value at the interface.
+    let value = |s: &SphericalState| match interface {
+        TerminalInterface::Speed { .. } => s.speed_m_s,
+        TerminalInterface::Altitude { .. } => s.radius_m - planet.radius_m,
+        TerminalInterface::NormalizedEnergy { .. } => energy(s),
+    };
+    let at = match interface {
+        TerminalInterface::Speed { speed_m_s } => speed_m_s,
+        TerminalInterface::Altitude { altitude_m } => altitude_m,
+        TerminalInterface::NormalizedEnergy { normalized_energy } => {
+            // E-hat = (E - E_0) / (E_entry - E_0), E_0 = -mu/R (guidance_core::energy).
+            let e0 = -mu / planet.radius_m;
+            e0 + normalized_energy * (energy(entry) - e0)
+        }
+    };
+    nominal.samples.windows(2).find_map(|w| match w {
+        [a, b] if value(&a.state) > at && value(&b.state) <= at => {
+            let (a, b) = (&a.state, &b.state);
+            let f = (value(a) - at) / (value(a) - value(b));
+            let mut s = *a;
+            match interface {
+                TerminalInterface::Speed { speed_m_s } => {
+                    s.radius_m += f * (b.radius_m - a.radius_m);
+                    s.speed_m_s = speed_m_s;
+                }
+                TerminalInterface::Altitude { altitude_m } => {
+                    s.radius_m = planet.radius_m + altitude_m;
+                    s.speed_m_s += f * (b.speed_m_s - a.speed_m_s);
+                }
+                TerminalInterface::NormalizedEnergy { .. } => {
+                    s.radius_m += f * (b.radius_m - a.radius_m);
+                    s.speed_m_s = (2.0 * (at + mu / s.radius_m)).max(0.0).sqrt();
+                }
+            }
+            Some(s)
+        }
+        _ => None,
+    })
 }

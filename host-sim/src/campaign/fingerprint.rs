@@ -179,6 +179,7 @@ impl Fields {
             file: _,
             interface_energy_j_kg,
             interface_speed_m_s,
+            interface,
             floor_altitude_m,
             planet_radius_m,
             target_downrange_rad,
@@ -187,6 +188,7 @@ impl Fields {
         } = s;
         self.debug("setup.interface_energy_j_kg", interface_energy_j_kg);
         self.debug("setup.interface_speed_m_s", interface_speed_m_s);
+        self.debug("setup.interface", interface);
         self.debug("setup.floor_altitude_m", floor_altitude_m);
         self.debug("setup.planet_radius_m", planet_radius_m);
         self.debug("setup.target_downrange_rad", target_downrange_rad);

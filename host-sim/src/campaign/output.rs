@@ -24,6 +24,12 @@ struct Summary<'a> {
     target_longitude_deg: f64,
     target_downrange_km: f64,
     interface_speed_m_s: f64,
+    /// The nominal flight's altitude there \[m\].
+    interface_altitude_m: f64,
+    /// Its E-hat there (of the nominal entry) \[-\].
+    interface_normalized_energy: f64,
+    /// The interface as given (`null`: the nominal end).
+    interface: Option<crate::scenario::TerminalInterface>,
     nominal: &'a [CaseResult],
     stats: &'a [ModeStats],
     failed: &'a [CaseFailure],
@@ -51,6 +57,9 @@ pub fn write_campaign(
         target_longitude_deg: setup.target().longitude_rad.to_degrees(),
         target_downrange_km: setup.target_downrange_rad * r / 1e3,
         interface_speed_m_s: setup.interface_speed_m_s,
+        interface_altitude_m: setup.interface_altitude_m(),
+        interface_normalized_energy: setup.interface_normalized_energy(),
+        interface: setup.interface,
         nominal: &out.nominal,
         stats: &out.stats,
         failed: &out.failed,

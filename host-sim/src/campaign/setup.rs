@@ -29,10 +29,14 @@ pub struct CampaignSetup {
     pub scenario: Scenario,
     /// Name of the scenario file (for messages).
     pub file: String,
-    /// Terminal interface: specific energy `V^2/2 - mu/r` \[J/kg\] of the nominal end.
+    /// Terminal interface: specific energy `V^2/2 - mu/r` \[J/kg\] of the nominal flight where
+    /// it crosses [`CampaignSetup::interface`] (or of its end); every case ends on it.
     pub interface_energy_j_kg: f64,
-    /// Speed at the nominal end \[m/s\] (the predictor's final speed).
+    /// Speed of the nominal flight there \[m/s\] (the closed-form predictions' final speed).
     pub interface_speed_m_s: f64,
+    /// The terminal interface as given (`None`: the nominal end), the one the two above
+    /// derive from.
+    pub interface: Option<crate::scenario::TerminalInterface>,
     /// Altitude floor of every case \[m\] (an end there is reported: interface not reached).
     pub floor_altitude_m: f64,
     /// Planet radius \[m\].
@@ -327,6 +331,31 @@ impl CampaignSetup {
                 ),
             }),
         }
+    }
+
+    /// Radius \[m\] of the terminal interface: where its speed has its energy
+    /// (`mu / (V^2/2 - E)`).
+    fn interface_radius_m(&self) -> f64 {
+        let mu = self.scenario.environment.planet.mu_m3_s2;
+        let v = self.interface_speed_m_s;
+        mu / (0.5 * v * v - self.interface_energy_j_kg)
+    }
+
+    /// Altitude \[m\] of the nominal flight at the terminal interface.
+    #[must_use]
+    pub fn interface_altitude_m(&self) -> f64 {
+        self.interface_radius_m() - self.planet_radius_m
+    }
+
+    /// E-hat \[-\] of the nominal flight at the terminal interface (the stored profile's
+    /// normaliser: the nominal entry's; NaN for a state it refuses).
+    #[must_use]
+    pub fn interface_normalized_energy(&self) -> f64 {
+        self.stack
+            .profile
+            .energy
+            .normalized(self.interface_radius_m(), self.interface_speed_m_s)
+            .unwrap_or(f64::NAN)
     }
 
     /// The guidance settings as stored with each case: `None` for the defaults.

@@ -74,7 +74,7 @@ const SECTIONS: &[(&str, &str)] = &[
     ),
     (
         "guidance.target",
-        "where the layers aim, and the terminal interface speed",
+        "where the layers aim, and the terminal interface (a speed, an altitude or an E-hat)",
     ),
 ];
 

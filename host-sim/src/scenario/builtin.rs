@@ -8,12 +8,12 @@ use guidance_core::nodes::Independent;
 
 use guidance_core::stack::Layers;
 
-use super::TargetSpec;
 use super::guidance_layers::{CampaignGuidance, CampaignPredictor};
 use super::{
     EnvSpec, GuidanceLayers, GuidanceSpec, InterpolationKind, Scenario, ScenarioError, VehicleSpec,
     guidance_bounds,
 };
+use super::{TargetSpec, TerminalInterface};
 use crate::dynamics::SphericalState;
 use crate::env::{Planet, Preset};
 use crate::sim::{SimConfig, Termination};
@@ -111,7 +111,7 @@ pub fn horus_stack() -> GuidanceLayers {
         },
         layers: Layers::ALL,
         target: TargetSpec::Nominal,
-        interface_speed_m_s: None,
+        interface: None,
     }
 }
 
@@ -127,7 +127,7 @@ pub fn srm_stack() -> GuidanceLayers {
             ..Layers::ALL
         },
         target: TargetSpec::Nominal,
-        interface_speed_m_s: Some(2500.0),
+        interface: Some(TerminalInterface::Speed { speed_m_s: 2500.0 }),
     }
 }
 

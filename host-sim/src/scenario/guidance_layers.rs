@@ -250,14 +250,17 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
 ];
 
 /// The keys of `[guidance.target]` (one form: latitude and longitude, downrange and
-/// crossrange, or nominal; and the terminal interface speed).
-pub const TARGET_KEYS: [&str; 6] = [
+/// crossrange, or nominal; and the terminal interface: at most one of a speed, an altitude
+/// and a normalised energy, [`TerminalInterface`](super::TerminalInterface)).
+pub const TARGET_KEYS: [&str; 8] = [
     "latitude_deg",
     "longitude_deg",
     "downrange_km",
     "crossrange_km",
     "nominal",
     "interface_speed_m_s",
+    "interface_altitude_m",
+    "interface_normalized_energy",
 ];
 
 /// The scenario key (`guidance.<section>.<key>`) of a [`CampaignGuidance`] field (the field

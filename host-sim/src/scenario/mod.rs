@@ -413,10 +413,61 @@ pub struct GuidanceLayers {
     pub layers: guidance_core::stack::Layers,
     /// Where the re-planner and the lateral logic aim (`[guidance.target]`).
     pub target: TargetSpec,
-    /// The terminal interface: the energy where the nominal flight slows to this speed
-    /// \[m/s\] (`[guidance.target] interface_speed_m_s`; `None`: the scenario's own end). A
-    /// campaign's `[dispersions] interface_speed_m_s` or `--interface-speed` overrides it.
-    pub interface_speed_m_s: Option<f64>,
+    /// The terminal interface (`[guidance.target] interface_speed_m_s`,
+    /// `interface_altitude_m` or `interface_normalized_energy`; `None`: the scenario's own
+    /// end). A campaign's `[dispersions] interface_speed_m_s` or `--interface-speed` overrides
+    /// it.
+    pub interface: Option<TerminalInterface>,
+}
+
+/// The terminal interface of the scenario's layers (`[guidance.target]`): the state where the
+/// nominal flight (the scenario flown with its own stored profile) first crosses the value
+/// given, linearly between its output samples. The flights end on that state's specific
+/// energy `V^2/2 - mu/r`, the re-planner's predictions too (`CampaignSetup::new`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TerminalInterface {
+    /// Where the nominal flight first slows to this speed (`interface_speed_m_s`).
+    Speed {
+        /// Planet-relative speed \[m/s\], in (0, entry speed).
+        speed_m_s: f64,
+    },
+    /// Where the nominal flight first descends to this altitude (`interface_altitude_m`).
+    Altitude {
+        /// Altitude above the planet's sphere \[m\], in (0, entry altitude).
+        altitude_m: f64,
+    },
+    /// Where the nominal flight's normalised energy first falls to this value
+    /// (`interface_normalized_energy`).
+    NormalizedEnergy {
+        /// E-hat of the nominal entry \[-\], in (0, 1): 1 at the entry state, 0 at standstill
+        /// on the surface (`guidance_core::energy`).
+        normalized_energy: f64,
+    },
+}
+
+impl TerminalInterface {
+    /// The `[guidance.target]` key that gives this interface.
+    #[must_use]
+    pub fn key(&self) -> &'static str {
+        match self {
+            Self::Speed { .. } => "interface_speed_m_s",
+            Self::Altitude { .. } => "interface_altitude_m",
+            Self::NormalizedEnergy { .. } => "interface_normalized_energy",
+        }
+    }
+
+    /// The value given (in the key's unit).
+    #[must_use]
+    pub fn value(&self) -> f64 {
+        match *self {
+            Self::Speed { speed_m_s: v }
+            | Self::Altitude { altitude_m: v }
+            | Self::NormalizedEnergy {
+                normalized_energy: v,
+            } => v,
+        }
+    }
 }
 
 /// The target of the scenario's layers at the terminal interface (`[guidance.target]`).

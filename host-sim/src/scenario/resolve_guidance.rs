@@ -35,6 +35,7 @@ pub(super) fn guidance(
         },
         sc.environment.planet.radius_m,
         sc.entry.speed_m_s,
+        sc.entry.radius_m - sc.environment.planet.radius_m,
     )?;
     let g = &mut sc.guidance;
     if let Some(s) = t.independent {

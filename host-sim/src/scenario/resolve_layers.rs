@@ -11,7 +11,7 @@ use serde::Deserialize;
 use super::file::Num;
 use super::guidance_layers::{CampaignGuidance, CampaignPredictor};
 use super::resolve::Fields;
-use super::{GuidanceLayers, ScenarioError, TargetSpec};
+use super::{GuidanceLayers, ScenarioError, TargetSpec, TerminalInterface};
 use crate::campaign::CampaignError;
 
 /// `[guidance.lateral]`: bank reversals on a heading-error corridor, the terminal law.
@@ -77,7 +77,8 @@ pub struct BarrierFile {
 /// interface: `latitude_deg` and `longitude_deg`, or `downrange_km` and `crossrange_km` from
 /// the entry point (along and right of the entry heading's great circle), or
 /// `nominal = true` (where the nominal stored profile with reversals ends); and the terminal
-/// interface `interface_speed_m_s` (absent: the scenario's end).
+/// interface, at most one of `interface_speed_m_s`, `interface_altitude_m` and
+/// `interface_normalized_energy` (absent: the scenario's end; [`TerminalInterface`]).
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TargetFile {
@@ -87,6 +88,8 @@ pub struct TargetFile {
     crossrange_km: Option<Num>,
     nominal: Option<bool>,
     interface_speed_m_s: Option<Num>,
+    interface_altitude_m: Option<Num>,
+    interface_normalized_energy: Option<Num>,
 }
 
 /// The four layer sections and the target as written.
@@ -169,6 +172,59 @@ fn target(
     }
 }
 
+/// The terminal interface of `t` (at most one of its three keys), each key checked against its
+/// range: a speed in (0, `entry_speed_m_s`), an altitude in (0, `entry_altitude_m`), an E-hat
+/// in (0, 1) (1 at entry, 0 at standstill on the surface).
+fn interface(
+    f: &Fields<'_>,
+    t: Option<&TargetFile>,
+    entry_speed_m_s: f64,
+    entry_altitude_m: f64,
+) -> Result<Option<TerminalInterface>, ScenarioError> {
+    let Some(t) = t else { return Ok(None) };
+    let speed = f
+        .checked(
+            "guidance.target.interface_speed_m_s",
+            t.interface_speed_m_s,
+            |v| v > 0.0 && v < entry_speed_m_s,
+            "must be in (0, entry speed) m/s",
+        )?
+        .map(|speed_m_s| TerminalInterface::Speed { speed_m_s });
+    let altitude = f
+        .checked(
+            "guidance.target.interface_altitude_m",
+            t.interface_altitude_m,
+            |v| v > 0.0 && v < entry_altitude_m,
+            &format!(
+                "must be in (0, {}) m (the entry altitude)",
+                crate::num_fmt::compact(entry_altitude_m)
+            ),
+        )?
+        .map(|altitude_m| TerminalInterface::Altitude { altitude_m });
+    let energy = f
+        .checked(
+            "guidance.target.interface_normalized_energy",
+            t.interface_normalized_energy,
+            |v| v > 0.0 && v < 1.0,
+            "must be in (0, 1) (E-hat: 1 at entry, 0 at standstill on the surface)",
+        )?
+        .map(|normalized_energy| TerminalInterface::NormalizedEnergy { normalized_energy });
+    let mut given = [speed, altitude, energy].into_iter().flatten();
+    let first = given.next();
+    match (first, given.next()) {
+        (Some(a), Some(b)) => Err(f.err(
+            &format!("guidance.target.{}", b.key()),
+            &crate::num_fmt::compact(b.value()),
+            &format!(
+                "one terminal interface only: {} is given too (interface_speed_m_s, \
+                 interface_altitude_m or interface_normalized_energy)",
+                a.key()
+            ),
+        )),
+        _ => Ok(first),
+    }
+}
+
 fn pair(v: [Num; 2]) -> [f64; 2] {
     [v[0].0, v[1].0]
 }
@@ -196,6 +252,7 @@ pub(super) fn layers(
     t: LayerFiles,
     radius_m: f64,
     entry_speed_m_s: f64,
+    entry_altitude_m: f64,
 ) -> Result<Option<GuidanceLayers>, ScenarioError> {
     let on = Layers {
         replan: t.replanning.is_some(),
@@ -251,7 +308,8 @@ pub(super) fn layers(
                 &v.0.to_string(),
                 "removed: the re-planner's numerical predictor ends at the terminal interface's \
                  energy, the one the flights end on (no tuned offset); the interface is \
-                 [guidance.target] interface_speed_m_s (docs/reference/guidance-stack.md)",
+                 [guidance.target] interface_speed_m_s, interface_altitude_m or \
+                 interface_normalized_energy (docs/reference/guidance-stack.md)",
             ));
         }
         g.predictor_lift_parameter = r.lift_parameter.map(|v| v.0);
@@ -333,18 +391,13 @@ pub(super) fn layers(
         },
         other => f.err("guidance", "(layers)", &other.to_string()),
     })?;
-    let interface = f.checked(
-        "guidance.target.interface_speed_m_s",
-        aim_file.as_ref().and_then(|t| t.interface_speed_m_s),
-        |v| v > 0.0 && v < entry_speed_m_s,
-        "must be in (0, entry speed) m/s",
-    )?;
+    let interface = interface(f, aim_file.as_ref(), entry_speed_m_s, entry_altitude_m)?;
     let aim = target(f, aim_file, radius_m)?;
     Ok(Some(GuidanceLayers {
         settings: g,
         layers: on,
         target: aim,
-        interface_speed_m_s: interface,
+        interface,
     }))
 }
 

@@ -166,8 +166,8 @@ fn plain_toml(sc: &Scenario) -> String {
     if let Some(l) = &sc.layers {
         layers(&mut s, l);
         target(&mut s, l.target, r);
-        if let Some(v) = l.interface_speed_m_s {
-            let _ = writeln!(s, "interface_speed_m_s = {v:?}");
+        if let Some(i) = l.interface {
+            let _ = writeln!(s, "{} = {:?}", i.key(), i.value());
         }
     }
     s

@@ -6,8 +6,8 @@ use host_sim::campaign::settings::Dispersion;
 use host_sim::campaign::{
     CampaignError, CampaignSetup, DispersionSettings, Mode, parse_settings, run_campaign,
 };
-use host_sim::scenario::Scenario;
 use host_sim::scenario::guidance_layers::{LAYER_KEYS, scenario_key};
+use host_sim::scenario::{Scenario, TerminalInterface};
 
 /// The guidance layers' settings of `flat` (lines `field = value` in the settings' field names,
 /// [`LAYER_KEYS`]) written as a scenario's `[guidance.<layer>]` sections (an unknown field
@@ -482,7 +482,7 @@ fn campaign_predictor_setting_picks_the_replanner_mode() {
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
-        Some(2500.0),
+        Some(TerminalInterface::Speed { speed_m_s: 2500.0 }),
         &g,
     )
     .unwrap();
@@ -695,7 +695,7 @@ fn predictor_lift_parameter_of_the_stored_profile() {
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
-        Some(2500.0),
+        Some(TerminalInterface::Speed { speed_m_s: 2500.0 }),
         &g,
     )
     .unwrap();
@@ -720,7 +720,7 @@ fn path_bound_settings_reach_the_setup() {
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
-        Some(2500.0),
+        Some(TerminalInterface::Speed { speed_m_s: 2500.0 }),
         &g,
     )
     .unwrap();
@@ -749,7 +749,7 @@ fn path_bound_settings_reach_the_setup() {
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
-        Some(2500.0),
+        Some(TerminalInterface::Speed { speed_m_s: 2500.0 }),
         &g,
     )
     .unwrap();
@@ -805,7 +805,7 @@ fn terminal_lateral_settings_are_read_and_checked() {
     let setup = CampaignSetup::with_guidance(
         &Scenario::srm_glide(),
         "builtin:srm-glide",
-        Some(2500.0),
+        Some(TerminalInterface::Speed { speed_m_s: 2500.0 }),
         &g,
     )
     .unwrap();

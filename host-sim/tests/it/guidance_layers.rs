@@ -216,6 +216,8 @@ fn key_list_template_and_docs_agree() {
         "target.downrange_km",
         "target.crossrange_km",
         "target.interface_speed_m_s",
+        "target.interface_altitude_m",
+        "target.interface_normalized_energy",
     ];
     for k in &listed {
         assert!(

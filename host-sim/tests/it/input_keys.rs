@@ -503,6 +503,8 @@ fn layer_changes() -> Vec<(String, Value, Vec<(&'static str, Value)>)> {
     add("barrier.damping", "5.0", vec![]);
     add("barrier.predicted", "false", vec![]);
     add("target.interface_speed_m_s", "3000.0", vec![]);
+    add("target.interface_altitude_m", "40000.0", vec![]);
+    add("target.interface_normalized_energy", "0.05", vec![]);
     c
 }
 

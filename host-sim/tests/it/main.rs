@@ -38,4 +38,5 @@ mod run_dir_kill;
 mod scenario_files;
 mod stack_everywhere;
 mod support;
+mod terminal_interface;
 mod warnings;

@@ -351,6 +351,8 @@ pub fn campaign(
         },
         ..Default::default()
     };
+    let interface =
+        interface.map(|speed_m_s| host_sim::scenario::TerminalInterface::Speed { speed_m_s });
     let mut setup = CampaignSetup::with_guidance(sc, name, interface, &layers).unwrap();
     // The numerical predictions end at the final speed here, as `recompute`'s solve and its
     // reference integration do (the campaigns end them at the interface energy:

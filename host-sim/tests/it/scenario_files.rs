@@ -303,7 +303,10 @@ fn replanning_example_flies_to_its_target() {
     };
     assert!(rel(downrange_rad * radius, 18_034.65e3) < 1e-15);
     assert_eq!(crossrange_rad, 0.0);
-    assert_eq!(l.interface_speed_m_s, Some(2500.0));
+    assert_eq!(
+        l.interface,
+        Some(host_sim::scenario::TerminalInterface::Speed { speed_m_s: 2500.0 })
+    );
     assert_eq!(l.settings.replan_every_n_ticks, 5);
     assert_eq!(
         l.settings.predictor,
