@@ -171,7 +171,8 @@ fn pil_campaign_m3_against_f64_sil() {
     campaign_cases("horus-2b-reference", M3, true);
 }
 
-/// 50 cases per vehicle on the Cortex-M4F, measured once (docs/guides/pil.md):
+/// 50 cases per vehicle on the Cortex-M4F (or the target `PIL_TARGET` names, e.g.
+/// `thumbv7m-none-eabi`), measured once (docs/guides/pil.md):
 /// `PIL_CASES=50 cargo test -p host-sim --test it pil_campaign_50_cases -- --ignored --nocapture`.
 #[test]
 #[ignore = "measurement: 100 PIL flights"]
@@ -180,12 +181,13 @@ fn pil_campaign_50_cases() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(50);
+    let target = std::env::var("PIL_TARGET").unwrap_or_else(|_| M4F.to_string());
     for vehicle in ["horus-2b-reference", "srm-glide"] {
         let setup = setup(vehicle);
         let bound = miss_bound_m(&setup, Mode::ReplanEstimation);
         let (mut twin_bad, mut counts_bad, mut worst, mut over) = (0, 0, 0.0f64, 0);
         for i in 0..n {
-            let Some(pil) = pil_case(&setup, Some(i), M4F) else {
+            let Some(pil) = pil_case(&setup, Some(i), &target) else {
                 return;
             };
             let sil = sil_case(&setup, Some(i));
@@ -196,7 +198,7 @@ fn pil_campaign_50_cases() {
             worst = worst.max(c.miss_diff_m);
         }
         println!(
-            "{vehicle}: {n} cases on {M4F}: twin differs in {twin_bad}; counts differ in {counts_bad}; \
+            "{vehicle}: {n} cases on {target}: twin differs in {twin_bad}; counts differ in {counts_bad}; \
              largest |miss diff| {:.3} km; over the {:.3} km bound in {over}",
             worst / 1e3,
             bound / 1e3
