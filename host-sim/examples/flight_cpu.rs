@@ -4,15 +4,17 @@
 //! profiles, without the guidance layers) `N` times each
 //! (default 200) on one thread and prints the median CPU time per flight over 5 rounds, read
 //! from `/proc/thread-self/schedstat` (Linux). A second argument flies only the built-in
-//! scenario of that name (`horus-2b-reference` or `srm-glide`), e.g. to count one scenario's
-//! instructions under `valgrind --tool=callgrind`.
+//! scenario of that name (`horus-2b-reference` or `srm-glide`), or the scenario file of that
+//! path when it ends in `.toml`, e.g. to count one scenario's instructions under
+//! `valgrind --tool=callgrind`.
 //!
 //! ```sh
 //! cargo run --release -p host-sim --example flight_cpu -- 200
 //! cargo run --release -p host-sim --example flight_cpu -- 10 horus-2b-reference
+//! cargo run --release -p host-sim --example flight_cpu -- 10 my-scenario.toml
 //! ```
 
-use host_sim::scenario::{Scenario, fly};
+use host_sim::scenario::{Scenario, fly, read_scenario};
 
 /// CPU time of this thread \[ns\] (first field of schedstat).
 fn thread_cpu_ns() -> Result<u64, String> {
@@ -30,6 +32,9 @@ fn main() -> Result<(), String> {
         None => 200,
     };
     let scenarios = match std::env::args().nth(2) {
+        Some(path) if path.ends_with(".toml") => {
+            vec![read_scenario(std::path::Path::new(&path)).map_err(|e| e.to_string())?]
+        }
         Some(name) => vec![Scenario::try_builtin(&name).map_err(|e| e.to_string())?],
         None => vec![Scenario::default(), Scenario::srm_glide()],
     };

@@ -22,7 +22,10 @@ def fly_scenario(
     base_dir: Optional[Union[str, PathLike[str]]] = None,
     summary_only: bool = False,
 ) -> Dict[str, Any]:
-    """Fly a scenario; ``{"columns": {name: [float]}, "events": [str], "summary_json": str}``."""
+    """Fly a scenario; ``{"columns": bytearray, "rows": int, "events": [str], "summary_json": str}``.
+
+    ``columns``: the trajectory column-major, native-endian float64, the columns of
+    ``TRAJECTORY_COLUMNS`` in order with ``rows`` values each (empty with ``summary_only``)."""
 
 def json_to_toml(json: str) -> str: ...
 def scenario_toml(builtin: str = "horus-2b-reference", path: Optional[str] = None) -> str: ...

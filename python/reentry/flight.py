@@ -53,10 +53,11 @@ class Flight:
     """
 
     def __init__(self, raw: dict):
-        self.arrays: Dict[str, np.ndarray] = {
-            k: np.asarray(v, dtype=float) for k, v in raw["columns"].items()
-        }
-        self.events: List[str] = list(raw["events"])
+        # One (columns, rows) array over the native bytearray, no copy; each column a row view.
+        names = _native.TRAJECTORY_COLUMNS
+        block = np.frombuffer(raw["columns"], dtype=np.float64).reshape(len(names), raw["rows"])
+        self.arrays: Dict[str, np.ndarray] = dict(zip(names, block))
+        self.events: List[str] = raw["events"]
         self.summary: Dict[str, Any] = json.loads(raw["summary_json"])
 
     def __len__(self) -> int:

@@ -12,7 +12,7 @@ use host_sim::scenario::{Scenario, fly, parse_scenario, read_scenario, scenario_
 use host_sim::sim::{Sample, SampleKind};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyByteArray, PyDict, PyList, PyString};
 
 use crate::errors;
 
@@ -69,20 +69,25 @@ fn row(p: &Sample) -> [f64; 21] {
     ]
 }
 
-fn event(k: SampleKind) -> &'static str {
+/// The `events` strings, indexed by [`event_index`].
+const EVENTS: [&str; 5] = ["start", "", "exit", "entry", "end"];
+
+fn event_index(k: SampleKind) -> usize {
     match k {
-        SampleKind::Start => "start",
-        SampleKind::Output => "",
-        SampleKind::Exit => "exit",
-        SampleKind::Entry => "entry",
-        SampleKind::End => "end",
+        SampleKind::Start => 0,
+        SampleKind::Output => 1,
+        SampleKind::Exit => 2,
+        SampleKind::Entry => 3,
+        SampleKind::End => 4,
     }
 }
 
-/// A flown scenario, column-major.
+/// A flown scenario: the trajectory as one column-major block of native-endian `f64` bytes
+/// (`COLUMNS.len()` columns of `rows` values each), each sample's kind, and the summary.
 struct FlownColumns {
-    columns: Vec<Vec<f64>>,
-    events: Vec<&'static str>,
+    bytes: Vec<u8>,
+    rows: usize,
+    kinds: Vec<SampleKind>,
     summary_json: String,
 }
 
@@ -126,27 +131,35 @@ fn fly_source(src: &Source, summary_only: bool) -> Result<FlownColumns, PyErr> {
     } else {
         &flight.result.samples[..]
     };
-    let mut columns = vec![Vec::with_capacity(samples.len()); COLUMNS.len()];
-    for p in samples {
-        for (col, v) in columns.iter_mut().zip(row(p)) {
-            col.push(v);
+    // Column-major, written in one pass over the samples: column `c` of row `i` at byte
+    // `8 * (c * rows + i)`.
+    let rows = samples.len();
+    let mut bytes = vec![0u8; 8 * COLUMNS.len() * rows];
+    for (i, p) in samples.iter().enumerate() {
+        for (c, v) in row(p).into_iter().enumerate() {
+            let at = 8 * (c * rows + i);
+            if let Some(dst) = bytes.get_mut(at..at + 8) {
+                dst.copy_from_slice(&v.to_ne_bytes());
+            }
         }
     }
     Ok(FlownColumns {
-        columns,
-        events: samples.iter().map(|p| event(p.kind)).collect(),
+        bytes,
+        rows,
+        kinds: samples.iter().map(|p| p.kind).collect(),
         summary_json,
     })
 }
 
 fn to_python<'py>(py: Python<'py>, f: FlownColumns) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    let cols = PyDict::new(py);
-    for (name, col) in COLUMNS.iter().zip(f.columns) {
-        cols.set_item(name, col)?;
-    }
-    out.set_item("columns", cols)?;
-    out.set_item("events", f.events)?;
+    // One `bytearray` (writable, so the numpy arrays viewing it are too) and one list that
+    // refers to five strings: no Python object per value or per sample.
+    out.set_item("columns", PyByteArray::new(py, &f.bytes))?;
+    out.set_item("rows", f.rows)?;
+    let names = EVENTS.map(|e| PyString::intern(py, e));
+    let events = PyList::new(py, f.kinds.iter().map(|&k| &names[event_index(k)]))?;
+    out.set_item("events", events)?;
     out.set_item("summary_json", f.summary_json)?;
     Ok(out)
 }
@@ -174,7 +187,10 @@ pub(crate) fn source(
 }
 
 /// Fly a scenario closed-loop (host-sim `scenario::fly`) and return
-/// `{"columns": {name: [float]}, "events": [str], "summary_json": str}`.
+/// `{"columns": bytearray, "rows": int, "events": [str], "summary_json": str}`: `columns`
+/// holds the trajectory column-major as native-endian `f64` (the columns of
+/// `TRAJECTORY_COLUMNS` in order, `rows` values each; the Python layer views it as one
+/// `(columns, rows)` numpy array), `events` the event of each sample.
 ///
 /// Exactly one of `builtin` (a built-in scenario name), `path` (a scenario TOML file) or
 /// `toml` (scenario TOML text; `label` names it in error messages, relative files resolve
