@@ -93,18 +93,30 @@ impl DesignConfig {
         })
     }
 
-    /// The base scenario: a preset's, or the scenario file `base` (relative to `dir`).
+    /// The base scenario: a preset's, or the scenario file `base` (relative to `dir`), flying
+    /// its stored profile alone (its guidance layers off: the design problems shape the
+    /// stored profile).
     ///
     /// # Errors
     /// [`DesignError::Scenario`] when the file cannot be read.
     pub fn base_scenario(&self, dir: &Path) -> Result<Scenario, DesignError> {
+        let mut sc = self.stack_scenario(dir)?;
+        sc.layers = None;
+        Ok(sc)
+    }
+
+    /// The base scenario with its guidance layers as given (the stack a robust problem flies;
+    /// [`super::RobustProblem`]): the scenario file's, or for a preset its built-in mission's
+    /// (`horus-2b`: `horus-2b-reference`'s layers; the SRM presets: `srm-glide`'s).
+    ///
+    /// # Errors
+    /// [`DesignError::Scenario`] when the file cannot be read.
+    pub fn stack_scenario(&self, dir: &Path) -> Result<Scenario, DesignError> {
         let d = std::f64::consts::PI / 180.0;
         match self.base.as_str() {
             "horus-2b" => {
                 let mut sc = Scenario {
                     name: "horus-2b-design".into(),
-                    // The design problems shape the stored profile: it is flown alone.
-                    layers: None,
                     ..Scenario::default()
                 };
                 // The reference mission's 2500 s limit cuts long-range profiles (a flight
@@ -121,15 +133,9 @@ impl DesignConfig {
             "srm" | "srm-altitude" | "srm-analytical" | "srm-analytical-altitude" => {
                 let mut sc = Scenario::srm_glide();
                 sc.name = "srm-design".into();
-                sc.layers = None;
                 Ok(sc)
             }
-            file => {
-                // The design problems shape the stored profile: it is flown alone.
-                let mut sc = read_scenario(&dir.join(file))?;
-                sc.layers = None;
-                Ok(sc)
-            }
+            file => Ok(read_scenario(&dir.join(file))?),
         }
     }
 

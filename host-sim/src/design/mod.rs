@@ -7,6 +7,8 @@
 //! * [`encoding`]: decision vector <-> node table (fixed end nodes, free energy nodes, the
 //!   entry altitude as an optional variable);
 //! * [`problem`]: [`ReentryProblem`] (objectives, constraints with `g <= 0` feasible);
+//! * [`robust`]: [`RobustProblem`] (each candidate judged by a dispersion campaign of the
+//!   base scenario's guidance stack);
 //! * [`config`]: the problem as a file section and the thesis presets;
 //! * [`analytical`]: which simulator evaluates (numerical closed loop or the analytical
 //!   node-guided glide);
@@ -19,6 +21,9 @@ mod analytical_tests;
 pub mod config;
 pub mod encoding;
 pub mod problem;
+pub mod robust;
+#[cfg(test)]
+mod robust_tests;
 pub mod run;
 pub mod sample;
 #[cfg(test)]
@@ -29,6 +34,7 @@ pub use analytical::{AnalyticalModel, Simulator};
 pub use config::{DesignConfig, PRESETS};
 pub use encoding::{Encoding, FixedNode};
 pub use problem::{Limits, Objectives, ReentryProblem};
+pub use robust::{RobustConfig, RobustProblem, Statistic};
 pub use sample::latin_hypercube;
 pub use variable::VariableReentry;
 
@@ -81,6 +87,19 @@ pub enum DesignError {
     /// The analytical simulator cannot fly the base (e.g. no usable drag polar).
     #[error("problem: analytical simulator: {0}")]
     Analytic(#[from] AnalyticError),
+    /// A `[robust]` setting that cannot be flown ([`robust::RobustProblem`]).
+    #[error("robust problem: field `{field}` = {value}: {reason}")]
+    Robust {
+        /// Dotted field path (`robust.objectives`, `robust.dispersions.cases`, ...).
+        field: String,
+        /// The value given.
+        value: String,
+        /// What to change.
+        reason: String,
+    },
+    /// The base scenario's campaign cannot be set up (its nominal flight fails).
+    #[error("robust problem: the base scenario's campaign: {0}")]
+    RobustBase(#[source] Box<crate::campaign::CampaignError>),
     /// The base scenario could not be read or built.
     #[error("problem: base scenario: {0}")]
     Scenario(#[from] ScenarioError),

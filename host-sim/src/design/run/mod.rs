@@ -15,7 +15,9 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use self::files::{write_final, write_generation};
-use super::{DesignConfig, DesignError, ReentryProblem, VariableReentry};
+use super::{
+    DesignConfig, DesignError, ReentryProblem, RobustConfig, RobustProblem, VariableReentry,
+};
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
 use crate::optim::{
@@ -68,6 +70,24 @@ pub struct ReentryRunConfig {
     pub reference: Vec<f64>,
     /// The design problem.
     pub problem: DesignConfig,
+    /// Robust design ([`super::RobustProblem`]): every candidate judged by a dispersion
+    /// campaign of the base scenario's guidance stack, its objectives and constraint from the
+    /// campaign's statistics (then `problem.limits` and `problem.objectives` are not used and
+    /// must be left out). Absent: the nominal problem.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robust: Option<RobustConfig>,
+}
+
+impl ReentryRunConfig {
+    /// The number of objectives: the robust statistics', or the design problem's (2, or 3
+    /// with the skips).
+    #[must_use]
+    pub fn objective_count(&self) -> usize {
+        match &self.robust {
+            Some(r) => r.objectives.len(),
+            None => 2 + usize::from(self.problem.objectives.skips),
+        }
+    }
 }
 
 fn history_genes() -> NewGenes {
@@ -98,6 +118,7 @@ impl ReentryRunConfig {
             archive: None,
             reference,
             problem,
+            robust: None,
         })
     }
 }
@@ -304,7 +325,36 @@ pub fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
         }
         _ => {}
     }
-    let m = 2 + usize::from(c.problem.objectives.skips);
+    if let Some(r) = &c.robust {
+        if c.algorithm == "scea" {
+            return bad(
+                "algorithm",
+                c.algorithm.clone(),
+                "a robust run flies fixed-length profiles: use moead, nsga2, mhaco or \
+                 mhaco-objectives"
+                    .into(),
+            );
+        }
+        if c.problem.limits != super::Limits::default() {
+            return bad(
+                "problem.limits",
+                format!("{:?}", c.problem.limits),
+                "not used by a robust run (its constraint is on the vehicle's limits, \
+                 robust.max_violation_fraction): leave it out"
+                    .into(),
+            );
+        }
+        if c.problem.objectives != super::Objectives::default() {
+            return bad(
+                "problem.objectives",
+                format!("{:?}", c.problem.objectives),
+                "not used by a robust run (its objectives are robust.objectives): leave it out"
+                    .into(),
+            );
+        }
+        r.validate()?;
+    }
+    let m = c.objective_count();
     if c.reference.len() != m || !c.reference.iter().all(|v| v.is_finite()) {
         return bad(
             "reference",
@@ -312,7 +362,10 @@ pub fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
             format!("give {m} finite values (one per objective)"),
         );
     }
-    if c.problem.objectives.target_range_deg.is_some() && c.reference[0] <= 0.0 {
+    if c.robust.is_none()
+        && c.problem.objectives.target_range_deg.is_some()
+        && c.reference[0] <= 0.0
+    {
         return bad(
             "reference",
             format!("{:?}", c.reference),
@@ -422,6 +475,18 @@ pub fn run(
         };
         return drive(&ctx, Scea::new(cfg, c.seed), progress);
     }
+    if let Some(r) = &c.robust {
+        let stack = c.problem.stack_scenario(base_dir)?;
+        let robust = RobustProblem::new(problem, stack, r.clone(), &c.problem.base)?;
+        let ctx = Ctx {
+            c,
+            dir,
+            problem: &robust,
+            pool,
+            resume,
+        };
+        return drive_fixed(&ctx, moead, progress);
+    }
     let ctx = Ctx {
         c,
         dir,
@@ -429,6 +494,19 @@ pub fn run(
         pool,
         resume,
     };
+    drive_fixed(&ctx, moead, progress)
+}
+
+/// [`drive`] with the fixed-length algorithm the run file names.
+fn drive_fixed<P>(
+    ctx: &Ctx<'_, P>,
+    moead: MoeadConfig,
+    progress: &mut dyn Progress,
+) -> Result<Finished, ReentryError>
+where
+    P: RunProblem<Decision = Vec<f64>> + crate::optim::RealProblem,
+{
+    let c = ctx.c;
     match c.algorithm.as_str() {
         "nsga2" => {
             let cfg = Nsga2Config {
@@ -436,7 +514,7 @@ pub fn run(
                 archive: c.archive,
                 ..Nsga2Config::default()
             };
-            drive(&ctx, Nsga2::new(cfg, c.seed), progress)
+            drive(ctx, Nsga2::new(cfg, c.seed), progress)
         }
         "mhaco" | "mhaco-objectives" => {
             let constraints = if c.algorithm == "mhaco" {
@@ -455,9 +533,9 @@ pub fn run(
                 constraints,
                 ..MhacoConfig::default()
             };
-            drive(&ctx, Mhaco::new(cfg, c.seed), progress)
+            drive(ctx, Mhaco::new(cfg, c.seed), progress)
         }
-        _ => drive(&ctx, Moead::new(moead, c.seed), progress),
+        _ => drive(ctx, Moead::new(moead, c.seed), progress),
     }
 }
 
@@ -481,6 +559,18 @@ impl RunProblem for ReentryProblem {
     }
     fn reentry(&self) -> &ReentryProblem {
         self
+    }
+}
+
+impl RunProblem for RobustProblem {
+    fn genes(d: &Vec<f64>) -> Vec<f64> {
+        d.clone()
+    }
+    fn scenario(&self, d: &Vec<f64>) -> Option<Scenario> {
+        self.scenario_of(d).ok()
+    }
+    fn reentry(&self) -> &ReentryProblem {
+        self.inner()
     }
 }
 

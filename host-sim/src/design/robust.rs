@@ -1,0 +1,378 @@
+//! The robust design problem (issue 25 item 1): a decision is the stored profile's node table
+//! (the fixed-length [`Encoding`] of [`ReentryProblem`]); its evaluation flies a dispersion
+//! campaign of `K` flights of the base scenario's whole guidance stack with that profile, and
+//! takes its objectives and constraint from the campaign's statistics
+//! ([`crate::campaign::ModeStats`], the figures `host-sim dispersions` reports).
+//!
+//! * **Common random numbers**: case `i` of every candidate draws the same dispersions (the
+//!   campaign's draw is a function of `(dispersions.seed, i)` alone,
+//!   [`crate::campaign::draw::draw_case`]), so two candidates differ only by their profiles.
+//! * **Target**: the base scenario must name a fixed target (`[guidance.target]` latitude and
+//!   longitude, or downrange and crossrange): a target placed at the nominal end would move
+//!   with every candidate's profile.
+//! * **Objectives** (minimised, 1 to 4): [`Statistic`]s of the flights flown (a failed flight,
+//!   one the simulator could not fly, is not in them, as in the campaign report).
+//! * **Constraint** (`g <= 0` feasible): `v / K - max_violation_fraction`, with `v` the
+//!   flights that failed, ended before the terminal interface, or exceeded any limit of the
+//!   vehicle (peak heat flux, g-load or g-load rate above its limit).
+//! * A candidate whose nominal flight cannot be flown (the campaign set-up fails), or whose
+//!   flights all failed, is a failed evaluation ([`Evaluation::failure`]: it loses every
+//!   comparison); no objective is ever NaN otherwise.
+
+use serde::{Deserialize, Serialize};
+
+use super::{DesignError, ReentryProblem};
+use crate::campaign::{
+    Campaign, CampaignError, CaseResult, DispersionSettings, JobOutcome, Mode, ModeStats,
+};
+use crate::optim::{Bounds, EvalError, Evaluation, Problem, RealProblem};
+use crate::scenario::{Scenario, TargetSpec};
+
+/// A statistic of a campaign, as an objective (minimised).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Statistic {
+    /// Median miss distance \[km\].
+    MissP50Km,
+    /// 99th-percentile miss distance \[km\] (nearest rank).
+    MissP99Km,
+    /// Mean miss distance \[km\].
+    MissMeanKm,
+    /// Largest miss distance \[km\].
+    MissWorstKm,
+    /// 99th percentile of peak heat flux / limit \[-\].
+    HeatFluxRatioP99,
+    /// 99th percentile of peak g-load / limit \[-\].
+    GLoadRatioP99,
+    /// 99th percentile of peak g-load rate / limit \[-\].
+    GLoadRateRatioP99,
+}
+
+impl Statistic {
+    /// Its value in the campaign's figures.
+    #[must_use]
+    pub fn of(self, s: &ModeStats) -> f64 {
+        match self {
+            Self::MissP50Km => s.miss_km.p50,
+            Self::MissP99Km => s.miss_km.p99,
+            Self::MissMeanKm => s.miss_km.mean,
+            Self::MissWorstKm => s.miss_km.worst,
+            Self::HeatFluxRatioP99 => s.heat_flux_ratio.p99,
+            Self::GLoadRatioP99 => s.g_load_ratio.p99,
+            Self::GLoadRateRatioP99 => s.g_load_rate_ratio.p99,
+        }
+    }
+}
+
+/// The `[robust]` section of a run file: the campaign every candidate flies and the
+/// statistics it is judged by.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobustConfig {
+    /// The campaign's dispersions (the `[dispersions]` keys of `host-sim dispersions`,
+    /// defaults as there): `cases` is `K`, `seed` fixes the common random numbers.
+    #[serde(default)]
+    pub dispersions: DispersionSettings,
+    /// The guidance mode flown (`stored`, `stored-reversals`, `replan-reversals`,
+    /// `replan-estimation`); absent: the most complete mode the base scenario's stack flies
+    /// (the last of its modes in report order).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode: Option<String>,
+    /// The objectives, 1 to 4 distinct statistics (default: 99th-percentile miss and
+    /// 99th-percentile heat-flux ratio).
+    #[serde(default = "default_objectives")]
+    pub objectives: Vec<Statistic>,
+    /// The constraint: at most this fraction of the `K` flights may fail, end before the
+    /// terminal interface or exceed a limit, in `[0, 1)` (default 0: every flight holds
+    /// every limit).
+    #[serde(default)]
+    pub max_violation_fraction: f64,
+}
+
+fn default_objectives() -> Vec<Statistic> {
+    vec![Statistic::MissP99Km, Statistic::HeatFluxRatioP99]
+}
+
+impl Default for RobustConfig {
+    fn default() -> Self {
+        Self {
+            dispersions: DispersionSettings::default(),
+            mode: None,
+            objectives: default_objectives(),
+            max_violation_fraction: 0.0,
+        }
+    }
+}
+
+impl RobustConfig {
+    /// Check the objectives, the fraction and the dispersions.
+    ///
+    /// # Errors
+    /// [`DesignError::Robust`] naming the `robust.` field.
+    pub fn validate(&self) -> Result<(), DesignError> {
+        let bad = |field: &str, value: String, reason: &str| {
+            Err(DesignError::Robust {
+                field: field.to_string(),
+                value,
+                reason: reason.to_string(),
+            })
+        };
+        let n = self.objectives.len();
+        let distinct = self
+            .objectives
+            .iter()
+            .enumerate()
+            .all(|(i, s)| !self.objectives[..i].contains(s));
+        if !(1..=4).contains(&n) || !distinct {
+            return bad(
+                "robust.objectives",
+                format!("{:?}", self.objectives),
+                "give 1 to 4 distinct statistics",
+            );
+        }
+        let f = self.max_violation_fraction;
+        if !(0.0..1.0).contains(&f) {
+            return bad(
+                "robust.max_violation_fraction",
+                crate::num_fmt::compact(f),
+                "use a fraction in [0, 1)",
+            );
+        }
+        match self.dispersions.validate("robust") {
+            Err(CampaignError::Setting {
+                field,
+                value,
+                reason,
+                ..
+            }) => bad(&format!("robust.{field}"), value, &reason),
+            Err(e) => Err(DesignError::RobustBase(Box::new(e))),
+            Ok(()) => Ok(()),
+        }
+    }
+}
+
+/// What one candidate's campaign gave.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RobustOutcome {
+    /// The figures of the flights flown.
+    pub stats: ModeStats,
+    /// Flights that failed, ended before the interface or exceeded a limit.
+    pub violations: u32,
+    /// Flights in the campaign (`K`).
+    pub cases: u32,
+}
+
+/// The robust design problem: [`ReentryProblem`]'s encoding and bounds, each candidate judged
+/// by a campaign of the base scenario's stack (module docs).
+#[derive(Clone, Debug)]
+pub struct RobustProblem {
+    inner: ReentryProblem,
+    stack: Scenario,
+    config: RobustConfig,
+    mode: Mode,
+    file: String,
+}
+
+impl RobustProblem {
+    /// The robust problem of `inner` (its encoding and bounds; its objectives and limits are
+    /// not used) flying `stack` (the base scenario with its guidance layers and a fixed
+    /// target; its nodes are replaced by each decision's) under `config`. `file` names the
+    /// base in errors.
+    ///
+    /// # Errors
+    /// [`DesignError::Setting`] naming the `robust.` field: no layers or no fixed target in
+    /// the base, a mode its stack cannot fly, bad objectives or fraction, bad dispersions; an
+    /// analytical `inner`.
+    pub fn new(
+        inner: ReentryProblem,
+        stack: Scenario,
+        config: RobustConfig,
+        file: &str,
+    ) -> Result<Self, DesignError> {
+        let bad = |field: &str, value: String, reason: &str| {
+            Err(DesignError::Robust {
+                field: field.to_string(),
+                value,
+                reason: reason.to_string(),
+            })
+        };
+        if inner.analytical().is_some() {
+            return bad(
+                "problem.simulator",
+                "analytical".into(),
+                "a robust problem flies the numerical closed loop: leave simulator out",
+            );
+        }
+        let Some(layers) = &stack.layers else {
+            return bad(
+                "problem.base",
+                file.into(),
+                "a robust problem flies the base scenario's guidance stack: give a scenario \
+                 file with [guidance.*] layers and a [guidance.target]",
+            );
+        };
+        if layers.target == TargetSpec::Nominal {
+            return bad(
+                "problem.base",
+                file.into(),
+                "a robust problem needs a fixed target: [guidance.target] latitude_deg and \
+                 longitude_deg, or downrange_km and crossrange_km (a nominal target would move \
+                 with every candidate)",
+            );
+        }
+        config.validate()?;
+        let modes = match &config.mode {
+            Some(name) => {
+                vec![
+                    Mode::by_name(name).map_err(|_| DesignError::Robust {
+                        field: "robust.mode".into(),
+                        value: name.clone(),
+                        reason:
+                            "use stored, stored-reversals, replan-reversals or replan-estimation"
+                                .into(),
+                    })?,
+                ]
+            }
+            None => Vec::new(),
+        };
+        // The mode checked against what the stack flies, with the base's own profile.
+        let campaign = Campaign::new(&stack, file, config.dispersions.clone(), "robust", modes)
+            .map_err(|e| match e {
+                CampaignError::Setting {
+                    field,
+                    value,
+                    reason,
+                    ..
+                } => DesignError::Robust {
+                    field: format!("robust.{field}"),
+                    value,
+                    reason,
+                },
+                e => DesignError::RobustBase(Box::new(e)),
+            })?;
+        let mode = *campaign.modes().last().unwrap_or(&Mode::Stored);
+        Ok(Self {
+            inner,
+            stack,
+            config,
+            mode,
+            file: file.to_string(),
+        })
+    }
+
+    /// The fixed-length problem whose encoding and bounds this one uses.
+    #[must_use]
+    pub fn inner(&self) -> &ReentryProblem {
+        &self.inner
+    }
+
+    /// The guidance mode every candidate flies.
+    #[must_use]
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// The settings.
+    #[must_use]
+    pub fn config(&self) -> &RobustConfig {
+        &self.config
+    }
+
+    /// The scenario a decision flies: the base stack with the decision's nodes (and entry
+    /// altitude).
+    ///
+    /// # Errors
+    /// [`DesignError::Dimension`].
+    pub fn scenario_of(&self, x: &[f64]) -> Result<Scenario, DesignError> {
+        let (table, h) = self.inner.encoding().decode(x)?;
+        let mut sc = self.stack.clone();
+        sc.guidance.nodes = table;
+        if let Some(h) = h {
+            sc.entry.radius_m = sc.environment.planet.radius_m + h;
+        }
+        Ok(sc)
+    }
+
+    /// Fly the campaign of scenario `sc` (serially: the optimiser spreads candidates over its
+    /// threads).
+    ///
+    /// # Errors
+    /// [`CampaignError`] when the campaign cannot be set up (the nominal flight fails).
+    pub fn campaign_of(&self, sc: &Scenario) -> Result<RobustOutcome, CampaignError> {
+        let campaign = Campaign::new(
+            sc,
+            &self.file,
+            self.config.dispersions.clone(),
+            "robust",
+            vec![self.mode],
+        )?;
+        let mut flown: Vec<CaseResult> = Vec::new();
+        let mut failed = 0_u32;
+        for (mode, index) in campaign.jobs() {
+            match campaign.fly_job(mode, index)? {
+                JobOutcome::Flown(c) => flown.push(c),
+                JobOutcome::Failed(_) => failed += 1,
+            }
+        }
+        let violating = flown
+            .iter()
+            .filter(|c| {
+                !c.reached_interface || c.limit_ratios.iter().any(|r| r.is_nan() || *r > 1.0)
+            })
+            .count();
+        Ok(RobustOutcome {
+            stats: ModeStats::of(self.mode, &flown, failed as usize),
+            violations: failed + u32::try_from(violating).unwrap_or(u32::MAX),
+            cases: self.config.dispersions.cases,
+        })
+    }
+
+    /// Objectives and constraint of a campaign's outcome (module docs).
+    #[must_use]
+    pub fn evaluation_of(&self, o: &RobustOutcome) -> Evaluation {
+        let f: Vec<f64> = self
+            .config
+            .objectives
+            .iter()
+            .map(|s| s.of(&o.stats))
+            .collect();
+        if o.stats.cases == 0 || !f.iter().all(|v| v.is_finite()) {
+            return Evaluation::failure(self.objectives(), self.constraints());
+        }
+        let fraction = f64::from(o.violations) / f64::from(o.cases.max(1));
+        Evaluation::with_constraints(f, vec![fraction - self.config.max_violation_fraction])
+    }
+}
+
+impl Problem for RobustProblem {
+    type Decision = Vec<f64>;
+
+    fn objectives(&self) -> usize {
+        self.config.objectives.len()
+    }
+
+    fn constraints(&self) -> usize {
+        1
+    }
+
+    fn evaluate(&self, x: &Vec<f64>) -> Result<Evaluation, EvalError> {
+        self.inner.bounds().check_dim(x)?;
+        let sc = self
+            .scenario_of(x)
+            .map_err(|e| EvalError::Failed(Box::new(e)))?;
+        let e = match self.campaign_of(&sc) {
+            Ok(o) => self.evaluation_of(&o),
+            Err(_) => Evaluation::failure(self.objectives(), self.constraints()),
+        };
+        if crate::sim::stop_requested() {
+            return Err(EvalError::Interrupted);
+        }
+        Ok(e)
+    }
+}
+
+impl RealProblem for RobustProblem {
+    fn bounds(&self) -> &Bounds {
+        self.inner.bounds()
+    }
+}

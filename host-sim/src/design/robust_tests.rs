@@ -1,0 +1,240 @@
+//! Robust-problem tests: the SRM capsule on `examples/srm-glide-replanning.toml` (fixed
+//! target, re-planning and bank reversals), a few dispersed flights per candidate.
+
+use std::path::{Path, PathBuf};
+
+use super::*;
+use crate::campaign::{Campaign, JobOutcome, Mode, ModeStats};
+use crate::optim::{Problem, RealProblem};
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
+}
+
+/// The SRM preset's encoding on the example scenario with its stack.
+fn config(cases: u32, mode: Option<&str>) -> (DesignConfig, RobustConfig) {
+    let mut d = DesignConfig::preset("srm").unwrap();
+    d.base = "srm-glide-replanning.toml".into();
+    let mut r = RobustConfig {
+        mode: mode.map(str::to_string),
+        ..RobustConfig::default()
+    };
+    r.dispersions.cases = cases;
+    r.dispersions.seed = 7;
+    (d, r)
+}
+
+fn problem(cases: u32, mode: Option<&str>) -> RobustProblem {
+    let (d, r) = config(cases, mode);
+    let inner = d.problem(&examples()).unwrap();
+    let stack = d.stack_scenario(&examples()).unwrap();
+    RobustProblem::new(inner, stack, r, &d.base).unwrap()
+}
+
+/// Close to the example's own stored profile: 6 free nodes `[E-hat, sigma_deg]`.
+fn decision() -> Vec<f64> {
+    vec![
+        0.9, 20.0, 0.75, 42.0, 0.6, 50.0, 0.45, 57.0, 0.3, 45.0, 0.15, 22.0,
+    ]
+}
+
+/// The evaluation is the campaign's own report: the same scenario flown as a campaign by
+/// `Campaign::run_local` (on threads) gives the statistics the objectives are taken from,
+/// and the constraint counts its flights that fail, miss the interface or exceed a limit.
+#[test]
+fn robust_evaluation_is_the_campaigns_own_statistics() {
+    let p = problem(4, Some("stored-reversals"));
+    assert_eq!(p.mode(), Mode::StoredReversals);
+    assert_eq!((p.objectives(), p.constraints()), (2, 1));
+    let x = decision();
+    assert_eq!(p.bounds().dim(), 12);
+    let ev = p.evaluate(&x).unwrap();
+    let sc = p.scenario_of(&x).unwrap();
+    assert!(sc.layers.is_some(), "the candidate flies the base's stack");
+    let c = Campaign::new(
+        &sc,
+        "test",
+        p.config().dispersions.clone(),
+        "test",
+        vec![Mode::StoredReversals],
+    )
+    .unwrap();
+    let outcomes = c.run_local(Some(2)).unwrap();
+    assert_eq!(outcomes.len(), 4);
+    let flown: Vec<_> = outcomes
+        .iter()
+        .filter_map(|o| match o {
+            JobOutcome::Flown(c) => Some(c.clone()),
+            JobOutcome::Failed(_) => None,
+        })
+        .collect();
+    let stats = ModeStats::of(Mode::StoredReversals, &flown, outcomes.len() - flown.len());
+    assert_eq!(
+        ev.objectives,
+        vec![stats.miss_km.p99, stats.heat_flux_ratio.p99]
+    );
+    let bad = outcomes.len() - flown.len()
+        + flown
+            .iter()
+            .filter(|c| !c.reached_interface || c.limit_ratios.iter().any(|r| *r > 1.0))
+            .count();
+    assert_eq!(ev.constraints, vec![bad as f64 / 4.0]);
+    assert!(stats.miss_km.p99 > 0.0 && stats.miss_km.p99.is_finite());
+    // Deterministic: the same decision evaluates bit-identically.
+    assert_eq!(p.evaluate(&x).unwrap(), ev);
+}
+
+/// Common random numbers: every candidate's case `i` flies the same dispersions, so two
+/// profiles differ in their campaigns only by the profile.
+#[test]
+fn robust_candidates_share_their_draws() {
+    let p = problem(3, Some("stored"));
+    let x = decision();
+    let mut y = x.clone();
+    y[3] = 30.0;
+    let draws = |x: &[f64]| -> Vec<_> {
+        let sc = p.scenario_of(x).unwrap();
+        let c = Campaign::new(
+            &sc,
+            "t",
+            p.config().dispersions.clone(),
+            "t",
+            vec![p.mode()],
+        )
+        .unwrap();
+        c.run_local(Some(1))
+            .unwrap()
+            .into_iter()
+            .map(|o| match o {
+                JobOutcome::Flown(c) => (c.index, format!("{:?}", c.draw), c.miss_m),
+                JobOutcome::Failed(f) => (f.index, format!("{:?}", Some(f.draw)), f64::NAN),
+            })
+            .collect()
+    };
+    let (a, b) = (draws(&x), draws(&y));
+    for (ca, cb) in a.iter().zip(&b) {
+        assert_eq!((ca.0, &ca.1), (cb.0, &cb.1));
+    }
+    assert_ne!(a, b, "the profiles differ, so the flights do");
+    assert_ne!(p.evaluate(&x).unwrap(), p.evaluate(&y).unwrap());
+}
+
+/// What cannot be flown is refused, naming the `robust.` or `problem.` field.
+#[test]
+fn robust_settings_are_checked_naming_the_field() {
+    let err = |d: &DesignConfig, r: RobustConfig| {
+        let inner = d.problem(&examples()).unwrap();
+        let stack = d.stack_scenario(&examples()).unwrap();
+        RobustProblem::new(inner, stack, r, &d.base)
+            .unwrap_err()
+            .to_string()
+    };
+    let (d, r) = config(2, None);
+    // A preset aims at its nominal end: no fixed target.
+    let preset = DesignConfig::preset("srm").unwrap();
+    let e = err(&preset, r.clone());
+    assert!(
+        e.contains("`problem.base`") && e.contains("fixed target"),
+        "{e}"
+    );
+    let e = err(
+        &d,
+        RobustConfig {
+            objectives: vec![],
+            ..r.clone()
+        },
+    );
+    assert!(e.contains("`robust.objectives`"), "{e}");
+    let e = err(
+        &d,
+        RobustConfig {
+            objectives: vec![Statistic::MissP99Km, Statistic::MissP99Km],
+            ..r.clone()
+        },
+    );
+    assert!(e.contains("distinct"), "{e}");
+    let e = err(
+        &d,
+        RobustConfig {
+            max_violation_fraction: 1.0,
+            ..r.clone()
+        },
+    );
+    assert!(e.contains("`robust.max_violation_fraction` = 1"), "{e}");
+    let e = err(
+        &d,
+        RobustConfig {
+            mode: Some("glide".into()),
+            ..r.clone()
+        },
+    );
+    assert!(e.contains("`robust.mode` = glide"), "{e}");
+    let mut zero = r.clone();
+    zero.dispersions.cases = 0;
+    let e = err(&d, zero);
+    assert!(e.contains("`robust.dispersions.cases` = 0"), "{e}");
+}
+
+/// A robust run through the run file: config.toml keeps the `[robust]` section (read back
+/// equal), and the front's member scenarios carry the base's stack, so `simulate` and PIL fly
+/// the member as the campaign did.
+#[test]
+fn robust_run_writes_its_section_and_stack_members() {
+    use crate::design::run::{ReentryRunConfig, parse_toml, run};
+    let (d, r) = config(2, Some("stored"));
+    let mut c = ReentryRunConfig::thesis("srm").unwrap();
+    c.problem = d;
+    c.robust = Some(r);
+    c.population = 4;
+    c.neighbours = 3;
+    c.generations = 1;
+    c.threads = 2;
+    c.reference = vec![5000.0, 2.0];
+    let dir = std::env::temp_dir().join(format!("host-sim-robust-run-{}", std::process::id()));
+    let done = run(&c, "test", &dir, false, &examples(), &mut ()).unwrap();
+    let last = done.last.unwrap();
+    assert_eq!((last.generation, last.evaluations), (1, 8));
+    assert_eq!(parse_toml(&dir.join("config.toml")).unwrap(), c);
+    let text = std::fs::read_to_string(dir.join("config.toml")).unwrap();
+    assert!(
+        text.contains("[robust]") && text.contains("[robust.dispersions]"),
+        "{text}"
+    );
+    let members: Vec<_> = std::fs::read_dir(dir.join("front"))
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.unwrap().path();
+            (p.extension().is_some_and(|x| x == "toml")).then_some(p)
+        })
+        .collect();
+    assert!(!members.is_empty(), "{last:?}");
+    assert_eq!(
+        members.len(),
+        last.front.len(),
+        "one scenario per front member"
+    );
+    for m in &members {
+        let t = std::fs::read_to_string(m).unwrap();
+        assert!(
+            t.contains("[guidance.target]") && t.contains("[guidance.lateral]"),
+            "{t}"
+        );
+    }
+    // A robust run refuses what it would not use.
+    let mut bad = c.clone();
+    bad.problem.limits.g_load = 4.0;
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    assert!(
+        e.to_string().contains("run.toml: field `problem.limits`"),
+        "{e}"
+    );
+    let mut bad = c.clone();
+    bad.algorithm = "scea".into();
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    assert!(e.to_string().contains("field `algorithm` = scea"), "{e}");
+    let mut bad = c;
+    bad.reference = vec![1.0];
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    assert!(e.to_string().contains("give 2 finite values"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
