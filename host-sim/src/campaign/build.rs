@@ -62,7 +62,12 @@ impl CampaignSetup {
         let interface = interface_speed_m_s
             .map(|speed_m_s| TerminalInterface::Speed { speed_m_s })
             .or(l.interface);
-        let mut s = Self::with_guidance(sc, file, interface, &l.settings)?;
+        // A fixed target is aimed at directly: the re-aiming flights of `with_guidance` would
+        // only place a target that `aim_at` replaces.
+        let mut s = match l.target {
+            TargetSpec::Nominal => Self::with_guidance(sc, file, interface, &l.settings)?,
+            _ => Self::unaimed(sc, file, interface, &l.settings)?,
+        };
         s.stack = s.stack.masked(l.layers);
         match l.target {
             TargetSpec::Nominal => {}
@@ -93,6 +98,28 @@ impl CampaignSetup {
     /// As [`CampaignSetup::new`]; [`CampaignError::Setting`] for a bad `gs` or an interface
     /// the nominal flight never reaches.
     pub fn with_guidance(
+        sc: &Scenario,
+        file: &str,
+        interface: Option<TerminalInterface>,
+        gs: &CampaignGuidance,
+    ) -> Result<Self, CampaignError> {
+        let mut setup = Self::unaimed(sc, file, interface, gs)?;
+        // Re-aim at where the stored profile with reversals ends, on the entry great circle
+        // (a fixed-point iteration: the reversals depend on the target).
+        for _ in 0..RETARGET_ITERATIONS {
+            let f = super::flight::fly_case(&setup, None, Mode::StoredReversals)?;
+            if f.downrange_error_m.abs() < 100.0 {
+                break;
+            }
+            let radius = setup.planet_radius_m;
+            setup.retarget(setup.target_downrange_rad + f.downrange_error_m / radius);
+        }
+        Ok(setup)
+    }
+
+    /// [`CampaignSetup::with_guidance`] without the re-aiming flights: the target where the
+    /// nominal flight of the stored profile (without reversals) ends.
+    fn unaimed(
         sc: &Scenario,
         file: &str,
         interface: Option<TerminalInterface>,
@@ -257,7 +284,7 @@ impl CampaignSetup {
             target: Some(RangeTarget::Point(target)),
         };
         let r_f = end.radius_m;
-        let mut setup = Self {
+        Ok(Self {
             scenario: sc.clone(),
             file: file.into(),
             interface_energy_j_kg: 0.5 * v_f * v_f - planet.mu_m3_s2 / r_f,
@@ -268,17 +295,7 @@ impl CampaignSetup {
             target_downrange_rad: nominal.summary.range_angle_rad,
             stack,
             guidance: gs.clone(),
-        };
-        // Re-aim at where the stored profile with reversals ends, on the entry great circle
-        // (a fixed-point iteration: the reversals depend on the target).
-        for _ in 0..RETARGET_ITERATIONS {
-            let f = super::flight::fly_case(&setup, None, Mode::StoredReversals)?;
-            if f.downrange_error_m.abs() < 100.0 {
-                break;
-            }
-            setup.retarget(setup.target_downrange_rad + f.downrange_error_m / planet.radius_m);
-        }
-        Ok(setup)
+        })
     }
 }
 

@@ -383,10 +383,12 @@ fn old_replanning_section_is_refused() {
 /// Every scenario file under examples/ (top level and examples/validation/) reads on its own,
 /// as `host-sim simulate --scenario FILE` and `dispersions --scenario FILE` read it: a file the
 /// docs name as a scenario is complete, not an overlay. Vehicle and dispersion-settings files
-/// are told apart by name.
+/// are told apart by name; run files of `host-sim optimize --config` (`optimize-*.toml`) are
+/// read and checked as `optimize` reads them.
 #[test]
 fn every_example_scenario_reads_on_its_own() {
     let mut read = 0;
+    let mut runs = 0;
     for dir in [examples(), examples().join("validation")] {
         for entry in std::fs::read_dir(&dir).unwrap() {
             let path = entry.unwrap().path();
@@ -397,6 +399,14 @@ fn every_example_scenario_reads_on_its_own() {
             {
                 continue;
             }
+            if name.starts_with("optimize-") {
+                let text = std::fs::read_to_string(&path).unwrap();
+                if let Err(e) = host_sim::design::run::check_run_config(&text, &path) {
+                    panic!("{}: {e}", path.display());
+                }
+                runs += 1;
+                continue;
+            }
             if let Err(e) = read_scenario(&path) {
                 panic!("{}: {e}", path.display());
             }
@@ -404,4 +414,5 @@ fn every_example_scenario_reads_on_its_own() {
         }
     }
     assert!(read >= 15, "{read} example scenarios read");
+    assert!(runs >= 1, "{runs} example run files read");
 }
