@@ -293,25 +293,84 @@ impl RobustProblem {
         Ok(sc)
     }
 
-    /// Fly the campaign of scenario `sc` (serially: the optimiser spreads candidates over its
-    /// threads).
+    /// The campaign a scenario of this problem flies (its set-up flies the nominal flight).
     ///
     /// # Errors
     /// [`CampaignError`] when the campaign cannot be set up (the nominal flight fails).
-    pub fn campaign_of(&self, sc: &Scenario) -> Result<RobustOutcome, CampaignError> {
-        let campaign = Campaign::new(
+    pub fn campaign(&self, sc: &Scenario) -> Result<Campaign, CampaignError> {
+        Campaign::new(
             sc,
             &self.file,
             self.config.dispersions.clone(),
             "robust",
             vec![self.mode],
-        )?;
+        )
+    }
+
+    /// Fly the campaign of scenario `sc` whole (serially: the optimiser spreads candidates
+    /// over its threads).
+    ///
+    /// # Errors
+    /// [`CampaignError`] when the campaign cannot be set up (the nominal flight fails).
+    pub fn campaign_of(&self, sc: &Scenario) -> Result<RobustOutcome, CampaignError> {
+        let all = 0..self.config.dispersions.cases;
+        let outcomes = self.fly_cases(sc, all)?;
+        self.outcome_of(outcomes)
+    }
+
+    /// Fly cases `indices` of the campaign of scenario `sc`: one part of a candidate's
+    /// evaluation, for evaluations split over flights as well as candidates (each case is a
+    /// pure function of the scenario, the settings and its index, so the parts flown anywhere
+    /// and in any order give the whole campaign's outcomes: [`RobustProblem::outcome_of`]).
+    ///
+    /// # Errors
+    /// [`CampaignError`] when the campaign cannot be set up, or for an index outside it.
+    pub fn fly_cases(
+        &self,
+        sc: &Scenario,
+        indices: impl IntoIterator<Item = u32>,
+    ) -> Result<Vec<JobOutcome>, CampaignError> {
+        let campaign = self.campaign(sc)?;
+        indices
+            .into_iter()
+            .map(|i| campaign.fly_job(self.mode, i))
+            .collect()
+    }
+
+    /// The outcome of a candidate's campaign from its cases' outcomes, gathered in any order.
+    ///
+    /// # Errors
+    /// [`CampaignError::Job`] for an outcome of another mode or outside the campaign, one
+    /// given twice, or a case missing.
+    pub fn outcome_of(
+        &self,
+        outcomes: impl IntoIterator<Item = JobOutcome>,
+    ) -> Result<RobustOutcome, CampaignError> {
+        let cases = self.config.dispersions.cases;
+        let mut slots: Vec<Option<JobOutcome>> = vec![None; cases as usize];
+        let job = |mode: Mode, index: u32, reason: &str| CampaignError::Job {
+            mode: mode.name(),
+            index,
+            reason: reason.to_string(),
+        };
+        for o in outcomes {
+            let (mode, index) = o.key();
+            let slot = slots
+                .get_mut(index as usize)
+                .filter(|_| mode == self.mode)
+                .ok_or_else(|| job(mode, index, "not a case of this campaign"))?;
+            if slot.is_some() {
+                return Err(job(mode, index, "given twice"));
+            }
+            *slot = Some(o);
+        }
         let mut flown: Vec<CaseResult> = Vec::new();
         let mut failed = 0_u32;
-        for (mode, index) in campaign.jobs() {
-            match campaign.fly_job(mode, index)? {
-                JobOutcome::Flown(c) => flown.push(c),
-                JobOutcome::Failed(_) => failed += 1,
+        for (i, o) in (0_u32..).zip(slots) {
+            match o {
+                Some(JobOutcome::Flown(c)) => flown.push(c),
+                Some(JobOutcome::Failed(_)) => failed += 1,
+                None => return Err(job(self.mode, i, "missing")),
             }
         }
         let violating = flown
@@ -323,7 +382,7 @@ impl RobustProblem {
         Ok(RobustOutcome {
             stats: ModeStats::of(self.mode, &flown, failed as usize),
             violations: failed + u32::try_from(violating).unwrap_or(u32::MAX),
-            cases: self.config.dispersions.cases,
+            cases,
         })
     }
 

@@ -238,3 +238,28 @@ fn robust_run_writes_its_section_and_stack_members() {
     assert!(e.to_string().contains("give 2 finite values"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A candidate's evaluation split over flights: its cases flown in parts, in any order (as
+/// workers would, each setting the campaign up again), and sent as JSON, give the whole
+/// evaluation bit for bit; a part missing, repeated or of another campaign is refused.
+#[test]
+fn robust_evaluation_split_over_flights_is_the_whole_one() {
+    let p = problem(4, Some("stored-reversals"));
+    let x = decision();
+    let sc = p.scenario_of(&x).unwrap();
+    let whole = p.evaluate(&x).unwrap();
+    let mut parts = Vec::new();
+    for chunk in [[2_u32, 3], [0, 1]] {
+        let json = serde_json::to_string(&p.fly_cases(&sc, chunk).unwrap()).unwrap();
+        parts.extend(serde_json::from_str::<Vec<JobOutcome>>(&json).unwrap());
+    }
+    let o = p.outcome_of(parts.clone()).unwrap();
+    assert_eq!(p.evaluation_of(&o), whole);
+    let e = p.outcome_of(parts[1..].to_vec()).unwrap_err();
+    assert!(e.to_string().contains("missing"), "{e}");
+    let mut twice = parts.clone();
+    twice.push(parts[0].clone());
+    let e = p.outcome_of(twice).unwrap_err();
+    assert!(e.to_string().contains("given twice"), "{e}");
+    assert!(p.fly_cases(&sc, [4]).is_err(), "case 4 of 4");
+}
