@@ -97,6 +97,14 @@ pub enum DesignError {
         /// What to change.
         reason: String,
     },
+    /// A run file's text that is not TOML, or tables of the wrong shape.
+    #[error("{label}: {message}")]
+    Toml {
+        /// The file or `(TOML string)`.
+        label: String,
+        /// What is wrong (with the field).
+        message: String,
+    },
     /// The base scenario's campaign cannot be set up (its nominal flight fails).
     #[error("robust problem: the base scenario's campaign: {0}")]
     RobustBase(#[source] Box<crate::campaign::CampaignError>),

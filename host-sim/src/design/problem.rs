@@ -206,6 +206,12 @@ impl ReentryProblem {
         &self.limits
     }
 
+    /// The objective settings.
+    #[must_use]
+    pub fn objective_settings(&self) -> &Objectives {
+        &self.objectives
+    }
+
     /// The scenario that a node table and entry altitude \[m\] fly: the base with its nodes
     /// (and entry radius) replaced.
     #[must_use]

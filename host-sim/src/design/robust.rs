@@ -203,6 +203,22 @@ impl RobustProblem {
                 "a robust problem flies the numerical closed loop: leave simulator out",
             );
         }
+        if inner.limits() != &super::Limits::default() {
+            return bad(
+                "problem.limits",
+                format!("{:?}", inner.limits()),
+                "not used by a robust problem (its constraint is on the vehicle's limits, \
+                 robust.max_violation_fraction): leave it out",
+            );
+        }
+        if inner.objective_settings() != &super::Objectives::default() {
+            return bad(
+                "problem.objectives",
+                format!("{:?}", inner.objective_settings()),
+                "not used by a robust problem (its objectives are robust.objectives): leave it \
+                 out",
+            );
+        }
         let Some(layers) = &stack.layers else {
             return bad(
                 "problem.base",
@@ -401,6 +417,43 @@ impl RobustProblem {
         let fraction = f64::from(o.violations) / f64::from(o.cases.max(1));
         Evaluation::with_constraints(f, vec![fraction - self.config.max_violation_fraction])
     }
+}
+
+/// The robust problem of a run file's text (`label` names it in errors): its `[problem]` and
+/// `[robust]` tables (other keys, the algorithm's, are not read), a scenario-file base relative
+/// to `base_dir`. The Python package builds its `RobustDesignProblem` with it.
+///
+/// # Errors
+/// [`DesignError::Toml`] for text that is not TOML or tables of the wrong shape (naming the
+/// field), [`DesignError`] as [`RobustProblem::new`].
+pub fn problem_of_run_text(
+    text: &str,
+    label: &str,
+    base_dir: &std::path::Path,
+) -> Result<(super::DesignConfig, RobustConfig, RobustProblem), DesignError> {
+    let bad = |message: String| DesignError::Toml {
+        label: label.to_string(),
+        message,
+    };
+    let mut table: toml::Table = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
+    let mut take = |key: &str| match table.remove(key) {
+        Some(toml::Value::Table(t)) => Ok(t),
+        Some(_) => Err(bad(format!("field `{key}` must be a table"))),
+        None => Err(bad(format!(
+            "field `{key}` is missing (a robust run file has [{key}])"
+        ))),
+    };
+    let (problem, robust) = (take("problem")?, take("robust")?);
+    let design: super::DesignConfig = toml::Value::Table(problem)
+        .try_into()
+        .map_err(|e: toml::de::Error| bad(format!("[problem]: {e}")))?;
+    let config: RobustConfig = toml::Value::Table(robust)
+        .try_into()
+        .map_err(|e: toml::de::Error| bad(format!("[robust]: {e}")))?;
+    let inner = design.problem(base_dir)?;
+    let stack = design.stack_scenario(base_dir)?;
+    let p = RobustProblem::new(inner, stack, config.clone(), &design.base)?;
+    Ok((design, config, p))
 }
 
 impl Problem for RobustProblem {

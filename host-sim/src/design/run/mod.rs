@@ -335,23 +335,6 @@ pub fn check(c: &ReentryRunConfig, src: &str) -> Result<(), ReentryError> {
                     .into(),
             );
         }
-        if c.problem.limits != super::Limits::default() {
-            return bad(
-                "problem.limits",
-                format!("{:?}", c.problem.limits),
-                "not used by a robust run (its constraint is on the vehicle's limits, \
-                 robust.max_violation_fraction): leave it out"
-                    .into(),
-            );
-        }
-        if c.problem.objectives != super::Objectives::default() {
-            return bad(
-                "problem.objectives",
-                format!("{:?}", c.problem.objectives),
-                "not used by a robust run (its objectives are robust.objectives): leave it out"
-                    .into(),
-            );
-        }
         r.validate()?;
     }
     let m = c.objective_count();
@@ -424,6 +407,19 @@ pub fn run(
 ) -> Result<Finished, ReentryError> {
     check(c, src)?;
     let problem = c.problem.problem(base_dir)?;
+    // A robust problem is built (its base's campaign set up) before the directory is touched.
+    let robust = match &c.robust {
+        Some(r) => {
+            let stack = c.problem.stack_scenario(base_dir)?;
+            Some(RobustProblem::new(
+                problem.clone(),
+                stack,
+                r.clone(),
+                &c.problem.base,
+            )?)
+        }
+        None => None,
+    };
     if !resume {
         // A new run: never into a directory that is not a run; a previous run there is
         // removed whole (no population or front file of it is left beside the new run's).
@@ -475,9 +471,7 @@ pub fn run(
         };
         return drive(&ctx, Scea::new(cfg, c.seed), progress);
     }
-    if let Some(r) = &c.robust {
-        let stack = c.problem.stack_scenario(base_dir)?;
-        let robust = RobustProblem::new(problem, stack, r.clone(), &c.problem.base)?;
+    if let Some(robust) = robust {
         let ctx = Ctx {
             c,
             dir,
