@@ -9,7 +9,8 @@ with the GIL released. SI units and radians throughout (unit in each name).
 * :class:`Moead`, :class:`Nsga2`, :class:`Mhaco` (ask/tell), :class:`TestProblem`, :func:`evolve`,
   :func:`hypervolume`, :class:`PygmoProblem` (any of our problems as a pygmo UDP);
 * :class:`DesignProblem`, :class:`VariableDesignProblem` (the thesis' re-entry design
-  problems as pygmo UDPs), :func:`pymoo_problem`;
+  problems as pygmo UDPs), :class:`RobustDesignProblem` (profiles judged by dispersion
+  campaigns), :func:`pymoo_problem`;
 * :class:`DispersionCampaign` (host-sim's dispersion campaign, case by case);
 * :mod:`reentry.distributed`: optimisation, dispersion and flight campaigns on Dask.
 
@@ -29,7 +30,13 @@ from ._native import (
     hypervolume,
     test_problems,
 )
-from .design import DesignProblem, VariableDesignProblem, design_presets, pymoo_problem
+from .design import (
+    DesignProblem,
+    RobustDesignProblem,
+    VariableDesignProblem,
+    design_presets,
+    pymoo_problem,
+)
 from .dispersions import DispersionCampaign, campaign_modes
 from .env import atmosphere, vehicles
 from .flight import Flight, fly, fly_summary, scenario_dict, scenario_toml
@@ -49,6 +56,7 @@ __all__ = [
     "CampaignError",
     "DesignError",
     "DesignProblem",
+    "RobustDesignProblem",
     "DispersionCampaign",
     "Flight",
     "Mhaco",

@@ -117,6 +117,42 @@ class DesignProblem:
     def scenario_toml(self, x: Sequence[float]) -> str:
         """The scenario TOML a decision flies (for reentry.fly)."""
 
+class RobustDesignProblem:
+    """The robust re-entry design problem (host-sim design::RobustProblem)."""
+
+    def __new__(
+        cls,
+        *,
+        toml: Optional[str] = None,
+        path: Optional[Union[str, PathLike[str]]] = None,
+        base_dir: Optional[Union[str, PathLike[str]]] = None,
+    ) -> RobustDesignProblem: ...
+    def config_toml(self) -> str:
+        """The [problem] and [robust] settings as TOML text."""
+    @property
+    def base_dir(self) -> str: ...
+    @property
+    def cases(self) -> int:
+        """Flights per candidate (robust.dispersions.cases)."""
+    @property
+    def mode(self) -> str:
+        """The guidance mode every candidate flies."""
+    def get_bounds(self) -> Tuple[List[float], List[float]]: ...
+    def get_nobj(self) -> int: ...
+    def get_nic(self) -> int: ...
+    def get_nec(self) -> int: ...
+    def evaluate(self, x: Sequence[float]) -> Tuple[List[float], List[float]]:
+        """(objectives, constraints) of one decision: its whole campaign; NaN if it failed."""
+    def evaluate_batch(
+        self, xs: Sequence[Sequence[float]]
+    ) -> List[Tuple[List[float], List[float]]]: ...
+    def fly_cases(self, x: Sequence[float], indices: Sequence[int]) -> Optional[str]:
+        """Cases `indices` of the decision's campaign as JSON outcomes; None if it cannot be set up."""
+    def evaluate_parts(self, parts: Sequence[Optional[str]]) -> Tuple[List[float], List[float]]:
+        """The decision's evaluation from its parts (any order, every case once)."""
+    def scenario_toml(self, x: Sequence[float]) -> str:
+        """The scenario TOML a decision flies (the base stack with its nodes)."""
+
 class VariableDesignProblem:
     """The variable-length re-entry design problem (host-sim design::VariableReentry)."""
 

@@ -10,7 +10,9 @@ pygmo user-defined problems and, optionally, pymoo problems.
   over chromosomes (:meth:`~VariableDesignProblem.evaluate_chromosome`) or, for pygmo and our
   ask/tell algorithms, over a padded fixed-size vector whose last variable (integer) is the
   number of free nodes used.
-* :func:`pymoo_problem`: either as a ``pymoo.core.problem.Problem``.
+* :class:`RobustDesignProblem`: the same profile judged by a dispersion campaign of the base
+  scenario's guidance stack (host-sim ``design::RobustProblem``).
+* :func:`pymoo_problem`: any of them as a ``pymoo.core.problem.Problem``.
 
 Every evaluation is one closed-loop flight in Rust (GIL released). A failed flight (rejected
 scenario, time limit, ground) evaluates to NaN objectives and constraints, host-sim's failed
@@ -115,6 +117,46 @@ class VariableDesignProblem(PygmoMethods, _native.VariableDesignProblem):
         return f"nodes = {list(self.nodes)}\n" + self.config_toml()
 
 
+class RobustDesignProblem(PygmoMethods, _native.RobustDesignProblem):
+    """The robust re-entry design problem (host-sim ``design::RobustProblem``,
+    docs/reference/mission-design.md "Robust design"): a decision is the stored profile's free
+    nodes, as in :class:`DesignProblem`; its evaluation flies a seeded dispersion campaign of
+    ``cases`` flights of the base scenario's guidance stack (the same draws for every
+    decision) and returns the ``[robust]`` statistics as objectives and one constraint (the
+    fraction of flights that fail or break a limit, over its maximum; ``<= 0`` feasible).
+
+    ``run``: a run file (path), TOML text or a dict with the ``problem`` and ``robust``
+    tables (e.g. ``examples/optimize-robust-srm.toml``; other keys are not read).
+    ``base_dir``: the folder the scenario-file ``base`` is relative to (default: the file's
+    folder, else the current one). Raises :class:`reentry.DesignError` with host-sim's
+    message.
+
+    On Dask, :func:`reentry.distributed.robust_batch_evaluator` splits each batch over
+    decisions and flights (:meth:`fly_cases`, :meth:`evaluate_parts`): the same evaluations,
+    bit for bit. Pickles (Dask, pygmo islands)."""
+
+    def __new__(cls, run, *, base_dir=None):
+        src = _problem_source(run)
+        if "preset" in src:
+            raise TypeError("a robust problem needs a run file with [problem] and [robust]")
+        return super().__new__(cls, base_dir=base_dir, **src)
+
+    def __reduce__(self):
+        return (_rebuild_robust, (type(self), self.config_toml(), os.fspath(self.base_dir)))
+
+    def get_name(self) -> str:
+        """pygmo: the problem's name."""
+        return "reentry robust design problem"
+
+    def get_extra_info(self) -> str:
+        """pygmo: the settings (TOML)."""
+        return self.config_toml()
+
+
+def _rebuild_robust(cls, config_toml: str, base_dir: str):
+    return cls(config_toml, base_dir=base_dir)
+
+
 def pymoo_problem(problem, failure_value: float = 1e30):
     """``problem`` (any of ours with ``get_bounds``, ``get_nobj``, ``get_nic`` and
     ``evaluate_batch``) as a vectorised ``pymoo.core.problem.Problem``: ``out["F"]`` the
@@ -148,4 +190,10 @@ def design_presets() -> list:
     return list(_native.design_presets())
 
 
-__all__ = ["DesignProblem", "VariableDesignProblem", "design_presets", "pymoo_problem"]
+__all__ = [
+    "DesignProblem",
+    "RobustDesignProblem",
+    "VariableDesignProblem",
+    "design_presets",
+    "pymoo_problem",
+]

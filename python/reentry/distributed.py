@@ -152,6 +152,51 @@ def evolve_on_dask(algorithm, problem, generations: int, client, chunk_size=None
     )
 
 
+def _fly_robust_chunk(problem, decision: int, x: Sequence[float], indices: Sequence[int]):
+    """Task: one part of a robust decision's evaluation (its cases ``indices``), keyed by the
+    decision's position and the part's first case."""
+    return decision, indices[0], problem.fly_cases(list(x), list(indices))
+
+
+def robust_batch_evaluator(
+    client, problem, cases_per_task: Optional[int] = None, retries: int = 3
+) -> Callable[[List[List[float]]], List[tuple]]:
+    """A ``map_batch`` for :func:`reentry.evolve` that splits each batch of a
+    :class:`reentry.RobustDesignProblem` over decisions and flights: one Dask task per
+    decision and chunk of ``cases_per_task`` consecutive cases (default: a decision's cases
+    cut into enough chunks that the batch makes at least two tasks per worker thread: a batch
+    of one decision still spreads its flights over the cluster). Each task sets its decision's campaign up again (one
+    nominal flight) and flies its cases; the client gathers the parts of each decision and
+    the library evaluates them (:meth:`~reentry.RobustDesignProblem.evaluate_parts`), so the
+    evaluations, and the run, are those of the single-machine run, bit for bit."""
+    [problem_future] = client.scatter([problem], broadcast=True, hash=False)
+    k = problem.cases
+
+    def map_batch(xs: List[List[float]]) -> List[tuple]:
+        n = len(xs)
+        if n == 0:
+            return []
+        parts_per_decision = max(1, math.ceil(2 * _worker_count(client) / n))
+        c = cases_per_task or max(1, math.ceil(k / parts_per_decision))
+        chunks = _chunks(k, c)
+        jobs = [(i, ch) for i in range(n) for ch in chunks]
+        futures = client.map(
+            _fly_robust_chunk,
+            [problem_future] * len(jobs),
+            [i for i, _ in jobs],
+            [list(map(float, xs[i])) for i, _ in jobs],
+            [list(ch) for _, ch in jobs],
+            pure=False,
+            retries=retries,
+        )
+        parts: List[List[Optional[str]]] = [[] for _ in range(n)]
+        for decision, _first, part in client.gather(futures):
+            parts[decision].append(part)
+        return [problem.evaluate_parts(p) for p in parts]
+
+    return map_batch
+
+
 # --------------------------------------------------------------------------- campaigns
 
 

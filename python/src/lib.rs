@@ -1,7 +1,7 @@
 //! `reentry._native`: the Python bindings of host-sim (PyO3, abi3).
 //!
 //! Wrappers only: every number comes from host-sim's library (`scenario::fly`,
-//! `env` atmospheres, `vehicle` registry, `optim` algorithms and test problems, `design` problems, `campaign` dispersion cases). The GIL is
+//! `env` atmospheres, `vehicle` registry, `optim` algorithms and test problems, `design` problems (the robust one too), `campaign` dispersion cases). The GIL is
 //! released while Rust runs a flight, a batch of evaluations or an ask/tell step. Errors
 //! become Python exceptions (subclasses of [`ReentryError`]) whose message is the Rust
 //! error's `Display`, the text the `host-sim` CLI prints after `error: `.
@@ -14,6 +14,7 @@ mod design;
 mod errors;
 mod flight;
 mod optim;
+mod robust;
 
 use pyo3::prelude::*;
 
@@ -27,5 +28,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     optim::register(m)?;
     design::register(m)?;
     campaign::register(m)?;
+    robust::register(m)?;
     Ok(())
 }
