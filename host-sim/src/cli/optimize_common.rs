@@ -487,3 +487,95 @@ pub(super) fn wants_reentry(a: &OptimizeArgs) -> bool {
         || a.resume.is_some()
         || crate::design::PRESETS.contains(&a.problem.as_str())
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+    use crate::cli::{Cli, Command};
+
+    fn parse(flags: &[&str]) -> OptimizeArgs {
+        let argv = ["host-sim", "optimize"].iter().chain(flags);
+        match Cli::try_parse_from(argv).unwrap().command {
+            Command::Optimize(a) => a,
+            _ => unreachable!("optimize parses as optimize"),
+        }
+    }
+
+    /// The library's `RunOptions` defaults are the command line's (the Python front end
+    /// relies on them), and every flag reaches its field.
+    #[test]
+    fn run_options_defaults_and_fields_are_the_flags() {
+        assert_eq!(run_options(&parse(&[])), RunOptions::default());
+        let a = parse(&[
+            "--algorithm",
+            "mhaco",
+            "--moead-operator",
+            "sbx",
+            "--population",
+            "24",
+            "--weights",
+            "random",
+            "--neighbours",
+            "5",
+            "--mutation-probability",
+            "0.25",
+            "--batch-size",
+            "3",
+            "--archive",
+            "7",
+            "--resource-allocation",
+            "--ker",
+            "9",
+            "--n-gen-mark",
+            "2",
+            "--mhaco-constraints",
+            "objectives",
+        ]);
+        let o = run_options(&a);
+        assert_eq!(
+            o,
+            RunOptions {
+                algorithm: OptionsAlgorithm::Mhaco,
+                moead_operator: MoeadOperator::Sbx,
+                population: 24,
+                weights: WeightGeneration::Random,
+                neighbours: Some(5),
+                mutation_probability: Some(0.25),
+                batch_size: 3,
+                archive: Some(7),
+                resource_allocation: true,
+                ker: Some(9),
+                n_gen_mark: 2,
+                mhaco_constraints: MhacoConstraints::Objectives,
+            }
+        );
+        // JSON with the flags' names reads back to the same options; unknown names are refused.
+        let json = serde_json::to_string(&o).unwrap();
+        assert!(
+            json.contains("\"mhaco_constraints\":\"objectives\""),
+            "{json}"
+        );
+        assert_eq!(serde_json::from_str::<RunOptions>(&json).unwrap(), o);
+        let e = serde_json::from_str::<RunOptions>(r#"{"neighbors": 5}"#).unwrap_err();
+        assert!(e.to_string().contains("unknown field `neighbors`"), "{e}");
+        // --evaluations: MOEA/D and NSGA-II only, at least the initial population.
+        let mut o = RunOptions {
+            population: 20,
+            ..RunOptions::default()
+        };
+        assert_eq!(o.generations_for(2000, 2), Ok(99));
+        assert!(
+            o.generations_for(19, 2)
+                .unwrap_err()
+                .contains("at least 20")
+        );
+        o.algorithm = OptionsAlgorithm::Mhaco;
+        assert!(
+            o.generations_for(2000, 2)
+                .unwrap_err()
+                .contains("--generations")
+        );
+    }
+}

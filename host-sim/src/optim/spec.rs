@@ -280,8 +280,15 @@ impl RunOptions {
     /// `evaluations` (`--evaluations`).
     ///
     /// # Errors
-    /// What to change when `evaluations` is below the initial population.
+    /// What to change: `evaluations` below the initial population, or MHACO (whose
+    /// generations are counted by `--generations` only).
     pub fn generations_for(&self, evaluations: u64, objectives: usize) -> Result<u64, String> {
+        if self.algorithm == OptionsAlgorithm::Mhaco {
+            return Err(
+                "applies to --algorithm moead or nsga2 (given --algorithm mhaco); use --generations"
+                    .into(),
+            );
+        }
         let per_generation = self.children_per_generation(objectives);
         let n = self.population as u64;
         if evaluations < n || per_generation == 0 {
