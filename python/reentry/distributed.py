@@ -383,7 +383,7 @@ def _cmd_optimize(a) -> int:
         name=a.problem, generations=generations, out=a.out,
     )
     print(line)
-    print(f"evaluated {where} ({threads} workers)", file=sys.stderr)
+    print(f"evaluated {where}, {threads} evaluation thread(s)", file=sys.stderr)
     if a.out:
         print(f"wrote {a.out}")
     return 0

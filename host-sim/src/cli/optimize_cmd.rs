@@ -5,7 +5,7 @@
 use std::io::Write;
 
 use crate::optim::problems::TestProblem;
-use crate::optim::run::{RunReportError, RunResult, RunSettings, run_report};
+use crate::optim::run::{RunReport, RunReportError, RunResult, RunSettings, run_report};
 use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
 use crate::report::write_run_report;
 
@@ -83,9 +83,18 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         RunResult::of::<TestProblem, _>(alg, run.wall_time_s),
     )
     .map_err(report_error)?;
+    finish(a, &report, out)
+}
+
+/// Print the summary line and, with `--out`, write the run directory.
+fn finish(
+    a: &OptimizeArgs,
+    report: &RunReport<'_>,
+    out: &mut dyn Write,
+) -> Result<(), OptimizeError> {
     writeln!(out, "{}", report.summary.line())?;
     if let Some(dir) = &a.out {
-        write_run_report(dir, &report)?;
+        write_run_report(dir, report)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())
@@ -94,10 +103,15 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
 fn report_error(e: RunReportError) -> OptimizeError {
     match e {
         RunReportError::Hypervolume(e) => OptimizeError::Hypervolume(e),
-        // The reference point was checked against the problem above.
-        e @ RunReportError::Reference { .. } => {
-            OptimizeError::Io(std::io::Error::other(e.to_string()))
-        }
+        RunReportError::Reference {
+            expected,
+            got,
+            values,
+        } => OptimizeError::Reference {
+            expected,
+            got,
+            values,
+        },
     }
 }
 
@@ -129,12 +143,7 @@ fn run_scea(
         wall_time_s: outcome.wall_time_s,
     };
     let report = run_report(problem, &settings, result).map_err(report_error)?;
-    writeln!(out, "{}", report.summary.line())?;
-    if let Some(dir) = &a.out {
-        write_run_report(dir, &report)?;
-        writeln!(out, "wrote {}", dir.display())?;
-    }
-    Ok(())
+    finish(a, &report, out)
 }
 
 #[cfg(test)]

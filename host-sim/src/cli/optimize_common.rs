@@ -1,6 +1,8 @@
 //! What the `host-sim optimize` runs share, below all of them: the arguments and the errors,
-//! and the test problems' settings, summary and output files. The test-problem run ([`super::optimize_cmd`]), the re-entry run
-//! ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
+//! and the flags' mapping onto the library's [`RunOptions`] (the summary and the run
+//! directory are the library's: [`crate::optim::run::run_report`],
+//! [`crate::report::write_optimize_run`]). The test-problem run ([`super::optimize_cmd`]),
+//! the re-entry run ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
 //! module and not each other's arguments, so the four files form no import cycle.
 
 use std::path::PathBuf;

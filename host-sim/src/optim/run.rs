@@ -4,7 +4,8 @@
 //! the result front's order ([`front_order`]), the CSV text of the records
 //! ([`records_csv`]) and populations ([`population_csv`], [`chromosome_csv`]), and a run's
 //! [`RunSummary`] (summary.json of `optimize` on a test problem) with its [`front_csv`] and
-//! one-line [`RunSummary::line`]. Every CSV file is written through its serde row type of
+//! one-line [`RunSummary::line`], built from a finished run by [`run_report`] ([`RunSettings`],
+//! [`RunResult`]). Every CSV file is written through its serde row type of
 //! [`super::rows`] (the `csv` crate).
 //! The files themselves are written by the caller (atomically, through host-sim's report
 //! module; the re-entry runs: `crate::design::run`); this module, like all of `optim`,
