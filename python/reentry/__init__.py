@@ -49,6 +49,8 @@ from .optim import (
     TestProblem,
     evaluate_batch,
     evolve,
+    from_options,
+    generations_for,
 )
 
 __all__ = [
@@ -79,6 +81,8 @@ __all__ = [
     "evolve",
     "fly",
     "fly_summary",
+    "from_options",
+    "generations_for",
     "hypervolume",
     "pymoo_problem",
     "scenario_dict",

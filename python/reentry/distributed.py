@@ -39,7 +39,7 @@ import numpy as np
 from .design import DesignProblem
 from .dispersions import DispersionCampaign
 from .flight import _source, fly_summary, scenario_dict
-from .optim import Moead, Nsga2, TestProblem, evaluate_batch, evolve
+from .optim import TestProblem, evaluate_batch, evolve, from_options, generations_for
 from . import _native
 
 
@@ -377,15 +377,16 @@ def _write_table(df, path: str) -> None:
         _write_atomic(path, df.to_csv(float_format="%.17g"))
 
 
-def _algorithm(a) -> Any:
-    if a.algorithm == "moead":
-        return Moead(
-            seed=a.seed,
-            population=a.population,
-            batch_size=a.batch_size or a.population,
-            neighbours=a.neighbours,
-        )
-    return Nsga2(seed=a.seed, population=a.population)
+#: ``reentry-dask optimize``'s algorithm flags, as host-sim ``RunOptions`` fields (the
+#: flags' names with underscores; unset ones take host-sim optimize's defaults).
+_OPTION_FLAGS = (
+    "algorithm", "moead_operator", "population", "weights", "neighbours", "mutation_probability",
+    "batch_size", "archive", "resource_allocation", "ker", "n_gen_mark", "mhaco_constraints",
+)
+
+
+def _options(a) -> Dict[str, Any]:
+    return {k: getattr(a, k) for k in _OPTION_FLAGS if getattr(a, k) is not None}
 
 
 def _problem(a):
@@ -394,45 +395,42 @@ def _problem(a):
     return TestProblem(a.problem, a.objectives)
 
 
-def _reference_point(problem) -> List[float]:
-    if hasattr(problem, "reference_point"):
-        return list(problem.reference_point())
+def _reference_point(a, problem) -> Optional[List[float]]:
+    if a.ref is not None:
+        return a.ref
+    if isinstance(problem, TestProblem):
+        return None  # the problem's own
     # The design problems: host-sim optimize's default (zero range, 2 GJ/m^2).
     return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
 
 
 def _cmd_optimize(a) -> int:
     problem = _problem(a)
-    algo = _algorithm(a)
+    options = _options(a)
+    algo = from_options(a.seed, **options)
+    generations = (
+        a.generations
+        if a.evaluations is None
+        else generations_for(a.evaluations, problem.get_nobj(), **options)
+    )
     t0 = time.perf_counter()
     if a.local:
-        evolve(algo, problem, a.generations)
+        evolve(algo, problem, generations)
+        threads, where = 1, "in this process"
     else:
         with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
-            evolve_on_dask(algo, problem, a.generations, client, a.chunk_size)
+            evolve_on_dask(algo, problem, generations, client, a.chunk_size)
+            threads = _worker_count(client)
+            where = a.scheduler or f"LocalCluster({a.workers} processes)"
     wall = time.perf_counter() - t0
-    pop = algo.population
-    ref = _reference_point(problem)
-    feasible = pop.violation == 0.0
-    hv = _native.hypervolume(pop.f[feasible].tolist(), ref) if feasible.any() else 0.0
-    summary = {
-        "problem": a.problem,
-        "algorithm": algo.name,
-        "seed": a.seed,
-        "generations": algo.generation,
-        "evaluations": algo.evaluations,
-        "hypervolume": hv,
-        "reference_point": ref,
-        "wall_time_s": wall,
-        "where": "local" if a.local else (a.scheduler or f"LocalCluster({a.workers} processes)"),
-    }
-    print(json.dumps(summary))
+    line = algo.run_report(
+        problem, a.seed, wall, reference=_reference_point(a, problem), threads=threads,
+        name=a.problem, generations=generations, out=a.out,
+    )
+    print(line)
+    print(f"evaluated {where}, {threads} evaluation thread(s)", file=sys.stderr)
     if a.out:
-        rows = ["x,f,g,violation"]
-        for x, f, g, v in zip(pop.x, pop.f, pop.g, pop.violation):
-            rows.append(",".join([" ".join(map(repr, map(float, r))) for r in (x, f, g)] + [repr(float(v))]))
-        _write_atomic(os.path.join(a.out, "population.csv"), "\n".join(rows) + "\n")
-        _write_atomic(os.path.join(a.out, "summary.json"), json.dumps(summary, indent=2) + "\n")
+        print(f"wrote {a.out}")
     return 0
 
 
@@ -679,22 +677,78 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         dashboard(sp)
 
     o = sub.add_parser(
-        "optimize", help="a test or design problem with MOEA/D or NSGA-II, batches evaluated on Dask"
+        "optimize",
+        help="host-sim optimize on a test or design problem (MOEA/D, NSGA-II, MHACO), batches "
+        "evaluated on Dask; the same flags, defaults and --out files",
+        description="host-sim optimize's flags, defaults and run directory (population.csv, "
+        "front.csv, summary.json, written by host-sim) with each batch of decisions evaluated on "
+        "Dask; the run equals host-sim optimize's bit for bit. MOEA/D asks --batch-size "
+        "decisions at a time (default 1, pagmo's steady state): use --batch-size > 1 (e.g. the "
+        "population) to spread its evaluations over the workers. SCEA is not offered here "
+        "(host-sim optimize --algorithm scea).",
     )
     o.add_argument(
         "--problem", default="zdt1",
-        help="a test problem (zdt1, dtlz2, constr, ...) or a design preset (horus-2b, srm, srm-altitude)",
+        help="a test problem (zdt1, dtlz2, constr, ...) or a design preset (horus-2b, srm, "
+        "srm-altitude; the reference point default [0, 2, 10, ...], no true front)",
     )
-    o.add_argument("--objectives", type=int, default=3)
-    o.add_argument("--algorithm", choices=["moead", "nsga2"], default="moead")
-    o.add_argument("--population", type=int, default=100)
+    o.add_argument("--objectives", type=int, default=3, help="objectives of a DTLZ problem (default 3)")
     o.add_argument(
-        "--neighbours", type=int, default=None, help="MOEA/D neighbourhood size (default: 20, or population - 1 when smaller)"
+        "--algorithm", choices=["moead", "nsga2", "mhaco"], default=None,
+        help="default moead (SCEA: host-sim optimize --algorithm scea)",
     )
-    o.add_argument("--generations", type=int, default=100)
-    o.add_argument("--seed", type=int, default=1)
-    o.add_argument("--batch-size", type=int, default=None, help="MOEA/D offspring per ask (default: the population)")
-    o.add_argument("--out", help="write population.csv and summary.json here")
+    o.add_argument("--population", type=int, default=None, help="population size (default 100)")
+    gens = o.add_mutually_exclusive_group()
+    gens.add_argument(
+        "--generations", type=int, default=250, help="generations after the initial population (default 250)"
+    )
+    gens.add_argument(
+        "--evaluations", type=int, default=None, metavar="E",
+        help="MOEA/D and NSGA-II: budget in evaluations, initial population included, instead of "
+        "--generations (the fewest whole generations that reach it)",
+    )
+    o.add_argument("--seed", type=int, default=1, help="seed of the run (default 1)")
+    o.add_argument(
+        "--weights", choices=["grid", "low-discrepancy", "random"], default=None,
+        help="MOEA/D weight generation (default grid)",
+    )
+    o.add_argument(
+        "--neighbours", type=int, default=None,
+        help="MOEA/D neighbourhood size (default 20, or population - 1 for populations of 20 or less)",
+    )
+    o.add_argument(
+        "--mutation-probability", type=float, default=None, metavar="P",
+        help="MOEA/D per-variable mutation probability (default 1/variables)",
+    )
+    o.add_argument(
+        "--batch-size", type=int, default=None,
+        help="MOEA/D offspring per ask (default 1: pagmo's steady state, one decision per batch, "
+        "so no two evaluations run at once; use > 1 to spread them over the Dask workers)",
+    )
+    o.add_argument(
+        "--archive", type=int, default=None, metavar="N",
+        help="MOEA/D and NSGA-II: external archive of at most N feasible non-dominated solutions; "
+        "the front written and scored is then the archive's (default none)",
+    )
+    o.add_argument(
+        "--resource-allocation", action="store_const", const=True, default=None,
+        help="MOEA/D: MOEA/D-DRA's dynamic resource allocation (default off)",
+    )
+    o.add_argument(
+        "--moead-operator", choices=["de", "sbx"], default=None,
+        help="MOEA/D variation: de (pagmo's MOEA/D-DE, default) or sbx (Zhang & Li 2007)",
+    )
+    o.add_argument("--ker", type=int, default=None, metavar="K", help="MHACO archive size (default min(63, population))")
+    o.add_argument("--n-gen-mark", type=int, default=None, metavar="G", help="MHACO n_gen_mark (default 7)")
+    o.add_argument(
+        "--mhaco-constraints", choices=["feasibility-first", "objectives"], default=None,
+        help="MHACO constraint handling (default feasibility-first)",
+    )
+    o.add_argument(
+        "--ref", type=lambda s: [float(x) for x in s.split(",")], default=None, metavar="R1,R2,...",
+        help="hypervolume reference point (default: the problem's)",
+    )
+    o.add_argument("--out", metavar="DIR", help="write population.csv, front.csv and summary.json here")
     where(o)
     o.set_defaults(run=_cmd_optimize)
 

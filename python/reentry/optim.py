@@ -9,6 +9,7 @@ for the same seed.
 from __future__ import annotations
 
 import json
+import os
 from typing import Callable, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
@@ -205,6 +206,35 @@ class _Algorithm:
     def __reduce__(self):
         return (type(self).from_json, (self.to_json(),))
 
+    def run_report(
+        self,
+        problem,
+        seed: int,
+        wall_time_s: float,
+        reference: Optional[Sequence[float]] = None,
+        threads: int = 1,
+        name: Optional[str] = None,
+        generations: Optional[int] = None,
+        out=None,
+    ) -> str:
+        """The finished run's summary line as ``host-sim optimize`` prints it; with ``out``,
+        its run directory as ``host-sim optimize --out`` writes it (population.csv, front.csv,
+        summary.json; written by host-sim, atomically). ``problem``: the :class:`TestProblem`
+        run (default name, reference point and true front hypervolume are its own), or any
+        other problem with ``name`` and ``reference`` given (no true front). ``seed``: the
+        run's seed; ``wall_time_s``: the evolution's wall time; ``threads``: the evaluation
+        threads or workers reported; ``generations``: default the completed generations."""
+        return self._native.run_report(
+            problem,
+            int(seed),
+            float(wall_time_s),
+            None if reference is None else [float(r) for r in reference],
+            int(threads),
+            name,
+            None if generations is None else int(generations),
+            None if out is None else os.fspath(out),
+        )
+
     def evolve_in_rust(self, problem: TestProblem, generations: int) -> None:
         """host-sim's own ``evolve`` (serial, in Rust) on a test problem: the reference the
         Python and Dask loops are checked against."""
@@ -325,6 +355,24 @@ class Mhaco(_Algorithm):
             constraints=constraints,
         )
         super().__init__(_native.Optimizer.mhaco(json.dumps(config), int(seed)))
+
+
+def from_options(seed: int = 1, **options) -> _Algorithm:
+    """The algorithm of ``host-sim optimize``'s algorithm flags on the test problems, by the
+    flags' names with underscores (``algorithm="moead"``, ``moead_operator``,
+    ``population``, ``weights``, ``neighbours``, ``mutation_probability``, ``batch_size``,
+    ``archive``, ``resource_allocation``, ``ker``, ``n_gen_mark``, ``mhaco_constraints``;
+    missing ones take the CLI's defaults), mapped onto host-sim's ``AlgorithmSpec`` by
+    host-sim (``RunOptions``), as the CLI maps them. An unknown name raises ``ValueError``;
+    a bad value :class:`OptimError` at the first ``ask``, with the library's message."""
+    return _Algorithm(_native.Optimizer.from_options(json.dumps(options), int(seed)))
+
+
+def generations_for(evaluations: int, objectives: int, **options) -> int:
+    """The generations ``host-sim optimize --evaluations`` runs for these options (as for
+    :func:`from_options`) on a problem of ``objectives`` objectives: the fewest whole
+    generations whose evaluations, initial population included, reach ``evaluations``."""
+    return _native.Optimizer.generations_for(json.dumps(options), int(evaluations), int(objectives))
 
 
 def evolve(

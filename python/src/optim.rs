@@ -7,12 +7,17 @@
 //! happen outside (in Python, in Rust through [`PyTestProblem`], or on Dask workers) and come
 //! back by index through `tell`, so the run is the algorithm's, bit for bit, whoever evaluates.
 
+use std::path::PathBuf;
+
 use host_sim::optim::hypervolume::hypervolume as hv;
 use host_sim::optim::problems::{NAMES, TestProblem};
+use host_sim::optim::run::{RunResult, RunSettings, real_run_report, run_report};
+use host_sim::optim::spec::RunOptions;
 use host_sim::optim::{
     Algorithm, AlgorithmSpec, Bounds, EvalError, Evaluation, NoObserver, Problem, RealAlgorithm,
     RealProblem, SPEC_NAMES, Serial, evolve,
 };
+use host_sim::report::write_run_report;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
@@ -98,6 +103,9 @@ struct Checkpoint {
 pub struct Optimizer {
     algo: RealAlgorithm,
     problem: Option<OpenProblem>,
+    /// Rebuilt from a checkpoint (checked against the first problem); a new algorithm's
+    /// settings are checked by its first `ask`, with the algorithm's own message.
+    restored: bool,
 }
 
 impl Optimizer {
@@ -110,7 +118,9 @@ impl Optimizer {
             Some(_) => Ok(()),
             None => {
                 // A state restored without a problem is checked against the first one.
-                Algorithm::<OpenProblem>::validate(&self.algo, &shape).map_err(state_error)?;
+                if self.restored {
+                    Algorithm::<OpenProblem>::validate(&self.algo, &shape).map_err(state_error)?;
+                }
                 self.problem = Some(shape);
                 Ok(())
             }
@@ -163,6 +173,85 @@ impl Optimizer {
         Ok(Self {
             algo: spec.build(seed),
             problem: None,
+            restored: false,
+        })
+    }
+
+    /// The algorithm of `host-sim optimize`'s algorithm flags on the test problems
+    /// (`options_json`: host-sim `RunOptions` fields, the flags' names with underscores and
+    /// their defaults: `algorithm` moead, nsga2 or mhaco, `moead_operator`, `population`,
+    /// `weights`, `neighbours`, `mutation_probability`, `batch_size`, `archive`,
+    /// `resource_allocation`, `ker`, `n_gen_mark`, `mhaco_constraints`), mapped onto its
+    /// `AlgorithmSpec` as the CLI maps them, and the run's seed.
+    #[staticmethod]
+    fn from_options(options_json: &str, seed: u64) -> PyResult<Self> {
+        let options = run_options(options_json)?;
+        Ok(Self {
+            algo: options.spec().build(seed),
+            problem: None,
+            restored: false,
+        })
+    }
+
+    /// The generations `host-sim optimize --evaluations E` runs with these options on a
+    /// problem of `objectives` objectives: the fewest whole generations whose evaluations,
+    /// initial population included, reach `evaluations`.
+    #[staticmethod]
+    fn generations_for(options_json: &str, evaluations: u64, objectives: usize) -> PyResult<u64> {
+        run_options(options_json)?
+            .generations_for(evaluations, objectives)
+            .map_err(|why| PyValueError::new_err(format!("--evaluations {evaluations}: {why}")))
+    }
+
+    /// The finished run's summary line (as `host-sim optimize` prints it), and with `out`
+    /// its run directory written by host-sim (population.csv, front.csv, summary.json, as
+    /// `host-sim optimize --out`). `problem`: the test problem run (its name, reference
+    /// point and true front by default), or any other problem with `name` and `reference`
+    /// given (no true front). `generations`: default the algorithm's completed generations;
+    /// `threads`: the evaluation threads or workers the summary reports.
+    #[pyo3(signature = (problem, seed, wall_time_s, reference=None, threads=1, name=None, generations=None, out=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn run_report(
+        &self,
+        py: Python<'_>,
+        problem: &Bound<'_, PyAny>,
+        seed: u64,
+        wall_time_s: f64,
+        reference: Option<Vec<f64>>,
+        threads: usize,
+        name: Option<String>,
+        generations: Option<u64>,
+        out: Option<PathBuf>,
+    ) -> PyResult<String> {
+        let test_problem = problem.cast::<PyTestProblem>().ok();
+        let test = test_problem.as_ref().map(|p| p.get());
+        let shape = self.problem()?;
+        let Some(name) = name.or_else(|| test.map(|t| t.name.clone())) else {
+            return Err(PyValueError::new_err(
+                "run_report: name: required for a problem other than a TestProblem",
+            ));
+        };
+        let Some(reference) = reference.or_else(|| test.map(|t| t.inner.reference_point())) else {
+            return Err(PyValueError::new_err(
+                "run_report: reference: required for a problem other than a TestProblem",
+            ));
+        };
+        let generations =
+            generations.unwrap_or_else(|| Algorithm::<OpenProblem>::generation(&self.algo));
+        let settings =
+            RunSettings::of_algorithm(&self.algo, &name, generations, seed, &reference, threads);
+        let result = RunResult::of::<OpenProblem, _>(&self.algo, wall_time_s);
+        py.detach(|| {
+            let report = match test {
+                Some(t) => run_report(&t.inner, &settings, result),
+                None => real_run_report(shape, None, &settings, result),
+            }
+            .map_err(|e| errors::OptimError::new_err(format!("run_report: {e}")))?;
+            if let Some(dir) = &out {
+                write_run_report(dir, &report)
+                    .map_err(|e| errors::ReentryError::new_err(e.to_string()))?;
+            }
+            Ok(report.summary.line())
         })
     }
 
@@ -192,7 +281,7 @@ impl Optimizer {
     /// it must keep the same shape for the whole run.
     fn ask(&mut self, py: Python<'_>, problem: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<f64>>> {
         self.adopt(open_problem(problem)?)?;
-        let Self { algo, problem } = self;
+        let Self { algo, problem, .. } = self;
         let Some(p) = problem.as_ref() else {
             return Ok(Vec::new());
         };
@@ -301,8 +390,21 @@ impl Optimizer {
         Ok(Self {
             algo: c.algorithm,
             problem: c.problem,
+            restored: true,
         })
     }
+}
+
+/// host-sim `RunOptions` from JSON (missing fields: `host-sim optimize`'s defaults).
+fn run_options(options_json: &str) -> PyResult<RunOptions> {
+    let mut de = serde_json::Deserializer::from_str(options_json);
+    serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        PyValueError::new_err(format!(
+            "optimiser options: field `{}`: {}",
+            e.path(),
+            e.inner()
+        ))
+    })
 }
 
 /// Overwrite the fields of `base` (an object) with those of `over`.

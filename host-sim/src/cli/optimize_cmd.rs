@@ -4,62 +4,19 @@
 
 use std::io::Write;
 
-use crate::optim::hypervolume::hypervolume;
-use crate::optim::population::{feasible_fraction, feasible_front_indices};
 use crate::optim::problems::TestProblem;
-use crate::optim::run::{RunSummary, population_csv};
-use crate::optim::{
-    Algorithm, AlgorithmSpec, Budget, Executor, Nsga2Config, OptimError, Problem, SbxVariation,
-    Threads,
-};
+use crate::optim::run::{RunReport, RunReportError, RunResult, RunSettings, run_report};
+use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
+use crate::report::write_run_report;
 
-pub use super::optimize_common::{
-    AlgorithmName, MoeadOperatorArg, OptimizeArgs, OptimizeError, WeightsArg,
-};
+#[cfg(test)]
+pub use super::optimize_common::MoeadOperatorArg;
+#[cfg(test)]
+use super::optimize_common::mhaco_config;
+pub use super::optimize_common::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
 use super::optimize_common::{
-    Outcome, check_archive, check_resource_allocation, generations_to_run, mhaco_config,
-    moead_config, reference, threads, write_outputs,
+    check_archive, check_resource_allocation, generations_to_run, reference, run_options, threads,
 };
-
-fn drive<A: Algorithm<TestProblem>>(
-    alg: A,
-    problem: &TestProblem,
-    generations: u64,
-    threads: &Threads,
-) -> Result<Outcome, OptimError> {
-    let run = Executor::new(problem, alg)
-        .budget(Budget::Generations(generations))
-        .threads(threads.clone())
-        .run()?;
-    let (alg, wall_time_s) = (run.algorithm, run.wall_time_s);
-    Ok(Outcome {
-        population: alg.population().to_vec(),
-        archive: alg.external_archive().map(<[_]>::to_vec),
-        evaluations: alg.evaluations(),
-        wall_time_s,
-    })
-}
-
-/// The real-vector algorithm of the arguments, as the library specifies it (`None`: SCEA,
-/// which runs on chromosomes).
-fn spec_of(a: &OptimizeArgs) -> Option<AlgorithmSpec> {
-    Some(match a.algorithm {
-        AlgorithmName::Moead => match a.moead_operator {
-            MoeadOperatorArg::De => AlgorithmSpec::Moead(moead_config(a)),
-            MoeadOperatorArg::Sbx => AlgorithmSpec::MoeadSbx {
-                moead: moead_config(a),
-                sbx: SbxVariation::default(),
-            },
-        },
-        AlgorithmName::Nsga2 => AlgorithmSpec::Nsga2(Nsga2Config {
-            population: a.population,
-            archive: a.archive,
-            ..Nsga2Config::default()
-        }),
-        AlgorithmName::Mhaco => AlgorithmSpec::Mhaco(mhaco_config(a)),
-        AlgorithmName::Scea => return None,
-    })
-}
 
 /// Run `optimize` with arguments `a`, printing the summary to `out`.
 ///
@@ -110,53 +67,83 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
     let pool = threads(a.threads)?;
-    let outcome = match spec_of(a) {
-        Some(spec) => drive(spec.build(a.seed), &problem, generations, &pool)?,
-        None => super::optimize_structured::drive_scea(a, &problem, &pool)?,
-    };
-    let pop = &outcome.population;
-    let result = outcome.archive.as_deref().unwrap_or(pop);
-    let front_idx = feasible_front_indices(result);
-    let front: Vec<&[f64]> = front_idx
-        .iter()
-        .map(|&i| result[i].objectives.as_slice())
-        .collect();
-    let hv = hypervolume(&front, &reference)?;
-    let true_hv = problem.front_hypervolume(&reference, 20_000);
-    let summary = RunSummary {
-        problem: &a.problem,
-        algorithm: a.algorithm.as_str(),
-        population: a.population,
-        generations,
-        seed: a.seed,
-        objectives: m,
-        variables: crate::optim::RealProblem::bounds(&problem).dim(),
-        constraints: problem.constraints(),
-        evaluations: outcome.evaluations,
-        reference_point: &reference,
-        hypervolume: hv,
-        true_front_hypervolume: true_hv,
-        hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
-        feasible_fraction: feasible_fraction(pop),
-        front_source: if outcome.archive.is_some() {
-            "archive"
-        } else {
-            "population"
-        },
-        archive_capacity: a.archive,
-        resource_allocation: a.resource_allocation,
-        moead_operator: (a.moead_operator == MoeadOperatorArg::Sbx).then_some("sbx"),
-        front_size: front.len(),
-        wall_time_s: outcome.wall_time_s,
-        threads: a.threads,
-    };
-    writeln!(out, "{}", summary.line())?;
+    if a.algorithm == AlgorithmName::Scea {
+        return run_scea(a, &problem, &reference, &pool, out);
+    }
+    let run = Executor::new(&problem, run_options(a).spec().build(a.seed))
+        .budget(Budget::Generations(generations))
+        .threads(pool)
+        .run()?;
+    let alg: &RealAlgorithm = &run.algorithm;
+    let settings =
+        RunSettings::of_algorithm(alg, &a.problem, generations, a.seed, &reference, a.threads);
+    let report = run_report(
+        &problem,
+        &settings,
+        RunResult::of::<TestProblem, _>(alg, run.wall_time_s),
+    )
+    .map_err(report_error)?;
+    finish(a, &report, out)
+}
+
+/// Print the summary line and, with `--out`, write the run directory.
+fn finish(
+    a: &OptimizeArgs,
+    report: &RunReport<'_>,
+    out: &mut dyn Write,
+) -> Result<(), OptimizeError> {
+    writeln!(out, "{}", report.summary.line())?;
     if let Some(dir) = &a.out {
-        let population = population_csv(pop).map_err(crate::report::ReportError::from)?;
-        write_outputs(dir, &population, &front, &summary)?;
+        write_run_report(dir, report)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())
+}
+
+fn report_error(e: RunReportError) -> OptimizeError {
+    match e {
+        RunReportError::Hypervolume(e) => OptimizeError::Hypervolume(e),
+        RunReportError::Reference {
+            expected,
+            got,
+            values,
+        } => OptimizeError::Reference {
+            expected,
+            got,
+            values,
+        },
+    }
+}
+
+/// SCEA on a fixed-length test problem (chromosomes without tables: real vectors).
+fn run_scea(
+    a: &OptimizeArgs,
+    problem: &TestProblem,
+    reference: &[f64],
+    pool: &crate::optim::Threads,
+    out: &mut dyn Write,
+) -> Result<(), OptimizeError> {
+    let outcome = super::optimize_structured::drive_scea(a, problem, pool)?;
+    let settings = RunSettings {
+        problem: &a.problem,
+        algorithm: a.algorithm.as_str(),
+        population: a.population,
+        generations: a.generations,
+        seed: a.seed,
+        reference,
+        archive_capacity: a.archive,
+        resource_allocation: a.resource_allocation,
+        moead_operator: None,
+        threads: a.threads,
+    };
+    let result = RunResult {
+        population: &outcome.population,
+        archive: outcome.archive.as_deref(),
+        evaluations: outcome.evaluations,
+        wall_time_s: outcome.wall_time_s,
+    };
+    let report = run_report(problem, &settings, result).map_err(report_error)?;
+    finish(a, &report, out)
 }
 
 #[cfg(test)]

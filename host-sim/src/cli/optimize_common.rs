@@ -1,21 +1,21 @@
 //! What the `host-sim optimize` runs share, below all of them: the arguments and the errors,
-//! and the test problems' settings, summary and output files. The test-problem run ([`super::optimize_cmd`]), the re-entry run
-//! ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
+//! and the flags' mapping onto the library's [`RunOptions`] (the summary and the run
+//! directory are the library's: [`crate::optim::run::run_report`],
+//! [`crate::report::write_optimize_run`]). The test-problem run ([`super::optimize_cmd`]),
+//! the re-entry run ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
 //! module and not each other's arguments, so the four files form no import cycle.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::ValueEnum;
 
 use super::reference_arg::parse_reference;
 use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
-use crate::optim::run::{RunSummary, front_csv};
+use crate::optim::spec::{MhacoConstraints, MoeadOperator, OptionsAlgorithm, RunOptions};
 use crate::optim::{
-    ConstraintHandling, Individual, MhacoConfig, MoeadConfig, NewGenes, OptimError, Threads,
-    ThreadsError, WeightGeneration,
+    Individual, MoeadConfig, NewGenes, OptimError, Threads, ThreadsError, WeightGeneration,
 };
-use crate::report::{ReportError, RunDir};
 
 /// The algorithms `optimize` offers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -195,20 +195,43 @@ impl OptimizeArgs {
     }
 }
 
-/// The MHACO settings of the flags.
-pub(super) fn mhaco_config(a: &OptimizeArgs) -> MhacoConfig {
-    MhacoConfig {
-        population: a.population,
-        ker: a
-            .ker
-            .unwrap_or_else(|| a.population.min(MhacoConfig::default().ker)),
-        n_gen_mark: a.n_gen_mark,
-        constraints: match a.mhaco_constraints {
-            MhacoConstraintsArg::FeasibilityFirst => ConstraintHandling::FeasibilityFirst,
-            MhacoConstraintsArg::Objectives => ConstraintHandling::thesis_objectives(),
+/// The library's options of the flags (one mapping onto the algorithms, shared with the
+/// Python front end). SCEA takes MOEA/D's weights and neighbourhood from them.
+pub(super) fn run_options(a: &OptimizeArgs) -> RunOptions {
+    RunOptions {
+        algorithm: match a.algorithm {
+            AlgorithmName::Moead | AlgorithmName::Scea => OptionsAlgorithm::Moead,
+            AlgorithmName::Nsga2 => OptionsAlgorithm::Nsga2,
+            AlgorithmName::Mhaco => OptionsAlgorithm::Mhaco,
         },
-        ..MhacoConfig::default()
+        moead_operator: match a.moead_operator {
+            MoeadOperatorArg::De => MoeadOperator::De,
+            MoeadOperatorArg::Sbx => MoeadOperator::Sbx,
+        },
+        population: a.population,
+        weights: match a.weights {
+            WeightsArg::Grid => WeightGeneration::Grid,
+            WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
+            WeightsArg::Random => WeightGeneration::Random,
+        },
+        neighbours: a.neighbours,
+        mutation_probability: a.mutation_probability,
+        batch_size: a.batch_size,
+        archive: a.archive,
+        resource_allocation: a.resource_allocation,
+        ker: a.ker,
+        n_gen_mark: a.n_gen_mark,
+        mhaco_constraints: match a.mhaco_constraints {
+            MhacoConstraintsArg::FeasibilityFirst => MhacoConstraints::FeasibilityFirst,
+            MhacoConstraintsArg::Objectives => MhacoConstraints::Objectives,
+        },
     }
+}
+
+/// The MHACO settings of the flags.
+#[cfg(test)]
+pub(super) fn mhaco_config(a: &OptimizeArgs) -> crate::optim::MhacoConfig {
+    run_options(a).mhaco_config()
 }
 
 /// Default of `--generations`.
@@ -336,7 +359,7 @@ pub enum OptimizeError {
     Hypervolume(#[from] HypervolumeError),
     /// Output could not be written.
     #[error(transparent)]
-    Report(#[from] ReportError),
+    Report(#[from] crate::report::ReportError),
     /// Writing to the console failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
@@ -369,23 +392,7 @@ pub(super) fn check_archive(a: &OptimizeArgs) -> Result<(), OptimizeError> {
 
 /// MOEA/D settings from the arguments (also SCEA's).
 pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
-    let weights = match a.weights {
-        WeightsArg::Grid => WeightGeneration::Grid,
-        WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
-        WeightsArg::Random => WeightGeneration::Random,
-    };
-    MoeadConfig {
-        population: a.population,
-        weights,
-        neighbours: a.neighbours(),
-        mutation_probability: a.mutation_probability,
-        batch_size: a.batch_size,
-        archive: a.archive,
-        resource_allocation: a
-            .resource_allocation
-            .then(crate::optim::ResourceAllocation::default),
-        ..MoeadConfig::default()
-    }
+    run_options(a).moead_config()
 }
 
 /// `--resource-allocation`: MOEA/D or SCEA on a test problem only (re-entry runs take their
@@ -419,25 +426,12 @@ pub(super) fn generations_to_run(
     let Some(e) = a.evaluations else {
         return Ok(a.generations);
     };
-    let err = |why: String| OptimizeError::Evaluations {
-        evaluations: e,
-        why,
-    };
-    let per_generation = match a.algorithm {
-        AlgorithmName::Moead => moead_config(a)
-            .resource_allocation
-            .map_or(a.population, |ra| {
-                ra.subproblems_per_generation(a.population, objectives)
-            }),
-        _ => a.population,
-    };
-    let n = a.population as u64;
-    if e < n || per_generation == 0 {
-        return Err(err(format!(
-            "below the initial population of {n}; use at least {n}"
-        )));
-    }
-    Ok((e - n).div_ceil(per_generation as u64))
+    run_options(a)
+        .generations_for(e, objectives)
+        .map_err(|why| OptimizeError::Evaluations {
+            evaluations: e,
+            why,
+        })
 }
 
 /// The evaluation threads for `--threads`.
@@ -464,28 +458,6 @@ pub(super) fn reference(
         }),
         None => Ok(default()),
     }
-}
-
-/// Write the run directory of a test-problem run: `population` (the population CSV text),
-/// front.csv and summary.json.
-pub(super) fn write_outputs(
-    dir: &Path,
-    population: &str,
-    front: &[&[f64]],
-    summary: &RunSummary<'_>,
-) -> Result<(), OptimizeError> {
-    let mut rd = RunDir::begin(dir)?;
-    rd.write("population.csv", population.as_bytes())?;
-    rd.write(
-        "front.csv",
-        front_csv(front, summary.objectives)
-            .map_err(ReportError::from)?
-            .as_bytes(),
-    )?;
-    let json = serde_json::to_string_pretty(summary).map_err(ReportError::Json)?;
-    rd.write("summary.json", json.as_bytes())?;
-    rd.commit()?;
-    Ok(())
 }
 
 /// Where SCEA takes the genes of a node it appends (`--scea-genes`).
@@ -516,4 +488,96 @@ pub(super) fn wants_reentry(a: &OptimizeArgs) -> bool {
         || a.config.is_some()
         || a.resume.is_some()
         || crate::design::PRESETS.contains(&a.problem.as_str())
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+    use crate::cli::{Cli, Command};
+
+    fn parse(flags: &[&str]) -> OptimizeArgs {
+        let argv = ["host-sim", "optimize"].iter().chain(flags);
+        match Cli::try_parse_from(argv).unwrap().command {
+            Command::Optimize(a) => a,
+            _ => unreachable!("optimize parses as optimize"),
+        }
+    }
+
+    /// The library's `RunOptions` defaults are the command line's (the Python front end
+    /// relies on them), and every flag reaches its field.
+    #[test]
+    fn run_options_defaults_and_fields_are_the_flags() {
+        assert_eq!(run_options(&parse(&[])), RunOptions::default());
+        let a = parse(&[
+            "--algorithm",
+            "mhaco",
+            "--moead-operator",
+            "sbx",
+            "--population",
+            "24",
+            "--weights",
+            "random",
+            "--neighbours",
+            "5",
+            "--mutation-probability",
+            "0.25",
+            "--batch-size",
+            "3",
+            "--archive",
+            "7",
+            "--resource-allocation",
+            "--ker",
+            "9",
+            "--n-gen-mark",
+            "2",
+            "--mhaco-constraints",
+            "objectives",
+        ]);
+        let o = run_options(&a);
+        assert_eq!(
+            o,
+            RunOptions {
+                algorithm: OptionsAlgorithm::Mhaco,
+                moead_operator: MoeadOperator::Sbx,
+                population: 24,
+                weights: WeightGeneration::Random,
+                neighbours: Some(5),
+                mutation_probability: Some(0.25),
+                batch_size: 3,
+                archive: Some(7),
+                resource_allocation: true,
+                ker: Some(9),
+                n_gen_mark: 2,
+                mhaco_constraints: MhacoConstraints::Objectives,
+            }
+        );
+        // JSON with the flags' names reads back to the same options; unknown names are refused.
+        let json = serde_json::to_string(&o).unwrap();
+        assert!(
+            json.contains("\"mhaco_constraints\":\"objectives\""),
+            "{json}"
+        );
+        assert_eq!(serde_json::from_str::<RunOptions>(&json).unwrap(), o);
+        let e = serde_json::from_str::<RunOptions>(r#"{"neighbors": 5}"#).unwrap_err();
+        assert!(e.to_string().contains("unknown field `neighbors`"), "{e}");
+        // --evaluations: MOEA/D and NSGA-II only, at least the initial population.
+        let mut o = RunOptions {
+            population: 20,
+            ..RunOptions::default()
+        };
+        assert_eq!(o.generations_for(2000, 2), Ok(99));
+        assert!(
+            o.generations_for(19, 2)
+                .unwrap_err()
+                .contains("at least 20")
+        );
+        o.algorithm = OptionsAlgorithm::Mhaco;
+        assert!(
+            o.generations_for(2000, 2)
+                .unwrap_err()
+                .contains("--generations")
+        );
+    }
 }

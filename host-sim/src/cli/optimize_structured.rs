@@ -7,7 +7,6 @@ use std::io::Write;
 
 use super::optimize_common::{
     AlgorithmName, OptimizeArgs, OptimizeError, Outcome, moead_config, reference, threads,
-    write_outputs,
 };
 use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
 use crate::optim::hypervolume::hypervolume;
@@ -139,7 +138,7 @@ pub(super) fn run_variable_length(
     if let Some(dir) = &a.out {
         let population = chromosome_csv(&pop, m, problem.constraints())
             .map_err(crate::report::ReportError::from)?;
-        write_outputs(dir, &population, &front, &summary)?;
+        crate::report::write_optimize_run(dir, &population, &front, &summary)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())

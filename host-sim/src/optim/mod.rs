@@ -15,9 +15,11 @@
 //! * [`archive`]: [`ParetoArchive`], the bounded external archive of non-dominated solutions
 //!   (Zhang & Li's EP; opt-in on MOEA/D, SCEA and NSGA-II);
 //! * [`hypervolume`]: exact hypervolume, contributions, least contributor;
-//! * [`spec`]: [`AlgorithmSpec`], one algorithm specification (serde-tagged, checked), and
-//!   [`RealAlgorithm`], the running algorithm every front end drives;
-//! * [`run`]: a recorded run's per-generation records, checkpoint and population CSV;
+//! * [`spec`]: [`AlgorithmSpec`], one algorithm specification (serde-tagged, checked),
+//!   [`RealAlgorithm`], the running algorithm every front end drives, and [`RunOptions`], the
+//!   `host-sim optimize` flags that map onto a spec;
+//! * [`run`]: a recorded run's per-generation records, checkpoint and population CSV, and a
+//!   finished test-problem run's summary ([`run::run_report`]);
 //! * [`nonfinite`]: serde of `f64`s that may be NaN or infinite (checkpoints, records).
 //!
 //! See docs/reference/optimisers.md for the semantics and the measured convergence.
@@ -58,5 +60,5 @@ pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Obser
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
 pub use rng::OptimRng;
-pub use spec::{AlgorithmSpec, RealAlgorithm, SPEC_NAMES};
+pub use spec::{AlgorithmSpec, RealAlgorithm, RunOptions, SPEC_NAMES};
 pub use weights::{Decomposition, WeightGeneration};

@@ -4,7 +4,8 @@
 //! the result front's order ([`front_order`]), the CSV text of the records
 //! ([`records_csv`]) and populations ([`population_csv`], [`chromosome_csv`]), and a run's
 //! [`RunSummary`] (summary.json of `optimize` on a test problem) with its [`front_csv`] and
-//! one-line [`RunSummary::line`]. Every CSV file is written through its serde row type of
+//! one-line [`RunSummary::line`], built from a finished run by [`run_report`] ([`RunSettings`],
+//! [`RunResult`]). Every CSV file is written through its serde row type of
 //! [`super::rows`] (the `csv` crate).
 //! The files themselves are written by the caller (atomically, through host-sim's report
 //! module; the re-entry runs: `crate::design::run`); this module, like all of `optim`,
@@ -269,6 +270,223 @@ impl RunSummary<'_> {
             100.0 * self.feasible_fraction
         )
     }
+}
+
+/// The settings of a run that its [`RunSummary`] reports.
+#[derive(Clone, Copy, Debug)]
+pub struct RunSettings<'a> {
+    /// Problem name, as given.
+    pub problem: &'a str,
+    /// Algorithm name (`moead` for both MOEA/D variations).
+    pub algorithm: &'static str,
+    /// Population size.
+    pub population: usize,
+    /// Generations after the initial population.
+    pub generations: u64,
+    /// Seed of the run.
+    pub seed: u64,
+    /// Hypervolume reference point.
+    pub reference: &'a [f64],
+    /// Capacity of the external archive, if any.
+    pub archive_capacity: Option<usize>,
+    /// MOEA/D-DRA's resource allocation was on.
+    pub resource_allocation: bool,
+    /// MOEA/D's variation when not pagmo's DE ("sbx").
+    pub moead_operator: Option<&'static str>,
+    /// Evaluation threads (or workers).
+    pub threads: usize,
+}
+
+impl<'a> RunSettings<'a> {
+    /// The settings of a run of `algorithm` (its name, population, archive, MOEA/D's
+    /// resource allocation and variation are the algorithm's own) with the rest given.
+    #[must_use]
+    pub fn of_algorithm(
+        algorithm: &super::spec::RealAlgorithm,
+        problem: &'a str,
+        generations: u64,
+        seed: u64,
+        reference: &'a [f64],
+        threads: usize,
+    ) -> Self {
+        use super::spec::RealAlgorithm as R;
+        let (name, population, archive_capacity, resource_allocation, moead_operator) =
+            match algorithm {
+                R::Moead(a) => {
+                    let c = a.config();
+                    let ra = c.resource_allocation.is_some();
+                    ("moead", c.population, c.archive, ra, None)
+                }
+                R::MoeadSbx(a) => {
+                    let c = a.config();
+                    let ra = c.resource_allocation.is_some();
+                    ("moead", c.population, c.archive, ra, Some("sbx"))
+                }
+                R::Nsga2(a) => (
+                    "nsga2",
+                    a.config().population,
+                    a.config().archive,
+                    false,
+                    None,
+                ),
+                R::Mhaco(a) => ("mhaco", a.config().population, None, false, None),
+            };
+        Self {
+            problem,
+            algorithm: name,
+            population,
+            generations,
+            seed,
+            reference,
+            archive_capacity,
+            resource_allocation,
+            moead_operator,
+            threads,
+        }
+    }
+}
+
+/// A finished real-vector run: what the algorithm holds at its end.
+#[derive(Clone, Copy, Debug)]
+pub struct RunResult<'a> {
+    /// The final population.
+    pub population: &'a [Individual<Vec<f64>>],
+    /// The external archive's members, when the run kept one (the result front).
+    pub archive: Option<&'a [Individual<Vec<f64>>]>,
+    /// Evaluations, initial population included.
+    pub evaluations: u64,
+    /// Wall time of the evolution alone \[s\].
+    pub wall_time_s: f64,
+}
+
+impl<'a> RunResult<'a> {
+    /// What `algorithm` (run on a problem of type `P`) holds, with the run's wall time.
+    #[must_use]
+    pub fn of<P: Problem<Decision = Vec<f64>>, A: Algorithm<P>>(
+        algorithm: &'a A,
+        wall_time_s: f64,
+    ) -> Self {
+        Self {
+            population: algorithm.population(),
+            archive: algorithm.external_archive(),
+            evaluations: algorithm.evaluations(),
+            wall_time_s,
+        }
+    }
+}
+
+/// A finished run's summary, with the population and the feasible front it was made of.
+#[derive(Debug)]
+pub struct RunReport<'a> {
+    /// summary.json.
+    pub summary: RunSummary<'a>,
+    /// The final population (population.csv).
+    pub population: &'a [Individual<Vec<f64>>],
+    /// The feasible front of the archive, or else of the population (front.csv).
+    pub front: Vec<&'a [f64]>,
+}
+
+/// Why a run's report could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum RunReportError {
+    /// A reference point of another dimension than the problem's objectives.
+    #[error("reference point has {got} values {values:?}; the problem has {expected} objectives")]
+    Reference {
+        /// Objectives of the problem.
+        expected: usize,
+        /// Values given.
+        got: usize,
+        /// The values.
+        values: Vec<f64>,
+    },
+    /// Hypervolume failed.
+    #[error("hypervolume: {0}")]
+    Hypervolume(#[from] super::hypervolume::HypervolumeError),
+}
+
+fn check_reference(reference: &[f64], objectives: usize) -> Result<(), RunReportError> {
+    if reference.len() == objectives {
+        Ok(())
+    } else {
+        Err(RunReportError::Reference {
+            expected: objectives,
+            got: reference.len(),
+            values: reference.to_vec(),
+        })
+    }
+}
+
+/// The report of a finished run on the test problem `problem` (`host-sim optimize` on a
+/// test problem): the hypervolume of the feasible front of the external archive if the run
+/// kept one, else of the final population; the true front's hypervolume (exact where known,
+/// else of 20 000 front points) and the ratio; the feasible fraction of the population.
+///
+/// # Errors
+/// [`RunReportError`]: a reference point of another dimension, a failed hypervolume.
+pub fn run_report<'a>(
+    problem: &super::problems::TestProblem,
+    settings: &RunSettings<'a>,
+    result: RunResult<'a>,
+) -> Result<RunReport<'a>, RunReportError> {
+    check_reference(settings.reference, problem.objectives())?;
+    let true_hv = problem.front_hypervolume(settings.reference, 20_000);
+    real_run_report(problem, true_hv, settings, result)
+}
+
+/// [`run_report`] on any real-vector problem whose true front's hypervolume is
+/// `true_front_hypervolume` (`None`: unknown).
+///
+/// # Errors
+/// [`RunReportError`].
+pub fn real_run_report<'a, P: super::problem::RealProblem>(
+    problem: &P,
+    true_front_hypervolume: Option<f64>,
+    settings: &RunSettings<'a>,
+    result: RunResult<'a>,
+) -> Result<RunReport<'a>, RunReportError> {
+    let m = problem.objectives();
+    let reference = settings.reference;
+    check_reference(reference, m)?;
+    let pop = result.population;
+    let front_of = result.archive.unwrap_or(pop);
+    let front: Vec<&[f64]> = feasible_front_indices(front_of)
+        .iter()
+        .map(|&i| front_of[i].objectives.as_slice())
+        .collect();
+    let hv = hypervolume(&front, reference)?;
+    let true_hv = true_front_hypervolume;
+    let summary = RunSummary {
+        problem: settings.problem,
+        algorithm: settings.algorithm,
+        population: settings.population,
+        generations: settings.generations,
+        seed: settings.seed,
+        objectives: m,
+        variables: problem.bounds().dim(),
+        constraints: problem.constraints(),
+        evaluations: result.evaluations,
+        reference_point: reference,
+        hypervolume: hv,
+        true_front_hypervolume: true_hv,
+        hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
+        feasible_fraction: feasible_fraction(pop),
+        front_source: if result.archive.is_some() {
+            "archive"
+        } else {
+            "population"
+        },
+        archive_capacity: settings.archive_capacity,
+        resource_allocation: settings.resource_allocation,
+        moead_operator: settings.moead_operator,
+        front_size: front.len(),
+        wall_time_s: result.wall_time_s,
+        threads: settings.threads,
+    };
+    Ok(RunReport {
+        summary,
+        population: pop,
+        front,
+    })
 }
 
 /// The front's objective vectors as CSV text ([`FrontRow`]; header `f1,f2,...` for

@@ -13,11 +13,13 @@ use serde::{Deserialize, Serialize};
 
 use super::algorithm::Algorithm;
 use super::algorithms::{
-    Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, Nsga2, Nsga2Config, SbxVariation,
+    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, Nsga2, Nsga2Config,
+    ResourceAllocation, SbxVariation,
 };
 use super::error::{ConfigError, OptimError, StateError};
 use super::population::Individual;
 use super::problem::{Evaluation, RealProblem};
+use super::weights::WeightGeneration;
 
 /// An algorithm and its settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -106,6 +108,195 @@ impl AlgorithmSpec {
             Self::Nsga2(c) => RealAlgorithm::Nsga2(Nsga2::new(c.clone(), seed)),
             Self::Mhaco(c) => RealAlgorithm::Mhaco(Mhaco::new(c.clone(), seed)),
         }
+    }
+}
+
+/// The real-vector algorithms by the names `host-sim optimize --algorithm` gives them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OptionsAlgorithm {
+    /// MOEA/D (its variation: [`RunOptions::moead_operator`]).
+    Moead,
+    /// NSGA-II.
+    Nsga2,
+    /// MHACO.
+    Mhaco,
+}
+
+impl OptionsAlgorithm {
+    /// The name, as in files (`summary.json`'s `algorithm`).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Moead => "moead",
+            Self::Nsga2 => "nsga2",
+            Self::Mhaco => "mhaco",
+        }
+    }
+}
+
+/// MOEA/D's variation operator (`--moead-operator`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MoeadOperator {
+    /// pagmo's MOEA/D-DE.
+    #[default]
+    De,
+    /// Zhang & Li's (2007) SBX with the default [`SbxVariation`].
+    Sbx,
+}
+
+/// MHACO's constraint handling (`--mhaco-constraints`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MhacoConstraints {
+    /// [`ConstraintHandling::FeasibilityFirst`].
+    #[default]
+    FeasibilityFirst,
+    /// [`ConstraintHandling::thesis_objectives`].
+    Objectives,
+}
+
+/// The algorithm settings of a real-vector run on a test problem as `host-sim optimize`
+/// takes them: its flags' names (`--batch-size` is `batch_size`) and defaults, mapped onto
+/// an [`AlgorithmSpec`] by [`RunOptions::spec`]. Every front end that offers those flags
+/// (the CLI, `reentry-dask optimize`) goes through this one mapping. Serde: missing fields
+/// take the defaults, unknown fields are refused.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RunOptions {
+    /// `--algorithm`.
+    pub algorithm: OptionsAlgorithm,
+    /// `--moead-operator` (MOEA/D only).
+    pub moead_operator: MoeadOperator,
+    /// `--population`.
+    pub population: usize,
+    /// `--weights` (MOEA/D).
+    pub weights: WeightGeneration,
+    /// `--neighbours` (MOEA/D; default [`MoeadConfig::default_neighbours`]).
+    pub neighbours: Option<usize>,
+    /// `--mutation-probability` (MOEA/D; default 1/variables).
+    pub mutation_probability: Option<f64>,
+    /// `--batch-size` (MOEA/D).
+    pub batch_size: usize,
+    /// `--archive` (MOEA/D, NSGA-II).
+    pub archive: Option<usize>,
+    /// `--resource-allocation` (MOEA/D: MOEA/D-DRA's default [`ResourceAllocation`]).
+    pub resource_allocation: bool,
+    /// `--ker` (MHACO; default min(63, population)).
+    pub ker: Option<usize>,
+    /// `--n-gen-mark` (MHACO).
+    pub n_gen_mark: u64,
+    /// `--mhaco-constraints` (MHACO).
+    pub mhaco_constraints: MhacoConstraints,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        Self {
+            algorithm: OptionsAlgorithm::Moead,
+            moead_operator: MoeadOperator::De,
+            population: 100,
+            weights: WeightGeneration::Grid,
+            neighbours: None,
+            mutation_probability: None,
+            batch_size: 1,
+            archive: None,
+            resource_allocation: false,
+            ker: None,
+            n_gen_mark: MhacoConfig::default().n_gen_mark,
+            mhaco_constraints: MhacoConstraints::FeasibilityFirst,
+        }
+    }
+}
+
+impl RunOptions {
+    /// The MOEA/D settings (also SCEA's neighbourhood and weights).
+    #[must_use]
+    pub fn moead_config(&self) -> MoeadConfig {
+        MoeadConfig {
+            population: self.population,
+            weights: self.weights,
+            neighbours: self
+                .neighbours
+                .unwrap_or_else(|| MoeadConfig::default_neighbours(self.population)),
+            mutation_probability: self.mutation_probability,
+            batch_size: self.batch_size,
+            archive: self.archive,
+            resource_allocation: self.resource_allocation.then(ResourceAllocation::default),
+            ..MoeadConfig::default()
+        }
+    }
+
+    /// The MHACO settings.
+    #[must_use]
+    pub fn mhaco_config(&self) -> MhacoConfig {
+        MhacoConfig {
+            population: self.population,
+            ker: self
+                .ker
+                .unwrap_or_else(|| self.population.min(MhacoConfig::default().ker)),
+            n_gen_mark: self.n_gen_mark,
+            constraints: match self.mhaco_constraints {
+                MhacoConstraints::FeasibilityFirst => ConstraintHandling::FeasibilityFirst,
+                MhacoConstraints::Objectives => ConstraintHandling::thesis_objectives(),
+            },
+            ..MhacoConfig::default()
+        }
+    }
+
+    /// The algorithm and its settings.
+    #[must_use]
+    pub fn spec(&self) -> AlgorithmSpec {
+        match self.algorithm {
+            OptionsAlgorithm::Moead => match self.moead_operator {
+                MoeadOperator::De => AlgorithmSpec::Moead(self.moead_config()),
+                MoeadOperator::Sbx => AlgorithmSpec::MoeadSbx {
+                    moead: self.moead_config(),
+                    sbx: SbxVariation::default(),
+                },
+            },
+            OptionsAlgorithm::Nsga2 => AlgorithmSpec::Nsga2(Nsga2Config {
+                population: self.population,
+                archive: self.archive,
+                ..Nsga2Config::default()
+            }),
+            OptionsAlgorithm::Mhaco => AlgorithmSpec::Mhaco(self.mhaco_config()),
+        }
+    }
+
+    /// Children made per generation on a problem of `objectives` objectives (the
+    /// population; with MOEA/D-DRA the subproblems it works on).
+    #[must_use]
+    pub fn children_per_generation(&self, objectives: usize) -> usize {
+        match (self.algorithm, self.resource_allocation) {
+            (OptionsAlgorithm::Moead, true) => ResourceAllocation::default()
+                .subproblems_per_generation(self.population, objectives),
+            _ => self.population,
+        }
+    }
+
+    /// The fewest whole generations whose evaluations, initial population included, reach
+    /// `evaluations` (`--evaluations`).
+    ///
+    /// # Errors
+    /// What to change: `evaluations` below the initial population, or MHACO (whose
+    /// generations are counted by `--generations` only).
+    pub fn generations_for(&self, evaluations: u64, objectives: usize) -> Result<u64, String> {
+        if self.algorithm == OptionsAlgorithm::Mhaco {
+            return Err(
+                "applies to --algorithm moead or nsga2 (given --algorithm mhaco); use --generations"
+                    .into(),
+            );
+        }
+        let per_generation = self.children_per_generation(objectives);
+        let n = self.population as u64;
+        if evaluations < n || per_generation == 0 {
+            return Err(format!(
+                "below the initial population of {n}; use at least {n}"
+            ));
+        }
+        Ok((evaluations - n).div_ceil(per_generation as u64))
     }
 }
 

@@ -1,12 +1,14 @@
 //! Run outputs: trajectory CSV ([`trajectory_csv`]), summary JSON ([`summary_report`]) and
 //! the four standard plots ([`standard_plots`], drawn with `plotters`' SVG backend). A run
 //! directory is written whole or not at all ([`RunDir`]: built in a temporary sibling, then
-//! put in place in one step); single files with [`write_atomic`].
+//! put in place in one step); single files with [`write_atomic`]. An optimisation run on a
+//! test problem: [`write_optimize_run`].
 
 pub mod campaign;
 pub mod chart;
 mod csv;
 mod error;
+pub mod optimize_run;
 mod plot;
 pub mod run_dir;
 mod summary;
@@ -18,6 +20,7 @@ use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
 pub use error::ReportError;
+pub use optimize_run::{write_optimize_run, write_run_report};
 pub use plot::{PlotLimits, Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, begin_in_place, clean_stale};
 pub use summary::{

@@ -1,0 +1,121 @@
+"""``reentry-dask optimize`` is ``host-sim optimize`` on the test problems: the same flags and
+defaults, and, in this process (``--local``) or on a 2-process Dask cluster, the same run
+directory (population.csv and front.csv byte for byte, summary.json but for the wall time and
+the thread count), written by host-sim."""
+
+import json
+
+import pytest
+
+pytest.importorskip("dask.distributed")
+
+from reentry.distributed import main  # noqa: E402
+
+CASES = {
+    # MOEA/D with a population of 20 needs --neighbours below 20; batches of the population
+    # spread over the workers.
+    "moead-zdt1": [
+        "--problem", "zdt1", "--algorithm", "moead", "--population", "20", "--neighbours", "5",
+        "--batch-size", "20", "--generations", "4", "--seed", "3",
+    ],
+    "nsga2-constr-archive": [
+        "--problem", "constr", "--algorithm", "nsga2", "--population", "24", "--archive", "12",
+        "--generations", "4", "--seed", "5",
+    ],
+    "moead-sbx-dtlz2-dra": [
+        "--problem", "dtlz2", "--objectives", "3", "--population", "16", "--weights",
+        "low-discrepancy", "--moead-operator", "sbx", "--mutation-probability", "0.1",
+        "--batch-size", "4", "--resource-allocation", "--evaluations", "60", "--ref", "2,2,2",
+        "--archive", "8",
+    ],
+    "mhaco-constr": [
+        "--problem", "constr", "--algorithm", "mhaco", "--population", "20", "--ker", "10",
+        "--n-gen-mark", "3", "--mhaco-constraints", "objectives", "--generations", "5",
+        "--seed", "2",
+    ],
+}
+
+
+def _read(d):
+    return (
+        (d / "population.csv").read_text(),
+        (d / "front.csv").read_text(),
+        json.loads((d / "summary.json").read_text()),
+    )
+
+
+def _same_run(ours, theirs, threads):
+    pop, front, summary = _read(ours)
+    hs_pop, hs_front, hs_summary = _read(theirs)
+    assert pop == hs_pop
+    assert front == hs_front
+    assert summary["threads"] == threads
+    for s in (summary, hs_summary):
+        assert s.pop("wall_time_s") >= 0.0
+        s.pop("threads")
+    assert summary == hs_summary
+    return hs_summary
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_optimize_writes_host_sims_run_directory(host_sim, client, tmp_path, case, capsys):
+    args = CASES[case]
+    hs = host_sim("optimize", *args, "--out", tmp_path / "host-sim")
+    assert main(["optimize", *args, "--local", "--out", str(tmp_path / "local")]) == 0
+    printed = capsys.readouterr().out.splitlines()[0]
+    address = client.scheduler.address
+    assert main(["optimize", *args, "--scheduler", address, "--out", str(tmp_path / "dask")]) == 0
+    summary = _same_run(tmp_path / "local", tmp_path / "host-sim", 1)
+    _same_run(tmp_path / "dask", tmp_path / "host-sim", 2)
+    # The printed line is host-sim's but for the wall time.
+    hs_line = hs.stdout.splitlines()[0]
+    cut = lambda line: line.split(" in ")[0] + line.split(" s,", 1)[1]  # noqa: E731
+    assert cut(printed) == cut(hs_line)
+    # The options reached the algorithm: the summary reports them.
+    if "--archive" in args:
+        assert summary["front_source"] == "archive"
+        assert summary["archive_capacity"] == int(args[args.index("--archive") + 1])
+    if "--moead-operator" in args:
+        assert summary["moead_operator"] == "sbx" and summary["resource_allocation"] is True
+    if "--evaluations" in args:
+        assert summary["evaluations"] >= 60 and summary["reference_point"] == [2.0, 2.0, 2.0]
+    assert summary["population"] == int(args[args.index("--population") + 1])
+
+
+def test_optimize_defaults_are_host_sims(host_sim, tmp_path):
+    """No flags but the problem and a short run: host-sim's defaults (MOEA/D, population 100,
+    steady state, seed 1) on both sides."""
+    args = ["--problem", "zdt1", "--generations", "2"]
+    host_sim("optimize", *args, "--out", tmp_path / "host-sim")
+    assert main(["optimize", *args, "--local", "--out", str(tmp_path / "local")]) == 0
+    summary = _same_run(tmp_path / "local", tmp_path / "host-sim", 1)
+    assert (summary["algorithm"], summary["population"], summary["seed"]) == ("moead", 100, 1)
+    assert summary["evaluations"] == 300
+
+
+@pytest.mark.parametrize(
+    "flags",
+    [
+        ["--population", "20", "--neighbours", "25"],
+        ["--population", "20", "--batch-size", "21"],
+        ["--population", "20", "--mutation-probability", "1.5"],
+        ["--algorithm", "nsga2", "--population", "22"],
+        ["--algorithm", "mhaco", "--population", "20", "--ker", "21"],
+    ],
+    ids=["neighbours", "batch-size", "mutation-probability", "nsga2-population", "ker"],
+)
+def test_optimize_bad_values_give_the_librarys_message(host_sim, flags, capsys):
+    args = ["--problem", "zdt1", "--generations", "1", *flags]
+    hs = host_sim("optimize", *args, check=False)
+    assert hs.returncode != 0
+    assert main(["optimize", *args, "--local"]) == 1
+    ours = capsys.readouterr().err.strip()
+    assert ours.startswith("error: "), ours
+    message = ours[len("error: "):]
+    assert message and message in hs.stderr, (message, hs.stderr)
+
+
+def test_optimize_refuses_scea(capsys):
+    with pytest.raises(SystemExit):
+        main(["optimize", "--algorithm", "scea", "--local"])
+    assert "invalid choice: 'scea'" in capsys.readouterr().err
