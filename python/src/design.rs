@@ -76,6 +76,42 @@ fn pair(e: Evaluation) -> (Vec<f64>, Vec<f64>) {
     (e.objectives, e.constraints)
 }
 
+/// `(lower, upper)` of a problem's bounds.
+pub(crate) fn bounds_pair<P: RealProblem>(p: &P) -> (Vec<f64>, Vec<f64>) {
+    let b = p.bounds();
+    (b.lower().to_vec(), b.upper().to_vec())
+}
+
+/// `(objectives, constraints)` of one decision of a real problem, GIL released.
+pub(crate) fn evaluate_real<P: RealProblem>(
+    py: Python<'_>,
+    p: &P,
+    x: Vec<f64>,
+) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    py.detach(|| p.evaluate(&x))
+        .map(pair)
+        .map_err(|e| errors::OptimError::new_err(e.to_string()))
+}
+
+/// `(objectives, constraints)` of each decision of a real problem, in order, GIL released.
+pub(crate) fn evaluate_real_batch<P: RealProblem>(
+    py: Python<'_>,
+    p: &P,
+    xs: Vec<Vec<f64>>,
+) -> PyResult<Vec<(Vec<f64>, Vec<f64>)>> {
+    py.detach(|| {
+        xs.iter()
+            .enumerate()
+            .map(|(index, x)| {
+                p.evaluate(x)
+                    .map(pair)
+                    .map_err(|e| format!("decision {index}: {e}"))
+            })
+            .collect::<Result<Vec<_>, _>>()
+    })
+    .map_err(errors::OptimError::new_err)
+}
+
 /// The settings as TOML text (for pickling and inspection).
 fn config_toml(c: &DesignConfig) -> PyResult<String> {
     toml::to_string(c).map_err(|e| errors::DesignError::new_err(format!("problem settings: {e}")))
@@ -125,8 +161,7 @@ impl PyDesignProblem {
     /// `(lower, upper)` bounds of the decision (per free node: normalised energy, angle of
     /// attack \[deg\] if free, bank angle \[deg\]; then the entry altitude \[km\] if a variable).
     fn get_bounds(&self) -> (Vec<f64>, Vec<f64>) {
-        let b = self.inner.bounds();
-        (b.lower().to_vec(), b.upper().to_vec())
+        bounds_pair(&self.inner)
     }
 
     /// Number of objectives (range `-theta/pi`, heat load `Q / Q_scale`, optionally skips).
@@ -148,9 +183,7 @@ impl PyDesignProblem {
     /// `(objectives, constraints)` of one decision (one closed-loop flight, GIL released);
     /// a failed flight gives NaN values.
     fn evaluate(&self, py: Python<'_>, x: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
-        py.detach(|| self.inner.evaluate(&x))
-            .map(pair)
-            .map_err(|e| errors::OptimError::new_err(e.to_string()))
+        evaluate_real(py, &self.inner, x)
     }
 
     /// `(objectives, constraints)` of each decision, in order, GIL released.
@@ -159,18 +192,7 @@ impl PyDesignProblem {
         py: Python<'_>,
         xs: Vec<Vec<f64>>,
     ) -> PyResult<Vec<(Vec<f64>, Vec<f64>)>> {
-        py.detach(|| {
-            xs.iter()
-                .enumerate()
-                .map(|(index, x)| {
-                    self.inner
-                        .evaluate(x)
-                        .map(pair)
-                        .map_err(|e| format!("decision {index}: {e}"))
-                })
-                .collect::<Result<Vec<_>, _>>()
-        })
-        .map_err(errors::OptimError::new_err)
+        evaluate_real_batch(py, &self.inner, xs)
     }
 
     /// The node table `[[E-hat, alpha_rad, sigma_rad], ...]` (flight order, fixed end nodes

@@ -463,8 +463,7 @@ impl PyTestProblem {
 
     /// `(lower, upper)` bounds of the decision variables.
     fn get_bounds(&self) -> (Vec<f64>, Vec<f64>) {
-        let b = self.inner.bounds();
-        (b.lower().to_vec(), b.upper().to_vec())
+        crate::design::bounds_pair(&self.inner)
     }
 
     /// Number of objectives (minimised).
@@ -484,10 +483,7 @@ impl PyTestProblem {
 
     /// `(objectives, constraints)` of one decision.
     fn evaluate(&self, py: Python<'_>, x: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
-        let e = py
-            .detach(|| self.inner.evaluate(&x))
-            .map_err(|e| errors::OptimError::new_err(e.to_string()))?;
-        Ok((e.objectives, e.constraints))
+        crate::design::evaluate_real(py, &self.inner, x)
     }
 
     /// `(objectives, constraints)` of each decision, in order, GIL released.

@@ -8,10 +8,11 @@ use std::path::{Path, PathBuf};
 use host_sim::campaign::JobOutcome;
 use host_sim::design::robust::problem_of_run_text;
 use host_sim::design::{DesignConfig, RobustConfig, RobustProblem};
-use host_sim::optim::{Evaluation, Problem, RealProblem};
+use host_sim::optim::{Evaluation, Problem};
 use host_sim::scenario::scenario_to_toml;
 use pyo3::prelude::*;
 
+use crate::design::{bounds_pair, evaluate_real, evaluate_real_batch};
 use crate::errors;
 
 fn pair(e: Evaluation) -> (Vec<f64>, Vec<f64>) {
@@ -105,8 +106,7 @@ impl PyRobustDesignProblem {
     /// `(lower, upper)` bounds of the decision (per free node: normalised energy, angle of
     /// attack \[deg\] if free, bank angle \[deg\]; then the entry altitude \[km\] if a variable).
     fn get_bounds(&self) -> (Vec<f64>, Vec<f64>) {
-        let b = self.inner.bounds();
-        (b.lower().to_vec(), b.upper().to_vec())
+        bounds_pair(&self.inner)
     }
 
     /// Number of objectives (the `robust.objectives` statistics).
@@ -127,9 +127,7 @@ impl PyRobustDesignProblem {
     /// `(objectives, constraints)` of one decision: its whole campaign, GIL released; NaN
     /// values when it failed (module docs of host-sim's `design::robust`).
     fn evaluate(&self, py: Python<'_>, x: Vec<f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
-        py.detach(|| self.inner.evaluate(&x))
-            .map(pair)
-            .map_err(|e| errors::OptimError::new_err(e.to_string()))
+        evaluate_real(py, &self.inner, x)
     }
 
     /// `(objectives, constraints)` of each decision, in order, GIL released.
@@ -138,18 +136,7 @@ impl PyRobustDesignProblem {
         py: Python<'_>,
         xs: Vec<Vec<f64>>,
     ) -> PyResult<Vec<(Vec<f64>, Vec<f64>)>> {
-        py.detach(|| {
-            xs.iter()
-                .enumerate()
-                .map(|(index, x)| {
-                    self.inner
-                        .evaluate(x)
-                        .map(pair)
-                        .map_err(|e| format!("decision {index}: {e}"))
-                })
-                .collect::<Result<Vec<_>, _>>()
-        })
-        .map_err(errors::OptimError::new_err)
+        evaluate_real_batch(py, &self.inner, xs)
     }
 
     /// One part of a decision's evaluation: cases `indices` of its campaign flown here (the
