@@ -180,9 +180,10 @@ impl RobustProblem {
     /// base in errors.
     ///
     /// # Errors
-    /// [`DesignError::Setting`] naming the `robust.` field: no layers or no fixed target in
-    /// the base, a mode its stack cannot fly, bad objectives or fraction, bad dispersions; an
-    /// analytical `inner`.
+    /// [`DesignError::Robust`] naming the field: an analytical `inner`, nominal `limits` or
+    /// `objectives` other than the defaults, no layers or no fixed target in the base, a mode
+    /// its stack cannot fly, bad objectives, fraction or dispersions;
+    /// [`DesignError::RobustBase`] when the base's campaign cannot be set up.
     pub fn new(
         inner: ReentryProblem,
         stack: Scenario,
