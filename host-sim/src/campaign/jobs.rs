@@ -200,31 +200,15 @@ impl Campaign {
         &self,
         outcomes: impl IntoIterator<Item = JobOutcome>,
     ) -> Result<CampaignOutput, CampaignError> {
-        let n = self.settings.cases as usize;
-        let mut by_mode: Vec<(Mode, Vec<Option<JobOutcome>>)> =
-            self.modes.iter().map(|&m| (m, vec![None; n])).collect();
-        for c in outcomes {
-            let (mode, index) = c.key();
-            let slot = by_mode
-                .iter_mut()
-                .find(|(m, _)| *m == mode)
-                .and_then(|(_, v)| v.get_mut(index as usize))
-                .ok_or_else(|| job_error(mode, index, "not a job of this campaign"))?;
-            if slot.is_some() {
-                return Err(job_error(mode, index, "given twice"));
-            }
-            *slot = Some(c);
-        }
         // As `run_campaign` gathers them: flown cases by mode then index, failures apart.
         let mut cases = Vec::new();
         let mut failed = Vec::new();
-        for (m, v) in by_mode {
-            let mut flown = Vec::with_capacity(n);
-            for (i, c) in (0_u32..).zip(v) {
+        for (m, v) in place_outcomes(&self.modes, self.settings.cases, outcomes)? {
+            let mut flown = Vec::with_capacity(v.len());
+            for c in v {
                 match c {
-                    Some(JobOutcome::Flown(c)) => flown.push(c),
-                    Some(JobOutcome::Failed(f)) => failed.push(f),
-                    None => return Err(job_error(m, i, "missing")),
+                    JobOutcome::Flown(c) => flown.push(c),
+                    JobOutcome::Failed(f) => failed.push(f),
                 }
             }
             cases.push((m, flown));
@@ -255,6 +239,45 @@ impl Campaign {
         }
         Ok(())
     }
+}
+
+/// Gathered job outcomes (any order) placed by job: for each of `modes`, in order, the
+/// outcomes of its cases `0..cases` in index order.
+///
+/// # Errors
+/// [`CampaignError::Job`] for an outcome of another mode or outside `0..cases`, one given
+/// twice, or a job missing.
+pub fn place_outcomes(
+    modes: &[Mode],
+    cases: u32,
+    outcomes: impl IntoIterator<Item = JobOutcome>,
+) -> Result<Vec<(Mode, Vec<JobOutcome>)>, CampaignError> {
+    let mut by_mode: Vec<(Mode, Vec<Option<JobOutcome>>)> = modes
+        .iter()
+        .map(|&m| (m, vec![None; cases as usize]))
+        .collect();
+    for c in outcomes {
+        let (mode, index) = c.key();
+        let slot = by_mode
+            .iter_mut()
+            .find(|(m, _)| *m == mode)
+            .and_then(|(_, v)| v.get_mut(index as usize))
+            .ok_or_else(|| job_error(mode, index, "not a job of this campaign"))?;
+        if slot.is_some() {
+            return Err(job_error(mode, index, "given twice"));
+        }
+        *slot = Some(c);
+    }
+    by_mode
+        .into_iter()
+        .map(|(m, v)| {
+            let placed = (0_u32..)
+                .zip(v)
+                .map(|(i, c)| c.ok_or_else(|| job_error(m, i, "missing")))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok((m, placed))
+        })
+        .collect()
 }
 
 fn job_error(mode: Mode, index: u32, reason: &str) -> CampaignError {

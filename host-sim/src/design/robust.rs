@@ -22,6 +22,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{DesignError, ReentryProblem};
+use crate::campaign::jobs::place_outcomes;
 use crate::campaign::{
     Campaign, CampaignError, CaseResult, DispersionSettings, JobOutcome, Mode, ModeStats,
 };
@@ -364,30 +365,14 @@ impl RobustProblem {
         outcomes: impl IntoIterator<Item = JobOutcome>,
     ) -> Result<RobustOutcome, CampaignError> {
         let cases = self.config.dispersions.cases;
-        let mut slots: Vec<Option<JobOutcome>> = vec![None; cases as usize];
-        let job = |mode: Mode, index: u32, reason: &str| CampaignError::Job {
-            mode: mode.name(),
-            index,
-            reason: reason.to_string(),
-        };
-        for o in outcomes {
-            let (mode, index) = o.key();
-            let slot = slots
-                .get_mut(index as usize)
-                .filter(|_| mode == self.mode)
-                .ok_or_else(|| job(mode, index, "not a case of this campaign"))?;
-            if slot.is_some() {
-                return Err(job(mode, index, "given twice"));
-            }
-            *slot = Some(o);
-        }
         let mut flown: Vec<CaseResult> = Vec::new();
         let mut failed = 0_u32;
-        for (i, o) in (0_u32..).zip(slots) {
-            match o {
-                Some(JobOutcome::Flown(c)) => flown.push(c),
-                Some(JobOutcome::Failed(_)) => failed += 1,
-                None => return Err(job(self.mode, i, "missing")),
+        for (_, placed) in place_outcomes(&[self.mode], cases, outcomes)? {
+            for o in placed {
+                match o {
+                    JobOutcome::Flown(c) => flown.push(c),
+                    JobOutcome::Failed(_) => failed += 1,
+                }
             }
         }
         let violating = flown
