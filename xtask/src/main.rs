@@ -284,13 +284,21 @@ fn test() -> Result<(), String> {
                 run(c, "clippy host")
             }),
         ),
+        // The host tests fly the `pil` firmware (the PIL tests), so it is built first and
+        // they run with `PIL_REQUIRED`: a missing ELF or QEMU fails them instead of skipping.
+        // The same tests are `cargo xtask pil`; they are not run a second time here.
         (
-            "host tests (workspace)",
+            "pil firmware for both machines",
+            Box::new(build_pil_firmware),
+        ),
+        (
+            "host tests (workspace, PIL required)",
             Box::new(|| {
                 note_missing_reference_data();
                 let mut c = cargo();
                 c.args(["test", "--workspace"]);
                 seed_property_tests(&mut c);
+                pil_required(&mut c);
                 run(c, "cargo test --workspace")
             }),
         ),
@@ -425,7 +433,6 @@ fn test() -> Result<(), String> {
         "board example (examples/board-firmware) under QEMU",
         Box::new(board_example::board_example),
     ));
-    steps.push(("PIL closed loop", Box::new(pil)));
     steps.push((
         "firmware instruction counts within onboard-demo/insn-budget.toml",
         Box::new(insn_budget),
@@ -509,10 +516,7 @@ fn firmware() -> Result<(), String> {
 /// link's reliability tests (clean-up on every exit path, frame checks, bad ELFs, FIFO paths).
 /// `PIL_REQUIRED` turns a test's skip on a missing QEMU or ELF into a failure.
 fn pil() -> Result<(), String> {
-    for m in &MACHINES {
-        build_firmware(m.target)?;
-    }
-    let elf = firmware_elf(PIL_MACHINE.target).with_file_name("pil");
+    build_pil_firmware()?;
     let mut c = cargo();
     c.args([
         "test",
@@ -523,10 +527,24 @@ fn pil() -> Result<(), String> {
         "--",
         "pil",
         "--nocapture",
-    ])
-    .env("PIL_ELF", &elf)
-    .env("PIL_REQUIRED", "1");
+    ]);
+    pil_required(&mut c);
     run(c, "PIL closed loop (host-sim tests)")
+}
+
+/// Build the firmware (its `pil` image among the rest) for both machines.
+fn build_pil_firmware() -> Result<(), String> {
+    for m in &MACHINES {
+        build_firmware(m.target)?;
+    }
+    Ok(())
+}
+
+/// Point host-sim's PIL tests at the Cortex-M4F `pil` image (`PIL_ELF`) and make a missing
+/// ELF or QEMU a failure (`PIL_REQUIRED`).
+fn pil_required(c: &mut Command) {
+    let elf = firmware_elf(PIL_MACHINE.target).with_file_name("pil");
+    c.env("PIL_ELF", elf).env("PIL_REQUIRED", "1");
 }
 
 /// Run the instruction-count firmware (`insn-bench`, then `insn-bench-stack`) on each machine under `-icount shift=0`

@@ -2,9 +2,9 @@
 //! guidance in QEMU (`onboard-demo`'s `pil` binary) against the `f64` SIL run.
 //!
 //! Skipped (passes with a printed reason) when `qemu-system-arm` or the firmware ELF is absent,
-//! unless `PIL_REQUIRED` is set (as `cargo xtask test` does).
+//! unless `PIL_REQUIRED` is set (as `cargo xtask test` and `cargo xtask pil` do) or `CI=true`.
 //! The ELF is `$PIL_ELF`, else `<target dir>/thumbv7em-none-eabihf/firmware/pil`; `cargo xtask
-//! test` builds it and runs this test in its "PIL closed loop" step.
+//! test` builds it before its host tests, which run this test.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -15,7 +15,7 @@ use host_sim::pil::{
 };
 use host_sim::sim::SimResult;
 
-use crate::pil_support::{Offset, check_pil_memory_budget, reference_pil_elf};
+use crate::pil_support::{Offset, check_pil_memory_budget, pil_required, reference_pil_elf};
 
 /// (range angle [rad], peak heat flux [W/m^2], final speed [m/s], final latitude [rad],
 /// final longitude [rad], flight time [s]).
@@ -59,9 +59,7 @@ fn pil_reference_mission_matches_sil() {
     let t0 = Instant::now();
     let (pil, stats) = match fly_reference_pil(PilConfig::new(reference_pil_elf())) {
         Ok(r) => r,
-        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
-            if std::env::var_os("PIL_REQUIRED").is_none() =>
-        {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) if !pil_required() => {
             println!("SKIPPED pil_reference_mission_matches_sil: {e}");
             return;
         }

@@ -6,7 +6,7 @@
 use host_sim::pil::{FaultConfig, PilConfig, PilError, fly_scenario_pil};
 use host_sim::scenario::Scenario;
 
-use crate::pil_support::reference_pil_elf;
+use crate::pil_support::{pil_required, reference_pil_elf};
 
 #[test]
 fn pil_link_faults_are_survived_counted_and_recorded() {
@@ -25,9 +25,7 @@ fn pil_link_faults_are_survived_counted_and_recorded() {
     let (r, record) = run();
     let (res, stats) = match r {
         Ok(r) => (r.result, r.stats),
-        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
-            if std::env::var_os("PIL_REQUIRED").is_none() =>
-        {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) if !pil_required() => {
             println!("SKIPPED pil_link_faults_are_survived_counted_and_recorded: {e}");
             return;
         }
@@ -94,9 +92,7 @@ fn pil_cli_prints_and_writes_the_link_fault_counts() {
     cfg.faults = Some(faults);
     let stats = match fly_scenario_pil(&Scenario::default(), "(test)", cfg).0 {
         Ok(r) => r.stats,
-        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
-            if std::env::var_os("PIL_REQUIRED").is_none() =>
-        {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) if !pil_required() => {
             println!("SKIPPED pil_cli_prints_and_writes_the_link_fault_counts: {e}");
             return;
         }

@@ -11,7 +11,7 @@
 //!
 //! The stand-in for QEMU is a shell script (`PilConfig::qemu`, `REENTRY_PIL_QEMU` for the CLI)
 //! that ignores SIGTERM/SIGINT and records its pid. Tests that need the real QEMU and firmware
-//! skip (pass with a message) when they are absent, unless `PIL_REQUIRED` is set.
+//! skip (pass with a message) when they are absent, unless `PIL_REQUIRED` is set or `CI=true`.
 
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
@@ -421,8 +421,8 @@ fn qemu_present() -> bool {
 
 fn skip(test: &str, why: &str) -> bool {
     assert!(
-        std::env::var_os("PIL_REQUIRED").is_none(),
-        "{test}: {why} (PIL_REQUIRED is set)"
+        !crate::pil_support::pil_required(),
+        "{test}: {why} (PIL required: PIL_REQUIRED or CI=true)"
     );
     println!("SKIPPED {test}: {why}");
     true

@@ -21,7 +21,7 @@ use std::path::Path;
 use host_sim::pil::{PilConfig, PilError, fly_scenario_pil, miss_bound_m};
 use host_sim::scenario::{Scenario, fly, read_scenario, stack_setup};
 
-use crate::pil_support::{check_pil_memory_budget, pil_elf};
+use crate::pil_support::{check_pil_memory_budget, pil_elf, pil_required};
 
 fn scenario() -> Scenario {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/srm-glide-replanning.toml");
@@ -34,9 +34,7 @@ fn check(target: &str) {
     let (run, record) = fly_scenario_pil(&sc, "(test)", PilConfig::new(pil_elf(target)));
     let pil = match run {
         Ok(r) => r,
-        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
-            if std::env::var_os("PIL_REQUIRED").is_none() =>
-        {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) if !pil_required() => {
             println!("SKIPPED {name}: {e}");
             return;
         }

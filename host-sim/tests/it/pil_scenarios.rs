@@ -26,7 +26,7 @@ use host_sim::pil::{PilConfig, PilError, fly_scenario_pil};
 use host_sim::scenario::{Scenario, build_guidance};
 use host_sim::sim::{self, CoreGuidance, SimResult};
 
-use crate::pil_support::{Offset, check_pil_memory_budget, pil_elf};
+use crate::pil_support::{Offset, check_pil_memory_budget, pil_elf, pil_required};
 
 fn sil(sc: &Scenario, offset: f64) -> SimResult {
     let env = sc.environment.build();
@@ -99,9 +99,7 @@ fn check(sc: &Scenario, target: &str, fixed: bool) {
     let elf = pil_elf(target);
     let run = match fly_scenario_pil(sc, "(test)", PilConfig::new(elf.clone())).0 {
         Ok(r) => r,
-        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_)))
-            if std::env::var_os("PIL_REQUIRED").is_none() =>
-        {
+        Err(e @ (PilError::QemuMissing { .. } | PilError::ElfMissing(_))) if !pil_required() => {
             println!("SKIPPED {name}: {e}");
             return;
         }
