@@ -195,7 +195,12 @@ fn fronts_have_no_repeated_members() {
         &pop,
         &[r],
         &c.problem.base,
-        None,
+        &crate::design::run::files::MemberFlights {
+            analytical: None,
+            robust: None,
+            threads: &crate::optim::Threads::serial(),
+            nominal_front: &[],
+        },
     )
     .unwrap();
     let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();

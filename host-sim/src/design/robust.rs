@@ -19,6 +19,8 @@
 //!   flights all failed, is a failed evaluation ([`Evaluation::failure`]: it loses every
 //!   comparison); no objective is ever NaN otherwise.
 
+use std::path::Path;
+
 use serde::{Deserialize, Serialize};
 
 use super::{DesignError, ReentryProblem};
@@ -26,6 +28,7 @@ use crate::campaign::jobs::place_outcomes;
 use crate::campaign::{
     Campaign, CampaignError, CaseResult, DispersionSettings, JobOutcome, Mode, ModeStats,
 };
+use crate::optim::rows::read_population;
 use crate::optim::{Bounds, EvalError, Evaluation, Problem, RealProblem};
 use crate::scenario::{Scenario, TargetSpec};
 
@@ -50,6 +53,20 @@ pub enum Statistic {
 }
 
 impl Statistic {
+    /// Its axis label, with units.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::MissP50Km => "median miss [km]",
+            Self::MissP99Km => "p99 miss [km]",
+            Self::MissMeanKm => "mean miss [km]",
+            Self::MissWorstKm => "largest miss [km]",
+            Self::HeatFluxRatioP99 => "p99 heat flux / limit [-]",
+            Self::GLoadRatioP99 => "p99 g-load / limit [-]",
+            Self::GLoadRateRatioP99 => "p99 g-load rate / limit [-]",
+        }
+    }
+
     /// Its value in the campaign's figures.
     #[must_use]
     pub fn of(self, s: &ModeStats) -> f64 {
@@ -88,6 +105,12 @@ pub struct RobustConfig {
     /// every limit).
     #[serde(default)]
     pub max_violation_fraction: f64,
+    /// A nominal run's front.csv (of the same `[problem]` encoding; a path relative to the
+    /// run file's folder, as `problem.base`): after the run its members fly this campaign
+    /// too, for the robust front against the nominal one (nominal-front.csv,
+    /// robust-vs-nominal.svg). Absent: no comparison.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nominal_front: Option<String>,
 }
 
 fn default_objectives() -> Vec<Statistic> {
@@ -101,6 +124,7 @@ impl Default for RobustConfig {
             mode: None,
             objectives: default_objectives(),
             max_violation_fraction: 0.0,
+            nominal_front: None,
         }
     }
 }
@@ -405,6 +429,37 @@ impl RobustProblem {
     }
 }
 
+/// The decisions of a nominal run's front file `path` (`robust.nominal_front`), each of
+/// `dimension` genes.
+///
+/// # Errors
+/// [`DesignError::Robust`] naming `robust.nominal_front` and the file: unreadable, not a
+/// population file (the line and column), or decisions of another length.
+pub fn read_nominal_front(path: &Path, dimension: usize) -> Result<Vec<Vec<f64>>, DesignError> {
+    let bad = |reason: String| DesignError::Robust {
+        field: "robust.nominal_front".into(),
+        value: path.display().to_string(),
+        reason,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
+    let (rows, [n, ..]) = read_population(&text).map_err(|e| bad(e.to_string()))?;
+    if n != dimension {
+        return Err(bad(format!(
+            "its decisions have {n} genes (x1..x{n}); this problem's have {dimension}: the \
+             front of a run with the same [problem] encoding"
+        )));
+    }
+    rows.into_iter()
+        .enumerate()
+        .map(|(k, r)| {
+            r.x.iter()
+                .map(|v| v.map(|e| e.0).filter(|x| x.is_finite()))
+                .collect::<Option<Vec<f64>>>()
+                .ok_or_else(|| bad(format!("member {k} has a missing or non-finite gene")))
+        })
+        .collect()
+}
+
 /// The robust problem of a run file's text (`label` names it in errors): its `[problem]` and
 /// `[robust]` tables (other keys, the algorithm's, are not read), a scenario-file base relative
 /// to `base_dir`. The Python package builds its `RobustDesignProblem` with it.
@@ -415,7 +470,7 @@ impl RobustProblem {
 pub fn problem_of_run_text(
     text: &str,
     label: &str,
-    base_dir: &std::path::Path,
+    base_dir: &Path,
 ) -> Result<(super::DesignConfig, RobustConfig, RobustProblem), DesignError> {
     let bad = |message: String| DesignError::Toml {
         label: label.to_string(),

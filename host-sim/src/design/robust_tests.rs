@@ -191,6 +191,25 @@ fn robust_run_writes_its_section_and_stack_members() {
     c.threads = 2;
     c.reference = vec![5000.0, 2.0];
     let dir = std::env::temp_dir().join(format!("host-sim-robust-run-{}", std::process::id()));
+    // A nominal front to compare with: one member, the decision near the example's profile
+    // (its objectives in the file are not read).
+    let nominal = std::env::temp_dir().join(format!(
+        "host-sim-robust-nominal-{}.csv",
+        std::process::id()
+    ));
+    let x = decision();
+    let row: Vec<String> = x.iter().map(|v| format!("{v:e}")).collect();
+    let head: Vec<String> = (1..=x.len()).map(|k| format!("x{k}")).collect();
+    std::fs::write(
+        &nominal,
+        format!(
+            "{},f1,f2,g1,violation\n{},0e0,0e0,0e0,0e0\n",
+            head.join(","),
+            row.join(",")
+        ),
+    )
+    .unwrap();
+    c.robust.as_mut().unwrap().nominal_front = Some(nominal.display().to_string());
     let done = run(&c, "test", &dir, false, &examples(), &mut ()).unwrap();
     let last = done.last.unwrap();
     assert_eq!((last.generation, last.evaluations), (1, 8));
@@ -220,6 +239,63 @@ fn robust_run_writes_its_section_and_stack_members() {
             "{t}"
         );
     }
+    // The first front member's campaign report is the training campaign flown again: its
+    // statistics are the member's objectives in front.csv, bit for bit, and its figures are
+    // there (footprint, miss CDF, limit ratios).
+    let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();
+    let mut rows = front.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    let row: Vec<f64> = rows
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let col = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+    let report = dir.join("front/member_00/campaign");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(report.join("summary.json")).unwrap())
+            .unwrap();
+    let stats = &summary["stats"][0];
+    assert_eq!(stats["mode"], "Stored", "{stats}");
+    assert_eq!(stats["miss_km"]["p99"].as_f64().unwrap(), col("f1"));
+    assert_eq!(stats["heat_flux_ratio"]["p99"].as_f64().unwrap(), col("f2"));
+    for stem in crate::report::campaign::figure_stems("stored") {
+        assert!(report.join(format!("{stem}.svg")).is_file(), "{stem}");
+    }
+    assert!(report.join("cases-stored.csv").is_file());
+    let fronts = std::fs::read_to_string(dir.join("fronts.svg")).unwrap();
+    assert!(
+        fronts.contains("p99 miss [km]") && fronts.contains("p99 heat flux / limit [-]"),
+        "the front's axes name the robust statistics"
+    );
+    // The nominal member flown in the same campaign: its robust objectives and constraint,
+    // the problem's own evaluation of it.
+    let ev = problem(2, Some("stored")).evaluate(&x).unwrap();
+    let flown = std::fs::read_to_string(dir.join("nominal-front.csv")).unwrap();
+    let (rows, dims) = crate::optim::rows::read_population(&flown).unwrap();
+    assert_eq!((rows.len(), dims), (1, [12, 2, 1]), "{flown}");
+    let f: Vec<f64> = rows[0].f.iter().map(|e| e.0).collect();
+    let g: Vec<f64> = rows[0].g.iter().map(|e| e.0).collect();
+    assert_eq!((f, g), (ev.objectives, ev.constraints));
+    let svg = std::fs::read_to_string(dir.join("robust-vs-nominal.svg")).unwrap();
+    assert!(svg.contains("robust front") && svg.contains("p99 miss [km]"));
+    // A nominal front of another encoding is refused, naming the key and the file, before
+    // the run directory is touched.
+    std::fs::write(
+        &nominal,
+        "x1,x2,f1,f2,g1,violation\n1e0,2e0,0e0,0e0,0e0,0e0\n",
+    )
+    .unwrap();
+    let e = run(&c, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    assert!(
+        e.to_string().contains("field `robust.nominal_front`")
+            && e.to_string().contains(&nominal.display().to_string())
+            && e.to_string().contains("2 genes"),
+        "{e}"
+    );
+    assert!(dir.join("nominal-front.csv").is_file());
+    std::fs::remove_file(&nominal).unwrap();
     // A robust run refuses what it would not use.
     let mut bad = c.clone();
     bad.problem.limits.g_load = 4.0;

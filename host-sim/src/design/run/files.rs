@@ -1,14 +1,16 @@
 //! Files of a re-entry optimisation run ([`super`]): per-generation records (generations.csv
 //! and .json), populations (population/gen_NNNN.csv), the final front (front.csv and one
 //! scenario file per member in front/, flyable by `host-sim simulate --scenario`), the
-//! trajectories of three chosen members (front/member_NN/) and plots (fronts.svg,
-//! hypervolume.svg, feasible.svg, objectives.svg, trajectories.svg).
+//! trajectories of three chosen members (front/member_NN/; of a robust run also their
+//! campaign report in front/member_NN/campaign/, as `host-sim dispersions` writes it) and
+//! plots (fronts.svg, hypervolume.svg, feasible.svg, objectives.svg, trajectories.svg).
 
 use std::path::Path;
 
-use crate::design::AnalyticalModel;
-use crate::optim::Individual;
+use crate::campaign::output::write_campaign;
+use crate::design::{AnalyticalModel, RobustProblem};
 use crate::optim::run::{Record, front_order, population_csv, records_csv};
+use crate::optim::{Evaluator, Individual, Threads};
 use crate::report::{ReportError, RunDir, write_atomic};
 use crate::report::{Series, line_plot_svg};
 use crate::scenario::{Scenario, scenario_to_toml, simulate_scenario};
@@ -49,6 +51,126 @@ fn series(label: String, points: Vec<(f64, f64)>) -> Series {
     }
 }
 
+/// How the chosen front members are flown for their files.
+pub struct MemberFlights<'a> {
+    /// The analytical simulator of an analytical problem (`None`: the numerical one).
+    pub analytical: Option<&'a AnalyticalModel>,
+    /// The robust problem whose campaign each chosen member flies again for its report.
+    pub robust: Option<&'a RobustProblem>,
+    /// Threads for those campaigns (their results do not depend on them).
+    pub threads: &'a Threads,
+    /// A nominal front's decisions, flown in the robust problem's campaign for
+    /// nominal-front.csv and robust-vs-nominal.svg (empty: no comparison).
+    pub nominal_front: &'a [Vec<f64>],
+}
+
+impl MemberFlights<'_> {
+    /// The objectives' axis labels: the robust statistics', or the nominal problem's.
+    fn objective_labels(&self) -> Vec<String> {
+        self.robust.map_or_else(
+            || {
+                vec![
+                    "f_r = -theta/pi [-]".into(),
+                    "f_Q = heat load [scaled]".into(),
+                ]
+            },
+            |p| {
+                p.config()
+                    .objectives
+                    .iter()
+                    .map(|s| s.label().to_string())
+                    .collect()
+            },
+        )
+    }
+}
+
+/// Fly a robust problem's campaign of a chosen member again and write its report into
+/// `dir` (summary.json, cases-<mode>.csv, footprint, miss CDF, limit ratios); the training
+/// campaign exactly (the same draws). Nothing is written if the campaign cannot be flown.
+fn member_campaign(p: &RobustProblem, sc: &Scenario, threads: usize, dir: &Path) {
+    let Ok(campaign) = p.campaign(sc) else {
+        return;
+    };
+    if let Ok(out) = campaign.run(None, Some(threads), false) {
+        // A member whose report cannot be written is left without one, as one whose flight
+        // fails is left out of the trajectories.
+        let _ = std::fs::create_dir_all(dir).map_err(|_| ()).and_then(|()| {
+            write_campaign(dir, campaign.setup(), campaign.settings(), &out).map_err(|_| ())
+        });
+    }
+}
+
+/// The nominal front flown in the robust problem's campaign: nominal-front.csv (its
+/// decisions with their robust objectives and constraint, a population file) and, with two
+/// objectives or more, robust-vs-nominal.svg (both fronts in the first two robust
+/// objectives; nominal members that break the constraint are drawn too, they are the point).
+fn write_nominal_comparison(
+    dir: &Path,
+    p: &RobustProblem,
+    threads: &Threads,
+    nominal: &[Vec<f64>],
+    robust_front: &[Individual<Vec<f64>>],
+    labels: &[String],
+) -> Result<(), ReportError> {
+    let flown: Vec<Individual<Vec<f64>>> = threads
+        .evaluate(p, nominal)
+        .into_iter()
+        .zip(nominal)
+        .enumerate()
+        .filter_map(|(k, (e, x))| {
+            let e = e.ok()?;
+            Individual::from_evaluation(x.clone(), e, k, labels.len(), 1).ok()
+        })
+        .collect();
+    write_atomic(
+        &dir.join("nominal-front.csv"),
+        population_csv(&flown)?.as_bytes(),
+    )?;
+    let (Some(x), Some(y)) = (labels.first(), labels.get(1)) else {
+        return Ok(());
+    };
+    let points = |pop: &[Individual<Vec<f64>>]| {
+        let mut v: Vec<(f64, f64)> = pop
+            .iter()
+            .filter_map(|i| Some((*i.objectives.first()?, *i.objectives.get(1)?)))
+            .filter(|(a, b)| a.is_finite() && b.is_finite())
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v
+    };
+    let feasible: Vec<Individual<Vec<f64>>> = flown
+        .iter()
+        .filter(|i| i.violation <= 0.0)
+        .cloned()
+        .collect();
+    let infeasible: Vec<Individual<Vec<f64>>> = flown
+        .iter()
+        .filter(|i| i.violation > 0.0)
+        .cloned()
+        .collect();
+    let mut s = vec![series("robust front".into(), points(robust_front))];
+    s.push(series(
+        "nominal front, flown in the campaign".into(),
+        points(&feasible),
+    ));
+    if !infeasible.is_empty() {
+        s.push(Series {
+            label: "nominal members over the violation limit".into(),
+            points: points(&infeasible),
+            dashed: true,
+        });
+    }
+    plot(
+        dir,
+        "robust-vs-nominal.svg",
+        "Robust front against the nominal front (same campaign)",
+        x,
+        y,
+        &s,
+    )
+}
+
 /// Fly a chosen front member with the problem's simulator and write its run directory
 /// (trajectory, summary, plots); `None` if it fails (the member is left out of the plot).
 fn member_run(
@@ -87,7 +209,7 @@ fn write_front_dir(
     dir: &Path,
     front_scenarios: Vec<Option<Scenario>>,
     base: &str,
-    analytical: Option<&AnalyticalModel>,
+    members: &MemberFlights<'_>,
 ) -> Result<Vec<Series>, ReportError> {
     let n = front_scenarios.len();
     let mut fdir = RunDir::begin_owned(&dir.join("front"))?;
@@ -109,7 +231,10 @@ fn write_front_dir(
     let mut traj = Vec::new();
     for (k, sc) in &chosen {
         let run_dir = fdir.staging().join(format!("member_{k:02}"));
-        if let Some(result) = member_run(sc, analytical, &run_dir) {
+        if let Some(p) = members.robust {
+            member_campaign(p, sc, members.threads.count(), &run_dir.join("campaign"));
+        }
+        if let Some(result) = member_run(sc, members.analytical, &run_dir) {
             let pts = result
                 .samples
                 .iter()
@@ -124,8 +249,8 @@ fn write_front_dir(
 
 /// Write the final files: records, population, front (the feasible front of `result`: the
 /// population, or the external archive), member scenarios (`scenarios`: one per `result`
-/// member, named after the problem's `base`), chosen trajectories (flown by the problem's
-/// simulator: `analytical` for an analytical problem), plots.
+/// member, named after the problem's `base`), chosen trajectories (flown as `members` says;
+/// with a robust problem's campaign report beside each), plots.
 ///
 /// # Errors
 /// [`ReportError`].
@@ -137,7 +262,7 @@ pub fn write_final(
     result: &[Individual<Vec<f64>>],
     records: &[Record],
     base: &str,
-    analytical: Option<&AnalyticalModel>,
+    members: &MemberFlights<'_>,
 ) -> Result<(), ReportError> {
     // The front, sorted by range objective, without repeated members, with one scenario file
     // per member.
@@ -149,7 +274,19 @@ pub fn write_final(
         .collect();
     // The front directory first: its flights are the long part, and a Ctrl-C during them
     // leaves no final file.
-    let traj = write_front_dir(dir, front_scenarios, base, analytical)?;
+    let traj = write_front_dir(dir, front_scenarios, base, members)?;
+    let labels = members.objective_labels();
+    let label = |k: usize| labels.get(k).map_or("objective [-]", String::as_str);
+    if let (Some(p), false) = (members.robust, members.nominal_front.is_empty()) {
+        write_nominal_comparison(
+            dir,
+            p,
+            members.threads,
+            members.nominal_front,
+            &front,
+            &labels,
+        )?;
+    }
     write_atomic(
         &dir.join("generations.csv"),
         records_csv(records)?.as_bytes(),
@@ -172,6 +309,7 @@ pub fn write_final(
     let n = records.len();
     let mut picks: Vec<usize> = [0, n / 4, n / 2, 3 * n / 4, n.saturating_sub(1)].to_vec();
     picks.dedup();
+    // The first two objectives (a one-objective run has no front to draw).
     let fronts: Vec<Series> = picks
         .iter()
         .filter_map(|&i| records.get(i))
@@ -179,17 +317,21 @@ pub fn write_final(
         .map(|r| {
             series(
                 format!("generation {}", r.generation),
-                r.front.iter().map(|f| (f[0], f[1])).collect(),
+                r.front
+                    .iter()
+                    .filter_map(|f| Some((*f.first()?, *f.get(1)?)))
+                    .collect(),
             )
         })
+        .filter(|s| !s.points.is_empty())
         .collect();
     if !fronts.is_empty() {
         plot(
             dir,
             "fronts.svg",
             "Feasible fronts",
-            "f_r = -theta/pi [-]",
-            "f_Q = heat load [scaled]",
+            label(0),
+            label(1),
             &fronts,
         )?;
     }
@@ -216,18 +358,24 @@ pub fn write_final(
         "feasible fraction [-]",
         &[series("feasible".into(), per_gen(&|r| r.feasible_fraction))],
     )?;
+    // Best and mean of each objective, named by its label (no objective is indexed past
+    // what a record holds).
+    let objective_series: Vec<Series> = (0..labels.len())
+        .flat_map(|k| {
+            let at = move |v: &[f64]| v.get(k).copied().unwrap_or(f64::NAN);
+            [
+                series(format!("best {}", label(k)), per_gen(&|r| at(&r.best))),
+                series(format!("mean {}", label(k)), per_gen(&|r| at(&r.mean))),
+            ]
+        })
+        .collect();
     plot(
         dir,
         "objectives.svg",
         "Best and mean feasible objectives",
         "generation",
         "objective [-]",
-        &[
-            series("best f_r".into(), per_gen(&|r| r.best[0])),
-            series("mean f_r".into(), per_gen(&|r| r.mean[0])),
-            series("best f_Q".into(), per_gen(&|r| r.best[1])),
-            series("mean f_Q".into(), per_gen(&|r| r.mean[1])),
-        ],
+        &objective_series,
     )?;
     Ok(())
 }

@@ -14,9 +14,10 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use self::files::{write_final, write_generation};
+use self::files::{MemberFlights, write_final, write_generation};
 use super::{
     DesignConfig, DesignError, ReentryProblem, RobustConfig, RobustProblem, VariableReentry,
+    robust::read_nominal_front,
 };
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
@@ -420,6 +421,11 @@ pub fn run(
         }
         None => None,
     };
+    // So is the nominal front it is compared with read.
+    let nominal_front = match c.robust.as_ref().and_then(|r| r.nominal_front.as_ref()) {
+        Some(f) => read_nominal_front(&base_dir.join(f), problem.encoding().dim())?,
+        None => Vec::new(),
+    };
     if !resume {
         // A new run: never into a directory that is not a run; a previous run there is
         // removed whole (no population or front file of it is left beside the new run's).
@@ -463,6 +469,7 @@ pub fn run(
             problem: &vproblem,
             pool,
             resume,
+            nominal_front: &nominal_front,
         };
         let cfg = SceaConfig {
             moead,
@@ -478,6 +485,7 @@ pub fn run(
             problem: &robust,
             pool,
             resume,
+            nominal_front: &nominal_front,
         };
         return drive_fixed(&ctx, moead, progress);
     }
@@ -487,6 +495,7 @@ pub fn run(
         problem: &problem,
         pool,
         resume,
+        nominal_front: &nominal_front,
     };
     drive_fixed(&ctx, moead, progress)
 }
@@ -542,6 +551,11 @@ pub trait RunProblem: Problem {
     fn scenario(&self, d: &Self::Decision) -> Option<Scenario>;
     /// The fixed-length problem (its simulator flies the chosen front members).
     fn reentry(&self) -> &ReentryProblem;
+    /// The robust problem whose campaign the chosen front members fly again for their
+    /// report (`None`: a nominal problem).
+    fn robust(&self) -> Option<&RobustProblem> {
+        None
+    }
 }
 
 impl RunProblem for ReentryProblem {
@@ -565,6 +579,9 @@ impl RunProblem for RobustProblem {
     }
     fn reentry(&self) -> &ReentryProblem {
         self.inner()
+    }
+    fn robust(&self) -> Option<&RobustProblem> {
+        Some(self)
     }
 }
 
@@ -602,6 +619,8 @@ struct Ctx<'a, P> {
     problem: &'a P,
     pool: Threads,
     resume: bool,
+    /// A robust run's nominal front to fly in its campaign at the end (`robust.nominal_front`).
+    nominal_front: &'a [Vec<f64>],
 }
 
 fn drive<P, A>(
@@ -693,6 +712,12 @@ where
         .iter()
         .map(|i| ctx.problem.scenario(&i.decision))
         .collect();
+    let members = MemberFlights {
+        analytical: ctx.problem.reentry().analytical(),
+        robust: ctx.problem.robust(),
+        threads: &ctx.pool,
+        nominal_front: ctx.nominal_front,
+    };
     write_final(
         ctx.dir,
         &scenarios,
@@ -700,7 +725,7 @@ where
         &flat::<P>(alg.result()),
         &records,
         &ctx.c.problem.base,
-        ctx.problem.reentry().analytical(),
+        &members,
     )?;
     Ok(Finished {
         last,
