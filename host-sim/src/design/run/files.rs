@@ -92,12 +92,13 @@ fn member_campaign(p: &RobustProblem, sc: &Scenario, threads: usize, dir: &Path)
     let Ok(campaign) = p.campaign(sc) else {
         return;
     };
-    if let Ok(out) = campaign.run(None, Some(threads), false) {
-        // A member whose report cannot be written is left without one, as one whose flight
-        // fails is left out of the trajectories.
-        let _ = std::fs::create_dir_all(dir).map_err(|_| ()).and_then(|()| {
-            write_campaign(dir, campaign.setup(), campaign.settings(), &out).map_err(|_| ())
-        });
+    let Ok(out) = campaign.run(None, Some(threads), false) else {
+        return;
+    };
+    // A member whose report cannot be written is left without one, as one whose flight
+    // fails is left out of the trajectories.
+    if std::fs::create_dir_all(dir).is_ok() {
+        let _ = write_campaign(dir, campaign.setup(), campaign.settings(), &out);
     }
 }
 
@@ -139,16 +140,8 @@ fn write_nominal_comparison(
         v.sort_by(|a, b| a.0.total_cmp(&b.0));
         v
     };
-    let feasible: Vec<Individual<Vec<f64>>> = flown
-        .iter()
-        .filter(|i| i.violation <= 0.0)
-        .cloned()
-        .collect();
-    let infeasible: Vec<Individual<Vec<f64>>> = flown
-        .iter()
-        .filter(|i| i.violation > 0.0)
-        .cloned()
-        .collect();
+    let (feasible, infeasible): (Vec<_>, Vec<_>) =
+        flown.into_iter().partition(|i| i.violation <= 0.0);
     let mut s = vec![series("robust front".into(), points(robust_front))];
     s.push(series(
         "nominal front, flown in the campaign".into(),
