@@ -4,7 +4,7 @@
 //! (`SetupBuilder`) and, at commit, builds a [`crate::replan::ReplanningGuidance`] whose
 //! constructor runs the core's checks on them.
 
-use super::{SetupError, small_int};
+use super::error::{SetupError, small_int};
 use crate::replan::{
     PredictorMode, PredictorModel, RangeTarget, ReplanConfig, ReplanLimits, ReplanningConfig,
     TargetPoint,

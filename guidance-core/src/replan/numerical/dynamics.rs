@@ -8,7 +8,7 @@ use crate::scalar::Real;
 use crate::vinh::nondim::{ExpAtmosphere, VehicleParams, aero_accelerations_m_s2};
 use crate::vinh::num::{k, sin_cos};
 
-use super::{MAX_STEP_S, PHUGOID_STEP_RAD, SPEED_STEP_FRACTION, VERTICAL_STEP_FRACTION};
+use super::steps::{MAX_STEP_S, PHUGOID_STEP_RAD, SPEED_STEP_FRACTION, VERTICAL_STEP_FRACTION};
 
 /// Integrated state.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -104,20 +104,14 @@ use crate::vinh::nondim::{
 use crate::vinh::num::k;
 
 mod dynamics;
+mod steps;
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction, PredictorConfig};
 use crate::vinh::validity::Validity;
 use dynamics::{Model, Node, Rates, Rotation, Y, vertex};
+pub use steps::{MAX_STEP_S, PHUGOID_STEP_RAD, SPEED_STEP_FRACTION, VERTICAL_STEP_FRACTION};
 
 /// Largest number of integration steps of one prediction.
 pub const MAX_STEPS: u16 = 4096;
-/// Largest time step \[s\].
-pub const MAX_STEP_S: f64 = 20.0;
-/// Largest altitude change per step, in density scale heights \[-\].
-pub const VERTICAL_STEP_FRACTION: f64 = 0.5;
-/// Largest relative speed change per step by drag \[-\].
-pub const SPEED_STEP_FRACTION: f64 = 0.05;
-/// Largest phugoid phase per step \[rad\].
-pub const PHUGOID_STEP_RAD: f64 = 0.5;
 /// Integration steps per [`super::ReplanSolver::step`] of a numerical prediction: a converged
 /// SRM glide re-plan then stays within the per-tick instruction budget of the Cortex-M4F with
 /// one solver step per tick (docs/reference/performance.md).
