@@ -106,6 +106,7 @@
 mod annotate;
 mod builtin;
 mod error;
+mod fields;
 pub mod file;
 mod flight;
 mod guidance;

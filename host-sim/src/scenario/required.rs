@@ -5,8 +5,8 @@
 //! key is an error naming the file and the key (`docs/reference/inputs.md`).
 
 use super::ScenarioError;
+use super::fields::Fields;
 use super::file::{InterpolationFile, ScenarioFile};
-use super::resolve::Fields;
 
 /// Why a required key is required, for the message.
 const WHY: &str = "required: a scenario states what it flies (no default)";

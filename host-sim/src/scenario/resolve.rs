@@ -11,8 +11,9 @@ use std::path::Path;
 use crate::num_fmt::compact;
 use crate::toml_input::TomlInputError;
 
+use super::fields::Fields;
 use super::file::{
-    EntryFile, IntegratorFile, MonitorsFile, Num, OutputFile, ScenarioFile, TerminationFile,
+    EntryFile, IntegratorFile, MonitorsFile, OutputFile, ScenarioFile, TerminationFile,
 };
 use super::resolve_environment::{environment, heat_flux};
 use super::resolve_guidance::guidance;
@@ -21,39 +22,6 @@ use crate::sim::config::{
     MAX_EVENT_TIME_TOL_S, MAX_OUTPUT_SAMPLES, MAX_STEPS_LIMIT, MIN_OUTPUT_INTERVAL_S,
 };
 use crate::vehicle;
-
-/// Names the file in errors and range-checks numbers.
-pub(super) struct Fields<'a> {
-    pub(super) file: &'a str,
-}
-
-impl Fields<'_> {
-    /// The error naming this file, `field`, `value` and `reason`.
-    pub(super) fn err(&self, field: &str, value: &str, reason: &str) -> ScenarioError {
-        ScenarioError::Field {
-            file: self.file.to_string(),
-            field: field.to_string(),
-            value: value.to_string(),
-            reason: reason.to_string(),
-        }
-    }
-
-    /// A number of field `field` that must be finite and satisfy `ok`.
-    pub(super) fn checked(
-        &self,
-        field: &str,
-        v: Option<Num>,
-        ok: impl Fn(f64) -> bool,
-        reason: &str,
-    ) -> Result<Option<f64>, ScenarioError> {
-        match v {
-            None => Ok(None),
-            Some(Num(x)) if !x.is_finite() => Err(self.err(field, &compact(x), "must be finite")),
-            Some(Num(x)) if !ok(x) => Err(self.err(field, &compact(x), reason)),
-            Some(Num(x)) => Ok(Some(x)),
-        }
-    }
-}
 
 /// Read the file structs out of TOML text (the one TOML reading path,
 /// [`crate::toml_input`]); errors name the file, the field and the value.

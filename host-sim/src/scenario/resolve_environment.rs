@@ -4,10 +4,10 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use super::fields::Fields;
 use super::file::{
     EnvironmentFile, ExponentialFile, HeatFluxFile, PlanetFile, PlanetPreset, TableFile,
 };
-use super::resolve::Fields;
 use super::{AtmosphereKind, AtmosphereSpec, AtmosphereTable, EnvSpec, Scenario, ScenarioError};
 use crate::env::atmosphere::exponential::R_AIR_J_KG_K;
 use crate::env::atmosphere::us76::GAMMA_AIR;

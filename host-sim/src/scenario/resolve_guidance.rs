@@ -2,8 +2,8 @@
 
 use guidance_core::nodes::{HOST_NODE_CAPACITY, Independent};
 
+use super::fields::Fields;
 use super::file::{GuidanceFile, IndependentFile, InterpolationFile, Num};
-use super::resolve::Fields;
 use super::{InterpolationKind, Scenario, ScenarioError, node_to_rad};
 use crate::num_fmt::compact;
 

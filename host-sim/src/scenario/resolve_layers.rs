@@ -8,9 +8,9 @@
 use guidance_core::stack::Layers;
 use serde::Deserialize;
 
+use super::fields::Fields;
 use super::file::Num;
 use super::guidance_layers::{CampaignGuidance, CampaignPredictor};
-use super::resolve::Fields;
 use super::{GuidanceLayers, ScenarioError, TargetSpec, TerminalInterface};
 use crate::campaign::CampaignError;
 

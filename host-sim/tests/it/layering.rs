@@ -1,7 +1,7 @@
 //! The layering rule of host-sim (docs/ARCHITECTURE.md): the library never imports `cli`
 //! (only `cli/` itself and `main.rs` may), `optim/` imports nothing else of host-sim, and the
 //! module graph at every depth (`crate::a::b`, `cli/` included, read by
-//! [`crate::module_graph`]) has no import cycle except the ones listed in [`ALLOWED_CYCLES`].
+//! [`crate::module_graph`]) has no import cycle (none is listed in [`ALLOWED_CYCLES`]).
 
 use std::path::{Path, PathBuf};
 
@@ -117,34 +117,10 @@ fn layering_checker_detects_imports() {
     assert!(!names_cli("let clip = 3;"));
 }
 
-/// Import cycles that exist today, each as the set of modules it joins and why it is still
-/// there. The list only shrinks: a cycle that is gone must be removed from it (the test fails
-/// on a stale entry), and a new cycle, or one that grew, fails the test.
-const ALLOWED_CYCLES: &[(&[&str], &str)] = &[
-    (
-        &[
-            "optim::hypervolume",
-            "optim::hypervolume::hv2d",
-            "optim::hypervolume::hv4d",
-            "optim::hypervolume::wfg",
-        ],
-        "WFG recurses through the dimension dispatch hypervolume_of of the facade, which calls \
-         the 2-D, 4-D and WFG kernels; the kernels share the facade's nonneg. By design of the \
-         recursion.",
-    ),
-    (
-        &[
-            "scenario::file",
-            "scenario::required",
-            "scenario::resolve",
-            "scenario::resolve_environment",
-            "scenario::resolve_guidance",
-            "scenario::resolve_layers",
-        ],
-        "resolve and its per-section resolve_* helpers call each other, and file calls \
-         resolve_layers; the helpers would take their shared context from a leaf module.",
-    ),
-];
+/// Import cycles that are allowed, each as the set of modules it joins and why it cannot be
+/// broken. None is: the list stays (empty) so that a new cycle, or one that grew, fails the
+/// test, and an entry that no longer matches a cycle fails it too.
+const ALLOWED_CYCLES: &[(&[&str], &str)] = &[];
 
 #[test]
 fn module_graph_has_no_cycles_beyond_the_allow_list() {

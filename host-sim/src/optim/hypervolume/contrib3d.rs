@@ -65,7 +65,7 @@ pub(super) fn contributions(pts: &[f64], r: &[f64]) -> Vec<f64> {
     sweep.finish(rz);
     let mut out = vec![0.0; n];
     for (k, &i) in orig.iter().enumerate() {
-        out[i] = super::nonneg(sweep.acc[k]);
+        out[i] = super::num::nonneg(sweep.acc[k]);
     }
     out
 }

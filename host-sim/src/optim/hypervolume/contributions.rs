@@ -1,7 +1,9 @@
 //! Exclusive contributions (the volume dominated by one point and by no other) and the least
 //! contributor.
 
-use super::{HypervolumeError, contrib3d, finite, hv2d, hypervolume_of, nonneg, prepare, wfg};
+use super::num::nonneg;
+use super::wfg::{self, hypervolume_of};
+use super::{HypervolumeError, contrib3d, finite, hv2d, prepare};
 
 /// The exclusive contribution of each point, in the order given: the hypervolume lost when
 /// that point alone is removed. Points that do not strictly dominate `reference`, weakly

@@ -79,7 +79,7 @@ pub(super) fn contributions(pts: &[f64], r: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; n];
     for (k, &i) in front.iter().enumerate() {
         let rect = (right(k) - pts[2 * i]) * (top(k) - pts[2 * i + 1]);
-        out[i] = super::nonneg(rect - inner[k].1);
+        out[i] = super::num::nonneg(rect - inner[k].1);
     }
     out
 }

@@ -259,7 +259,7 @@ impl Hv4 {
         }
         self.gone.truncate(ng2);
         covered += (rx - last_x) * (ry - last_y);
-        let mut uncovered = super::nonneg((rx - px) * (ry - py) - covered);
+        let mut uncovered = super::num::nonneg((rx - px) * (ry - py) - covered);
         // Above pz: the candidates in z order, up to zcap.
         self.cand_z.clear();
         self.cand_z
@@ -277,7 +277,7 @@ impl Hv4 {
             } else {
                 self.stair.insert(m.rank[j] as usize + 1, y.max(py))
             };
-            uncovered = super::nonneg(uncovered - added);
+            uncovered = super::num::nonneg(uncovered - added);
         }
         vol + (zcap - z_prev) * uncovered
     }

@@ -18,6 +18,10 @@
 //! 5-D and more by WFG slicing the last objective down to the 4-D case. Exclusive
 //! contributions: a sweep in 2-D and a strip sweep in 3-D (both O(n log n)), and
 //! `vol(box) - HV(limit set)` per point otherwise.
+//!
+//! Layout: the dimension dispatch (`hypervolume_of`) lives in `wfg`, the one kernel that
+//! recurses through it, so no kernel imports this facade; the kernels share the clamp of
+//! `num`, a leaf.
 
 mod contrib3d;
 mod contributions;
@@ -25,11 +29,13 @@ mod error;
 mod hv2d;
 mod hv3d;
 mod hv4d;
+mod num;
 mod staircase;
 mod wfg;
 
 pub use contributions::{contributions, least_contributor};
 pub use error::HypervolumeError;
+use wfg::hypervolume_of;
 
 /// The exact hypervolume of `points` with respect to `reference` (minimisation).
 ///
@@ -94,33 +100,11 @@ fn prepare<P: AsRef<[f64]>>(
     Ok((flat, index))
 }
 
-/// `x` clamped at 0 from below (rounding can leave a difference of equal volumes slightly
-/// negative), keeping NaN: a NaN from overflowing intermediates (inf - inf) must reach
-/// [`finite`] and become [`HypervolumeError::Overflow`], which `f64::max` would hide.
-#[inline]
-fn nonneg(x: f64) -> f64 {
-    if x < 0.0 { 0.0 } else { x }
-}
-
 /// A finite result, or [`HypervolumeError::Overflow`].
 fn finite(v: f64) -> Result<f64, HypervolumeError> {
     if v.is_finite() {
         Ok(v)
     } else {
         Err(HypervolumeError::Overflow { value: v })
-    }
-}
-
-/// Hypervolume of the points `pts` (row-major, stride `d = r.len()`), every one strictly
-/// dominating `r`.
-fn hypervolume_of(pts: &[f64], d: usize, r: &[f64]) -> f64 {
-    match (pts.len() / d, d) {
-        (0, _) => 0.0,
-        (1, _) => pts.iter().zip(r).map(|(p, r)| r - p).product(),
-        (_, 1) => r[0] - pts.iter().copied().fold(f64::INFINITY, f64::min),
-        (_, 2) => hv2d::hypervolume(pts, r),
-        (_, 3) => hv3d::hypervolume(pts, r),
-        (_, 4) => hv4d::hypervolume(pts, r),
-        _ => wfg::hypervolume(pts, d, r),
     }
 }

@@ -8,11 +8,32 @@
 //! so far (in the first d-1 coordinates): only those can shape a limit set. Limit sets are
 //! filtered to (nearly) their non-dominated points by [`limit_set`]; a point weakly dominated
 //! by a seen one has no exclusive volume and is skipped.
+//!
+//! The module also holds the dimension dispatch [`hypervolume_of`] (the 1-D to 4-D kernels,
+//! WFG above), which the recursion calls for its limit sets: with it here, no kernel imports
+//! the facade that calls them.
 
 use std::cmp::Ordering;
 
+use super::num::nonneg;
+
+/// Hypervolume of the points `pts` (row-major, stride `d = r.len()`), every one strictly
+/// dominating `r`: the dimension dispatch of the facade and of the exclusive contributions,
+/// called by the WFG recursion for its limit sets (one dimension down).
+pub(super) fn hypervolume_of(pts: &[f64], d: usize, r: &[f64]) -> f64 {
+    match (pts.len() / d, d) {
+        (0, _) => 0.0,
+        (1, _) => pts.iter().zip(r).map(|(p, r)| r - p).product(),
+        (_, 1) => r[0] - pts.iter().copied().fold(f64::INFINITY, f64::min),
+        (_, 2) => super::hv2d::hypervolume(pts, r),
+        (_, 3) => super::hv3d::hypervolume(pts, r),
+        (_, 4) => super::hv4d::hypervolume(pts, r),
+        _ => hypervolume(pts, d, r),
+    }
+}
+
 /// Hypervolume of `n` points (stride `d >= 5`) strictly dominating `r`.
-pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
+fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
     let n = pts.len() / d;
     let dm = d - 1;
     // Worst last coordinate first; ties broken so that a weakly dominating point comes after
@@ -44,9 +65,9 @@ pub(super) fn hypervolume(pts: &[f64], d: usize, r: &[f64]) -> f64 {
         let covered = if dm == 4 && limited.len() > dm {
             hv4.hypervolume(&limited, &rc)
         } else {
-            super::hypervolume_of(&limited, dm, &rc)
+            hypervolume_of(&limited, dm, &rc)
         };
-        total += (r[dm] - p[dm]) * super::nonneg(area - covered);
+        total += (r[dm] - p[dm]) * nonneg(area - covered);
         // p joins the seen set; the seen points it weakly dominates leave it.
         let mut w = 0;
         for (r, &gone) in scratch.dominated.iter().enumerate() {
