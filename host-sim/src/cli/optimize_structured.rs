@@ -6,7 +6,7 @@
 use std::io::Write;
 
 use super::optimize_common::{
-    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, moead_config, reference, threads,
+    OptimizeArgs, OptimizeError, Outcome, reference, run_options, threads,
 };
 use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
 use crate::optim::hypervolume::hypervolume;
@@ -17,13 +17,12 @@ use crate::optim::{
     Algorithm, Budget, Executor, Individual, OptimError, Problem, Scea, SceaConfig, Threads,
 };
 
-pub use super::optimize_common::SceaGenesArg;
-
 fn scea_config(a: &OptimizeArgs) -> SceaConfig {
+    let d = SceaConfig::default();
     SceaConfig {
-        moead: moead_config(a),
-        new_genes: a.scea_genes.new_genes(),
-        ..SceaConfig::default()
+        moead: run_options(a).moead_config(),
+        new_genes: a.scea_genes().unwrap_or(d.new_genes),
+        ..d
     }
 }
 
@@ -87,12 +86,6 @@ pub(super) fn run_variable_length(
     problem: &Vlmop,
     out: &mut dyn Write,
 ) -> Result<(), OptimizeError> {
-    if a.algorithm != AlgorithmName::Scea {
-        return Err(OptimizeError::NeedsFixedLength {
-            algorithm: a.algorithm.as_str(),
-            problem: a.problem.clone(),
-        });
-    }
     let m = problem.objectives();
     let reference = reference(a, m, || problem.reference_point())?;
     let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, &threads(a.threads)?)?;
@@ -108,7 +101,7 @@ pub(super) fn run_variable_length(
     let layout = problem.layout();
     let summary = RunSummary {
         problem: &a.problem,
-        algorithm: a.algorithm.as_str(),
+        algorithm: "scea",
         population: a.population,
         generations: a.generations,
         seed: a.seed,
@@ -127,8 +120,8 @@ pub(super) fn run_variable_length(
         } else {
             "population"
         },
-        archive_capacity: a.archive,
-        resource_allocation: a.resource_allocation,
+        archive_capacity: run_options(a).archive,
+        resource_allocation: run_options(a).resource_allocation,
         moead_operator: None,
         front_size: front.len(),
         wall_time_s,
@@ -146,45 +139,23 @@ pub(super) fn run_variable_length(
 
 #[cfg(test)]
 mod tests {
-    use super::super::optimize_cmd::{WeightsArg, run};
+    use super::super::optimize_cmd::run;
+    use super::super::optimize_common::small_args;
     use super::*;
 
-    fn args(problem: &str, algorithm: AlgorithmName) -> OptimizeArgs {
-        OptimizeArgs {
-            problem: problem.into(),
-            algorithm,
-            population: 20,
-            generations: 10,
-            seed: 3,
-            objectives: 3,
-            weights: WeightsArg::Grid,
-            neighbours: Some(5),
-            mutation_probability: None,
-            batch_size: 1,
-            ker: None,
-            n_gen_mark: 7,
-            mhaco_constraints: super::super::optimize_common::MhacoConstraintsArg::FeasibilityFirst,
-            scea_genes: SceaGenesArg::Population,
-            archive: None,
-            resource_allocation: false,
-            moead_operator: super::super::optimize_cmd::MoeadOperatorArg::De,
-            evaluations: None,
-            threads: 1,
-            reference: None,
-            out: None,
-            config: None,
-            print_config: false,
-            resume: None,
-        }
+    fn args(problem: &str, algorithm: &str) -> OptimizeArgs {
+        let mut a = small_args(problem, algorithm, &[]);
+        a.generations = 10;
+        a
     }
 
     #[test]
     fn optimize_runs_mhaco_and_scea_and_the_variable_length_problems() {
         let mut out = Vec::new();
-        run(&args("zdt1", AlgorithmName::Mhaco), &mut out).unwrap();
-        run(&args("constr", AlgorithmName::Scea), &mut out).unwrap();
+        run(&args("zdt1", "mhaco"), &mut out).unwrap();
+        run(&args("constr", "scea"), &mut out).unwrap();
         let dir = std::env::temp_dir().join(format!("host-sim-optimize-vl-{}", std::process::id()));
-        let mut a = args("vlmop2", AlgorithmName::Scea);
+        let mut a = args("vlmop2", "scea");
         a.out = Some(dir.clone());
         a.threads = 2;
         run(&a, &mut out).unwrap();
@@ -205,9 +176,10 @@ mod tests {
         let truth = json["true_front_hypervolume"].as_f64().unwrap();
         assert!((truth - 0.535).abs() < 1e-12, "{truth}");
         std::fs::remove_dir_all(&dir).unwrap();
-        let e = run(&args("vlmop1", AlgorithmName::Moead), &mut Vec::new()).unwrap_err();
-        assert!(e.to_string().contains("use --algorithm scea"), "{e}");
-        let e = run(&args("vlmop9", AlgorithmName::Scea), &mut Vec::new()).unwrap_err();
+        let e = run(&args("vlmop1", "moead"), &mut Vec::new()).unwrap_err();
+        assert!(matches!(e, OptimizeError::NotForProblem { .. }), "{e}");
+        assert!(e.to_string().contains("use `optimize scea`"), "{e}");
+        let e = run(&args("vlmop9", "scea"), &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("vlmop1, vlmop2"), "{e}");
     }
 }
