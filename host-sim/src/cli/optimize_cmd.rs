@@ -5,7 +5,7 @@
 use std::io::Write;
 
 use crate::optim::problems::TestProblem;
-use crate::optim::run::{RunReport, RunReportError, RunResult, RunSettings, run_report};
+use crate::optim::run::{RunReport, RunResult, RunSettings, run_report};
 use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
 use crate::report::write_run_report;
 
@@ -52,8 +52,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         &problem,
         &settings,
         RunResult::of::<TestProblem, _>(alg, run.wall_time_s),
-    )
-    .map_err(report_error)?;
+    )?;
     finish(a, &report, out)
 }
 
@@ -69,21 +68,6 @@ fn finish(
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())
-}
-
-fn report_error(e: RunReportError) -> OptimizeError {
-    match e {
-        RunReportError::Hypervolume(e) => OptimizeError::Hypervolume(e),
-        RunReportError::Reference {
-            expected,
-            got,
-            values,
-        } => OptimizeError::Reference {
-            expected,
-            got,
-            values,
-        },
-    }
 }
 
 /// SCEA on a fixed-length test problem (chromosomes without tables: real vectors).
@@ -114,7 +98,7 @@ fn run_scea(
         evaluations: outcome.evaluations,
         wall_time_s: outcome.wall_time_s,
     };
-    let report = run_report(problem, &settings, result).map_err(report_error)?;
+    let report = run_report(problem, &settings, result)?;
     finish(a, &report, out)
 }
 
@@ -122,7 +106,7 @@ fn run_scea(
 mod tests {
     use std::path::{Path, PathBuf};
 
-    use super::super::optimize_common::{parse_flags, refused, small_args};
+    use super::super::optimize_variants_tests::{parse_flags, refused, small_args};
     use super::*;
     use crate::optim::ConstraintHandling;
 

@@ -329,6 +329,9 @@ pub enum OptimizeError {
     /// Hypervolume failed.
     #[error("hypervolume: {0}")]
     Hypervolume(#[from] HypervolumeError),
+    /// The run's report could not be made.
+    #[error(transparent)]
+    RunReport(#[from] crate::optim::run::RunReportError),
     /// Output could not be written.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),
@@ -452,47 +455,11 @@ pub(super) fn wants_reentry(a: &OptimizeArgs) -> bool {
         || crate::design::PRESETS.contains(&a.problem.as_str())
 }
 
-/// `optimize` arguments parsed from `flags` (tests).
-#[cfg(test)]
-pub(super) fn parse_flags(flags: &[&str]) -> OptimizeArgs {
-    use clap::Parser;
-    let argv = ["host-sim", "optimize"].iter().chain(flags);
-    match crate::cli::Cli::try_parse_from(argv).unwrap().command {
-        crate::cli::Command::Optimize(a) => a,
-        _ => unreachable!("optimize parses as optimize"),
-    }
-}
-
-/// clap's refusal of `optimize flags` (exit code 2), as text (tests).
-#[cfg(test)]
-pub(super) fn refused(flags: &[&str]) -> String {
-    use clap::Parser;
-    let argv = ["host-sim", "optimize"].iter().chain(flags);
-    let e = crate::cli::Cli::try_parse_from(argv).expect_err("clap refuses");
-    assert_eq!(e.exit_code(), 2, "{e}");
-    e.to_string()
-}
-
-/// `optimize ALGORITHM --problem PROBLEM` with population 20, 5 generations, seed 3 (MOEA/D
-/// and SCEA: 5 neighbours), then `extra` (tests).
-#[cfg(test)]
-pub(super) fn small_args(problem: &str, algorithm: &str, extra: &[&str]) -> OptimizeArgs {
-    let mut v = vec![algorithm, "--problem", problem, "--population", "20"];
-    v.extend(["--generations", "5", "--seed", "3"]);
-    if matches!(algorithm, "moead" | "scea") {
-        v.extend(["--neighbours", "5"]);
-    }
-    v.extend(extra);
-    parse_flags(&v)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn parse(flags: &[&str]) -> OptimizeArgs {
-        parse_flags(flags)
-    }
+    use super::super::optimize_variants_tests::parse_flags as parse;
 
     /// The library's `RunOptions` defaults are the command line's (the Python front end
     /// relies on them), and every flag of every subcommand reaches its field.

@@ -140,7 +140,7 @@ pub(super) fn run_variable_length(
 #[cfg(test)]
 mod tests {
     use super::super::optimize_cmd::run;
-    use super::super::optimize_common::small_args;
+    use super::super::optimize_variants_tests::small_args;
     use super::*;
 
     fn args(problem: &str, algorithm: &str) -> OptimizeArgs {

@@ -1,8 +1,42 @@
 //! `host-sim optimize` with the opt-in MOEA/D variants (`--resource-allocation`,
 //! `--moead-operator sbx`) and the `--evaluations` budget, parsed from real flags.
 
-use super::optimize_cmd::{OptimizeError, run};
-use super::optimize_common::{parse_flags as parse, refused};
+use super::optimize_cmd::{OptimizeArgs, OptimizeError, run};
+
+/// `optimize` arguments parsed from `flags` (tests).
+pub(super) fn parse_flags(flags: &[&str]) -> OptimizeArgs {
+    use clap::Parser;
+    let argv = ["host-sim", "optimize"].iter().chain(flags);
+    match crate::cli::Cli::try_parse_from(argv).unwrap().command {
+        crate::cli::Command::Optimize(a) => a,
+        _ => unreachable!("optimize parses as optimize"),
+    }
+}
+
+/// clap's refusal of `optimize flags` (exit code 2), as text (tests).
+pub(super) fn refused(flags: &[&str]) -> String {
+    use clap::Parser;
+    let argv = ["host-sim", "optimize"].iter().chain(flags);
+    let e = crate::cli::Cli::try_parse_from(argv).expect_err("clap refuses");
+    assert_eq!(e.exit_code(), 2, "{e}");
+    e.to_string()
+}
+
+/// `optimize ALGORITHM --problem PROBLEM` with population 20, 5 generations, seed 3 (MOEA/D
+/// and SCEA: 5 neighbours), then `extra` (tests).
+pub(super) fn small_args(problem: &str, algorithm: &str, extra: &[&str]) -> OptimizeArgs {
+    let mut v = vec![algorithm, "--problem", problem, "--population", "20"];
+    v.extend(["--generations", "5", "--seed", "3"]);
+    if matches!(algorithm, "moead" | "scea") {
+        v.extend(["--neighbours", "5"]);
+    }
+    v.extend(extra);
+    parse_flags(&v)
+}
+
+fn parse(flags: &[&str]) -> OptimizeArgs {
+    parse_flags(flags)
+}
 
 fn summary(flags: &[&str], tag: &str) -> serde_json::Value {
     let dir = std::env::temp_dir().join(format!(
