@@ -10,7 +10,7 @@ use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
 use crate::report::write_run_report;
 
 pub use super::optimize_common::{AlgorithmArgs, OptimizeArgs, OptimizeError};
-use super::optimize_common::{check, generations_to_run, reference, run_options, threads};
+use super::optimize_common::{check, generations_to_run, reference, run_options};
 
 /// Run `optimize` with arguments `a`, printing the summary to `out`.
 ///
@@ -37,9 +37,9 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     let m = problem.objectives();
     let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
-    let pool = threads(a.threads)?;
+    let pool = crate::optim::Threads::new(a.threads)?;
     if a.scea_genes().is_some() {
-        return run_scea(a, &problem, &reference, &pool, out);
+        return super::optimize_structured::run_fixed_length(a, &problem, &reference, pool, out);
     }
     let run = Executor::new(&problem, options.spec().build(a.seed))
         .budget(Budget::Generations(generations))
@@ -57,7 +57,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
 }
 
 /// Print the summary line and, with `--out`, write the run directory.
-fn finish(
+pub(super) fn finish(
     a: &OptimizeArgs,
     report: &RunReport<'_>,
     out: &mut dyn Write,
@@ -68,38 +68,6 @@ fn finish(
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())
-}
-
-/// SCEA on a fixed-length test problem (chromosomes without tables: real vectors).
-fn run_scea(
-    a: &OptimizeArgs,
-    problem: &TestProblem,
-    reference: &[f64],
-    pool: &crate::optim::Threads,
-    out: &mut dyn Write,
-) -> Result<(), OptimizeError> {
-    let outcome = super::optimize_structured::drive_scea(a, problem, pool)?;
-    let options = run_options(a);
-    let settings = RunSettings {
-        problem: &a.problem,
-        algorithm: "scea",
-        population: a.population,
-        generations: a.generations,
-        seed: a.seed,
-        reference,
-        archive_capacity: options.archive,
-        resource_allocation: options.resource_allocation,
-        moead_operator: None,
-        threads: a.threads,
-    };
-    let result = RunResult {
-        population: &outcome.population,
-        archive: outcome.archive.as_deref(),
-        evaluations: outcome.evaluations,
-        wall_time_s: outcome.wall_time_s,
-    };
-    let report = run_report(problem, &settings, result)?;
-    finish(a, &report, out)
 }
 
 #[cfg(test)]
@@ -182,7 +150,7 @@ mod tests {
         assert!(e.to_string().contains("mutation_probability = 1.5"), "{e}");
         let mut a = args("zdt1", "nsga2", None);
         a.threads = 0;
-        assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads)));
+        assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads(_))));
     }
 
     #[test]

@@ -8,12 +8,9 @@
 use std::path::PathBuf;
 
 use super::reference_arg::parse_reference;
-use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
 use crate::optim::spec::{MhacoConstraints, MoeadOperator, OptionsAlgorithm, RunOptions};
-use crate::optim::{
-    Individual, MhacoConfig, NewGenes, OptimError, Threads, ThreadsError, WeightGeneration,
-};
+use crate::optim::{MhacoConfig, NewGenes, OptimError, ThreadsError, WeightGeneration};
 
 /// Arguments of `optimize`: the flags every algorithm takes (`global`: before or after the
 /// subcommand) and the algorithm's subcommand with its own flags.
@@ -295,9 +292,9 @@ pub enum OptimizeError {
         /// What to change.
         why: &'static str,
     },
-    /// `--threads` 0 or above 1024.
-    #[error("command line: --threads: use 1 to 1024")]
-    Threads,
+    /// `--threads` 0 or above 1024, or the pool could not be built.
+    #[error("command line: --threads: {0}")]
+    Threads(#[from] ThreadsError),
     /// `--evaluations` with an algorithm that does not take it, or below the initial
     /// population.
     #[error("command line: --evaluations {evaluations}: {why}")]
@@ -315,20 +312,9 @@ pub enum OptimizeError {
         /// The subcommand given.
         algorithm: &'static str,
     },
-    /// The rayon pool could not be built.
-    #[error("cannot start {threads} evaluation threads: {source}")]
-    Pool {
-        /// Threads asked for.
-        threads: usize,
-        /// Cause.
-        source: rayon::ThreadPoolBuildError,
-    },
     /// The optimiser refused its settings or an evaluation failed.
     #[error("command line: {0}")]
     Optim(#[from] OptimError),
-    /// Hypervolume failed.
-    #[error("hypervolume: {0}")]
-    Hypervolume(#[from] HypervolumeError),
     /// The run's report could not be made.
     #[error(transparent)]
     RunReport(#[from] crate::optim::run::RunReportError),
@@ -341,14 +327,6 @@ pub enum OptimizeError {
     /// A re-entry design run failed.
     #[error(transparent)]
     Reentry(#[from] crate::design::run::ReentryError),
-}
-
-pub(super) struct Outcome {
-    pub(super) population: Vec<Individual<Vec<f64>>>,
-    /// The external archive's members, when the run kept one (the result front).
-    pub(super) archive: Option<Vec<Individual<Vec<f64>>>>,
-    pub(super) evaluations: u64,
-    pub(super) wall_time_s: f64,
 }
 
 /// The checks clap cannot make, in one place: an algorithm subcommand beside a run file
@@ -419,14 +397,6 @@ pub(super) fn generations_to_run(
             evaluations: e,
             why,
         })
-}
-
-/// The evaluation threads for `--threads`.
-pub(super) fn threads(count: usize) -> Result<Threads, OptimizeError> {
-    Threads::new(count).map_err(|e| match e {
-        ThreadsError::Count(_) => OptimizeError::Threads,
-        ThreadsError::Pool { threads, source } => OptimizeError::Pool { threads, source },
-    })
 }
 
 /// The hypervolume reference point: `--ref` when given (checked against the problem's `m`

@@ -8,9 +8,8 @@ use std::path::{Path, PathBuf};
 
 use super::optimize_common::{OptimizeArgs, run_options};
 use super::reference_arg::parse_reference;
-use crate::design::run::{Progress, parse_toml, run as design_run};
+use crate::design::run::{ProgressBar, parse_toml, run as design_run};
 pub use crate::design::run::{ReentryError, ReentryRunConfig, check_run_config};
-use crate::optim::run::Record;
 use crate::optim::spec::MhacoConstraints;
 
 /// The run configuration of flags (a preset `--problem`; the flags it does not take are
@@ -85,53 +84,16 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         .and_then(Path::parent)
         .unwrap_or(Path::new("."))
         .to_path_buf();
-    let mut bar = Bar(None);
-    let done = design_run(&c, &src, &dir, resume, &base_dir, &mut bar)?;
-    if let Some(r) = done.last {
-        writeln!(
-            out,
-            "{} on {}: generation {}, {} evaluations in {:.2} s in this run, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members{}; wrote {}",
-            c.algorithm,
-            c.problem.base,
-            r.generation,
-            r.evaluations,
-            done.wall_time_s,
-            100.0 * r.feasible_fraction,
-            r.hypervolume,
-            c.reference,
-            r.front.len(),
-            c.archive
-                .map_or_else(String::new, |n| format!(" (external archive of {n})")),
-            dir.display()
-        )?;
+    let done = design_run(
+        &c,
+        &src,
+        &dir,
+        resume,
+        &base_dir,
+        &mut ProgressBar::default(),
+    )?;
+    if let Some(line) = done.line(&c, &dir) {
+        writeln!(out, "{line}")?;
     }
     Ok(())
-}
-
-/// The progress bar of a run (hidden when stderr is not a terminal).
-struct Bar(Option<indicatif::ProgressBar>);
-
-impl Progress for Bar {
-    fn start(&mut self, total: u64, done: u64) {
-        let bar = indicatif::ProgressBar::new(total);
-        bar.set_position(done);
-        self.0 = Some(bar);
-    }
-    fn record(&mut self, rec: &Record) {
-        if let Some(bar) = &self.0 {
-            bar.set_position(rec.generation + 1);
-            bar.set_message(format!(
-                "gen {} feasible {:.0} % best f {:?} hv {:.4}",
-                rec.generation,
-                100.0 * rec.feasible_fraction,
-                rec.best,
-                rec.hypervolume
-            ));
-        }
-    }
-    fn finish(&mut self) {
-        if let Some(bar) = &self.0 {
-            bar.finish_and_clear();
-        }
-    }
 }
