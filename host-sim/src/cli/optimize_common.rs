@@ -15,6 +15,7 @@ use crate::optim::{MhacoConfig, NewGenes, OptimError, ThreadsError, WeightGenera
 /// Arguments of `optimize`: the flags every algorithm takes (`global`: before or after the
 /// subcommand) and the algorithm's subcommand with its own flags.
 #[derive(Debug, clap::Args)]
+#[command(next_help_heading = "Common options (before or after the algorithm)")]
 pub struct OptimizeArgs {
     /// The algorithm and its own flags (default: `moead` with its defaults).
     #[command(subcommand)]
