@@ -126,10 +126,11 @@ def test_optimize_refuses_scea(capsys):
     [
         (["nsga2", "--neighbours", "5"], "--neighbours"),
         (["mhaco", "--archive", "5"], "--archive"),
-        (["--ker", "5"], "--ker"),
+        # (argparse would read the value of a flag it does not know as the subcommand.)
+        (["--resource-allocation"], "--resource-allocation"),
         (["moead", "--ker", "5"], "--ker"),
     ],
-    ids=["nsga2-neighbours", "mhaco-archive", "no-subcommand-ker", "moead-ker"],
+    ids=["nsga2-neighbours", "mhaco-archive", "no-subcommand-resource-allocation", "moead-ker"],
 )
 def test_optimize_refuses_a_flag_of_another_algorithm_as_host_sim_does(host_sim, flags, flag, capsys):
     """An algorithm's flags belong to its subcommand: both front ends refuse them elsewhere
