@@ -5,12 +5,11 @@
 use std::io::Write;
 
 use crate::optim::problems::TestProblem;
-use crate::optim::run::{RunReport, RunResult, RunSettings, run_report};
+use crate::optim::run::{RunResult, RunSettings, run_report};
 use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
-use crate::report::write_run_report;
 
 pub use super::optimize_common::{AlgorithmArgs, OptimizeArgs, OptimizeError};
-use super::optimize_common::{check, generations_to_run, reference, run_options};
+use super::optimize_common::{check, finish, generations_to_run, reference, run_options};
 
 /// Run `optimize` with arguments `a`, printing the summary to `out`.
 ///
@@ -54,20 +53,6 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         RunResult::of::<TestProblem, _>(alg, run.wall_time_s),
     )?;
     finish(a, &report, out)
-}
-
-/// Print the summary line and, with `--out`, write the run directory.
-pub(super) fn finish(
-    a: &OptimizeArgs,
-    report: &RunReport<'_>,
-    out: &mut dyn Write,
-) -> Result<(), OptimizeError> {
-    writeln!(out, "{}", report.summary.line())?;
-    if let Some(dir) = &a.out {
-        write_run_report(dir, report)?;
-        writeln!(out, "wrote {}", dir.display())?;
-    }
-    Ok(())
 }
 
 #[cfg(test)]

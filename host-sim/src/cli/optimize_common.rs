@@ -1,9 +1,10 @@
-//! What the `host-sim optimize` runs share, below all of them: the arguments and the errors,
-//! and the flags' mapping onto the library's [`RunOptions`] (the summary and the run
-//! directory are the library's: [`crate::optim::run::run_report`],
-//! [`crate::report::write_optimize_run`]). The test-problem run ([`super::optimize_cmd`]),
-//! the re-entry run ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
-//! module and not each other's arguments, so the four files form no import cycle.
+//! What the `host-sim optimize` runs share, below all of them: the arguments (the common
+//! flags and one subcommand per algorithm holding its own), their mapping onto the library's
+//! [`RunOptions`], the checks clap cannot make ([`check`]), and the errors (the summary and
+//! the run directory are the library's: [`crate::optim::run::run_report`],
+//! [`crate::report::write_run_report`]). The test-problem run ([`super::optimize_cmd`]), the
+//! re-entry run ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`])
+//! import this module and not each other, so the four files form no import cycle.
 
 use std::path::PathBuf;
 
@@ -416,6 +417,20 @@ pub(super) fn reference(
         }),
         None => Ok(default()),
     }
+}
+
+/// Print the summary line and, with `--out`, write the run directory.
+pub(super) fn finish(
+    a: &OptimizeArgs,
+    report: &crate::optim::run::RunReport<'_>,
+    out: &mut dyn std::io::Write,
+) -> Result<(), OptimizeError> {
+    writeln!(out, "{}", report.summary.line())?;
+    if let Some(dir) = &a.out {
+        crate::report::write_run_report(dir, report)?;
+        writeln!(out, "wrote {}", dir.display())?;
+    }
+    Ok(())
 }
 
 /// Whether `optimize` arguments ask for a re-entry run.

@@ -5,7 +5,7 @@
 
 use std::io::Write;
 
-use super::optimize_common::{OptimizeArgs, OptimizeError, reference, run_options};
+use super::optimize_common::{OptimizeArgs, OptimizeError, finish, reference, run_options};
 use crate::optim::chromosome::{FixedLength, StructuredProblem};
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::run::{RunResult, RunSettings, run_report, vlmop_run_report};
@@ -67,7 +67,7 @@ pub(super) fn run_fixed_length(
         wall_time_s,
     };
     let report = run_report(problem, &settings(a, reference), result)?;
-    super::optimize_cmd::finish(a, &report, out)
+    finish(a, &report, out)
 }
 
 /// `optimize` on a variable-length problem (SCEA only).
