@@ -68,7 +68,7 @@ def ours_run(exe, problem, algorithm, pop_size, gens, seed):
     with tempfile.TemporaryDirectory() as d:
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         subprocess.run(
-            [exe, "optimize", "--problem", problem, "--algorithm", algorithm,
+            [exe, "optimize", algorithm, "--problem", problem,
              "--population", str(pop_size), "--generations", str(gens), "--seed", str(seed),
              "--ref", ",".join(map(str, REF)), "--out", d],
             check=True, stdout=subprocess.DEVNULL)

@@ -4,7 +4,7 @@
 ZDT1 with 30 variables, population 100, 250 generations (25,100 evaluations), seeds 1..10,
 single thread: wall time per run and the hypervolume of the final non-dominated set w.r.t.
 (1.1, 1.1) (true front 0.8767). pygmo runs with its defaults (ker 63, q 1, threshold 1,
-n_gen_mark 7) and with n_gen_mark 15; host-sim runs `host-sim optimize --algorithm mhaco`
+n_gen_mark 7) and with n_gen_mark 15; host-sim runs `host-sim optimize mhaco`
 (pagmo's defaults) and reports the wall time of the evolution alone from summary.json.
 The criterion bench (`cargo bench -p host-sim --bench optim -- mhaco`) times both settings
 of ours without process start-up.
@@ -55,7 +55,7 @@ def run_pygmo(seed, n_gen_mark):
 def run_host_sim(binary, seed):
     with tempfile.TemporaryDirectory() as out:
         subprocess.run(
-            [binary, "optimize", "--problem", "zdt1", "--algorithm", "mhaco",
+            [binary, "optimize", "mhaco", "--problem", "zdt1",
              "--population", str(POPULATION), "--generations", str(GENERATIONS),
              "--seed", str(seed), "--out", out],
             check=True, capture_output=True)

@@ -1,6 +1,6 @@
 """Hypervolume of `host-sim optimize` over many seeds (standard library only; not part of CI).
 
-Runs `host-sim optimize --problem P --algorithm A --seed S [extra flags] --out DIR` for seeds
+Runs `host-sim optimize A --problem P --seed S [extra flags] --out DIR` for seeds
 1..N (--first-seed F: F..F+N-1) and reads each run's summary.json (hypervolume of the reported
 front, its source: population or archive; evaluations). Prints the median over the first ten
 seeds, and the median, quartiles, mean, min, max over all N seeds, the evaluations per run, and
@@ -25,7 +25,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--host-sim", default=os.path.join(os.path.dirname(__file__), "..", "target", "release", "host-sim"))
     ap.add_argument("--problem", default="zdt1")
-    ap.add_argument("--algorithm", default="moead")
+    ap.add_argument("--algorithm", default="moead", help="host-sim optimize's subcommand (default moead); the extra flags are its own or the common ones")
     ap.add_argument("--seeds", type=int, default=100)
     ap.add_argument("--first-seed", type=int, default=1, help="seeds first..first+N-1 (default 1)")
     ap.add_argument("--goal", type=float, default=None)
@@ -36,7 +36,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for seed in range(a.first_seed, a.first_seed + a.seeds):
             out = os.path.join(tmp, f"s{seed}")
-            subprocess.run([a.host_sim, "optimize", "--problem", a.problem, "--algorithm", a.algorithm,
+            subprocess.run([a.host_sim, "optimize", a.algorithm, "--problem", a.problem,
                             "--seed", str(seed), "--out", out, *a.extra],
                            check=True, stdout=subprocess.DEVNULL)
             with open(os.path.join(out, "summary.json")) as f:

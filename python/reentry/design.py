@@ -90,7 +90,7 @@ class DesignProblem(PygmoMethods, _native.DesignProblem):
 
 class VariableDesignProblem(PygmoMethods, _native.VariableDesignProblem):
     """The variable-length re-entry design problem (host-sim ``design::VariableReentry``,
-    what ``host-sim optimize --algorithm scea`` solves): ``nodes = (min, max)`` table nodes,
+    what ``host-sim optimize scea`` solves): ``nodes = (min, max)`` table nodes,
     fixed end nodes included (default 4 to the encoding's 8).
 
     Chromosome view: :meth:`evaluate_chromosome` ``(nodes, altitude_km)`` with 2 to 6 free

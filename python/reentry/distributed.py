@@ -386,7 +386,8 @@ _OPTION_FLAGS = (
 
 
 def _options(a) -> Dict[str, Any]:
-    return {k: getattr(a, k) for k in _OPTION_FLAGS if getattr(a, k) is not None}
+    # An algorithm's subcommand holds only its own flags: the others are absent.
+    return {k: getattr(a, k) for k in _OPTION_FLAGS if getattr(a, k, None) is not None}
 
 
 def _problem(a):
@@ -659,97 +660,117 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     p = argparse.ArgumentParser(prog="reentry-dask", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
 
-    def dashboard(sp):
+    def dashboard(sp, d=lambda v: v):
         sp.add_argument(
             "--dashboard",
             metavar="ADDRESS",
-            default=None,
+            default=d(None),
             help="with a LocalCluster: its Dask dashboard at ADDRESS (':0' a free port, ':8787'); "
             "default: no dashboard and no fixed port",
         )
 
-    def where(sp):
+    def where(sp, d=lambda v: v):
+        # d: the defaults (optimize's algorithm subcommands: none, see optimize_common).
         g = sp.add_mutually_exclusive_group()
-        g.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://10.0.0.1:8786")
-        g.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (default 2)")
-        g.add_argument("--local", action="store_true", help="no Dask: evaluate in this process")
-        sp.add_argument("--chunk-size", type=int, default=None, help="items per Dask task (default: about 2 tasks per worker)")
-        dashboard(sp)
+        g.add_argument("--scheduler", default=d(None), help="Dask scheduler address, e.g. tcp://10.0.0.1:8786")
+        g.add_argument("--workers", type=int, default=d(2), help="LocalCluster worker processes (default 2)")
+        g.add_argument("--local", action="store_true", default=d(False), help="no Dask: evaluate in this process")
+        sp.add_argument("--chunk-size", type=int, default=d(None), help="items per Dask task (default: about 2 tasks per worker)")
+        dashboard(sp, d)
+
+    def optimize_common(sp, top: bool):
+        # host-sim optimize's global flags, on `optimize` (top) and again on each algorithm's
+        # subcommand so they may follow it; there without defaults (argparse.SUPPRESS), which
+        # would overwrite the values given before the subcommand.
+        d = (lambda v: v) if top else (lambda v: argparse.SUPPRESS)
+        sp.add_argument(
+            "--problem", default=d("zdt1"),
+            help="a test problem (zdt1, dtlz2, constr, ...) or a design preset (horus-2b, srm, "
+            "srm-altitude; the reference point default [0, 2, 10, ...], no true front)",
+        )
+        sp.add_argument("--objectives", type=int, default=d(3), help="objectives of a DTLZ problem (default 3)")
+        sp.add_argument("--population", type=int, default=d(None), help="population size (default 100)")
+        gens = sp.add_mutually_exclusive_group()
+        gens.add_argument(
+            "--generations", type=int, default=d(250), help="generations after the initial population (default 250)"
+        )
+        gens.add_argument(
+            "--evaluations", type=int, default=d(None), metavar="E",
+            help="moead and nsga2: budget in evaluations, initial population included, instead "
+            "of --generations (the fewest whole generations that reach it)",
+        )
+        sp.add_argument("--seed", type=int, default=d(1), help="seed of the run (default 1)")
+        sp.add_argument(
+            "--ref", type=lambda s: [float(x) for x in s.split(",")], default=d(None), metavar="R1,R2,...",
+            help="hypervolume reference point (default: the problem's)",
+        )
+        sp.add_argument("--out", metavar="DIR", default=d(None), help="write population.csv, front.csv and summary.json here")
+        where(sp, d)
 
     o = sub.add_parser(
         "optimize",
-        help="host-sim optimize on a test or design problem (MOEA/D, NSGA-II, MHACO), batches "
-        "evaluated on Dask; the same flags, defaults and --out files",
-        description="host-sim optimize's flags, defaults and run directory (population.csv, "
-        "front.csv, summary.json, written by host-sim) with each batch of decisions evaluated on "
-        "Dask; the run equals host-sim optimize's bit for bit. MOEA/D asks --batch-size "
-        "decisions at a time (default 1, pagmo's steady state): use --batch-size > 1 (e.g. the "
-        "population) to spread its evaluations over the workers. SCEA is not offered here "
-        "(host-sim optimize --algorithm scea).",
+        help="host-sim optimize on a test or design problem (moead, nsga2, mhaco), batches "
+        "evaluated on Dask; the same subcommands, flags, defaults and --out files",
+        description="host-sim optimize's subcommands (the algorithm, default moead), flags, "
+        "defaults and run directory (population.csv, front.csv, summary.json, written by "
+        "host-sim) with each batch of decisions evaluated on Dask; the run equals host-sim "
+        "optimize's bit for bit. MOEA/D asks --batch-size decisions at a time (default 1, "
+        "pagmo's steady state): use --batch-size > 1 (e.g. the population) to spread its "
+        "evaluations over the workers. SCEA is not offered here (host-sim optimize scea).",
     )
-    o.add_argument(
-        "--problem", default="zdt1",
-        help="a test problem (zdt1, dtlz2, constr, ...) or a design preset (horus-2b, srm, "
-        "srm-altitude; the reference point default [0, 2, 10, ...], no true front)",
+    optimize_common(o, True)
+    algorithms = o.add_subparsers(
+        dest="algorithm", metavar="{moead,nsga2,mhaco}",
+        help="the algorithm and its own flags (default: moead with its defaults; SCEA: host-sim optimize scea)",
     )
-    o.add_argument("--objectives", type=int, default=3, help="objectives of a DTLZ problem (default 3)")
-    o.add_argument(
-        "--algorithm", choices=["moead", "nsga2", "mhaco"], default=None,
-        help="default moead (SCEA: host-sim optimize --algorithm scea)",
-    )
-    o.add_argument("--population", type=int, default=None, help="population size (default 100)")
-    gens = o.add_mutually_exclusive_group()
-    gens.add_argument(
-        "--generations", type=int, default=250, help="generations after the initial population (default 250)"
-    )
-    gens.add_argument(
-        "--evaluations", type=int, default=None, metavar="E",
-        help="MOEA/D and NSGA-II: budget in evaluations, initial population included, instead of "
-        "--generations (the fewest whole generations that reach it)",
-    )
-    o.add_argument("--seed", type=int, default=1, help="seed of the run (default 1)")
-    o.add_argument(
+
+    def algorithm(name, help):
+        sp = algorithms.add_parser(name, help=help, description=help)
+        optimize_common(sp, False)
+        return sp
+
+    def archive(sp, who):
+        sp.add_argument(
+            "--archive", type=int, default=None, metavar="N",
+            help=f"{who}: external archive of at most N feasible non-dominated solutions; "
+            "the front written and scored is then the archive's (default none)",
+        )
+
+    m = algorithm("moead", "MOEA/D (pagmo semantics)")
+    m.add_argument(
         "--weights", choices=["grid", "low-discrepancy", "random"], default=None,
-        help="MOEA/D weight generation (default grid)",
+        help="weight generation (default grid)",
     )
-    o.add_argument(
+    m.add_argument(
         "--neighbours", type=int, default=None,
-        help="MOEA/D neighbourhood size (default 20, or population - 1 for populations of 20 or less)",
+        help="neighbourhood size (default 20, or population - 1 for populations of 20 or less)",
     )
-    o.add_argument(
+    m.add_argument(
         "--mutation-probability", type=float, default=None, metavar="P",
-        help="MOEA/D per-variable mutation probability (default 1/variables)",
+        help="per-variable mutation probability (default 1/variables)",
     )
-    o.add_argument(
+    m.add_argument(
         "--batch-size", type=int, default=None,
-        help="MOEA/D offspring per ask (default 1: pagmo's steady state, one decision per batch, "
+        help="offspring per ask (default 1: pagmo's steady state, one decision per batch, "
         "so no two evaluations run at once; use > 1 to spread them over the Dask workers)",
     )
-    o.add_argument(
-        "--archive", type=int, default=None, metavar="N",
-        help="MOEA/D and NSGA-II: external archive of at most N feasible non-dominated solutions; "
-        "the front written and scored is then the archive's (default none)",
-    )
-    o.add_argument(
+    archive(m, "MOEA/D")
+    m.add_argument(
         "--resource-allocation", action="store_const", const=True, default=None,
-        help="MOEA/D: MOEA/D-DRA's dynamic resource allocation (default off)",
+        help="MOEA/D-DRA's dynamic resource allocation (default off)",
     )
-    o.add_argument(
+    m.add_argument(
         "--moead-operator", choices=["de", "sbx"], default=None,
-        help="MOEA/D variation: de (pagmo's MOEA/D-DE, default) or sbx (Zhang & Li 2007)",
+        help="variation: de (pagmo's MOEA/D-DE, default) or sbx (Zhang & Li 2007)",
     )
-    o.add_argument("--ker", type=int, default=None, metavar="K", help="MHACO archive size (default min(63, population))")
-    o.add_argument("--n-gen-mark", type=int, default=None, metavar="G", help="MHACO n_gen_mark (default 7)")
-    o.add_argument(
+    archive(algorithm("nsga2", "NSGA-II (pagmo semantics)"), "NSGA-II")
+    h = algorithm("mhaco", "MHACO (pagmo's maco)")
+    h.add_argument("--ker", type=int, default=None, metavar="K", help="solution archive size (default min(63, population))")
+    h.add_argument("--n-gen-mark", type=int, default=None, metavar="G", help="n_gen_mark (default 7)")
+    h.add_argument(
         "--mhaco-constraints", choices=["feasibility-first", "objectives"], default=None,
-        help="MHACO constraint handling (default feasibility-first)",
+        help="constraint handling (default feasibility-first)",
     )
-    o.add_argument(
-        "--ref", type=lambda s: [float(x) for x in s.split(",")], default=None, metavar="R1,R2,...",
-        help="hypervolume reference point (default: the problem's)",
-    )
-    o.add_argument("--out", metavar="DIR", help="write population.csv, front.csv and summary.json here")
-    where(o)
     o.set_defaults(run=_cmd_optimize)
 
     def dispersion_args(sp, cases: bool):

@@ -243,7 +243,7 @@ impl PyVariableDesignProblem {
 impl PyVariableDesignProblem {
     /// The variable-length problem of a preset, TOML text or file (as `DesignProblem`) with
     /// `nodes = (min, max)` table nodes, fixed ends included (default: 4 to the encoding's
-    /// node count, as `host-sim optimize --algorithm scea`).
+    /// node count, as `host-sim optimize scea`).
     #[new]
     #[pyo3(signature = (preset=None, *, toml=None, path=None, base_dir=None, nodes=None))]
     fn new(

@@ -66,7 +66,7 @@ def test_command_line_optimize_on_its_own_local_cluster_equals_the_local_run(tmp
     from reentry.distributed import main
 
     args = [
-        "optimize", "--problem", "constr", "--algorithm", "nsga2", "--population", "24",
+        "optimize", "--problem", "constr", "nsga2", "--population", "24",
         "--generations", "3", "--seed", "9",
     ]
     assert main(args + ["--local", "--out", str(tmp_path / "local")]) == 0

@@ -15,21 +15,21 @@ CASES = {
     # MOEA/D with a population of 20 needs --neighbours below 20; batches of the population
     # spread over the workers.
     "moead-zdt1": [
-        "--problem", "zdt1", "--algorithm", "moead", "--population", "20", "--neighbours", "5",
+        "--problem", "zdt1", "moead", "--population", "20", "--neighbours", "5",
         "--batch-size", "20", "--generations", "4", "--seed", "3",
     ],
     "nsga2-constr-archive": [
-        "--problem", "constr", "--algorithm", "nsga2", "--population", "24", "--archive", "12",
+        "--problem", "constr", "nsga2", "--population", "24", "--archive", "12",
         "--generations", "4", "--seed", "5",
     ],
     "moead-sbx-dtlz2-dra": [
-        "--problem", "dtlz2", "--objectives", "3", "--population", "16", "--weights",
+        "--problem", "dtlz2", "--objectives", "3", "moead", "--population", "16", "--weights",
         "low-discrepancy", "--moead-operator", "sbx", "--mutation-probability", "0.1",
         "--batch-size", "4", "--resource-allocation", "--evaluations", "60", "--ref", "2,2,2",
         "--archive", "8",
     ],
     "mhaco-constr": [
-        "--problem", "constr", "--algorithm", "mhaco", "--population", "20", "--ker", "10",
+        "--problem", "constr", "mhaco", "--population", "20", "--ker", "10",
         "--n-gen-mark", "3", "--mhaco-constraints", "objectives", "--generations", "5",
         "--seed", "2",
     ],
@@ -96,11 +96,11 @@ def test_optimize_defaults_are_host_sims(host_sim, tmp_path):
 @pytest.mark.parametrize(
     "flags",
     [
-        ["--population", "20", "--neighbours", "25"],
-        ["--population", "20", "--batch-size", "21"],
-        ["--population", "20", "--mutation-probability", "1.5"],
-        ["--algorithm", "nsga2", "--population", "22"],
-        ["--algorithm", "mhaco", "--population", "20", "--ker", "21"],
+        ["moead", "--population", "20", "--neighbours", "25"],
+        ["moead", "--population", "20", "--batch-size", "21"],
+        ["moead", "--population", "20", "--mutation-probability", "1.5"],
+        ["nsga2", "--population", "22"],
+        ["mhaco", "--population", "20", "--ker", "21"],
     ],
     ids=["neighbours", "batch-size", "mutation-probability", "nsga2-population", "ker"],
 )
@@ -117,5 +117,40 @@ def test_optimize_bad_values_give_the_librarys_message(host_sim, flags, capsys):
 
 def test_optimize_refuses_scea(capsys):
     with pytest.raises(SystemExit):
-        main(["optimize", "--algorithm", "scea", "--local"])
+        main(["optimize", "scea", "--local"])
     assert "invalid choice: 'scea'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "flags, flag",
+    [
+        (["nsga2", "--neighbours", "5"], "--neighbours"),
+        (["mhaco", "--archive", "5"], "--archive"),
+        # (argparse would read the value of a flag it does not know as the subcommand.)
+        (["--resource-allocation"], "--resource-allocation"),
+        (["moead", "--ker", "5"], "--ker"),
+    ],
+    ids=["nsga2-neighbours", "mhaco-archive", "no-subcommand-resource-allocation", "moead-ker"],
+)
+def test_optimize_refuses_a_flag_of_another_algorithm_as_host_sim_does(host_sim, flags, flag, capsys):
+    """An algorithm's flags belong to its subcommand: both front ends refuse them elsewhere
+    (usage error, exit code 2), naming the flag."""
+    args = ["--problem", "zdt1", "--generations", "1", *flags]
+    hs = host_sim("optimize", *args, check=False)
+    assert hs.returncode == 2 and flag in hs.stderr, hs.stderr
+    with pytest.raises(SystemExit) as e:
+        main(["optimize", *args, "--local"])
+    assert e.value.code == 2
+    assert flag in capsys.readouterr().err
+
+
+def test_optimize_common_flags_before_or_after_the_subcommand(tmp_path):
+    """The common flags may follow the subcommand; given before it, the subcommand's parser
+    keeps them (it sets no defaults of its own)."""
+    before = ["--problem", "constr", "--seed", "4", "--population", "24", "--generations", "2", "nsga2"]
+    after = ["nsga2", "--problem", "constr", "--seed", "4", "--population", "24", "--generations", "2"]
+    for name, args in (("before", before), ("after", after)):
+        assert main(["optimize", *args, "--local", "--out", str(tmp_path / name)]) == 0
+    a, b = _read(tmp_path / "before"), _read(tmp_path / "after")
+    assert a[:2] == b[:2]
+    assert (a[2]["algorithm"], a[2]["seed"], a[2]["population"], a[2]["generations"]) == ("nsga2", 4, 24, 2)

@@ -24,7 +24,7 @@ def read_population(path):
 
 def test_nsga2_on_design_problem_equals_host_sim_optimize(host_sim, tmp_path):
     host_sim(
-        "optimize", "--problem", "srm", "--algorithm", "nsga2", "--population", "8",
+        "optimize", "--problem", "srm", "nsga2", "--population", "8",
         "--generations", "1", "--seed", "5", "--threads", "1", "--out", tmp_path,
     )
     head, rows = read_population(tmp_path / "population.csv")
@@ -42,7 +42,7 @@ def test_nsga2_on_design_problem_equals_host_sim_optimize(host_sim, tmp_path):
 
 def test_variable_length_problem_equals_host_sim_scea_population(host_sim, tmp_path):
     host_sim(
-        "optimize", "--problem", "srm", "--algorithm", "scea", "--population", "8",
+        "optimize", "--problem", "srm", "scea", "--population", "8",
         "--generations", "1", "--seed", "7", "--neighbours", "4", "--threads", "1", "--out", tmp_path,
     )
     head, rows = read_population(tmp_path / "population.csv")

@@ -66,7 +66,7 @@ def test_shuffled_tells_give_the_same_run():
 
 def test_equals_host_sim_optimize_population_csv(host_sim, tmp_path):
     host_sim(
-        "optimize", "--problem", "zdt2", "--algorithm", "nsga2", "--population", "20",
+        "optimize", "--problem", "zdt2", "nsga2", "--population", "20",
         "--generations", "6", "--seed", "9", "--out", tmp_path,
     )
     rows = (tmp_path / "population.csv").read_text().splitlines()[1:]
@@ -80,7 +80,7 @@ def test_equals_host_sim_optimize_population_csv(host_sim, tmp_path):
 
 def test_moead_sbx_equals_host_sim_optimize_moead_operator_sbx(host_sim, tmp_path):
     host_sim(
-        "optimize", "--problem", "zdt1", "--algorithm", "moead", "--moead-operator", "sbx",
+        "optimize", "--problem", "zdt1", "moead", "--moead-operator", "sbx",
         "--population", "20", "--generations", "6", "--seed", "9", "--out", tmp_path,
     )
     rows = (tmp_path / "population.csv").read_text().splitlines()[1:]

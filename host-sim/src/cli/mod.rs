@@ -33,7 +33,8 @@ pub use compare_cmd::{CliPhase, CompareCliArgs, EnvArg};
 pub use dispersions_cmd::DispersionsArgs;
 pub use error::{CliError, HypervolumeCmdError};
 pub use hypervolume_cmd::HypervolumeArgs;
-pub use optimize_cmd::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
+pub use optimize_cmd::{AlgorithmArgs, OptimizeArgs, OptimizeError};
+pub use optimize_common::{DecompositionArgs, MhacoArgs, MoeadArgs, Nsga2Args, SceaArgs};
 pub use optimize_reentry::{ReentryError, ReentryRunConfig, check_run_config};
 pub use sample_cmd::SampleArgs;
 pub use simulate_cmd::SimulateArgs;
@@ -60,8 +61,9 @@ pub enum Command {
     /// Analytical (Vinh closed forms) against numerical simulation over a grid of entry
     /// altitude or speed x vertical lift coefficient (thesis fig. 8.5): grid.csv + SVG heat maps.
     Compare(CompareCliArgs),
-    /// Multi-objective optimiser on a test problem (ZDT, DTLZ, CONSTR): summary, and with
-    /// --out the final population, front CSV and summary JSON.
+    /// Multi-objective optimiser (subcommand: the algorithm, default moead) on a test
+    /// problem (ZDT, DTLZ, CONSTR, VLMOP) or a re-entry design preset: summary, and with
+    /// --out the final population, front CSV and summary JSON (re-entry: a run directory).
     Optimize(OptimizeArgs),
     /// Exact hypervolume of a front CSV (minimised objectives as columns) for a reference point.
     Hypervolume(HypervolumeArgs),

@@ -5,49 +5,19 @@
 use std::io::Write;
 
 use crate::optim::problems::TestProblem;
-use crate::optim::run::{RunReport, RunReportError, RunResult, RunSettings, run_report};
+use crate::optim::run::{RunResult, RunSettings, run_report};
 use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
-use crate::report::write_run_report;
 
-#[cfg(test)]
-pub use super::optimize_common::MoeadOperatorArg;
-#[cfg(test)]
-use super::optimize_common::mhaco_config;
-pub use super::optimize_common::{AlgorithmName, OptimizeArgs, OptimizeError, WeightsArg};
-use super::optimize_common::{
-    check_archive, check_resource_allocation, generations_to_run, reference, run_options, threads,
-};
+pub use super::optimize_common::{AlgorithmArgs, OptimizeArgs, OptimizeError};
+use super::optimize_common::{check, finish, generations_to_run, reference, run_options};
 
 /// Run `optimize` with arguments `a`, printing the summary to `out`.
 ///
 /// # Errors
 /// [`OptimizeError`].
 pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
-    // A config file or a resumed run decides its own algorithm and gene source.
-    if a.scea_genes == super::optimize_structured::SceaGenesArg::Random
-        && a.algorithm != AlgorithmName::Scea
-        && a.config.is_none()
-        && a.resume.is_none()
-    {
-        return Err(OptimizeError::SceaGenesWithoutScea {
-            algorithm: a.algorithm_name(),
-        });
-    }
-    check_archive(a)?;
-    check_resource_allocation(a)?;
-    if let Some(evaluations) = a.evaluations {
-        let fixed = matches!(a.algorithm, AlgorithmName::Moead | AlgorithmName::Nsga2);
-        if !fixed || super::optimize_common::wants_reentry(a) {
-            return Err(OptimizeError::Evaluations {
-                evaluations,
-                why: format!(
-                    "applies to --algorithm moead or nsga2 on the test problems (given --algorithm {} --problem {}); use --generations",
-                    a.algorithm_name(),
-                    a.problem
-                ),
-            });
-        }
-    }
+    let options = run_options(a);
+    check(a, &options)?;
     if super::optimize_common::wants_reentry(a) {
         return Ok(super::optimize_reentry::run(a, out)?);
     }
@@ -66,11 +36,11 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     let m = problem.objectives();
     let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
-    let pool = threads(a.threads)?;
-    if a.algorithm == AlgorithmName::Scea {
-        return run_scea(a, &problem, &reference, &pool, out);
+    let pool = crate::optim::Threads::new(a.threads)?;
+    if a.scea_genes().is_some() {
+        return super::optimize_structured::run_fixed_length(a, &problem, &reference, pool, out);
     }
-    let run = Executor::new(&problem, run_options(a).spec().build(a.seed))
+    let run = Executor::new(&problem, options.spec().build(a.seed))
         .budget(Budget::Generations(generations))
         .threads(pool)
         .run()?;
@@ -81,68 +51,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         &problem,
         &settings,
         RunResult::of::<TestProblem, _>(alg, run.wall_time_s),
-    )
-    .map_err(report_error)?;
-    finish(a, &report, out)
-}
-
-/// Print the summary line and, with `--out`, write the run directory.
-fn finish(
-    a: &OptimizeArgs,
-    report: &RunReport<'_>,
-    out: &mut dyn Write,
-) -> Result<(), OptimizeError> {
-    writeln!(out, "{}", report.summary.line())?;
-    if let Some(dir) = &a.out {
-        write_run_report(dir, report)?;
-        writeln!(out, "wrote {}", dir.display())?;
-    }
-    Ok(())
-}
-
-fn report_error(e: RunReportError) -> OptimizeError {
-    match e {
-        RunReportError::Hypervolume(e) => OptimizeError::Hypervolume(e),
-        RunReportError::Reference {
-            expected,
-            got,
-            values,
-        } => OptimizeError::Reference {
-            expected,
-            got,
-            values,
-        },
-    }
-}
-
-/// SCEA on a fixed-length test problem (chromosomes without tables: real vectors).
-fn run_scea(
-    a: &OptimizeArgs,
-    problem: &TestProblem,
-    reference: &[f64],
-    pool: &crate::optim::Threads,
-    out: &mut dyn Write,
-) -> Result<(), OptimizeError> {
-    let outcome = super::optimize_structured::drive_scea(a, problem, pool)?;
-    let settings = RunSettings {
-        problem: &a.problem,
-        algorithm: a.algorithm.as_str(),
-        population: a.population,
-        generations: a.generations,
-        seed: a.seed,
-        reference,
-        archive_capacity: a.archive,
-        resource_allocation: a.resource_allocation,
-        moead_operator: None,
-        threads: a.threads,
-    };
-    let result = RunResult {
-        population: &outcome.population,
-        archive: outcome.archive.as_deref(),
-        evaluations: outcome.evaluations,
-        wall_time_s: outcome.wall_time_s,
-    };
-    let report = run_report(problem, &settings, result).map_err(report_error)?;
+    )?;
     finish(a, &report, out)
 }
 
@@ -150,44 +59,25 @@ fn run_scea(
 mod tests {
     use std::path::{Path, PathBuf};
 
-    use super::super::optimize_common::MhacoConstraintsArg;
+    use super::super::optimize_variants_tests::{parse_flags, refused, small_args};
     use super::*;
     use crate::optim::ConstraintHandling;
 
-    fn args(problem: &str, algorithm: AlgorithmName, out: Option<PathBuf>) -> OptimizeArgs {
-        OptimizeArgs {
-            problem: problem.into(),
-            algorithm,
-            population: 20,
-            generations: 5,
-            seed: 3,
-            objectives: 3,
-            weights: WeightsArg::Grid,
-            neighbours: Some(5),
-            mutation_probability: None,
-            batch_size: 1,
-            ker: None,
-            n_gen_mark: 7,
-            mhaco_constraints: MhacoConstraintsArg::FeasibilityFirst,
-            scea_genes: super::super::optimize_structured::SceaGenesArg::Population,
-            archive: None,
-            resource_allocation: false,
-            moead_operator: MoeadOperatorArg::De,
-            evaluations: None,
-            threads: 1,
-            reference: None,
-            out,
-            config: None,
-            print_config: false,
-            resume: None,
-        }
+    fn args(problem: &str, algorithm: &str, out: Option<PathBuf>) -> OptimizeArgs {
+        let mut a = small_args(problem, algorithm, &[]);
+        a.out = out;
+        a
+    }
+
+    fn with(problem: &str, algorithm: &str, extra: &[&str]) -> OptimizeArgs {
+        small_args(problem, algorithm, extra)
     }
 
     #[test]
     fn optimize_writes_population_front_and_summary() {
         let dir = std::env::temp_dir().join(format!("host-sim-optimize-{}", std::process::id()));
         let mut out = Vec::new();
-        let mut a = args("zdt1", AlgorithmName::Nsga2, Some(dir.clone()));
+        let mut a = args("zdt1", "nsga2", Some(dir.clone()));
         a.generations = 60;
         run(&a, &mut out).unwrap();
         let text = String::from_utf8(out).unwrap();
@@ -210,14 +100,14 @@ mod tests {
     #[test]
     fn optimize_bad_input_says_what_to_change() {
         let mut out = Vec::new();
-        let e = run(&args("zdt5", AlgorithmName::Moead, None), &mut out).unwrap_err();
+        let e = run(&args("zdt5", "moead", None), &mut out).unwrap_err();
         assert!(e.to_string().contains("--problem zdt5: unknown"), "{e}");
-        let e = run(&args("dtlz2", AlgorithmName::Moead, None), &mut out).unwrap_err();
+        let e = run(&args("dtlz2", "moead", None), &mut out).unwrap_err();
         assert!(
             e.to_string().contains("nearest legal sizes are 15 and 21"),
             "{e}"
         );
-        let mut a = args("zdt1", AlgorithmName::Moead, None);
+        let mut a = args("zdt1", "moead", None);
         a.reference = Some("1".into());
         let e = run(&a, &mut out).unwrap_err();
         assert!(e.to_string().contains("--ref has 1 values"), "{e}");
@@ -229,25 +119,23 @@ mod tests {
                 .contains("--ref \"1,nan\": coordinate 2: must be finite"),
             "{e}"
         );
-        let mut a = args("zdt1", AlgorithmName::Nsga2, None);
+        let mut a = args("zdt1", "nsga2", None);
         a.population = 22;
         let e = run(&a, &mut out).unwrap_err();
         assert!(e.to_string().contains("use 20 or 24"), "{e}");
-        let mut a = args("zdt1", AlgorithmName::Moead, None);
-        a.batch_size = 21;
+        let a = with("zdt1", "moead", &["--batch-size", "21"]);
         let e = run(&a, &mut out).unwrap_err();
         assert!(
             e.to_string()
                 .contains("batch_size = 21 is outside [1, population]"),
             "{e}"
         );
-        let mut a = args("zdt1", AlgorithmName::Moead, None);
-        a.mutation_probability = Some(1.5);
+        let a = with("zdt1", "moead", &["--mutation-probability", "1.5"]);
         let e = run(&a, &mut out).unwrap_err();
         assert!(e.to_string().contains("mutation_probability = 1.5"), "{e}");
-        let mut a = args("zdt1", AlgorithmName::Nsga2, None);
+        let mut a = args("zdt1", "nsga2", None);
         a.threads = 0;
-        assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads)));
+        assert!(matches!(run(&a, &mut out), Err(OptimizeError::Threads(_))));
     }
 
     #[test]
@@ -258,27 +146,35 @@ mod tests {
                 std::process::id()
             ))
         };
-        let mut a = args("constr", AlgorithmName::Mhaco, None);
-        let default = mhaco_config(&a);
+        let mhaco_config = |a: &OptimizeArgs| run_options(a).mhaco_config();
+        let default = mhaco_config(&args("constr", "mhaco", None));
         assert_eq!((default.ker, default.n_gen_mark), (20, 7));
         assert_eq!(default.constraints, ConstraintHandling::FeasibilityFirst);
-        a.ker = Some(10);
-        a.n_gen_mark = 3;
-        a.mhaco_constraints = MhacoConstraintsArg::Objectives;
+        let a = with(
+            "constr",
+            "mhaco",
+            &[
+                "--ker",
+                "10",
+                "--n-gen-mark",
+                "3",
+                "--mhaco-constraints",
+                "objectives",
+            ],
+        );
         let c = mhaco_config(&a);
         assert_eq!((c.ker, c.n_gen_mark), (10, 3));
         assert_eq!(c.constraints, ConstraintHandling::thesis_objectives());
         // Each flag changes the run (same seed).
         let mut runs = Vec::new();
-        for (tag, ker, mark, mode) in [
-            ("base", None, 7, MhacoConstraintsArg::FeasibilityFirst),
-            ("ker", Some(10), 7, MhacoConstraintsArg::FeasibilityFirst),
-            ("mark", None, 2, MhacoConstraintsArg::FeasibilityFirst),
-            ("obj", None, 7, MhacoConstraintsArg::Objectives),
+        for (tag, flags) in [
+            ("base", &[][..]),
+            ("ker", &["--ker", "10"][..]),
+            ("mark", &["--n-gen-mark", "2"][..]),
+            ("obj", &["--mhaco-constraints", "objectives"][..]),
         ] {
-            let mut a = args("constr", AlgorithmName::Mhaco, Some(dir(tag)));
-            a.generations = 20;
-            (a.ker, a.n_gen_mark, a.mhaco_constraints) = (ker, mark, mode);
+            let mut a = with("constr", "mhaco", flags);
+            (a.generations, a.out) = (20, Some(dir(tag)));
             run(&a, &mut Vec::new()).unwrap();
             runs.push(std::fs::read_to_string(dir(tag).join("population.csv")).unwrap());
             std::fs::remove_dir_all(dir(tag)).unwrap();
@@ -287,12 +183,10 @@ mod tests {
             assert_ne!(&runs[0], r, "flag set {i} left the run unchanged");
         }
         // Bad values are the algorithm's typed errors naming the setting.
-        let mut a = args("zdt1", AlgorithmName::Mhaco, None);
-        a.ker = Some(21);
+        let a = with("zdt1", "mhaco", &["--ker", "21"]);
         let e = run(&a, &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("ker"), "{e}");
-        a.ker = None;
-        a.n_gen_mark = 0;
+        let a = with("zdt1", "mhaco", &["--n-gen-mark", "0"]);
         let e = run(&a, &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("n_gen_mark"), "{e}");
     }
@@ -308,12 +202,12 @@ mod tests {
         let summary = |d: &Path| -> serde_json::Value {
             serde_json::from_str(&std::fs::read_to_string(d.join("summary.json")).unwrap()).unwrap()
         };
-        for alg in [AlgorithmName::Moead, AlgorithmName::Nsga2] {
+        for alg in ["moead", "nsga2"] {
             let mut a = args("zdt1", alg, Some(dir("plain")));
             a.generations = 30;
             run(&a, &mut Vec::new()).unwrap();
-            a.archive = Some(12);
-            a.out = Some(dir("archive"));
+            let mut a = with("zdt1", alg, &["--archive", "12"]);
+            (a.generations, a.out) = (30, Some(dir("archive")));
             let mut text = Vec::new();
             run(&a, &mut text).unwrap();
             let (plain, with) = (summary(&dir("plain")), summary(&dir("archive")));
@@ -335,26 +229,26 @@ mod tests {
                 std::fs::remove_dir_all(dir(t)).unwrap();
             }
         }
-        let mut a = args("zdt1", AlgorithmName::Moead, None);
-        a.archive = Some(0);
-        let e = run(&a, &mut Vec::new()).unwrap_err();
-        assert!(e.to_string().contains("--archive 0"), "{e}");
-        for problem in ["zdt1", "srm"] {
-            let mut a = args(problem, AlgorithmName::Mhaco, None);
-            a.archive = Some(10);
-            let e = run(&a, &mut Vec::new()).unwrap_err();
-            assert!(matches!(e, OptimizeError::ArchiveNotHere { .. }), "{e}");
-            assert!(e.to_string().contains("--archive applies to"), "{e}");
+        // clap refuses a capacity of 0, and --archive of MHACO (which keeps none).
+        for alg in ["moead", "nsga2", "scea"] {
+            let e = refused(&[alg, "--archive", "0"]);
+            assert!(e.contains("'--archive <N>'"), "{e}");
         }
-        let mut a = args("srm", AlgorithmName::Moead, None);
-        a.archive = Some(10);
-        a.resume = Some(PathBuf::from("runs/none"));
-        let e = run(&a, &mut Vec::new()).unwrap_err();
-        assert!(matches!(e, OptimizeError::ArchiveInFile), "{e}");
+        for problem in ["zdt1", "srm"] {
+            let e = refused(&["--problem", problem, "mhaco", "--archive", "10"]);
+            assert!(e.contains("unexpected argument '--archive'"), "{e}");
+        }
+        // A subcommand beside a run file: the file decides.
+        for file in ["--resume", "--config"] {
+            let a = parse_flags(&[file, "runs/none", "moead", "--archive", "10"]);
+            let e = run(&a, &mut Vec::new()).unwrap_err();
+            assert!(matches!(e, OptimizeError::AlgorithmInFile { .. }), "{e}");
+            assert!(e.to_string().contains("the run file decides"), "{e}");
+        }
         // SCEA on a fixed-length and on a variable-length problem reports its archive too.
         for problem in ["zdt1", "vlmop1"] {
-            let mut a = args(problem, AlgorithmName::Scea, Some(dir("scea")));
-            a.archive = Some(6);
+            let mut a = with(problem, "scea", &["--archive", "6"]);
+            a.out = Some(dir("scea"));
             run(&a, &mut Vec::new()).unwrap();
             let s = summary(&dir("scea"));
             assert_eq!(s["front_source"], "archive", "{problem}");
@@ -369,16 +263,21 @@ mod tests {
         let dir =
             |t| std::env::temp_dir().join(format!("host-sim-optimize-t{t}-{}", std::process::id()));
         for (alg, archive) in [
-            (AlgorithmName::Nsga2, None),
-            (AlgorithmName::Moead, None),
-            (AlgorithmName::Nsga2, Some(7)),
-            (AlgorithmName::Moead, Some(7)),
+            ("nsga2", false),
+            ("moead", false),
+            ("nsga2", true),
+            ("moead", true),
         ] {
             for t in [1usize, 3] {
-                let mut a = args("constr", alg, Some(dir(t)));
-                a.threads = t;
-                a.batch_size = 8;
-                a.archive = archive;
+                let mut flags = vec![];
+                if alg == "moead" {
+                    flags.extend(["--batch-size", "8"]);
+                }
+                if archive {
+                    flags.extend(["--archive", "7"]);
+                }
+                let mut a = with("constr", alg, &flags);
+                (a.threads, a.out) = (t, Some(dir(t)));
                 run(&a, &mut Vec::new()).unwrap();
             }
             for f in ["population.csv", "front.csv"] {

@@ -1,191 +1,192 @@
-//! What the `host-sim optimize` runs share, below all of them: the arguments and the errors,
-//! and the flags' mapping onto the library's [`RunOptions`] (the summary and the run
-//! directory are the library's: [`crate::optim::run::run_report`],
-//! [`crate::report::write_optimize_run`]). The test-problem run ([`super::optimize_cmd`]),
-//! the re-entry run ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`]) import this
-//! module and not each other's arguments, so the four files form no import cycle.
+//! What the `host-sim optimize` runs share, below all of them: the arguments (the common
+//! flags and one subcommand per algorithm holding its own), their mapping onto the library's
+//! [`RunOptions`], the checks clap cannot make ([`check`]), and the errors (the summary and
+//! the run directory are the library's: [`crate::optim::run::run_report`],
+//! [`crate::report::write_run_report`]). The test-problem run ([`super::optimize_cmd`]), the
+//! re-entry run ([`super::optimize_reentry`]) and SCEA ([`super::optimize_structured`])
+//! import this module and not each other, so the four files form no import cycle.
 
 use std::path::PathBuf;
 
-use clap::ValueEnum;
-
 use super::reference_arg::parse_reference;
-use crate::optim::hypervolume::HypervolumeError;
 use crate::optim::problems::{NAMES, TestProblemError};
 use crate::optim::spec::{MhacoConstraints, MoeadOperator, OptionsAlgorithm, RunOptions};
-use crate::optim::{
-    Individual, MoeadConfig, NewGenes, OptimError, Threads, ThreadsError, WeightGeneration,
-};
+use crate::optim::{MhacoConfig, NewGenes, OptimError, ThreadsError, WeightGeneration};
 
-/// The algorithms `optimize` offers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum AlgorithmName {
-    /// MOEA/D (pagmo semantics, Lampinen constraint rules).
-    Moead,
-    /// NSGA-II (Deb's constrained domination).
-    Nsga2,
-    /// MHACO (pagmo maco semantics, ker = min(63, population), feasibility-first archive).
-    Mhaco,
-    /// SCEA (structured chromosomes; the only one for the variable-length problems).
-    Scea,
-}
-
-impl AlgorithmName {
-    pub(super) fn as_str(self) -> &'static str {
-        match self {
-            Self::Moead => "moead",
-            Self::Nsga2 => "nsga2",
-            Self::Mhaco => "mhaco",
-            Self::Scea => "scea",
-        }
-    }
-}
-
-/// MOEA/D weight generation on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum WeightsArg {
-    /// Simplex lattice (population must be C(H + m - 1, m - 1)).
-    Grid,
-    /// Unit vectors then a Halton sequence.
-    LowDiscrepancy,
-    /// Unit vectors then random simplex points.
-    Random,
-}
-
-/// MOEA/D's variation operator on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum MoeadOperatorArg {
-    /// pagmo's MOEA/D-DE (Li & Zhang 2009): DE step (CR 1, F 0.5), polynomial mutation.
-    De,
-    /// Zhang & Li's (2007) original MOEA/D: SBX (index 20, probability 1) of the two
-    /// parents, polynomial mutation. Not pagmo.
-    Sbx,
-}
-
-/// MHACO constraint handling on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum MhacoConstraintsArg {
-    /// Feasible candidates first, then infeasible ones by violation (thesis sec. 10.2).
-    FeasibilityFirst,
-    /// Constraints as extra objectives, the thesis' normalisation (sec. 9.3.2: unit scales,
-    /// cap 2.0, penalty 0.5).
-    Objectives,
-}
-
-/// Arguments of `optimize`.
+/// Arguments of `optimize`: the flags every algorithm takes (`global`: before or after the
+/// subcommand) and the algorithm's subcommand with its own flags.
 #[derive(Debug, clap::Args)]
+#[command(next_help_heading = "Common options (before or after the algorithm)")]
 pub struct OptimizeArgs {
+    /// The algorithm and its own flags (default: `moead` with its defaults).
+    #[command(subcommand)]
+    pub algorithm: Option<AlgorithmArgs>,
     /// Test problem (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5:
     /// variable-length, SCEA only) or re-entry design preset (horus-2b, srm, srm-altitude,
     /// srm-analytical, srm-analytical-altitude: thesis sec. 4.2, 9.1 and 9.2 settings; the
     /// last two on the analytical simulator).
-    #[arg(long, default_value = "zdt1")]
+    #[arg(long, global = true, default_value = "zdt1")]
     pub problem: String,
-    /// Algorithm.
-    #[arg(long, value_enum, default_value = "moead")]
-    pub algorithm: AlgorithmName,
     /// Population size.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, global = true, default_value_t = RunOptions::default().population)]
     pub population: usize,
     /// Generations after the initial population (with --resource-allocation a generation
     /// makes population / 5 children, not population: see --evaluations).
-    #[arg(long, default_value_t = DEFAULT_GENERATIONS)]
+    #[arg(long, global = true, default_value_t = DEFAULT_GENERATIONS)]
     pub generations: u64,
-    /// MOEA/D and NSGA-II on the test problems: budget in evaluations, initial population
+    /// moead and nsga2 on the test problems: budget in evaluations, initial population
     /// included, instead of --generations: runs the fewest whole generations that reach it
     /// (generations = ceil((E - population) / children per generation); population 100 and
     /// E = 25100: 250 generations, or 1250 with --resource-allocation).
-    #[arg(long, value_name = "E", conflicts_with = "generations")]
+    #[arg(long, global = true, value_name = "E", conflicts_with_all = ["generations", "config"])]
     pub evaluations: Option<u64>,
     /// Seed of the run's random-number generator.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, global = true, default_value_t = 1)]
     pub seed: u64,
     /// Objectives of a DTLZ problem.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, global = true, default_value_t = 3)]
     pub objectives: usize,
-    /// MOEA/D and SCEA weight generation.
-    #[arg(long, value_enum, default_value = "grid")]
-    pub weights: WeightsArg,
-    /// MOEA/D and SCEA neighbourhood size (at most population - 1; default: 20, or
-    /// population - 1 for populations of 20 or less).
+    /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
+    /// gains only with --batch-size > 1.
+    #[arg(long, global = true, default_value_t = 1)]
+    pub threads: usize,
+    /// Hypervolume reference point, comma-separated (default: the problem's).
+    #[arg(
+        long = "ref",
+        global = true,
+        value_name = "R1,R2,...",
+        allow_hyphen_values = true
+    )]
+    pub reference: Option<String>,
+    /// Write population.csv, front.csv and summary.json here (re-entry problems: the run
+    /// directory, default `runs/optimize-<problem>`).
+    #[arg(long, global = true, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Re-entry run settings from a TOML file (see --print-config); the file decides the
+    /// algorithm and its settings.
+    #[arg(long, global = true, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Print the re-entry run settings of the other flags as a TOML template and exit.
+    #[arg(long, global = true)]
+    pub print_config: bool,
+    /// Continue the re-entry run in DIR from its last checkpoint with its own settings
+    /// (--generations sets a new total; by default the run's own).
+    #[arg(long, global = true, value_name = "DIR", conflicts_with_all = [
+        "problem", "population", "evaluations", "seed", "objectives", "threads", "reference",
+        "out", "config", "print_config",
+    ])]
+    pub resume: Option<PathBuf>,
+}
+
+/// `optimize`'s algorithms, each with only its own flags.
+#[derive(Clone, Debug, clap::Subcommand)]
+pub enum AlgorithmArgs {
+    /// MOEA/D (pagmo semantics, Lampinen constraint rules); the default.
+    Moead(MoeadArgs),
+    /// NSGA-II (Deb's constrained domination).
+    Nsga2(Nsga2Args),
+    /// MHACO (pagmo maco semantics, ker = min(63, population), feasibility-first archive).
+    Mhaco(MhacoArgs),
+    /// SCEA (structured chromosomes; the only one for the variable-length problems).
+    Scea(SceaArgs),
+}
+
+/// The decomposition flags of MOEA/D and SCEA.
+#[derive(Clone, Debug, clap::Args)]
+pub struct DecompositionArgs {
+    /// Weight generation.
+    #[arg(long, value_enum, default_value_t = WeightGeneration::Grid)]
+    pub weights: WeightGeneration,
+    /// Neighbourhood size (at most population - 1; default: 20, or population - 1 for
+    /// populations of 20 or less).
     #[arg(long)]
     pub neighbours: Option<usize>,
-    /// MOEA/D per-variable mutation probability (default 1/variables; the thesis used
+    /// Per-variable mutation probability (default 1/variables; the thesis used
     /// 1/population).
     #[arg(long, value_name = "P")]
     pub mutation_probability: Option<f64>,
-    /// MOEA/D offspring per ask/tell batch (1: pagmo's steady state; larger batches let
-    /// --threads evaluate in parallel).
+    /// Offspring per ask/tell batch (1: pagmo's steady state; larger batches let --threads
+    /// evaluate in parallel).
     #[arg(long, default_value_t = 1)]
     pub batch_size: usize,
-    /// MHACO solution archive size ker, in [2, population] (default min(63, population)).
-    #[arg(long, value_name = "K")]
-    pub ker: Option<usize>,
-    /// MHACO period of the standard-deviation schedule (pagmo's n_gen_mark), at least 1.
-    #[arg(long, value_name = "G", default_value_t = 7)]
-    pub n_gen_mark: u64,
-    /// MHACO constraint handling (no effect on unconstrained problems).
-    #[arg(long, value_enum, default_value = "feasibility-first")]
-    pub mhaco_constraints: MhacoConstraintsArg,
-    /// SCEA: source of the genes of appended nodes: `random` (the thesis' SCEA) or
-    /// `population` (alias `history`: history-based, from a mating parent; the default).
-    #[arg(long, value_enum, default_value = "population")]
-    pub scea_genes: super::optimize_common::SceaGenesArg,
-    /// MOEA/D, NSGA-II and SCEA: keep an external archive of the feasible non-dominated
-    /// solutions found during the run (Zhang & Li 2007's external population, not in pagmo),
-    /// at most N members, truncated by least exclusive hypervolume contribution; the front
-    /// written, printed and scored is then the archive's (summary.json: "front_source":
-    /// "archive"; re-entry runs: `archive` in config.toml). Default: none (pagmo's
-    /// semantics: the final population's front).
-    #[arg(long, value_name = "N")]
+    /// External archive of at most N feasible non-dominated solutions (see `nsga2 --help`).
+    #[arg(long, value_name = "N", value_parser = archive_capacity())]
     pub archive: Option<usize>,
-    /// MOEA/D and SCEA: MOEA/D-DRA's dynamic resource allocation (Zhang, Liu & Li, CEC 2009;
-    /// not in pagmo): each generation works on the boundary subproblems and 10-way
+    /// MOEA/D-DRA's dynamic resource allocation (Zhang, Liu & Li, CEC 2009; not in pagmo),
+    /// test problems only: each generation works on the boundary subproblems and 10-way
     /// tournament winners on utility, population / 5 in all, utilities updated every 50
     /// generations. A generation then makes population / 5 children: compare budgets with
     /// --evaluations. Default: off (pagmo's semantics).
     #[arg(long)]
     pub resource_allocation: bool,
-    /// MOEA/D variation: `de` (pagmo's MOEA/D-DE, the default) or `sbx` (Zhang & Li 2007's
-    /// original MOEA/D: SBX with index 20 and probability 1, then polynomial mutation; not
-    /// in pagmo).
-    #[arg(long, value_enum, default_value = "de")]
-    pub moead_operator: MoeadOperatorArg,
-    /// Evaluation threads (1: serial). The result is the same for every value; MOEA/D
-    /// gains only with --batch-size > 1.
-    #[arg(long, default_value_t = 1)]
-    pub threads: usize,
-    /// Hypervolume reference point, comma-separated (default: the problem's).
-    #[arg(long = "ref", value_name = "R1,R2,...", allow_hyphen_values = true)]
-    pub reference: Option<String>,
-    /// Write population.csv, front.csv and summary.json here (re-entry problems: the run
-    /// directory, default `runs/optimize-<problem>`).
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-    /// Re-entry run settings from a TOML file (see --print-config).
-    #[arg(long, value_name = "FILE")]
-    pub config: Option<PathBuf>,
-    /// Print the re-entry run settings of the other flags as a TOML template and exit.
-    #[arg(long)]
-    pub print_config: bool,
-    /// Continue the re-entry run in DIR from its last checkpoint (--generations sets a new
-    /// total; by default the run's own).
-    #[arg(long, value_name = "DIR", conflicts_with = "config")]
-    pub resume: Option<PathBuf>,
+}
+
+/// `optimize moead`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct MoeadArgs {
+    /// Weights, neighbourhood, mutation, batches, archive, resource allocation.
+    #[command(flatten)]
+    pub decomposition: DecompositionArgs,
+    /// Variation (`sbx`: test problems only).
+    #[arg(long, value_enum, default_value_t = MoeadOperator::De)]
+    pub moead_operator: MoeadOperator,
+}
+
+/// `optimize nsga2`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct Nsga2Args {
+    /// Keep an external archive of the feasible non-dominated solutions found during the run
+    /// (Zhang & Li 2007's external population, not in pagmo), at most N members, truncated by
+    /// least exclusive hypervolume contribution; the front written, printed and scored is
+    /// then the archive's (summary.json: "front_source": "archive"; re-entry runs: `archive`
+    /// in config.toml). Default: none (pagmo's semantics: the final population's front).
+    #[arg(long, value_name = "N", value_parser = archive_capacity())]
+    pub archive: Option<usize>,
+}
+
+/// `optimize mhaco`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct MhacoArgs {
+    /// Solution archive size ker, in [2, population] (default min(63, population); test
+    /// problems only).
+    #[arg(long, value_name = "K")]
+    pub ker: Option<usize>,
+    /// Period of the standard-deviation schedule (pagmo's n_gen_mark), at least 1 (test
+    /// problems only).
+    #[arg(long, value_name = "G", default_value_t = MhacoConfig::default().n_gen_mark)]
+    pub n_gen_mark: u64,
+    /// Constraint handling (no effect on unconstrained problems).
+    #[arg(long, value_enum, default_value_t = MhacoConstraints::FeasibilityFirst)]
+    pub mhaco_constraints: MhacoConstraints,
+}
+
+/// `optimize scea`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct SceaArgs {
+    /// MOEA/D's weights, neighbourhood, mutation, batches, archive, resource allocation.
+    #[command(flatten)]
+    pub decomposition: DecompositionArgs,
+    /// Source of the genes of appended nodes: `random` (the thesis' SCEA) or `population`
+    /// (alias `history`: history-based, from a mating parent).
+    #[arg(long, value_enum, default_value_t = NewGenes::Population)]
+    pub scea_genes: NewGenes,
+}
+
+/// `--archive`: a capacity of at least 1.
+fn archive_capacity() -> clap::builder::RangedU64ValueParser<usize> {
+    clap::builder::RangedU64ValueParser::new().range(1..)
 }
 
 impl OptimizeArgs {
-    /// `--neighbours`, or the default for the population
-    /// ([`MoeadConfig::default_neighbours`]).
-    pub(super) fn neighbours(&self) -> usize {
-        self.neighbours
-            .unwrap_or_else(|| MoeadConfig::default_neighbours(self.population))
-    }
-
-    /// The algorithm's name as in files.
+    /// The algorithm's name as in files (`moead`, `nsga2`, `mhaco`, `scea`).
     #[must_use]
     pub fn algorithm_name(&self) -> &'static str {
-        self.algorithm.as_str()
+        match &self.algorithm {
+            None | Some(AlgorithmArgs::Moead(_)) => "moead",
+            Some(AlgorithmArgs::Nsga2(_)) => "nsga2",
+            Some(AlgorithmArgs::Mhaco(_)) => "mhaco",
+            Some(AlgorithmArgs::Scea(_)) => "scea",
+        }
     }
 
     /// Whether `--generations` differs from its default (a resumed run keeps its own).
@@ -193,45 +194,52 @@ impl OptimizeArgs {
     pub fn generations_given(&self) -> bool {
         self.generations != DEFAULT_GENERATIONS
     }
-}
 
-/// The library's options of the flags (one mapping onto the algorithms, shared with the
-/// Python front end). SCEA takes MOEA/D's weights and neighbourhood from them.
-pub(super) fn run_options(a: &OptimizeArgs) -> RunOptions {
-    RunOptions {
-        algorithm: match a.algorithm {
-            AlgorithmName::Moead | AlgorithmName::Scea => OptionsAlgorithm::Moead,
-            AlgorithmName::Nsga2 => OptionsAlgorithm::Nsga2,
-            AlgorithmName::Mhaco => OptionsAlgorithm::Mhaco,
-        },
-        moead_operator: match a.moead_operator {
-            MoeadOperatorArg::De => MoeadOperator::De,
-            MoeadOperatorArg::Sbx => MoeadOperator::Sbx,
-        },
-        population: a.population,
-        weights: match a.weights {
-            WeightsArg::Grid => WeightGeneration::Grid,
-            WeightsArg::LowDiscrepancy => WeightGeneration::LowDiscrepancy,
-            WeightsArg::Random => WeightGeneration::Random,
-        },
-        neighbours: a.neighbours,
-        mutation_probability: a.mutation_probability,
-        batch_size: a.batch_size,
-        archive: a.archive,
-        resource_allocation: a.resource_allocation,
-        ker: a.ker,
-        n_gen_mark: a.n_gen_mark,
-        mhaco_constraints: match a.mhaco_constraints {
-            MhacoConstraintsArg::FeasibilityFirst => MhacoConstraints::FeasibilityFirst,
-            MhacoConstraintsArg::Objectives => MhacoConstraints::Objectives,
-        },
+    /// SCEA's gene source, for `optimize scea`.
+    pub(super) fn scea_genes(&self) -> Option<NewGenes> {
+        match &self.algorithm {
+            Some(AlgorithmArgs::Scea(s)) => Some(s.scea_genes),
+            _ => None,
+        }
     }
 }
 
-/// The MHACO settings of the flags.
-#[cfg(test)]
-pub(super) fn mhaco_config(a: &OptimizeArgs) -> crate::optim::MhacoConfig {
-    run_options(a).mhaco_config()
+/// The library's options of the flags (one mapping onto the algorithms, shared with the
+/// Python front end; no subcommand: MOEA/D's defaults). SCEA takes MOEA/D's fields.
+pub(super) fn run_options(a: &OptimizeArgs) -> RunOptions {
+    let base = RunOptions {
+        population: a.population,
+        ..RunOptions::default()
+    };
+    let decomposition = |d: &DecompositionArgs| RunOptions {
+        weights: d.weights,
+        neighbours: d.neighbours,
+        mutation_probability: d.mutation_probability,
+        batch_size: d.batch_size,
+        archive: d.archive,
+        resource_allocation: d.resource_allocation,
+        ..base.clone()
+    };
+    match &a.algorithm {
+        None => base,
+        Some(AlgorithmArgs::Moead(m)) => RunOptions {
+            moead_operator: m.moead_operator,
+            ..decomposition(&m.decomposition)
+        },
+        Some(AlgorithmArgs::Scea(s)) => decomposition(&s.decomposition),
+        Some(AlgorithmArgs::Nsga2(n)) => RunOptions {
+            algorithm: OptionsAlgorithm::Nsga2,
+            archive: n.archive,
+            ..base
+        },
+        Some(AlgorithmArgs::Mhaco(m)) => RunOptions {
+            algorithm: OptionsAlgorithm::Mhaco,
+            ker: m.ker,
+            n_gen_mark: m.n_gen_mark,
+            mhaco_constraints: m.mhaco_constraints,
+            ..base
+        },
+    }
 }
 
 /// Default of `--generations`.
@@ -275,62 +283,22 @@ pub enum OptimizeError {
     /// A malformed `--ref` (not a number, not finite).
     #[error(transparent)]
     ReferenceText(#[from] super::reference_arg::ReferenceArgError),
-    /// A fixed-length algorithm on a variable-length problem.
-    #[error(
-        "command line: --algorithm {algorithm} cannot run the variable-length problem {problem}; use --algorithm scea"
-    )]
-    NeedsFixedLength {
-        /// Algorithm asked for.
-        algorithm: &'static str,
+    /// A flag or subcommand the problem does not take (the re-entry problems fix some
+    /// settings; a variable-length problem runs with SCEA only).
+    #[error("command line: {what} does not apply to --problem {problem}: {why}")]
+    NotForProblem {
+        /// The flag or subcommand given.
+        what: String,
         /// Problem asked for.
         problem: String,
+        /// What to change.
+        why: &'static str,
     },
-    /// `--scea-genes random` for another algorithm (it would be ignored).
-    #[error(
-        "command line: --scea-genes random applies to --algorithm scea only (given --algorithm {algorithm}); drop it or use --algorithm scea"
-    )]
-    SceaGenesWithoutScea {
-        /// Algorithm asked for.
-        algorithm: &'static str,
-    },
-    /// `--threads` 0 or above 1024.
-    #[error("command line: --threads: use 1 to 1024")]
-    Threads,
-    /// `--archive 0`.
-    #[error(
-        "command line: --archive 0: the archive's capacity must be at least 1 (or drop --archive)"
-    )]
-    ArchiveZero,
-    /// `--archive` with an algorithm that keeps none.
-    #[error(
-        "command line: --archive applies to --algorithm moead, nsga2 or scea (given --algorithm {algorithm}); drop it"
-    )]
-    ArchiveNotHere {
-        /// Algorithm asked for.
-        algorithm: &'static str,
-    },
-    /// `--resource-allocation` with an algorithm or problem that does not take it.
-    #[error(
-        "command line: --resource-allocation applies to --algorithm moead or scea on the test problems (given --algorithm {algorithm} --problem {problem}); drop it"
-    )]
-    ResourceAllocationNotHere {
-        /// Algorithm asked for.
-        algorithm: &'static str,
-        /// Problem asked for.
-        problem: String,
-    },
-    /// `--moead-operator sbx` with another algorithm or a re-entry problem.
-    #[error(
-        "command line: --moead-operator sbx applies to --algorithm moead on the test problems (given --algorithm {algorithm} --problem {problem}); drop it"
-    )]
-    OperatorNotHere {
-        /// Algorithm asked for.
-        algorithm: &'static str,
-        /// Problem asked for.
-        problem: String,
-    },
-    /// `--evaluations` with an algorithm or problem that does not take it, or below the
-    /// initial population.
+    /// `--threads` 0 or above 1024, or the pool could not be built.
+    #[error("command line: --threads: {0}")]
+    Threads(#[from] ThreadsError),
+    /// `--evaluations` with an algorithm that does not take it, or below the initial
+    /// population.
     #[error("command line: --evaluations {evaluations}: {why}")]
     Evaluations {
         /// Budget given.
@@ -338,25 +306,20 @@ pub enum OptimizeError {
         /// What to change.
         why: String,
     },
-    /// `--archive` beside `--config` or `--resume`.
+    /// An algorithm subcommand beside `--config` or `--resume`.
     #[error(
-        "command line: --archive with --config or --resume: the run file decides; set `archive = N` in it instead"
+        "command line: `optimize {algorithm}` with --config or --resume: the run file decides the algorithm and its settings; drop the subcommand and its flags (or set them in the file)"
     )]
-    ArchiveInFile,
-    /// The rayon pool could not be built.
-    #[error("cannot start {threads} evaluation threads: {source}")]
-    Pool {
-        /// Threads asked for.
-        threads: usize,
-        /// Cause.
-        source: rayon::ThreadPoolBuildError,
+    AlgorithmInFile {
+        /// The subcommand given.
+        algorithm: &'static str,
     },
     /// The optimiser refused its settings or an evaluation failed.
     #[error("command line: {0}")]
     Optim(#[from] OptimError),
-    /// Hypervolume failed.
-    #[error("hypervolume: {0}")]
-    Hypervolume(#[from] HypervolumeError),
+    /// The run's report could not be made.
+    #[error(transparent)]
+    RunReport(#[from] crate::optim::run::RunReportError),
     /// Output could not be written.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),
@@ -368,53 +331,57 @@ pub enum OptimizeError {
     Reentry(#[from] crate::design::run::ReentryError),
 }
 
-pub(super) struct Outcome {
-    pub(super) population: Vec<Individual<Vec<f64>>>,
-    /// The external archive's members, when the run kept one (the result front).
-    pub(super) archive: Option<Vec<Individual<Vec<f64>>>>,
-    pub(super) evaluations: u64,
-    pub(super) wall_time_s: f64,
-}
-
-/// `--archive`: at least 1, only for the algorithms that keep one (MOEA/D, NSGA-II, SCEA), and
-/// not beside a run file (`--config`, `--resume`: the file's `archive` field decides).
-pub(super) fn check_archive(a: &OptimizeArgs) -> Result<(), OptimizeError> {
-    match a.archive {
-        None => Ok(()),
-        Some(0) => Err(OptimizeError::ArchiveZero),
-        Some(_) if a.config.is_some() || a.resume.is_some() => Err(OptimizeError::ArchiveInFile),
-        Some(_) if a.algorithm == AlgorithmName::Mhaco => Err(OptimizeError::ArchiveNotHere {
-            algorithm: a.algorithm_name(),
+/// The checks clap cannot make, in one place: an algorithm subcommand beside a run file
+/// (`--config`, `--resume`: the file decides), the flags a problem does not take (the
+/// re-entry problems fix MOEA/D's variation and resource allocation, MHACO's ker and
+/// schedule, and count generations; a variable-length problem runs with SCEA only), and
+/// SCEA's `--evaluations`.
+pub(super) fn check(a: &OptimizeArgs, o: &RunOptions) -> Result<(), OptimizeError> {
+    let algorithm = a.algorithm_name();
+    if a.algorithm.is_some() && (a.config.is_some() || a.resume.is_some()) {
+        return Err(OptimizeError::AlgorithmInFile { algorithm });
+    }
+    let not_for = |what: String, why| OptimizeError::NotForProblem {
+        what,
+        problem: a.problem.clone(),
+        why,
+    };
+    if wants_reentry(a) {
+        let given = [
+            (o.resource_allocation, "--resource-allocation"),
+            (
+                o.moead_operator != MoeadOperator::De,
+                "--moead-operator sbx",
+            ),
+            (o.ker.is_some(), "--ker"),
+            (
+                o.n_gen_mark != MhacoConfig::default().n_gen_mark,
+                "--n-gen-mark",
+            ),
+            (a.evaluations.is_some(), "--evaluations"),
+        ];
+        if let Some((_, flag)) = given.iter().find(|(g, _)| *g) {
+            return Err(not_for(
+                (*flag).into(),
+                "fixed on the re-entry problems (MOEA/D's DE without resource allocation, \
+                 MHACO ker = min(63, population) and n_gen_mark 7, the budget in \
+                 --generations); drop it",
+            ));
+        }
+    } else if algorithm != "scea" && crate::optim::problems::Vlmop::by_name(&a.problem).is_some() {
+        return Err(not_for(
+            format!("`optimize {algorithm}`"),
+            "a variable-length problem runs with SCEA only; use `optimize scea`",
+        ));
+    }
+    match a.evaluations {
+        Some(evaluations) if algorithm == "scea" => Err(OptimizeError::Evaluations {
+            evaluations,
+            why: "applies to the moead and nsga2 subcommands (given scea); use --generations"
+                .into(),
         }),
-        Some(_) => Ok(()),
+        _ => Ok(()),
     }
-}
-
-/// MOEA/D settings from the arguments (also SCEA's).
-pub(super) fn moead_config(a: &OptimizeArgs) -> MoeadConfig {
-    run_options(a).moead_config()
-}
-
-/// `--resource-allocation`: MOEA/D or SCEA on a test problem only (re-entry runs take their
-/// settings from the run file).
-pub(super) fn check_resource_allocation(a: &OptimizeArgs) -> Result<(), OptimizeError> {
-    let here =
-        matches!(a.algorithm, AlgorithmName::Moead | AlgorithmName::Scea) && !wants_reentry(a);
-    if a.resource_allocation && !here {
-        return Err(OptimizeError::ResourceAllocationNotHere {
-            algorithm: a.algorithm_name(),
-            problem: a.problem.clone(),
-        });
-    }
-    if a.moead_operator != MoeadOperatorArg::De
-        && (a.algorithm != AlgorithmName::Moead || wants_reentry(a))
-    {
-        return Err(OptimizeError::OperatorNotHere {
-            algorithm: a.algorithm_name(),
-            problem: a.problem.clone(),
-        });
-    }
-    Ok(())
 }
 
 /// The generations to run: `--generations`, or the fewest whole generations whose
@@ -432,14 +399,6 @@ pub(super) fn generations_to_run(
             evaluations: e,
             why,
         })
-}
-
-/// The evaluation threads for `--threads`.
-pub(super) fn threads(count: usize) -> Result<Threads, OptimizeError> {
-    Threads::new(count).map_err(|e| match e {
-        ThreadsError::Count(_) => OptimizeError::Threads,
-        ThreadsError::Pool { threads, source } => OptimizeError::Pool { threads, source },
-    })
 }
 
 /// The hypervolume reference point: `--ref` when given (checked against the problem's `m`
@@ -460,26 +419,18 @@ pub(super) fn reference(
     }
 }
 
-/// Where SCEA takes the genes of a node it appends (`--scea-genes`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum SceaGenesArg {
-    /// Uniformly random in the node bounds (the thesis' SCEA, sec. 4.1.5).
-    Random,
-    /// History-based: the same node of a mating parent from the population (the thesis'
-    /// recommendation, sec. 10.2); random when neither parent has it. The default.
-    #[value(alias = "history")]
-    Population,
-}
-
-impl SceaGenesArg {
-    /// The library's gene source.
-    #[must_use]
-    pub fn new_genes(self) -> NewGenes {
-        match self {
-            Self::Random => NewGenes::Random,
-            Self::Population => NewGenes::Population,
-        }
+/// Print the summary line and, with `--out`, write the run directory.
+pub(super) fn finish(
+    a: &OptimizeArgs,
+    report: &crate::optim::run::RunReport<'_>,
+    out: &mut dyn std::io::Write,
+) -> Result<(), OptimizeError> {
+    writeln!(out, "{}", report.summary.line())?;
+    if let Some(dir) = &a.out {
+        crate::report::write_run_report(dir, report)?;
+        writeln!(out, "wrote {}", dir.display())?;
     }
+    Ok(())
 }
 
 /// Whether `optimize` arguments ask for a re-entry run.
@@ -492,29 +443,17 @@ pub(super) fn wants_reentry(a: &OptimizeArgs) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use clap::Parser;
-
     use super::*;
-    use crate::cli::{Cli, Command};
 
-    fn parse(flags: &[&str]) -> OptimizeArgs {
-        let argv = ["host-sim", "optimize"].iter().chain(flags);
-        match Cli::try_parse_from(argv).unwrap().command {
-            Command::Optimize(a) => a,
-            _ => unreachable!("optimize parses as optimize"),
-        }
-    }
+    use super::super::optimize_variants_tests::parse_flags as parse;
 
     /// The library's `RunOptions` defaults are the command line's (the Python front end
-    /// relies on them), and every flag reaches its field.
+    /// relies on them), and every flag of every subcommand reaches its field.
     #[test]
     fn run_options_defaults_and_fields_are_the_flags() {
         assert_eq!(run_options(&parse(&[])), RunOptions::default());
-        let a = parse(&[
-            "--algorithm",
-            "mhaco",
-            "--moead-operator",
-            "sbx",
+        assert_eq!(run_options(&parse(&["moead"])), RunOptions::default());
+        let decomposition = [
             "--population",
             "24",
             "--weights",
@@ -528,29 +467,65 @@ mod tests {
             "--archive",
             "7",
             "--resource-allocation",
+        ];
+        let moead = RunOptions {
+            population: 24,
+            weights: WeightGeneration::Random,
+            neighbours: Some(5),
+            mutation_probability: Some(0.25),
+            batch_size: 3,
+            archive: Some(7),
+            resource_allocation: true,
+            ..RunOptions::default()
+        };
+        let flags = |sub: &str, extra: &[&'static str]| {
+            let mut v = vec![sub];
+            v.extend(decomposition);
+            v.extend(extra);
+            parse(&v)
+        };
+        let a = flags("scea", &["--scea-genes", "history"]);
+        assert_eq!(run_options(&a), moead);
+        assert_eq!(a.scea_genes(), Some(NewGenes::Population));
+        let a = flags("moead", &["--moead-operator", "sbx"]);
+        assert_eq!(a.scea_genes(), None);
+        assert_eq!(
+            run_options(&a),
+            RunOptions {
+                moead_operator: MoeadOperator::Sbx,
+                ..moead
+            }
+        );
+        let nsga2 = parse(&["nsga2", "--archive", "4"]);
+        assert_eq!(
+            (run_options(&nsga2).algorithm, run_options(&nsga2).archive),
+            (OptionsAlgorithm::Nsga2, Some(4))
+        );
+        // The common flags before or after the subcommand.
+        let a = parse(&[
+            "--population",
+            "24",
+            "mhaco",
             "--ker",
             "9",
             "--n-gen-mark",
             "2",
             "--mhaco-constraints",
             "objectives",
+            "--seed",
+            "5",
         ]);
+        assert_eq!((a.algorithm_name(), a.seed), ("mhaco", 5));
         let o = run_options(&a);
         assert_eq!(
             o,
             RunOptions {
                 algorithm: OptionsAlgorithm::Mhaco,
-                moead_operator: MoeadOperator::Sbx,
                 population: 24,
-                weights: WeightGeneration::Random,
-                neighbours: Some(5),
-                mutation_probability: Some(0.25),
-                batch_size: 3,
-                archive: Some(7),
-                resource_allocation: true,
                 ker: Some(9),
                 n_gen_mark: 2,
                 mhaco_constraints: MhacoConstraints::Objectives,
+                ..RunOptions::default()
             }
         );
         // JSON with the flags' names reads back to the same options; unknown names are refused.

@@ -6,51 +6,33 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use super::optimize_common::{MhacoConstraintsArg, OptimizeArgs};
+use super::optimize_common::{OptimizeArgs, run_options};
 use super::reference_arg::parse_reference;
-use crate::design::run::{Progress, parse_toml, run as design_run};
+use crate::design::run::{ProgressBar, parse_toml, run as design_run};
 pub use crate::design::run::{ReentryError, ReentryRunConfig, check_run_config};
-use crate::optim::MhacoConfig;
-use crate::optim::run::Record;
+use crate::optim::spec::MhacoConstraints;
 
-/// `--FLAG VALUE` given for a re-entry problem, which fixes it.
-fn flag_not_here(field: &'static str, value: String) -> ReentryError {
-    ReentryError::Setting {
-        source_name: "command line".into(),
-        field,
-        value,
-        reason: "fixed on the re-entry problems (MHACO ker = min(63, population), n_gen_mark 7)"
-            .into(),
-    }
-}
-
-/// The run configuration of flags (a preset `--problem`) or `--config`.
+/// The run configuration of flags (a preset `--problem`; the flags it does not take are
+/// refused before, by `optimize_common::check`) or `--config`.
 fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     if let Some(path) = &a.config {
         return parse_toml(path);
     }
     let mut c = ReentryRunConfig::thesis(&a.problem)?;
-    // MHACO's archive size and schedule are fixed on the re-entry problems (the file has no
-    // field for them): refuse the flags rather than ignore them.
-    if let Some(k) = a.ker {
-        return Err(flag_not_here("ker", k.to_string()));
-    }
-    if a.n_gen_mark != MhacoConfig::default().n_gen_mark {
-        return Err(flag_not_here("n-gen-mark", a.n_gen_mark.to_string()));
-    }
-    c.algorithm = match (a.algorithm_name(), a.mhaco_constraints) {
-        ("mhaco", MhacoConstraintsArg::Objectives) => "mhaco-objectives".into(),
+    let o = run_options(a);
+    c.algorithm = match (a.algorithm_name(), o.mhaco_constraints) {
+        ("mhaco", MhacoConstraints::Objectives) => "mhaco-objectives".into(),
         (name, _) => name.into(),
     };
     c.population = a.population;
     c.generations = a.generations;
     c.seed = a.seed;
     c.threads = a.threads;
-    c.batch_size = a.batch_size;
-    c.neighbours = a.neighbours();
-    c.mutation_probability = a.mutation_probability;
-    c.scea_genes = a.scea_genes.new_genes();
-    c.archive = a.archive;
+    c.batch_size = o.batch_size;
+    c.neighbours = o.moead_config().neighbours;
+    c.mutation_probability = o.mutation_probability;
+    c.scea_genes = a.scea_genes().unwrap_or(c.scea_genes);
+    c.archive = o.archive;
     if let Some(r) = &a.reference {
         c.reference = parse_reference(r).map_err(|e| ReentryError::Setting {
             source_name: "command line".into(),
@@ -60,49 +42,6 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
         })?;
     }
     Ok(c)
-}
-
-/// The flags given beside `--resume` (other than `--generations`), as `--flag`: the fields
-/// of `a` that differ from the defaults.
-fn flags_beside_resume(a: &OptimizeArgs) -> Vec<String> {
-    use clap::{CommandFactory, FromArgMatches};
-    #[derive(clap::Parser)]
-    struct Defaults {
-        #[command(flatten)]
-        a: OptimizeArgs,
-    }
-    let Ok(m) = Defaults::command().try_get_matches_from(["optimize"]) else {
-        return Vec::new();
-    };
-    let Ok(d) = Defaults::from_arg_matches(&m) else {
-        return Vec::new();
-    };
-    // One line per top-level field in the pretty Debug form ("    name: value,"); nested
-    // values are indented further and belong to the field above.
-    let fields = |x: &OptimizeArgs| -> Vec<(String, String)> {
-        let text = format!("{x:#?}");
-        let mut out: Vec<(String, String)> = Vec::new();
-        for line in text.lines().skip(1) {
-            match line.strip_prefix("    ") {
-                Some(l) if !l.starts_with(' ') => {
-                    let (k, v) = l.split_once(':').unwrap_or((l, ""));
-                    out.push((k.to_string(), v.to_string()));
-                }
-                _ => {
-                    if let Some(last) = out.last_mut() {
-                        last.1.push_str(line);
-                    }
-                }
-            }
-        }
-        out
-    };
-    fields(a)
-        .into_iter()
-        .zip(fields(&d.a))
-        .filter(|((k, v), (_, w))| v != w && k != "resume" && k != "generations")
-        .map(|((k, _), _)| format!("--{}", k.replace('_', "-")))
-        .collect()
 }
 
 /// Run `optimize` on a re-entry problem.
@@ -135,20 +74,6 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         (None, Some(p)) => p.display().to_string(),
         (None, None) => "command line".to_string(),
     };
-    if resume {
-        let ignored = flags_beside_resume(a);
-        if !ignored.is_empty() {
-            return Err(ReentryError::Setting {
-                source_name: "command line".into(),
-                field: "resume",
-                value: ignored.join(" "),
-                reason: format!(
-                    "a resumed run keeps the settings of {src}; only --generations may be given \
-                     (to extend the run): drop the other flags"
-                ),
-            });
-        }
-    }
     if resume && a.generations_given() {
         // Resuming may extend the run (an interrupted run resumes to its own target).
         c.generations = a.generations;
@@ -159,53 +84,16 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         .and_then(Path::parent)
         .unwrap_or(Path::new("."))
         .to_path_buf();
-    let mut bar = Bar(None);
-    let done = design_run(&c, &src, &dir, resume, &base_dir, &mut bar)?;
-    if let Some(r) = done.last {
-        writeln!(
-            out,
-            "{} on {}: generation {}, {} evaluations in {:.2} s in this run, feasible {:.0} %, hypervolume {:.6} w.r.t. {:?}, {} front members{}; wrote {}",
-            c.algorithm,
-            c.problem.base,
-            r.generation,
-            r.evaluations,
-            done.wall_time_s,
-            100.0 * r.feasible_fraction,
-            r.hypervolume,
-            c.reference,
-            r.front.len(),
-            c.archive
-                .map_or_else(String::new, |n| format!(" (external archive of {n})")),
-            dir.display()
-        )?;
+    let done = design_run(
+        &c,
+        &src,
+        &dir,
+        resume,
+        &base_dir,
+        &mut ProgressBar::default(),
+    )?;
+    if let Some(line) = done.line(&c, &dir) {
+        writeln!(out, "{line}")?;
     }
     Ok(())
-}
-
-/// The progress bar of a run (hidden when stderr is not a terminal).
-struct Bar(Option<indicatif::ProgressBar>);
-
-impl Progress for Bar {
-    fn start(&mut self, total: u64, done: u64) {
-        let bar = indicatif::ProgressBar::new(total);
-        bar.set_position(done);
-        self.0 = Some(bar);
-    }
-    fn record(&mut self, rec: &Record) {
-        if let Some(bar) = &self.0 {
-            bar.set_position(rec.generation + 1);
-            bar.set_message(format!(
-                "gen {} feasible {:.0} % best f {:?} hv {:.4}",
-                rec.generation,
-                100.0 * rec.feasible_fraction,
-                rec.best,
-                rec.hypervolume
-            ));
-        }
-    }
-    fn finish(&mut self) {
-        if let Some(bar) = &self.0 {
-            bar.finish_and_clear();
-        }
-    }
 }

@@ -36,8 +36,8 @@ fn mhaco_runs_both_modes_and_resumes() {
         optimize(&v).unwrap()
     };
     let (a, b) = (tmp("mhaco_a"), tmp("mhaco_b"));
-    run(&a, "2", &["--algorithm", "mhaco"]);
-    run(&b, "1", &["--algorithm", "mhaco"]);
+    run(&a, "2", &["mhaco"]);
+    run(&b, "1", &["mhaco"]);
     optimize(&["--resume", b.to_str().unwrap(), "--generations", "2"]).unwrap();
     for f in ["generations.json", "population.csv", "front.csv"] {
         assert_eq!(read(&a, f), read(&b, f), "{f}");
@@ -63,17 +63,13 @@ fn mhaco_runs_both_modes_and_resumes() {
     assert_ne!(read(&a, "population.csv"), read(&out, "population.csv"));
     // The same mode from the flag: the same run as from the file.
     let f = tmp("mhaco_f");
-    run(
-        &f,
-        "2",
-        &["--algorithm", "mhaco", "--mhaco-constraints", "objectives"],
-    );
+    run(&f, "2", &["mhaco", "--mhaco-constraints", "objectives"]);
     assert!(read(&f, "config.toml").contains("algorithm = \"mhaco-objectives\""));
     assert_eq!(read(&f, "population.csv"), read(&out, "population.csv"));
     // Flags the re-entry problems fix are refused, not ignored.
     for extra in [["--ker", "3"], ["--n-gen-mark", "2"]] {
         let mut v = common.to_vec();
-        v.extend(["--algorithm", "mhaco", "--generations", "1"]);
+        v.extend(["mhaco", "--generations", "1"]);
         v.extend(extra);
         let e = optimize(&v).unwrap_err().to_string();
         assert!(e.contains("fixed on the re-entry problems"), "{e}");
@@ -91,6 +87,7 @@ fn resume_gives_the_uninterrupted_run() {
         "srm",
         "--population",
         "4",
+        "moead",
         "--neighbours",
         "3",
         "--seed",
@@ -158,7 +155,6 @@ fn scea_resume_gives_the_uninterrupted_run() {
     let common = [
         "--problem",
         "srm",
-        "--algorithm",
         "scea",
         "--population",
         "4",
@@ -326,6 +322,7 @@ fn srm_analytical_seeded_run_is_reproducible() {
             problem,
             "--population",
             "8",
+            "moead",
             "--neighbours",
             "4",
             "--batch-size",
@@ -387,7 +384,6 @@ fn scea_gene_source_from_the_command_line() {
     let text = optimize(&[
         "--problem",
         "srm",
-        "--algorithm",
         "scea",
         "--scea-genes",
         "random",
@@ -402,7 +398,6 @@ fn scea_gene_source_from_the_command_line() {
         optimize(&[
             "--problem",
             "srm-analytical",
-            "--algorithm",
             "scea",
             "--population",
             "6",
@@ -429,15 +424,23 @@ fn scea_gene_source_from_the_command_line() {
     run(&r1, "random", "1");
     optimize(&["--resume", r1.to_str().unwrap(), "--generations", "3"]).unwrap();
     assert_eq!(read(&r, "population.csv"), read(&r1, "population.csv"));
-    let e = optimize(&["--problem", "srm", "--scea-genes", "parents"]).unwrap_err();
+    let e = optimize(&["--problem", "srm", "scea", "--scea-genes", "parents"]).unwrap_err();
     assert!(e.to_string().contains("scea-genes"), "{e}");
-    // Refused, not ignored, for another algorithm.
-    let e = optimize(&["--problem", "srm", "--scea-genes", "random"]).unwrap_err();
-    assert!(
-        e.to_string()
-            .contains("--scea-genes random applies to --algorithm scea only"),
-        "{e}"
-    );
+    // Refused by clap, not ignored, for another algorithm.
+    for alg in [&[][..], &["nsga2"][..]] {
+        let mut v = vec!["--problem", "srm"];
+        v.extend(alg);
+        v.extend(["--scea-genes", "random"]);
+        let e = optimize(&v).unwrap_err();
+        let crate::cli::CliError::Usage(c) = &e else {
+            panic!("{e}")
+        };
+        assert_eq!(c.exit_code(), 2);
+        assert!(
+            e.to_string().contains("unexpected argument '--scea-genes'"),
+            "{e}"
+        );
+    }
     for d in [r, h, r1] {
         std::fs::remove_dir_all(&d).unwrap();
     }
@@ -496,6 +499,7 @@ fn archive_on_a_reentry_run_resumes_and_writes_the_archive_front() {
         "srm",
         "--population",
         "4",
+        "moead",
         "--neighbours",
         "3",
         "--seed",

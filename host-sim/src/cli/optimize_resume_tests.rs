@@ -551,6 +551,7 @@ fn sizes_without_bounds_are_refused_naming_the_option() {
         "srm-analytical",
         "--population",
         "8",
+        "moead",
         "--neighbours",
         "20",
         "--generations",
@@ -563,7 +564,8 @@ fn sizes_without_bounds_are_refused_naming_the_option() {
     let _ = std::fs::remove_dir_all(&base);
 }
 
-/// `--resume` with other flags is refused naming them (they used to be ignored silently);
+/// `--resume` with other flags is refused naming them (they used to be ignored silently): the
+/// common flags by clap, an algorithm subcommand because the run file decides;
 /// `--generations` extends the run.
 #[test]
 fn resume_with_other_flags_names_them() {
@@ -572,10 +574,33 @@ fn resume_with_other_flags_names_them() {
     let run = base.join("r");
     let r = run.to_str().unwrap();
     optimize(&["--config", cfg.to_str().unwrap(), "--out", r]).unwrap();
-    let e = optimize(&["--resume", r, "--population", "16", "--seed", "9"])
+    for (flags, named) in [
+        (
+            &["--population", "16", "--seed", "9"][..],
+            &["--population <POPULATION>", "--seed <SEED>"][..],
+        ),
+        (&["--out", "elsewhere"][..], &["--out <DIR>"][..]),
+    ] {
+        let mut v = vec!["--resume", r];
+        v.extend(flags);
+        let e = optimize(&v).unwrap_err();
+        let crate::cli::CliError::Usage(c) = &e else {
+            panic!("{e}")
+        };
+        assert_eq!(c.exit_code(), 2);
+        let e = e.to_string();
+        assert!(e.contains("'--resume <DIR>' cannot be used with"), "{e}");
+        for flag in named {
+            assert!(e.contains(flag), "{e}");
+        }
+    }
+    let e = optimize(&["--resume", r, "moead", "--neighbours", "3"])
         .unwrap_err()
         .to_string();
-    assert!(e.contains("`resume` = --population --seed:"), "{e}");
+    assert!(
+        e.contains("`optimize moead` with --config or --resume: the run file decides"),
+        "{e}"
+    );
     optimize(&["--resume", r, "--generations", "2"]).unwrap();
     std::fs::remove_dir_all(&base).unwrap();
 }

@@ -1,84 +1,73 @@
-//! `host-sim optimize` with SCEA: on the fixed-length test problems (as chromosomes of fixed
-//! genes only) and on the variable-length problems of Li & Deb (`vlmop1` ... `vlmop5`). The
-//! variable-length population CSV is [`crate::optim::run::chromosome_csv`]'s: one chromosome
-//! per row.
+//! `host-sim optimize scea`: SCEA on the fixed-length test problems (as chromosomes of fixed
+//! genes only, reported as real vectors) and on the variable-length problems of Li & Deb
+//! (`vlmop1` ... `vlmop5`; population.csv one chromosome per row,
+//! [`crate::optim::run::chromosome_csv`]).
 
 use std::io::Write;
 
-use super::optimize_common::{
-    AlgorithmName, OptimizeArgs, OptimizeError, Outcome, moead_config, reference, threads,
-};
-use crate::optim::chromosome::{Chromosome, FixedLength, StructuredProblem};
-use crate::optim::hypervolume::hypervolume;
-use crate::optim::population::{feasible_fraction, feasible_front_indices};
+use super::optimize_common::{OptimizeArgs, OptimizeError, finish, reference, run_options};
+use crate::optim::chromosome::{FixedLength, StructuredProblem};
 use crate::optim::problems::{TestProblem, Vlmop};
-use crate::optim::run::{RunSummary, chromosome_csv};
-use crate::optim::{
-    Algorithm, Budget, Executor, Individual, OptimError, Problem, Scea, SceaConfig, Threads,
-};
+use crate::optim::run::{RunResult, RunSettings, run_report, vlmop_run_report};
+use crate::optim::{Algorithm, Budget, Executor, Problem, Scea, SceaConfig, Threads};
 
-pub use super::optimize_common::SceaGenesArg;
+/// SCEA of the flags run on `problem`, with the evolution's wall time \[s\].
+fn evolve<P: StructuredProblem>(
+    a: &OptimizeArgs,
+    problem: &P,
+    threads: Threads,
+) -> Result<(Scea, f64), OptimizeError> {
+    let d = SceaConfig::default();
+    let config = SceaConfig {
+        moead: run_options(a).moead_config(),
+        new_genes: a.scea_genes().unwrap_or(d.new_genes),
+        ..d
+    };
+    let run = Executor::new(problem, Scea::new(config, a.seed))
+        .budget(Budget::Generations(a.generations))
+        .threads(threads)
+        .run()?;
+    Ok((run.algorithm, run.wall_time_s))
+}
 
-fn scea_config(a: &OptimizeArgs) -> SceaConfig {
-    SceaConfig {
-        moead: moead_config(a),
-        new_genes: a.scea_genes.new_genes(),
-        ..SceaConfig::default()
+/// The settings SCEA's summary reports.
+fn settings<'a>(a: &'a OptimizeArgs, reference: &'a [f64]) -> RunSettings<'a> {
+    let o = run_options(a);
+    RunSettings {
+        problem: &a.problem,
+        algorithm: "scea",
+        population: a.population,
+        generations: a.generations,
+        seed: a.seed,
+        reference,
+        archive_capacity: o.archive,
+        resource_allocation: o.resource_allocation,
+        moead_operator: None,
+        threads: a.threads,
     }
 }
 
-/// What an SCEA run leaves: the population, the external archive (`--archive`), the
-/// evaluations and the evolution's wall time [s].
-type SceaOutcome = (
-    Vec<Individual<Chromosome>>,
-    Option<Vec<Individual<Chromosome>>>,
-    u64,
-    f64,
-);
-
-/// Evolve SCEA on `problem`.
-fn evolve_scea<P: StructuredProblem>(
-    a: &OptimizeArgs,
-    problem: &P,
-    threads: &Threads,
-) -> Result<SceaOutcome, OptimError> {
-    let run = Executor::new(problem, Scea::new(scea_config(a), a.seed))
-        .budget(Budget::Generations(a.generations))
-        .threads(threads.clone())
-        .run()?;
-    let (alg, wall) = (run.algorithm, run.wall_time_s);
-    Ok((
-        <Scea as Algorithm<P>>::population(&alg).to_vec(),
-        <Scea as Algorithm<P>>::external_archive(&alg).map(<[_]>::to_vec),
-        alg.evaluations(),
-        wall,
-    ))
-}
-
-/// SCEA on a fixed-length test problem; the decisions are the chromosomes' fixed genes.
-pub(super) fn drive_scea(
+/// SCEA on a fixed-length test problem.
+pub(super) fn run_fixed_length(
     a: &OptimizeArgs,
     problem: &TestProblem,
-    threads: &Threads,
-) -> Result<Outcome, OptimError> {
+    reference: &[f64],
+    threads: Threads,
+    out: &mut dyn Write,
+) -> Result<(), OptimizeError> {
+    type Fixed = FixedLength<TestProblem>;
     let wrapped = FixedLength::new(problem.clone());
-    let (population, archive, evaluations, wall_time_s) = evolve_scea(a, &wrapped, threads)?;
-    let fixed = |inds: Vec<Individual<Chromosome>>| -> Vec<Individual<Vec<f64>>> {
-        inds.into_iter()
-            .map(|i| Individual {
-                decision: i.decision.fixed,
-                objectives: i.objectives,
-                constraints: i.constraints,
-                violation: i.violation,
-            })
-            .collect()
-    };
-    Ok(Outcome {
-        population: fixed(population),
-        archive: archive.map(fixed),
-        evaluations,
+    let (alg, wall_time_s) = evolve(a, &wrapped, threads)?;
+    let population = wrapped.real_individuals(Algorithm::<Fixed>::population(&alg));
+    let archive = Algorithm::<Fixed>::external_archive(&alg).map(|m| wrapped.real_individuals(m));
+    let result = RunResult {
+        population: &population,
+        archive: archive.as_deref(),
+        evaluations: Algorithm::<Fixed>::evaluations(&alg),
         wall_time_s,
-    })
+    };
+    let report = run_report(problem, &settings(a, reference), result)?;
+    finish(a, &report, out)
 }
 
 /// `optimize` on a variable-length problem (SCEA only).
@@ -87,58 +76,13 @@ pub(super) fn run_variable_length(
     problem: &Vlmop,
     out: &mut dyn Write,
 ) -> Result<(), OptimizeError> {
-    if a.algorithm != AlgorithmName::Scea {
-        return Err(OptimizeError::NeedsFixedLength {
-            algorithm: a.algorithm.as_str(),
-            problem: a.problem.clone(),
-        });
-    }
-    let m = problem.objectives();
-    let reference = reference(a, m, || problem.reference_point())?;
-    let (pop, archive, evaluations, wall_time_s) = evolve_scea(a, problem, &threads(a.threads)?)?;
-    let result = archive.as_deref().unwrap_or(&pop);
-    let front: Vec<&[f64]> = feasible_front_indices(result)
-        .into_iter()
-        .map(|i| result[i].objectives.as_slice())
-        .collect();
-    let hv = hypervolume(&front, &reference)?;
-    let true_hv = problem
-        .front_hypervolume(&reference)
-        .or_else(|| hypervolume(&problem.pareto_front(2000), &reference).ok());
-    let layout = problem.layout();
-    let summary = RunSummary {
-        problem: &a.problem,
-        algorithm: a.algorithm.as_str(),
-        population: a.population,
-        generations: a.generations,
-        seed: a.seed,
-        objectives: m,
-        variables: layout.fixed_dim()
-            + layout.legs().max * layout.nodes().max * layout.node().dim(),
-        constraints: problem.constraints(),
-        evaluations,
-        reference_point: &reference,
-        hypervolume: hv,
-        true_front_hypervolume: true_hv,
-        hypervolume_ratio: true_hv.filter(|t| *t > 0.0).map(|t| hv / t),
-        feasible_fraction: feasible_fraction(&pop),
-        front_source: if archive.is_some() {
-            "archive"
-        } else {
-            "population"
-        },
-        archive_capacity: a.archive,
-        resource_allocation: a.resource_allocation,
-        moead_operator: None,
-        front_size: front.len(),
-        wall_time_s,
-        threads: a.threads,
-    };
-    writeln!(out, "{}", summary.line())?;
+    let reference = reference(a, problem.objectives(), || problem.reference_point())?;
+    let (alg, wall_time_s) = evolve(a, problem, Threads::new(a.threads)?)?;
+    let result = RunResult::of::<Vlmop, _>(&alg, wall_time_s);
+    let report = vlmop_run_report(problem, &settings(a, &reference), result)?;
+    writeln!(out, "{}", report.summary.line())?;
     if let Some(dir) = &a.out {
-        let population = chromosome_csv(&pop, m, problem.constraints())
-            .map_err(crate::report::ReportError::from)?;
-        crate::report::write_optimize_run(dir, &population, &front, &summary)?;
+        crate::report::write_chromosome_run_report(dir, &report)?;
         writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())
@@ -146,45 +90,23 @@ pub(super) fn run_variable_length(
 
 #[cfg(test)]
 mod tests {
-    use super::super::optimize_cmd::{WeightsArg, run};
+    use super::super::optimize_cmd::run;
+    use super::super::optimize_variants_tests::small_args;
     use super::*;
 
-    fn args(problem: &str, algorithm: AlgorithmName) -> OptimizeArgs {
-        OptimizeArgs {
-            problem: problem.into(),
-            algorithm,
-            population: 20,
-            generations: 10,
-            seed: 3,
-            objectives: 3,
-            weights: WeightsArg::Grid,
-            neighbours: Some(5),
-            mutation_probability: None,
-            batch_size: 1,
-            ker: None,
-            n_gen_mark: 7,
-            mhaco_constraints: super::super::optimize_common::MhacoConstraintsArg::FeasibilityFirst,
-            scea_genes: SceaGenesArg::Population,
-            archive: None,
-            resource_allocation: false,
-            moead_operator: super::super::optimize_cmd::MoeadOperatorArg::De,
-            evaluations: None,
-            threads: 1,
-            reference: None,
-            out: None,
-            config: None,
-            print_config: false,
-            resume: None,
-        }
+    fn args(problem: &str, algorithm: &str) -> OptimizeArgs {
+        let mut a = small_args(problem, algorithm, &[]);
+        a.generations = 10;
+        a
     }
 
     #[test]
     fn optimize_runs_mhaco_and_scea_and_the_variable_length_problems() {
         let mut out = Vec::new();
-        run(&args("zdt1", AlgorithmName::Mhaco), &mut out).unwrap();
-        run(&args("constr", AlgorithmName::Scea), &mut out).unwrap();
+        run(&args("zdt1", "mhaco"), &mut out).unwrap();
+        run(&args("constr", "scea"), &mut out).unwrap();
         let dir = std::env::temp_dir().join(format!("host-sim-optimize-vl-{}", std::process::id()));
-        let mut a = args("vlmop2", AlgorithmName::Scea);
+        let mut a = args("vlmop2", "scea");
         a.out = Some(dir.clone());
         a.threads = 2;
         run(&a, &mut out).unwrap();
@@ -205,9 +127,10 @@ mod tests {
         let truth = json["true_front_hypervolume"].as_f64().unwrap();
         assert!((truth - 0.535).abs() < 1e-12, "{truth}");
         std::fs::remove_dir_all(&dir).unwrap();
-        let e = run(&args("vlmop1", AlgorithmName::Moead), &mut Vec::new()).unwrap_err();
-        assert!(e.to_string().contains("use --algorithm scea"), "{e}");
-        let e = run(&args("vlmop9", AlgorithmName::Scea), &mut Vec::new()).unwrap_err();
+        let e = run(&args("vlmop1", "moead"), &mut Vec::new()).unwrap_err();
+        assert!(matches!(e, OptimizeError::NotForProblem { .. }), "{e}");
+        assert!(e.to_string().contains("use `optimize scea`"), "{e}");
+        let e = run(&args("vlmop9", "scea"), &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("vlmop1, vlmop2"), "{e}");
     }
 }

@@ -187,6 +187,23 @@ impl<P: super::problem::RealProblem> FixedLength<P> {
     pub fn inner(&self) -> &P {
         &self.inner
     }
+
+    /// Individuals of this problem as the wrapped problem's: the chromosomes' fixed genes.
+    #[must_use]
+    pub fn real_individuals(
+        &self,
+        individuals: &[super::population::Individual<Chromosome>],
+    ) -> Vec<super::population::Individual<Vec<f64>>> {
+        individuals
+            .iter()
+            .map(|i| super::population::Individual {
+                decision: i.decision.fixed.clone(),
+                objectives: i.objectives.clone(),
+                constraints: i.constraints.clone(),
+                violation: i.violation,
+            })
+            .collect()
+    }
 }
 
 impl<P: super::problem::RealProblem> Problem for FixedLength<P> {

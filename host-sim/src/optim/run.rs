@@ -346,23 +346,32 @@ impl<'a> RunSettings<'a> {
     }
 }
 
-/// A finished real-vector run: what the algorithm holds at its end.
-#[derive(Clone, Copy, Debug)]
-pub struct RunResult<'a> {
+/// A finished run (real vectors, or chromosomes `D = Chromosome`): what the algorithm holds
+/// at its end.
+#[derive(Debug)]
+pub struct RunResult<'a, D = Vec<f64>> {
     /// The final population.
-    pub population: &'a [Individual<Vec<f64>>],
+    pub population: &'a [Individual<D>],
     /// The external archive's members, when the run kept one (the result front).
-    pub archive: Option<&'a [Individual<Vec<f64>>]>,
+    pub archive: Option<&'a [Individual<D>]>,
     /// Evaluations, initial population included.
     pub evaluations: u64,
     /// Wall time of the evolution alone \[s\].
     pub wall_time_s: f64,
 }
 
-impl<'a> RunResult<'a> {
+impl<D> Clone for RunResult<'_, D> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<D> Copy for RunResult<'_, D> {}
+
+impl<'a, D> RunResult<'a, D> {
     /// What `algorithm` (run on a problem of type `P`) holds, with the run's wall time.
     #[must_use]
-    pub fn of<P: Problem<Decision = Vec<f64>>, A: Algorithm<P>>(
+    pub fn of<P: Problem<Decision = D>, A: Algorithm<P>>(
         algorithm: &'a A,
         wall_time_s: f64,
     ) -> Self {
@@ -377,11 +386,11 @@ impl<'a> RunResult<'a> {
 
 /// A finished run's summary, with the population and the feasible front it was made of.
 #[derive(Debug)]
-pub struct RunReport<'a> {
+pub struct RunReport<'a, D = Vec<f64>> {
     /// summary.json.
     pub summary: RunSummary<'a>,
     /// The final population (population.csv).
-    pub population: &'a [Individual<Vec<f64>>],
+    pub population: &'a [Individual<D>],
     /// The feasible front of the archive, or else of the population (front.csv).
     pub front: Vec<&'a [f64]>,
 }
@@ -444,7 +453,43 @@ pub fn real_run_report<'a, P: super::problem::RealProblem>(
     settings: &RunSettings<'a>,
     result: RunResult<'a>,
 ) -> Result<RunReport<'a>, RunReportError> {
-    let m = problem.objectives();
+    let shape = [
+        problem.objectives(),
+        problem.bounds().dim(),
+        problem.constraints(),
+    ];
+    report_of(shape, true_front_hypervolume, settings, result)
+}
+
+/// The report of a finished SCEA run on a variable-length test problem: as
+/// [`run_report`]'s, the true front's hypervolume exact where known, else of 2000 front
+/// points; the variables those of the longest chromosome.
+///
+/// # Errors
+/// [`RunReportError`].
+pub fn vlmop_run_report<'a>(
+    problem: &super::problems::Vlmop,
+    settings: &RunSettings<'a>,
+    result: RunResult<'a, Chromosome>,
+) -> Result<RunReport<'a, Chromosome>, RunReportError> {
+    use super::chromosome::StructuredProblem;
+    check_reference(settings.reference, problem.objectives())?;
+    let true_hv = problem
+        .front_hypervolume(settings.reference)
+        .or_else(|| hypervolume(&problem.pareto_front(2000), settings.reference).ok());
+    let l = problem.layout();
+    let variables = l.fixed_dim() + l.legs().max * l.nodes().max * l.node().dim();
+    let shape = [problem.objectives(), variables, problem.constraints()];
+    report_of(shape, true_hv, settings, result)
+}
+
+/// The report of a run on a problem of `[objectives, variables, constraints]`.
+fn report_of<'a, D>(
+    [m, variables, constraints]: [usize; 3],
+    true_front_hypervolume: Option<f64>,
+    settings: &RunSettings<'a>,
+    result: RunResult<'a, D>,
+) -> Result<RunReport<'a, D>, RunReportError> {
     let reference = settings.reference;
     check_reference(reference, m)?;
     let pop = result.population;
@@ -462,8 +507,8 @@ pub fn real_run_report<'a, P: super::problem::RealProblem>(
         generations: settings.generations,
         seed: settings.seed,
         objectives: m,
-        variables: problem.bounds().dim(),
-        constraints: problem.constraints(),
+        variables,
+        constraints,
         evaluations: result.evaluations,
         reference_point: reference,
         hypervolume: hv,

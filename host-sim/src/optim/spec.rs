@@ -111,7 +111,7 @@ impl AlgorithmSpec {
     }
 }
 
-/// The real-vector algorithms by the names `host-sim optimize --algorithm` gives them.
+/// The real-vector algorithms by the names of `host-sim optimize`'s subcommands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OptionsAlgorithm {
@@ -136,24 +136,27 @@ impl OptionsAlgorithm {
 }
 
 /// MOEA/D's variation operator (`--moead-operator`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum MoeadOperator {
-    /// pagmo's MOEA/D-DE.
+    /// pagmo's MOEA/D-DE (Li & Zhang 2009): DE step (CR 1, F 0.5), polynomial mutation.
     #[default]
     De,
-    /// Zhang & Li's (2007) SBX with the default [`SbxVariation`].
+    /// Zhang & Li's (2007) original MOEA/D, not in pagmo: SBX (index 20, probability 1) of
+    /// the two parents, polynomial mutation (the default `SbxVariation`).
     Sbx,
 }
 
-/// MHACO's constraint handling (`--mhaco-constraints`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// MHACO's constraint handling (`--mhaco-constraints`; the variants' text is its help).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum MhacoConstraints {
-    /// [`ConstraintHandling::FeasibilityFirst`].
+    /// Feasible candidates first, then infeasible ones by violation (thesis sec. 10.2;
+    /// `ConstraintHandling::FeasibilityFirst`).
     #[default]
     FeasibilityFirst,
-    /// [`ConstraintHandling::thesis_objectives`].
+    /// Constraints as extra objectives, the thesis' normalisation (sec. 9.3.2: unit scales,
+    /// cap 2.0, penalty 0.5; `ConstraintHandling::thesis_objectives`).
     Objectives,
 }
 
@@ -165,7 +168,8 @@ pub enum MhacoConstraints {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RunOptions {
-    /// `--algorithm`.
+    /// The subcommand of `host-sim optimize` (`moead`, `nsga2`, `mhaco`; SCEA takes
+    /// MOEA/D's fields).
     pub algorithm: OptionsAlgorithm,
     /// `--moead-operator` (MOEA/D only).
     pub moead_operator: MoeadOperator,
@@ -285,7 +289,7 @@ impl RunOptions {
     pub fn generations_for(&self, evaluations: u64, objectives: usize) -> Result<u64, String> {
         if self.algorithm == OptionsAlgorithm::Mhaco {
             return Err(
-                "applies to --algorithm moead or nsga2 (given --algorithm mhaco); use --generations"
+                "applies to the moead and nsga2 subcommands (given mhaco); use --generations"
                     .into(),
             );
         }

@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 use super::error::ConfigError;
 use super::rng::OptimRng;
 
-/// How the weight vectors are generated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// How the weight vectors are generated (`--weights`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum WeightGeneration {
     /// Uniform simplex lattice (Das-Dennis): only populations C(H + m - 1, m - 1).

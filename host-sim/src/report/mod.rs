@@ -20,7 +20,7 @@ use crate::sim::SimResult;
 
 pub use csv::trajectory_csv;
 pub use error::ReportError;
-pub use optimize_run::{write_optimize_run, write_run_report};
+pub use optimize_run::{write_chromosome_run_report, write_optimize_run, write_run_report};
 pub use plot::{PlotLimits, Series, line_plot_png, line_plot_svg, standard_plots};
 pub use run_dir::{RunDir, begin_in_place, clean_stale};
 pub use summary::{

@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use super::{ReportError, RunDir};
-use crate::optim::run::{RunReport, RunSummary, front_csv, population_csv};
+use crate::optim::chromosome::Chromosome;
+use crate::optim::run::{RunReport, RunSummary, chromosome_csv, front_csv, population_csv};
 
 /// Write the run directory `dir` of a test-problem run: `population` (the population's CSV
 /// text), front.csv of `front` and summary.json of `summary`.
@@ -39,4 +40,18 @@ pub fn write_optimize_run(
 pub fn write_run_report(dir: &Path, report: &RunReport<'_>) -> Result<(), ReportError> {
     let population = population_csv(report.population)?;
     write_optimize_run(dir, &population, &report.front, &report.summary)
+}
+
+/// [`write_optimize_run`] of a variable-length run's [`RunReport`] (population.csv: one
+/// chromosome per row, [`chromosome_csv`]).
+///
+/// # Errors
+/// [`ReportError`] naming the path.
+pub fn write_chromosome_run_report(
+    dir: &Path,
+    report: &RunReport<'_, Chromosome>,
+) -> Result<(), ReportError> {
+    let s = &report.summary;
+    let population = chromosome_csv(report.population, s.objectives, s.constraints)?;
+    write_optimize_run(dir, &population, &report.front, s)
 }

@@ -41,20 +41,29 @@ fn cli_markdown() -> String {
     );
     out.push_str(root.render_long_help().to_string().trim_end());
     out.push_str("\n```\n");
-    let names: Vec<String> = root
+    subcommands_markdown(&mut root, "host-sim", &mut out);
+    out
+}
+
+/// The `--help` of each subcommand of `command` (named `path`), and of theirs (`optimize`'s
+/// algorithms, without their `help` subcommand), in order.
+fn subcommands_markdown(command: &mut clap::Command, path: &str, out: &mut String) {
+    let names: Vec<String> = command
         .get_subcommands()
         .map(|c| c.get_name().to_string())
+        .filter(|n| path == "host-sim" || n != "help")
         .collect();
     for name in names {
-        let Some(sub) = root.find_subcommand_mut(&name) else {
+        let Some(sub) = command.find_subcommand_mut(&name) else {
             continue;
         };
-        let mut sub = sub.clone().bin_name(format!("host-sim {name}"));
-        out.push_str(&format!("\n## host-sim {name}\n\n```text\n"));
+        let path = format!("{path} {name}");
+        let mut sub = sub.clone().bin_name(&path);
+        out.push_str(&format!("\n## {path}\n\n```text\n"));
         out.push_str(sub.render_long_help().to_string().trim_end());
         out.push_str("\n```\n");
+        subcommands_markdown(&mut sub, &path, out);
     }
-    out
 }
 
 #[test]

@@ -99,6 +99,7 @@ fn optimize(out: &Path) -> Command {
         "srm",
         "--population",
         "4",
+        "moead",
         "--neighbours",
         "3",
         "--generations",

@@ -188,7 +188,7 @@ fn ctrl_c_stops_a_long_optimisation_without_writing() {
     let root = temp_dir("sigint-optimize");
     let out = root.join("opt");
     let child = bin()
-        .args(["optimize", "--problem", "zdt1", "--algorithm", "nsga2"])
+        .args(["optimize", "--problem", "zdt1", "nsga2"])
         .args(["--generations", "100000000", "--out"])
         .arg(&out)
         .stdout(Stdio::null())

@@ -8,6 +8,9 @@
 //! prints; everything else is here.
 
 pub mod files;
+mod progress;
+
+pub use progress::ProgressBar;
 
 use std::path::{Path, PathBuf};
 

@@ -18,8 +18,8 @@ use crate::optim::chromosome::{Chromosome, CountRange, Layout, StructuredProblem
 use crate::optim::operators::{de_step, polynomial_mutation, random_point};
 use crate::optim::rng::OptimRng;
 
-/// Where the genes of an appended node come from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// Where the genes of an appended node come from (`--scea-genes`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum NewGenes {
     /// Uniformly random inside the node bounds (the thesis' SCEA).
@@ -28,6 +28,7 @@ pub enum NewGenes {
     /// individuals in the population that use these nodes"): the same node (leg, position) of
     /// one of the two mating parents, population members from the child's neighbourhood
     /// (drawn between them when both have it); random when neither has it.
+    #[value(alias = "history")]
     Population,
 }
 
