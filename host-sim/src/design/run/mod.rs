@@ -8,6 +8,8 @@
 //! prints; everything else is here.
 
 pub mod files;
+#[cfg(test)]
+mod tests;
 
 use std::path::{Path, PathBuf};
 
@@ -22,9 +24,9 @@ use super::{
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
 use crate::optim::{
-    Algorithm, Budget, ConstraintHandling, Executor, Individual, Mhaco, MhacoConfig, Moead,
-    MoeadConfig, NewGenes, Nsga2, Nsga2Config, OptimError, Problem, Scea, SceaConfig, Stop,
-    Threads,
+    Algorithm, BatchEvaluator, Budget, ConstraintHandling, Executor, Individual, Mhaco,
+    MhacoConfig, Moead, MoeadConfig, NewGenes, Nsga2, Nsga2Config, OptimError, Problem, Scea,
+    SceaConfig, Stop, Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -406,7 +408,56 @@ pub fn run(
     base_dir: &Path,
     progress: &mut dyn Progress,
 ) -> Result<Finished, ReentryError> {
+    run_on(c, src, dir, resume, base_dir, progress, None)
+}
+
+/// The run file of the run in `dir` (its config.toml), for [`run`] with `resume`: its own
+/// generation total, or `generations` when given (a resumed run may be extended).
+///
+/// # Errors
+/// [`ReentryError`] naming config.toml, the field and the value.
+pub fn resumed_config(
+    dir: &Path,
+    generations: Option<u64>,
+) -> Result<ReentryRunConfig, ReentryError> {
+    let mut c = parse_toml(&dir.join("config.toml"))?;
+    if let Some(g) = generations {
+        c.generations = g;
+    }
+    Ok(c)
+}
+
+/// [`run`], its batches evaluated by `external` when given (a front end's evaluator, e.g.
+/// the Python package's over a Dask cluster) instead of on the run file's `threads`, which
+/// then fly only the chosen front members' reports at the end. The run directory, its
+/// checkpoints and its result are those of [`run`] when `external` returns the problem's own
+/// evaluations; a run started one way resumes the other. A fixed-length run only: the
+/// decisions `external` gets are the genes (`x` of the design problem, or of the robust
+/// problem with `[robust]`).
+///
+/// # Errors
+/// [`run`]'s, and [`ReentryError::Setting`] for `algorithm = "scea"` with `external`.
+pub fn run_on(
+    c: &ReentryRunConfig,
+    src: &str,
+    dir: &Path,
+    resume: bool,
+    base_dir: &Path,
+    progress: &mut dyn Progress,
+    external: Option<&dyn BatchEvaluator<Vec<f64>>>,
+) -> Result<Finished, ReentryError> {
     check(c, src)?;
+    if external.is_some() && c.algorithm == "scea" {
+        return Err(ReentryError::Setting {
+            source_name: src.to_string(),
+            field: "algorithm",
+            value: c.algorithm.clone(),
+            reason: "a variable-length run evaluates in this process (on `threads`); an \
+                     external evaluator (Dask) takes the fixed-length algorithms moead, \
+                     nsga2, mhaco, mhaco-objectives"
+                .into(),
+        });
+    }
     let problem = c.problem.problem(base_dir)?;
     // A robust problem is built (its base's campaign set up) before the directory is touched.
     let robust = match &c.robust {
@@ -470,6 +521,7 @@ pub fn run(
             pool,
             resume,
             nominal_front: &nominal_front,
+            external: None,
         };
         let cfg = SceaConfig {
             moead,
@@ -486,6 +538,7 @@ pub fn run(
             pool,
             resume,
             nominal_front: &nominal_front,
+            external,
         };
         return drive_fixed(&ctx, moead, progress);
     }
@@ -496,6 +549,7 @@ pub fn run(
         pool,
         resume,
         nominal_front: &nominal_front,
+        external,
     };
     drive_fixed(&ctx, moead, progress)
 }
@@ -613,7 +667,7 @@ fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f6
         .collect()
 }
 
-struct Ctx<'a, P> {
+struct Ctx<'a, P: Problem> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
     problem: &'a P,
@@ -621,6 +675,8 @@ struct Ctx<'a, P> {
     resume: bool,
     /// A robust run's nominal front to fly in its campaign at the end (`robust.nominal_front`).
     nominal_front: &'a [Vec<f64>],
+    /// The front end's batch evaluator ([`run_on`]); `None`: the run's threads.
+    external: Option<&'a dyn BatchEvaluator<P::Decision>>,
 }
 
 fn drive<P, A>(
@@ -692,11 +748,15 @@ where
     // generation boundary with the last complete generation's checkpoint and no final file.
     let _active = crate::sim::ActiveRun::start();
     let stop = crate::sim::stop_requested;
-    let run = Executor::new(ctx.problem, alg)
+    let executor = Executor::new(ctx.problem, alg)
         .budget(Budget::Generations(ctx.c.generations))
         .threads(ctx.pool.clone())
-        .stop_when(&stop)
-        .run_with(|alg: &A| save(alg, &mut records))?;
+        .stop_when(&stop);
+    let executor = match ctx.external {
+        Some(e) => executor.external(e),
+        None => executor,
+    };
+    let run = executor.run_with(|alg: &A| save(alg, &mut records))?;
     let (alg, wall) = (run.algorithm, run.wall_time_s);
     if run.stop == Stop::Interrupted {
         return Err(ReentryError::Interrupted {
