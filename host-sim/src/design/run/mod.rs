@@ -490,7 +490,17 @@ pub fn run_on(
         source,
     })?;
     if !resume {
-        let text = toml::to_string(c).map_err(|e| ReentryError::Parse {
+        // The file paths of the run file are written absolute, so the run resumes from any
+        // working directory (`run` with `resume` reads its base from config.toml).
+        let mut written = c.clone();
+        written.problem = c.problem.anchored(base_dir);
+        if let Some(r) = written.robust.as_mut()
+            && let Some(f) = r.nominal_front.as_mut()
+            && let Ok(p) = std::path::absolute(base_dir.join(&*f))
+        {
+            *f = p.display().to_string();
+        }
+        let text = toml::to_string(&written).map_err(|e| ReentryError::Parse {
             path: dir.join("config.toml"),
             message: e.to_string(),
         })?;

@@ -124,3 +124,30 @@ fn a_broken_external_evaluator_stops_the_run_and_scea_refuses_one() {
         "refused before the directory is touched"
     );
 }
+
+/// A run whose base is a scenario file resumes wherever it is resumed from: config.toml names
+/// the base by its absolute path (a resumed run once looked for it in the working directory).
+#[test]
+fn a_run_with_a_file_base_resumes_from_any_directory() {
+    let mut c = small(1);
+    c.problem.base = "srm-glide-replanning.toml".into();
+    let examples = base_dir().join("examples");
+    let dir = tmp("file-base");
+    run(&c, "test", &dir, false, &examples, &mut ()).unwrap();
+    let resumed = resumed_config(&dir, Some(2)).unwrap();
+    assert!(
+        Path::new(&resumed.problem.base).is_absolute(),
+        "{resumed:?}"
+    );
+    let done = run(
+        &resumed,
+        "test",
+        &dir,
+        true,
+        Path::new("no-such-dir"),
+        &mut (),
+    )
+    .unwrap();
+    assert_eq!(done.last.unwrap().generation, 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}
