@@ -36,6 +36,7 @@ from .design import (
     VariableDesignProblem,
     design_presets,
     pymoo_problem,
+    run_design,
 )
 from .dispersions import DispersionCampaign, campaign_modes
 from .env import atmosphere, vehicles
@@ -85,6 +86,7 @@ __all__ = [
     "generations_for",
     "hypervolume",
     "pymoo_problem",
+    "run_design",
     "scenario_dict",
     "scenario_toml",
     "test_problems",

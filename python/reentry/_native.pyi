@@ -1,7 +1,7 @@
 """Type stubs of the native module (python/src/*.rs). Wrappers only; SI units and radians."""
 
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 TRAJECTORY_COLUMNS: List[str]
 
@@ -28,6 +28,7 @@ def fly_scenario(
     ``TRAJECTORY_COLUMNS`` in order with ``rows`` values each (empty with ``summary_only``)."""
 
 def json_to_toml(json: str) -> str: ...
+def run_file_kind(path: str) -> str: ...
 def scenario_toml(builtin: str = "horus-2b-reference", path: Optional[str] = None) -> str: ...
 def builtin_scenarios() -> List[str]: ...
 def atmosphere(altitudes_m: Sequence[float], model: str = "us76") -> Dict[str, List[float]]: ...
@@ -101,6 +102,14 @@ class TestProblem:
     def front_hypervolume(self, reference: Sequence[float], samples: int = 10000) -> Optional[float]: ...
 
 def design_presets() -> List[str]: ...
+def run_design(
+    out: str,
+    config: Optional[str] = None,
+    *,
+    resume: bool = False,
+    generations: Optional[int] = None,
+    map_batch: Optional[Callable[[List[List[float]]], List[Tuple[List[float], List[float]]]]] = None,
+) -> str: ...
 
 class DesignProblem:
     """A fixed-length re-entry design problem (host-sim design::ReentryProblem)."""

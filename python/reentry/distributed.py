@@ -36,7 +36,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
 
 import numpy as np
 
-from .design import DesignProblem
+from .design import DesignProblem, RobustDesignProblem, run_design
 from .dispersions import DispersionCampaign
 from .flight import _source, fly_summary, scenario_dict
 from .optim import TestProblem, evaluate_batch, evolve, from_options, generations_for
@@ -195,6 +195,33 @@ def robust_batch_evaluator(
         return [problem.evaluate_parts(p) for p in parts]
 
     return map_batch
+
+
+def run_design_on_dask(
+    out,
+    config=None,
+    *,
+    client,
+    resume: bool = False,
+    generations: Optional[int] = None,
+    chunk_size: Optional[int] = None,
+) -> dict:
+    """:func:`reentry.run_design` with every batch evaluated on the Dask cluster of
+    ``client``: the run directory, checkpoints and result of ``host-sim optimize --config
+    config --out out`` (or ``--resume out``), bit for bit. A nominal run's batches are split
+    over decisions (:func:`dask_batch_evaluator`), a robust run's (a ``[robust]`` section)
+    over decisions and flights (:func:`robust_batch_evaluator`). The run is checkpointed after
+    every generation: a lost worker's tasks are retried by Dask, and a run whose client or
+    scheduler died resumes from its directory (``resume=True``), here or with the CLI."""
+    path = os.path.join(os.fspath(out), "config.toml") if resume else os.fspath(config)
+    if _native.run_file_kind(path) == "robust":
+        map_batch = robust_batch_evaluator(client, RobustDesignProblem(path), chunk_size)
+    else:
+        map_batch = dask_batch_evaluator(client, DesignProblem(path), chunk_size)
+    return run_design(
+        out, None if resume else config, resume=resume, generations=generations,
+        map_batch=map_batch,
+    )
 
 
 # --------------------------------------------------------------------------- campaigns
