@@ -35,6 +35,7 @@ from .design import (
     RobustDesignProblem,
     VariableDesignProblem,
     design_presets,
+    design_run_config,
     pymoo_problem,
     run_design,
 )
@@ -78,6 +79,7 @@ __all__ = [
     "builtin_scenarios",
     "campaign_modes",
     "design_presets",
+    "design_run_config",
     "evaluate_batch",
     "evolve",
     "fly",

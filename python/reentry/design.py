@@ -189,6 +189,15 @@ def pymoo_problem(problem, failure_value: float = 1e30):
     return _Reentry()
 
 
+def design_run_config(preset: str = "horus-2b", **settings) -> str:
+    """The run file of a design preset as TOML text: the thesis' settings (``host-sim optimize
+    --problem PRESET --print-config``) with the top-level ``settings`` over them (``population``,
+    ``generations``, ``seed``, ``threads``, ``batch_size``, ``neighbours``, ``algorithm``,
+    ``reference``, ...; ``problem`` replaces the whole ``[problem]`` table), checked as a run
+    file is: a bad value raises :class:`DesignError` naming the field."""
+    return _native.run_config_toml(preset, json.dumps(settings))
+
+
 def run_design(
     out: "os.PathLike[str] | str",
     config: "os.PathLike[str] | str | None" = None,
@@ -228,6 +237,7 @@ __all__ = [
     "RobustDesignProblem",
     "VariableDesignProblem",
     "design_presets",
+    "design_run_config",
     "pymoo_problem",
     "run_design",
 ]

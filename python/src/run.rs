@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use host_sim::design::run::{parse_toml, resumed_config, run_on};
+use host_sim::design::run::{ReentryRunConfig, check, parse_toml, resumed_config, run_on};
 use host_sim::optim::{BatchEvaluator, EvalError, Evaluation};
 use pyo3::prelude::*;
 
@@ -107,6 +107,25 @@ fn run_design(
     Ok(v.to_string())
 }
 
+/// The run file of the design preset `preset` (the thesis' settings: `host-sim optimize
+/// --problem PRESET --print-config`) with the top-level settings of `overrides_json` (e.g.
+/// `{"population": 6, "generations": 1}`) over them, checked as a run file is, as TOML text.
+#[pyfunction]
+fn run_config_toml(preset: &str, overrides_json: &str) -> PyResult<String> {
+    let bad = |e: &dyn std::fmt::Display| errors::DesignError::new_err(e.to_string());
+    let base = ReentryRunConfig::thesis(preset).map_err(|e| errors::design(&e))?;
+    let mut v = serde_json::to_value(&base).map_err(|e| bad(&e))?;
+    let over: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_str(overrides_json).map_err(|e| bad(&e))?;
+    if let Some(m) = v.as_object_mut() {
+        m.extend(over);
+    }
+    let c: ReentryRunConfig = serde_path_to_error::deserialize(v)
+        .map_err(|e| bad(&format!("run settings: field `{}`: {}", e.path(), e.inner())))?;
+    check(&c, "run settings").map_err(|e| bad(&e))?;
+    toml::to_string(&c).map_err(|e| bad(&e))
+}
+
 /// Whether the run file `path` is a robust run (`"robust"`: a `[robust]` section) or a
 /// nominal one (`"nominal"`), for the Dask layer's choice of evaluator.
 #[pyfunction]
@@ -122,5 +141,6 @@ fn run_file_kind(path: PathBuf) -> PyResult<&'static str> {
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_design, m)?)?;
     m.add_function(wrap_pyfunction!(run_file_kind, m)?)?;
+    m.add_function(wrap_pyfunction!(run_config_toml, m)?)?;
     Ok(())
 }

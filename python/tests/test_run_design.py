@@ -168,3 +168,17 @@ def test_a_robust_dask_run_resumes_after_its_client_and_cluster_were_killed(tmp_
     assert not (out / "front.csv").exists(), "killed before the end"
     run_design_on_dask(out, resume=True, client=client)
     assert _result(out) == want
+
+
+def test_design_run_config_is_a_checked_run_file(tmp_path):
+    text = reentry.design_run_config("srm", population=6, neighbours=5, generations=1, seed=4)
+    assert "population = 6" in text and "seed = 4" in text and 'base = "srm"' in text
+    p = tmp_path / "run.toml"
+    p.write_text(text)
+    assert reentry.run_design(tmp_path / "run", p)["evaluations"] == 12
+    with pytest.raises(reentry.DesignError, match="populaton"):
+        reentry.design_run_config("srm", populaton=6)
+    with pytest.raises(reentry.DesignError, match="population"):
+        reentry.design_run_config("srm", population=1)
+    with pytest.raises(reentry.DesignError, match="no-such-preset"):
+        reentry.design_run_config("no-such-preset")

@@ -24,9 +24,9 @@ use super::{
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
 use crate::optim::{
-    Algorithm, BatchEvaluator, Budget, ConstraintHandling, Executor, Individual, Mhaco,
-    MhacoConfig, Moead, MoeadConfig, NewGenes, Nsga2, Nsga2Config, OptimError, Problem, Scea,
-    SceaConfig, Stop, Threads,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Budget, ConstraintHandling, Executor, Individual,
+    Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2, Nsga2Config, OptimError,
+    Problem, Scea, SceaConfig, Stop, Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -82,6 +82,50 @@ pub struct ReentryRunConfig {
 }
 
 impl ReentryRunConfig {
+    /// The run file's algorithm and its settings as the library's one specification
+    /// ([`AlgorithmSpec`]): `moead` (and `scea`, whose MOEA/D settings these are), `nsga2`,
+    /// `mhaco` (feasible candidates first), `mhaco-objectives` (the constraints as extra
+    /// objectives, the thesis' normalisation: the problem's constraints are already
+    /// `c / c_max - 1`, scale 1, cap 2, penalty 0.5). MHACO's archive is min(63, population).
+    #[must_use]
+    pub fn algorithm_spec(&self) -> AlgorithmSpec {
+        match self.algorithm.as_str() {
+            "nsga2" => AlgorithmSpec::Nsga2(Nsga2Config {
+                population: self.population,
+                archive: self.archive,
+                ..Nsga2Config::default()
+            }),
+            "mhaco" | "mhaco-objectives" => AlgorithmSpec::Mhaco(MhacoConfig {
+                population: self.population,
+                ker: self.population.min(MhacoConfig::default().ker),
+                constraints: if self.algorithm == "mhaco" {
+                    ConstraintHandling::FeasibilityFirst
+                } else {
+                    ConstraintHandling::AsObjectives {
+                        scales: None,
+                        cap: 2.0,
+                        penalty: 0.5,
+                    }
+                },
+                ..MhacoConfig::default()
+            }),
+            _ => AlgorithmSpec::Moead(self.moead_config()),
+        }
+    }
+
+    /// The MOEA/D settings of `moead` and `scea`.
+    fn moead_config(&self) -> MoeadConfig {
+        MoeadConfig {
+            population: self.population,
+            neighbours: self.neighbours,
+            limit: self.limit,
+            mutation_probability: self.mutation_probability,
+            batch_size: self.batch_size,
+            archive: self.archive,
+            ..MoeadConfig::default()
+        }
+    }
+
     /// The number of objectives: the robust statistics', or the design problem's (2, or 3
     /// with the skips).
     #[must_use]
@@ -477,6 +521,18 @@ pub fn run_on(
         Some(f) => read_nominal_front(&base_dir.join(f), problem.encoding().dim())?,
         None => Vec::new(),
     };
+    // And are the algorithm's settings checked against the problem's shape.
+    let spec = c.algorithm_spec();
+    let constraints = robust
+        .as_ref()
+        .map_or_else(|| problem.constraints(), Problem::constraints);
+    spec.check(c.objective_count(), constraints)
+        .map_err(|e| ReentryError::Setting {
+            source_name: src.to_string(),
+            field: "algorithm",
+            value: c.algorithm.clone(),
+            reason: e.to_string(),
+        })?;
     if !resume {
         // A new run: never into a directory that is not a run; a previous run there is
         // removed whole (no population or front file of it is left beside the new run's).
@@ -512,16 +568,8 @@ pub fn run_on(
         value: c.threads.to_string(),
         reason: e.to_string(),
     })?;
-    let moead = MoeadConfig {
-        population: c.population,
-        neighbours: c.neighbours,
-        limit: c.limit,
-        mutation_probability: c.mutation_probability,
-        batch_size: c.batch_size,
-        archive: c.archive,
-        ..MoeadConfig::default()
-    };
     if c.algorithm == "scea" {
+        let moead = c.moead_config();
         let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
         let vproblem = VariableReentry::new(problem, nodes)?;
         let ctx = Ctx {
@@ -550,7 +598,7 @@ pub fn run_on(
             nominal_front: &nominal_front,
             external,
         };
-        return drive_fixed(&ctx, moead, progress);
+        return drive_fixed(&ctx, spec, progress);
     }
     let ctx = Ctx {
         c,
@@ -561,48 +609,26 @@ pub fn run_on(
         nominal_front: &nominal_front,
         external,
     };
-    drive_fixed(&ctx, moead, progress)
+    drive_fixed(&ctx, spec, progress)
 }
 
 /// [`drive`] with the fixed-length algorithm the run file names.
 fn drive_fixed<P>(
     ctx: &Ctx<'_, P>,
-    moead: MoeadConfig,
+    spec: AlgorithmSpec,
     progress: &mut dyn Progress,
 ) -> Result<Finished, ReentryError>
 where
     P: RunProblem<Decision = Vec<f64>> + crate::optim::RealProblem,
 {
-    let c = ctx.c;
-    match c.algorithm.as_str() {
-        "nsga2" => {
-            let cfg = Nsga2Config {
-                population: c.population,
-                archive: c.archive,
-                ..Nsga2Config::default()
-            };
-            drive(ctx, Nsga2::new(cfg, c.seed), progress)
+    let seed = ctx.c.seed;
+    match spec {
+        AlgorithmSpec::Moead(cfg) => drive(ctx, Moead::new(cfg, seed), progress),
+        AlgorithmSpec::MoeadSbx { moead, sbx } => {
+            drive(ctx, MoeadSbx::sbx(moead, sbx, seed), progress)
         }
-        "mhaco" | "mhaco-objectives" => {
-            let constraints = if c.algorithm == "mhaco" {
-                ConstraintHandling::FeasibilityFirst
-            } else {
-                // The problem's constraints are already c / c_max - 1 (scale 1).
-                ConstraintHandling::AsObjectives {
-                    scales: None,
-                    cap: 2.0,
-                    penalty: 0.5,
-                }
-            };
-            let cfg = MhacoConfig {
-                population: c.population,
-                ker: c.population.min(MhacoConfig::default().ker),
-                constraints,
-                ..MhacoConfig::default()
-            };
-            drive(ctx, Mhaco::new(cfg, c.seed), progress)
-        }
-        _ => drive(ctx, Moead::new(moead, c.seed), progress),
+        AlgorithmSpec::Nsga2(cfg) => drive(ctx, Nsga2::new(cfg, seed), progress),
+        AlgorithmSpec::Mhaco(cfg) => drive(ctx, Mhaco::new(cfg, seed), progress),
     }
 }
 

@@ -151,3 +151,32 @@ fn a_run_with_a_file_base_resumes_from_any_directory() {
     assert_eq!(done.last.unwrap().generation, 2);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The algorithm's settings are checked against the problem before the run directory is
+/// touched (a previous run there stays), naming the run file and the algorithm.
+#[test]
+fn algorithm_settings_are_refused_before_the_directory_is_touched() {
+    let dir = tmp("refused");
+    run(&small(0), "test", &dir, false, &base_dir(), &mut ()).unwrap();
+    let before = read(&dir, "config.toml");
+    for (algorithm, population, neighbours, what) in [
+        ("moead", 6, 6, "neighbours"),
+        ("scea", 6, 6, "neighbours"),
+        ("nsga2", 6, 5, "population"),
+        ("mhaco", 1, 5, "population"),
+    ] {
+        let mut c = small(1);
+        c.algorithm = algorithm.into();
+        c.population = population;
+        c.neighbours = neighbours;
+        let e = run(&c, "run.toml", &dir, false, &base_dir(), &mut ()).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with(&format!("run.toml: field `algorithm` = {algorithm}:"))
+                && text.contains(what),
+            "{text}"
+        );
+        assert_eq!(read(&dir, "config.toml"), before, "{algorithm}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
