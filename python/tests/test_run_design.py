@@ -178,7 +178,7 @@ def test_design_run_config_is_a_checked_run_file(tmp_path):
     assert reentry.run_design(tmp_path / "run", p)["evaluations"] == 12
     with pytest.raises(reentry.DesignError, match="populaton"):
         reentry.design_run_config("srm", populaton=6)
-    with pytest.raises(reentry.DesignError, match="population"):
-        reentry.design_run_config("srm", population=1)
+    with pytest.raises(reentry.DesignError, match="reference"):
+        reentry.design_run_config("srm", reference=[1.0])
     with pytest.raises(reentry.DesignError, match="no-such-preset"):
         reentry.design_run_config("no-such-preset")
