@@ -433,6 +433,9 @@ def _reference_point(a, problem) -> Optional[List[float]]:
 
 def _cmd_optimize(a) -> int:
     problem = _problem(a)
+    reference = _reference_point(a, problem)
+    if reference is not None:  # refused before the run, not after it
+        _native.check_reference(reference, problem.get_nobj())
     options = _options(a)
     algo = from_options(a.seed, **options)
     generations = (
@@ -451,7 +454,7 @@ def _cmd_optimize(a) -> int:
             where = a.scheduler or f"LocalCluster({a.workers} processes)"
     wall = time.perf_counter() - t0
     line = algo.run_report(
-        problem, a.seed, wall, reference=_reference_point(a, problem), threads=threads,
+        problem, a.seed, wall, reference=reference, threads=threads,
         name=a.problem, generations=generations, out=a.out,
     )
     print(line)

@@ -395,6 +395,14 @@ impl Optimizer {
     }
 }
 
+/// Refuse a hypervolume reference point that has not one value per objective of a problem
+/// of `objectives` objectives (host-sim's check, made before a run rather than at its end).
+#[pyfunction]
+fn check_reference(reference: Vec<f64>, objectives: usize) -> PyResult<()> {
+    host_sim::optim::run::check_reference(&reference, objectives)
+        .map_err(|e| errors::OptimError::new_err(format!("--ref: {e}")))
+}
+
 /// host-sim `RunOptions` from JSON (missing fields: `host-sim optimize`'s defaults).
 fn run_options(options_json: &str) -> PyResult<RunOptions> {
     let mut de = serde_json::Deserializer::from_str(options_json);
@@ -551,5 +559,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTestProblem>()?;
     m.add_function(wrap_pyfunction!(hypervolume, m)?)?;
     m.add_function(wrap_pyfunction!(test_problems, m)?)?;
+    m.add_function(wrap_pyfunction!(check_reference, m)?)?;
     Ok(())
 }

@@ -119,3 +119,13 @@ def test_optimize_refuses_scea(capsys):
     with pytest.raises(SystemExit):
         main(["optimize", "--algorithm", "scea", "--local"])
     assert "invalid choice: 'scea'" in capsys.readouterr().err
+
+
+def test_optimize_refuses_a_wrong_length_reference_before_the_run(tmp_path, capsys):
+    # A million generations: were the reference checked after the run, this would not return.
+    out = tmp_path / "run"
+    args = ["optimize", "--problem", "zdt1", "--generations", "1000000", "--ref", "1,1,1"]
+    assert main([*args, "--out", str(out), "--local"]) == 1
+    err = capsys.readouterr().err
+    assert "--ref: reference point has 3 values" in err and "2 objectives" in err, err
+    assert not out.exists()
