@@ -15,7 +15,7 @@ use crate::errors;
 
 /// The evaluations a Python `map_batch(xs) -> [(f, g), ...]` returns for a batch; its
 /// exception (or a malformed answer) fails every decision of the batch, with its message.
-fn call_map_batch(f: &Py<PyAny>, xs: &[Vec<f64>]) -> Vec<Result<Evaluation, EvalError>> {
+pub(crate) fn call_map_batch(f: &Py<PyAny>, xs: &[Vec<f64>]) -> Vec<Result<Evaluation, EvalError>> {
     let answer = Python::attach(|py| -> PyResult<Vec<(Vec<f64>, Vec<f64>)>> {
         f.call1(py, (xs.to_vec(),))?.extract(py)
     });
