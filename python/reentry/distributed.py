@@ -431,7 +431,35 @@ def _reference_point(a, problem) -> Optional[List[float]]:
     return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
 
 
+def _cmd_optimize_run_file(a) -> int:
+    """``--config FILE`` or ``--resume DIR``: host-sim's design run and its run directory
+    (``reentry.run_design``), batches on Dask unless ``--local``."""
+    resume = a.resume is not None
+    out = a.resume if resume else (a.out or f"runs/optimize-{os.path.splitext(os.path.basename(a.config))[0]}")
+    generations = a.generations if resume and a.generations_given else None
+    t0 = time.perf_counter()
+    if a.local:
+        last = run_design(out, None if resume else a.config, resume=resume, generations=generations)
+        where = "in this process (the run file's threads)"
+    else:
+        with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
+            last = run_design_on_dask(
+                out, None if resume else a.config, client=client, resume=resume,
+                generations=generations, chunk_size=a.chunk_size,
+            )
+            where = a.scheduler or f"LocalCluster({a.workers} processes)"
+    print(
+        f"generation {last['generation']}, {last['evaluations']} evaluations in "
+        f"{time.perf_counter() - t0:.2f} s, feasible {100 * last['feasible_fraction']:.0f} %, "
+        f"hypervolume {last['hypervolume']:.6f}, {len(last['front'])} front members; wrote {out}"
+    )
+    print(f"evaluated {where}", file=sys.stderr)
+    return 0
+
+
 def _cmd_optimize(a) -> int:
+    if getattr(a, "config", None) is not None or getattr(a, "resume", None) is not None:
+        return _cmd_optimize_run_file(a)
     problem = _problem(a)
     reference = _reference_point(a, problem)
     if reference is not None:  # refused before the run, not after it
