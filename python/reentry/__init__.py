@@ -35,7 +35,9 @@ from .design import (
     RobustDesignProblem,
     VariableDesignProblem,
     design_presets,
+    design_run_config,
     pymoo_problem,
+    run_design,
 )
 from .dispersions import DispersionCampaign, campaign_modes
 from .env import atmosphere, vehicles
@@ -77,6 +79,7 @@ __all__ = [
     "builtin_scenarios",
     "campaign_modes",
     "design_presets",
+    "design_run_config",
     "evaluate_batch",
     "evolve",
     "fly",
@@ -85,6 +88,7 @@ __all__ = [
     "generations_for",
     "hypervolume",
     "pymoo_problem",
+    "run_design",
     "scenario_dict",
     "scenario_toml",
     "test_problems",

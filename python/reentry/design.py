@@ -13,6 +13,10 @@ pygmo user-defined problems and, optionally, pymoo problems.
 * :class:`RobustDesignProblem`: the same profile judged by a dispersion campaign of the base
   scenario's guidance stack (host-sim ``design::RobustProblem``).
 * :func:`pymoo_problem`: any of them as a ``pymoo.core.problem.Problem``.
+* :func:`run_design`: a whole design run from a run file into a run directory, or resumed
+  from one (host-sim ``design::run``: what ``host-sim optimize --config/--resume`` runs), its
+  batches optionally evaluated by a ``map_batch`` (on Dask:
+  :func:`reentry.distributed.run_design_on_dask`).
 
 Every evaluation is one closed-loop flight in Rust (GIL released). A failed flight (rejected
 scenario, time limit, ground) evaluates to NaN objectives and constraints, host-sim's failed
@@ -185,6 +189,44 @@ def pymoo_problem(problem, failure_value: float = 1e30):
     return _Reentry()
 
 
+def design_run_config(preset: str = "horus-2b", **settings) -> str:
+    """The run file of a design preset as TOML text: the thesis' settings (``host-sim optimize
+    --problem PRESET --print-config``) with the top-level ``settings`` over them (``population``,
+    ``generations``, ``seed``, ``threads``, ``batch_size``, ``neighbours``, ``algorithm``,
+    ``reference``, ...; ``problem`` replaces the whole ``[problem]`` table), checked as a run
+    file is: a bad value raises :class:`DesignError` naming the field."""
+    return _native.run_config_toml(preset, json.dumps(settings))
+
+
+def run_design(
+    out: "os.PathLike[str] | str",
+    config: "os.PathLike[str] | str | None" = None,
+    *,
+    resume: bool = False,
+    generations: Optional[int] = None,
+    map_batch=None,
+) -> dict:
+    """Run the run file ``config`` into the run directory ``out`` (replacing a previous run
+    there), or with ``resume=True`` continue the run in ``out`` from its last checkpoint
+    (``generations``: a new total, by default the run's own): host-sim's run, its directory
+    and checkpoints, so a run started here resumes with ``host-sim optimize --resume`` and the
+    other way round, bit for bit. ``map_batch(xs)`` evaluates each batch of decisions into
+    ``(f, g)`` pairs in order (default: host-sim's ``threads`` of the run file); it must
+    return what the problem's own evaluation returns (the Dask evaluators do) for the run to
+    be the CLI's. Fixed-length algorithms only with ``map_batch`` (SCEA runs in process).
+    Returns the last generation's record (``generation``, ``evaluations``,
+    ``feasible_fraction``, ``hypervolume``, ``front``, ...) and ``wall_time_s``. Raises
+    :class:`DesignError` naming the file, field and value."""
+    text = _native.run_design(
+        os.fspath(out),
+        None if config is None else os.fspath(config),
+        resume=resume,
+        generations=generations,
+        map_batch=map_batch,
+    )
+    return json.loads(text)
+
+
 def design_presets() -> list:
     """Names of the built-in design problems."""
     return list(_native.design_presets())
@@ -195,5 +237,7 @@ __all__ = [
     "RobustDesignProblem",
     "VariableDesignProblem",
     "design_presets",
+    "design_run_config",
     "pymoo_problem",
+    "run_design",
 ]

@@ -36,7 +36,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
 
 import numpy as np
 
-from .design import DesignProblem
+from .design import DesignProblem, RobustDesignProblem, run_design
 from .dispersions import DispersionCampaign
 from .flight import _source, fly_summary, scenario_dict
 from .optim import TestProblem, evaluate_batch, evolve, from_options, generations_for
@@ -195,6 +195,33 @@ def robust_batch_evaluator(
         return [problem.evaluate_parts(p) for p in parts]
 
     return map_batch
+
+
+def run_design_on_dask(
+    out,
+    config=None,
+    *,
+    client,
+    resume: bool = False,
+    generations: Optional[int] = None,
+    chunk_size: Optional[int] = None,
+) -> dict:
+    """:func:`reentry.run_design` with every batch evaluated on the Dask cluster of
+    ``client``: the run directory, checkpoints and result of ``host-sim optimize --config
+    config --out out`` (or ``--resume out``), bit for bit. A nominal run's batches are split
+    over decisions (:func:`dask_batch_evaluator`), a robust run's (a ``[robust]`` section)
+    over decisions and flights (:func:`robust_batch_evaluator`). The run is checkpointed after
+    every generation: a lost worker's tasks are retried by Dask, and a run whose client or
+    scheduler died resumes from its directory (``resume=True``), here or with the CLI."""
+    path = os.path.join(os.fspath(out), "config.toml") if resume else os.fspath(config)
+    if _native.run_file_kind(path) == "robust":
+        map_batch = robust_batch_evaluator(client, RobustDesignProblem(path), chunk_size)
+    else:
+        map_batch = dask_batch_evaluator(client, DesignProblem(path), chunk_size)
+    return run_design(
+        out, None if resume else config, resume=resume, generations=generations,
+        map_batch=map_batch,
+    )
 
 
 # --------------------------------------------------------------------------- campaigns
@@ -405,8 +432,39 @@ def _reference_point(a, problem) -> Optional[List[float]]:
     return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
 
 
+def _cmd_optimize_run_file(a) -> int:
+    """``--config FILE`` or ``--resume DIR``: host-sim's design run and its run directory
+    (``reentry.run_design``), batches on Dask unless ``--local``."""
+    resume = a.resume is not None
+    out = a.resume if resume else (a.out or f"runs/optimize-{os.path.splitext(os.path.basename(a.config))[0]}")
+    generations = a.generations if resume and a.generations_given else None
+    t0 = time.perf_counter()
+    if a.local:
+        last = run_design(out, None if resume else a.config, resume=resume, generations=generations)
+        where = "in this process (the run file's threads)"
+    else:
+        with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
+            last = run_design_on_dask(
+                out, None if resume else a.config, client=client, resume=resume,
+                generations=generations, chunk_size=a.chunk_size,
+            )
+            where = a.scheduler or f"LocalCluster({a.workers} processes)"
+    print(
+        f"generation {last['generation']}, {last['evaluations']} evaluations in "
+        f"{time.perf_counter() - t0:.2f} s, feasible {100 * last['feasible_fraction']:.0f} %, "
+        f"hypervolume {last['hypervolume']:.6f}, {len(last['front'])} front members; wrote {out}"
+    )
+    print(f"evaluated {where}", file=sys.stderr)
+    return 0
+
+
 def _cmd_optimize(a) -> int:
+    if getattr(a, "config", None) is not None or getattr(a, "resume", None) is not None:
+        return _cmd_optimize_run_file(a)
     problem = _problem(a)
+    reference = _reference_point(a, problem)
+    if reference is not None:  # refused before the run, not after it
+        _native.check_reference(reference, problem.get_nobj())
     options = _options(a)
     algo = from_options(a.seed, **options)
     generations = (
@@ -425,7 +483,7 @@ def _cmd_optimize(a) -> int:
             where = a.scheduler or f"LocalCluster({a.workers} processes)"
     wall = time.perf_counter() - t0
     line = algo.run_report(
-        problem, a.seed, wall, reference=_reference_point(a, problem), threads=threads,
+        problem, a.seed, wall, reference=reference, threads=threads,
         name=a.problem, generations=generations, out=a.out,
     )
     print(line)

@@ -382,29 +382,17 @@ def evolve(
     map_batch: Optional[BatchEvaluator] = None,
     observer: Optional[Callable[[_Algorithm], None]] = None,
 ) -> _Algorithm:
-    """Run the ask/tell loop: complete the initial population if needed, then ``generations``
-    more generations (host-sim ``evolve``'s loop, resuming mid-batch by evaluating only the
-    untold decisions).
+    """Run host-sim's ``evolve`` loop on ``algorithm``: complete the initial population if
+    needed, then ``generations`` more generations, resuming an open batch by evaluating only
+    its untold decisions. The loop is the library's; only the evaluation is ``map_batch``'s.
 
     ``map_batch(xs)`` evaluates a list of decisions into ``(f, g)`` pairs in order (default:
     :func:`evaluate_batch` here; :func:`reentry.distributed.dask_batch_evaluator` on Dask).
-    ``observer(algorithm)`` is called after each completed generation."""
+    ``observer(algorithm)`` is called after each completed generation. An exception in
+    ``map_batch`` stops the run at that batch and is raised as :class:`OptimError` with its
+    message; the evaluations told before it are kept."""
     if map_batch is None:
         map_batch = lambda xs: evaluate_batch(problem, xs)  # noqa: E731
-    target = algorithm.generation + generations if algorithm.is_initialised else generations
-    while True:
-        before = (algorithm.is_initialised, algorithm.generation)
-        if before[0] and before[1] >= target:
-            return algorithm
-        batch = algorithm.ask(problem)
-        untold = [i for i in range(len(batch)) if not algorithm.is_told(i)]
-        results = map_batch([batch[i].tolist() for i in untold])
-        if len(results) != len(untold):
-            raise RuntimeError(
-                f"evaluator returned {len(results)} evaluations for {len(untold)} decisions"
-            )
-        for i, (f, g) in zip(untold, results):
-            algorithm.tell(i, f, g)
-        after = (algorithm.is_initialised, algorithm.generation)
-        if observer is not None and after != before and after[0]:
-            observer(algorithm)
+    notify = None if observer is None else (lambda: observer(algorithm))
+    algorithm._native.evolve_batches(problem, int(generations), map_batch, notify)
+    return algorithm

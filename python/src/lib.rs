@@ -15,6 +15,7 @@ mod errors;
 mod flight;
 mod optim;
 mod robust;
+mod run;
 
 use pyo3::prelude::*;
 
@@ -29,5 +30,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     design::register(m)?;
     campaign::register(m)?;
     robust::register(m)?;
+    run::register(m)?;
     Ok(())
 }

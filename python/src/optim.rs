@@ -14,8 +14,8 @@ use host_sim::optim::problems::{NAMES, TestProblem};
 use host_sim::optim::run::{RunResult, RunSettings, real_run_report, run_report};
 use host_sim::optim::spec::RunOptions;
 use host_sim::optim::{
-    Algorithm, AlgorithmSpec, Bounds, EvalError, Evaluation, NoObserver, Problem, RealAlgorithm,
-    RealProblem, SPEC_NAMES, Serial, evolve,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Bounds, EvalError, Evaluation, External,
+    NoObserver, Problem, RealAlgorithm, RealProblem, SPEC_NAMES, Serial, evolve,
 };
 use host_sim::report::write_run_report;
 use pyo3::exceptions::PyValueError;
@@ -305,6 +305,57 @@ impl Optimizer {
             .map_err(errors::optim)
     }
 
+    /// host-sim's `evolve` loop with every batch evaluated by `map_batch(xs) -> [(f, g), ...]`
+    /// (a Python callable: in process, or over a Dask cluster): the initial population if
+    /// needed, then `generations` more, resuming an open batch by evaluating only its untold
+    /// decisions; `observer()` is called after each completed generation (the initial
+    /// population's included). An exception of `map_batch` or `observer` stops the run at that
+    /// batch (the evaluations told before it are kept) and is raised as `OptimError` with its
+    /// message (`observer`'s as itself).
+    #[pyo3(signature = (problem, generations, map_batch, observer=None))]
+    fn evolve_batches(
+        slf: &Bound<'_, Self>,
+        problem: &Bound<'_, PyAny>,
+        generations: u64,
+        map_batch: Py<PyAny>,
+        observer: Option<Py<PyAny>>,
+    ) -> PyResult<()> {
+        let py = slf.py();
+        let shape = open_problem(problem)?;
+        slf.borrow_mut().adopt(shape.clone())?;
+        let evaluate = |xs: &[Vec<f64>]| crate::run::call_map_batch(&map_batch, xs);
+        let external = External(&evaluate as &dyn BatchEvaluator<Vec<f64>>);
+        let target = {
+            let me = slf.borrow();
+            let a = &me.algo;
+            if Algorithm::<OpenProblem>::is_initialised(a) {
+                Algorithm::<OpenProblem>::generation(a) + generations
+            } else {
+                generations
+            }
+        };
+        loop {
+            let moved = {
+                let mut me = slf.borrow_mut();
+                let a = &mut me.algo;
+                let done = Algorithm::<OpenProblem>::is_initialised(a)
+                    && Algorithm::<OpenProblem>::generation(a) >= target;
+                if done || Algorithm::<OpenProblem>::is_finished(a) {
+                    return Ok(());
+                }
+                // One generation (or the initial population) at a time, so the observer may
+                // read the algorithm between them.
+                let before = Algorithm::<OpenProblem>::generation(a);
+                let step = u64::from(Algorithm::<OpenProblem>::is_initialised(a));
+                evolve(a, &shape, &external, step, &mut NoObserver).map_err(errors::optim)?;
+                step == 0 || Algorithm::<OpenProblem>::generation(a) != before
+            };
+            if let (true, Some(o)) = (moved, &observer) {
+                o.call0(py)?;
+            }
+        }
+    }
+
     /// Whether decision `index` of the open batch has been told.
     fn is_told(&self, index: usize) -> bool {
         Algorithm::<OpenProblem>::is_told(&self.algo, index)
@@ -393,6 +444,14 @@ impl Optimizer {
             restored: true,
         })
     }
+}
+
+/// Refuse a hypervolume reference point that has not one value per objective of a problem
+/// of `objectives` objectives (host-sim's check, made before a run rather than at its end).
+#[pyfunction]
+fn check_reference(reference: Vec<f64>, objectives: usize) -> PyResult<()> {
+    host_sim::optim::run::check_reference(&reference, objectives)
+        .map_err(|e| errors::OptimError::new_err(format!("--ref: {e}")))
 }
 
 /// host-sim `RunOptions` from JSON (missing fields: `host-sim optimize`'s defaults).
@@ -551,5 +610,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTestProblem>()?;
     m.add_function(wrap_pyfunction!(hypervolume, m)?)?;
     m.add_function(wrap_pyfunction!(test_problems, m)?)?;
+    m.add_function(wrap_pyfunction!(check_reference, m)?)?;
     Ok(())
 }

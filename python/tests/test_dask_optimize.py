@@ -154,3 +154,13 @@ def test_optimize_common_flags_before_or_after_the_subcommand(tmp_path):
     a, b = _read(tmp_path / "before"), _read(tmp_path / "after")
     assert a[:2] == b[:2]
     assert (a[2]["algorithm"], a[2]["seed"], a[2]["population"], a[2]["generations"]) == ("nsga2", 4, 24, 2)
+
+
+def test_optimize_refuses_a_wrong_length_reference_before_the_run(tmp_path, capsys):
+    # A million generations: were the reference checked after the run, this would not return.
+    out = tmp_path / "run"
+    args = ["optimize", "--problem", "zdt1", "--generations", "1000000", "--ref", "1,1,1"]
+    assert main([*args, "--out", str(out), "--local"]) == 1
+    err = capsys.readouterr().err
+    assert "--ref: reference point has 3 values" in err and "2 objectives" in err, err
+    assert not out.exists()

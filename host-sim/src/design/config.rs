@@ -93,6 +93,21 @@ impl DesignConfig {
         })
     }
 
+    /// This configuration with a scenario-file `base` made absolute (a relative one resolved
+    /// against `dir`), so a run directory's config.toml finds its base from any working
+    /// directory (a resumed run, a run resumed by another front end). A built-in base
+    /// ([`PRESETS`]) is kept.
+    #[must_use]
+    pub fn anchored(&self, dir: &Path) -> Self {
+        let mut c = self.clone();
+        if !PRESETS.contains(&c.base.as_str())
+            && let Ok(p) = std::path::absolute(dir.join(&c.base))
+        {
+            c.base = p.display().to_string();
+        }
+        c
+    }
+
     /// The base scenario: a preset's, or the scenario file `base` (relative to `dir`), flying
     /// its stored profile alone (its guidance layers off: the design problems shape the
     /// stored profile).

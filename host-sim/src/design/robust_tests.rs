@@ -213,7 +213,13 @@ fn robust_run_writes_its_section_and_stack_members() {
     let done = run(&c, "test", &dir, false, &examples(), &mut ()).unwrap();
     let last = done.last.unwrap();
     assert_eq!((last.generation, last.evaluations), (1, 8));
-    assert_eq!(parse_toml(&dir.join("config.toml")).unwrap(), c);
+    // config.toml names the base scenario and the nominal front by absolute paths (the run
+    // resumes from any working directory), the rest as given.
+    let mut anchored = c.clone();
+    anchored.problem = c.problem.anchored(&examples());
+    assert!(Path::new(&anchored.problem.base).is_absolute());
+    anchored.robust.as_mut().unwrap().nominal_front = Some(nominal.display().to_string());
+    assert_eq!(parse_toml(&dir.join("config.toml")).unwrap(), anchored);
     let text = std::fs::read_to_string(dir.join("config.toml")).unwrap();
     assert!(
         text.contains("[robust]") && text.contains("[robust.dispersions]"),
@@ -302,7 +308,7 @@ fn robust_run_writes_its_section_and_stack_members() {
     let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
     assert!(e.to_string().contains("field `problem.limits`"), "{e}");
     // Refused before the run directory is touched: the previous run is still there.
-    assert_eq!(parse_toml(&dir.join("config.toml")).unwrap(), c);
+    assert_eq!(parse_toml(&dir.join("config.toml")).unwrap(), anchored);
     let mut bad = c.clone();
     bad.algorithm = "scea".into();
     let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();

@@ -10,25 +10,74 @@ use super::error::{EvalError, OptimError};
 use super::observe::{GenerationReport, Observer};
 use super::problem::{Evaluation, Problem};
 
-/// Evaluates a batch of decisions; results are returned in batch order.
-pub trait Evaluator {
+/// Evaluates a batch of decisions of type `D`; results are returned in batch order.
+pub trait Evaluator<D> {
     /// Evaluate every decision of `batch`.
-    fn evaluate<P: Problem>(
+    fn evaluate<P: Problem<Decision = D>>(
         &self,
         problem: &P,
-        batch: &[P::Decision],
+        batch: &[D],
     ) -> Vec<Result<Evaluation, EvalError>>;
+}
+
+/// A batch evaluator from outside the library: a front end's map over a batch (the Python
+/// package's, which spreads it over a Dask cluster). It gets the decisions of a batch and
+/// returns one result per decision, in batch order; it is called from the run's thread, one
+/// batch at a time. A run is bit-identical to the in-process run when the evaluator returns
+/// what the problem's own `evaluate` would (the Python package's evaluators call it).
+/// Closures `Fn(&[D]) -> Vec<Result<Evaluation, EvalError>> + Sync` are batch evaluators.
+pub trait BatchEvaluator<D>: Sync {
+    /// Evaluate every decision of `batch`.
+    fn evaluate_batch(&self, batch: &[D]) -> Vec<Result<Evaluation, EvalError>>;
+}
+
+impl<D, F> BatchEvaluator<D> for F
+where
+    F: Fn(&[D]) -> Vec<Result<Evaluation, EvalError>> + Sync,
+{
+    fn evaluate_batch(&self, batch: &[D]) -> Vec<Result<Evaluation, EvalError>> {
+        self(batch)
+    }
+}
+
+/// A [`BatchEvaluator`] as an [`Evaluator`]: a result list of the wrong length fails every
+/// decision of the batch (the run stops with that error; it never asks again forever).
+pub struct External<'a, D>(pub &'a dyn BatchEvaluator<D>);
+
+impl<D> Evaluator<D> for External<'_, D> {
+    fn evaluate<P: Problem<Decision = D>>(
+        &self,
+        _problem: &P,
+        batch: &[D],
+    ) -> Vec<Result<Evaluation, EvalError>> {
+        let out = self.0.evaluate_batch(batch);
+        if out.len() == batch.len() {
+            return out;
+        }
+        let got = out.len();
+        (0..batch.len())
+            .map(|_| {
+                Err(EvalError::Failed(
+                    format!(
+                        "the external evaluator returned {got} results for a batch of {}",
+                        batch.len()
+                    )
+                    .into(),
+                ))
+            })
+            .collect()
+    }
 }
 
 /// One decision after the other on the calling thread.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Serial;
 
-impl Evaluator for Serial {
-    fn evaluate<P: Problem>(
+impl<D> Evaluator<D> for Serial {
+    fn evaluate<P: Problem<Decision = D>>(
         &self,
         problem: &P,
-        batch: &[P::Decision],
+        batch: &[D],
     ) -> Vec<Result<Evaluation, EvalError>> {
         batch.iter().map(|d| problem.evaluate(d)).collect()
     }
@@ -54,11 +103,11 @@ impl Rayon {
     }
 }
 
-impl Evaluator for Rayon {
-    fn evaluate<P: Problem>(
+impl<D: Sync> Evaluator<D> for Rayon {
+    fn evaluate<P: Problem<Decision = D>>(
         &self,
         problem: &P,
-        batch: &[P::Decision],
+        batch: &[D],
     ) -> Vec<Result<Evaluation, EvalError>> {
         let run = || batch.par_iter().map(|d| problem.evaluate(d)).collect();
         match &self.pool {
@@ -137,11 +186,11 @@ impl Threads {
     }
 }
 
-impl Evaluator for Threads {
-    fn evaluate<P: Problem>(
+impl<D: Sync> Evaluator<D> for Threads {
+    fn evaluate<P: Problem<Decision = D>>(
         &self,
         problem: &P,
-        batch: &[P::Decision],
+        batch: &[D],
     ) -> Vec<Result<Evaluation, EvalError>> {
         match &self.pool {
             Some(pool) => pool.install(|| batch.par_iter().map(|d| problem.evaluate(d)).collect()),
@@ -185,7 +234,7 @@ pub fn evolve<P, A, E, O>(
 where
     P: Problem,
     A: Algorithm<P> + ?Sized,
-    E: Evaluator + ?Sized,
+    E: Evaluator<P::Decision> + ?Sized,
     O: Observer<P::Decision> + ?Sized,
 {
     let target = if algorithm.is_initialised() {

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use super::algorithm::Algorithm;
 use super::error::OptimError;
-use super::evaluate::{Threads, evolve};
+use super::evaluate::{BatchEvaluator, External, Threads, evolve};
 use super::observe::{NoObserver, Observer};
 use super::problem::Problem;
 
@@ -53,6 +53,13 @@ pub struct Run<A> {
     pub wall_time_s: f64,
 }
 
+/// How a run evaluates its batches: on its [`Threads`], or by a [`BatchEvaluator`] from
+/// outside the library.
+enum Evaluation<'a, D> {
+    Threads(Threads),
+    External(&'a dyn BatchEvaluator<D>),
+}
+
 /// One optimisation run of algorithm `A` on problem `P`: build it, set what differs from the
 /// defaults (budget 0 generations, serial evaluation, no observer, no stop), then
 /// [`Executor::run`] or [`Executor::run_with`].
@@ -74,7 +81,7 @@ pub struct Executor<'a, P: Problem, A> {
     problem: &'a P,
     algorithm: A,
     budget: Budget,
-    threads: Threads,
+    evaluation: Evaluation<'a, P::Decision>,
     observer: Option<&'a mut dyn Observer<P::Decision>>,
     stop: Option<&'a dyn Fn() -> bool>,
 }
@@ -87,7 +94,7 @@ impl<'a, P: Problem, A: Algorithm<P>> Executor<'a, P, A> {
             problem,
             algorithm,
             budget: Budget::Generations(0),
-            threads: Threads::serial(),
+            evaluation: Evaluation::Threads(Threads::serial()),
             observer: None,
             stop: None,
         }
@@ -100,10 +107,19 @@ impl<'a, P: Problem, A: Algorithm<P>> Executor<'a, P, A> {
         self
     }
 
-    /// How to evaluate the batches.
+    /// Evaluate the batches on these threads (the default: serially).
     #[must_use]
     pub fn threads(mut self, threads: Threads) -> Self {
-        self.threads = threads;
+        self.evaluation = Evaluation::Threads(threads);
+        self
+    }
+
+    /// Evaluate the batches with `evaluator` instead (a front end's, e.g. over a Dask
+    /// cluster): the run is the same as on threads when it returns the problem's own
+    /// evaluations.
+    #[must_use]
+    pub fn external(mut self, evaluator: &'a dyn BatchEvaluator<P::Decision>) -> Self {
+        self.evaluation = Evaluation::External(evaluator);
         self
     }
 
@@ -144,7 +160,7 @@ impl<'a, P: Problem, A: Algorithm<P>> Executor<'a, P, A> {
             problem,
             mut algorithm,
             budget,
-            threads,
+            evaluation,
             observer,
             stop,
         } = self;
@@ -157,7 +173,19 @@ impl<'a, P: Problem, A: Algorithm<P>> Executor<'a, P, A> {
         let start = Instant::now();
         let first = algorithm.generation();
         let mut step = |algorithm: &mut A, generations: u64| -> Result<bool, E> {
-            match evolve(algorithm, problem, &threads, generations, &mut *observer) {
+            let evolved = match &evaluation {
+                Evaluation::Threads(t) => {
+                    evolve(algorithm, problem, t, generations, &mut *observer)
+                }
+                Evaluation::External(e) => evolve(
+                    algorithm,
+                    problem,
+                    &External(*e),
+                    generations,
+                    &mut *observer,
+                ),
+            };
+            match evolved {
                 Err(_) if stopped() => Ok(false),
                 Err(e) => Err(e.into()),
                 Ok(()) => Ok(true),

@@ -54,7 +54,9 @@ pub use algorithms::{
 };
 pub use archive::ParetoArchive;
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, StateError, TellError};
-pub use evaluate::{Evaluator, Rayon, Serial, Threads, ThreadsError, evolve};
+pub use evaluate::{
+    BatchEvaluator, Evaluator, External, Rayon, Serial, Threads, ThreadsError, evolve,
+};
 pub use executor::{Budget, Executor, Run, Stop};
 pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Observer};
 pub use population::Individual;

@@ -413,7 +413,12 @@ pub enum RunReportError {
     Hypervolume(#[from] super::hypervolume::HypervolumeError),
 }
 
-fn check_reference(reference: &[f64], objectives: usize) -> Result<(), RunReportError> {
+/// Whether `reference` has one value per objective of a problem of `objectives` objectives
+/// (what [`run_report`] refuses at the end of a run; a front end checks it before).
+///
+/// # Errors
+/// [`RunReportError::Reference`].
+pub fn check_reference(reference: &[f64], objectives: usize) -> Result<(), RunReportError> {
     if reference.len() == objectives {
         Ok(())
     } else {

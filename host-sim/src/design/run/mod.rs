@@ -9,6 +9,8 @@
 
 pub mod files;
 mod progress;
+#[cfg(test)]
+mod tests;
 
 pub use progress::ProgressBar;
 
@@ -25,9 +27,9 @@ use super::{
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
 use crate::optim::{
-    Algorithm, Budget, ConstraintHandling, Executor, Individual, Mhaco, MhacoConfig, Moead,
-    MoeadConfig, NewGenes, Nsga2, Nsga2Config, OptimError, Problem, Scea, SceaConfig, Stop,
-    Threads,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Budget, ConstraintHandling, Executor, Individual,
+    Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2, Nsga2Config, OptimError,
+    Problem, Scea, SceaConfig, Stop, Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -83,6 +85,50 @@ pub struct ReentryRunConfig {
 }
 
 impl ReentryRunConfig {
+    /// The run file's algorithm and its settings as the library's one specification
+    /// ([`AlgorithmSpec`]): `moead` (and `scea`, whose MOEA/D settings these are), `nsga2`,
+    /// `mhaco` (feasible candidates first), `mhaco-objectives` (the constraints as extra
+    /// objectives, the thesis' normalisation: the problem's constraints are already
+    /// `c / c_max - 1`, scale 1, cap 2, penalty 0.5). MHACO's archive is min(63, population).
+    #[must_use]
+    pub fn algorithm_spec(&self) -> AlgorithmSpec {
+        match self.algorithm.as_str() {
+            "nsga2" => AlgorithmSpec::Nsga2(Nsga2Config {
+                population: self.population,
+                archive: self.archive,
+                ..Nsga2Config::default()
+            }),
+            "mhaco" | "mhaco-objectives" => AlgorithmSpec::Mhaco(MhacoConfig {
+                population: self.population,
+                ker: self.population.min(MhacoConfig::default().ker),
+                constraints: if self.algorithm == "mhaco" {
+                    ConstraintHandling::FeasibilityFirst
+                } else {
+                    ConstraintHandling::AsObjectives {
+                        scales: None,
+                        cap: 2.0,
+                        penalty: 0.5,
+                    }
+                },
+                ..MhacoConfig::default()
+            }),
+            _ => AlgorithmSpec::Moead(self.moead_config()),
+        }
+    }
+
+    /// The MOEA/D settings of `moead` and `scea`.
+    fn moead_config(&self) -> MoeadConfig {
+        MoeadConfig {
+            population: self.population,
+            neighbours: self.neighbours,
+            limit: self.limit,
+            mutation_probability: self.mutation_probability,
+            batch_size: self.batch_size,
+            archive: self.archive,
+            ..MoeadConfig::default()
+        }
+    }
+
     /// The number of objectives: the robust statistics', or the design problem's (2, or 3
     /// with the skips).
     #[must_use]
@@ -409,7 +455,56 @@ pub fn run(
     base_dir: &Path,
     progress: &mut dyn Progress,
 ) -> Result<Finished, ReentryError> {
+    run_on(c, src, dir, resume, base_dir, progress, None)
+}
+
+/// The run file of the run in `dir` (its config.toml), for [`run`] with `resume`: its own
+/// generation total, or `generations` when given (a resumed run may be extended).
+///
+/// # Errors
+/// [`ReentryError`] naming config.toml, the field and the value.
+pub fn resumed_config(
+    dir: &Path,
+    generations: Option<u64>,
+) -> Result<ReentryRunConfig, ReentryError> {
+    let mut c = parse_toml(&dir.join("config.toml"))?;
+    if let Some(g) = generations {
+        c.generations = g;
+    }
+    Ok(c)
+}
+
+/// [`run`], its batches evaluated by `external` when given (a front end's evaluator, e.g.
+/// the Python package's over a Dask cluster) instead of on the run file's `threads`, which
+/// then fly only the chosen front members' reports at the end. The run directory, its
+/// checkpoints and its result are those of [`run`] when `external` returns the problem's own
+/// evaluations; a run started one way resumes the other. A fixed-length run only: the
+/// decisions `external` gets are the genes (`x` of the design problem, or of the robust
+/// problem with `[robust]`).
+///
+/// # Errors
+/// [`run`]'s, and [`ReentryError::Setting`] for `algorithm = "scea"` with `external`.
+pub fn run_on(
+    c: &ReentryRunConfig,
+    src: &str,
+    dir: &Path,
+    resume: bool,
+    base_dir: &Path,
+    progress: &mut dyn Progress,
+    external: Option<&dyn BatchEvaluator<Vec<f64>>>,
+) -> Result<Finished, ReentryError> {
     check(c, src)?;
+    if external.is_some() && c.algorithm == "scea" {
+        return Err(ReentryError::Setting {
+            source_name: src.to_string(),
+            field: "algorithm",
+            value: c.algorithm.clone(),
+            reason: "a variable-length run evaluates in this process (on `threads`); an \
+                     external evaluator (Dask) takes the fixed-length algorithms moead, \
+                     nsga2, mhaco, mhaco-objectives"
+                .into(),
+        });
+    }
     let problem = c.problem.problem(base_dir)?;
     // A robust problem is built (its base's campaign set up) before the directory is touched.
     let robust = match &c.robust {
@@ -429,6 +524,18 @@ pub fn run(
         Some(f) => read_nominal_front(&base_dir.join(f), problem.encoding().dim())?,
         None => Vec::new(),
     };
+    // And are the algorithm's settings checked against the problem's shape.
+    let spec = c.algorithm_spec();
+    let constraints = robust
+        .as_ref()
+        .map_or_else(|| problem.constraints(), Problem::constraints);
+    spec.check(c.objective_count(), constraints)
+        .map_err(|e| ReentryError::Setting {
+            source_name: src.to_string(),
+            field: "algorithm",
+            value: c.algorithm.clone(),
+            reason: e.to_string(),
+        })?;
     if !resume {
         // A new run: never into a directory that is not a run; a previous run there is
         // removed whole (no population or front file of it is left beside the new run's).
@@ -442,7 +549,17 @@ pub fn run(
         source,
     })?;
     if !resume {
-        let text = toml::to_string(c).map_err(|e| ReentryError::Parse {
+        // The file paths of the run file are written absolute, so the run resumes from any
+        // working directory (`run` with `resume` reads its base from config.toml).
+        let mut written = c.clone();
+        written.problem = c.problem.anchored(base_dir);
+        if let Some(r) = written.robust.as_mut()
+            && let Some(f) = r.nominal_front.as_mut()
+            && let Ok(p) = std::path::absolute(base_dir.join(&*f))
+        {
+            *f = p.display().to_string();
+        }
+        let text = toml::to_string(&written).map_err(|e| ReentryError::Parse {
             path: dir.join("config.toml"),
             message: e.to_string(),
         })?;
@@ -454,16 +571,8 @@ pub fn run(
         value: c.threads.to_string(),
         reason: e.to_string(),
     })?;
-    let moead = MoeadConfig {
-        population: c.population,
-        neighbours: c.neighbours,
-        limit: c.limit,
-        mutation_probability: c.mutation_probability,
-        batch_size: c.batch_size,
-        archive: c.archive,
-        ..MoeadConfig::default()
-    };
     if c.algorithm == "scea" {
+        let moead = c.moead_config();
         let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
         let vproblem = VariableReentry::new(problem, nodes)?;
         let ctx = Ctx {
@@ -473,6 +582,7 @@ pub fn run(
             pool,
             resume,
             nominal_front: &nominal_front,
+            external: None,
         };
         let cfg = SceaConfig {
             moead,
@@ -489,8 +599,9 @@ pub fn run(
             pool,
             resume,
             nominal_front: &nominal_front,
+            external,
         };
-        return drive_fixed(&ctx, moead, progress);
+        return drive_fixed(&ctx, spec, progress);
     }
     let ctx = Ctx {
         c,
@@ -499,49 +610,28 @@ pub fn run(
         pool,
         resume,
         nominal_front: &nominal_front,
+        external,
     };
-    drive_fixed(&ctx, moead, progress)
+    drive_fixed(&ctx, spec, progress)
 }
 
 /// [`drive`] with the fixed-length algorithm the run file names.
 fn drive_fixed<P>(
     ctx: &Ctx<'_, P>,
-    moead: MoeadConfig,
+    spec: AlgorithmSpec,
     progress: &mut dyn Progress,
 ) -> Result<Finished, ReentryError>
 where
     P: RunProblem<Decision = Vec<f64>> + crate::optim::RealProblem,
 {
-    let c = ctx.c;
-    match c.algorithm.as_str() {
-        "nsga2" => {
-            let cfg = Nsga2Config {
-                population: c.population,
-                archive: c.archive,
-                ..Nsga2Config::default()
-            };
-            drive(ctx, Nsga2::new(cfg, c.seed), progress)
+    let seed = ctx.c.seed;
+    match spec {
+        AlgorithmSpec::Moead(cfg) => drive(ctx, Moead::new(cfg, seed), progress),
+        AlgorithmSpec::MoeadSbx { moead, sbx } => {
+            drive(ctx, MoeadSbx::sbx(moead, sbx, seed), progress)
         }
-        "mhaco" | "mhaco-objectives" => {
-            let constraints = if c.algorithm == "mhaco" {
-                ConstraintHandling::FeasibilityFirst
-            } else {
-                // The problem's constraints are already c / c_max - 1 (scale 1).
-                ConstraintHandling::AsObjectives {
-                    scales: None,
-                    cap: 2.0,
-                    penalty: 0.5,
-                }
-            };
-            let cfg = MhacoConfig {
-                population: c.population,
-                ker: c.population.min(MhacoConfig::default().ker),
-                constraints,
-                ..MhacoConfig::default()
-            };
-            drive(ctx, Mhaco::new(cfg, c.seed), progress)
-        }
-        _ => drive(ctx, Moead::new(moead, c.seed), progress),
+        AlgorithmSpec::Nsga2(cfg) => drive(ctx, Nsga2::new(cfg, seed), progress),
+        AlgorithmSpec::Mhaco(cfg) => drive(ctx, Mhaco::new(cfg, seed), progress),
     }
 }
 
@@ -616,7 +706,7 @@ fn flat<P: RunProblem>(pop: &[Individual<P::Decision>]) -> Vec<Individual<Vec<f6
         .collect()
 }
 
-struct Ctx<'a, P> {
+struct Ctx<'a, P: Problem> {
     c: &'a ReentryRunConfig,
     dir: &'a Path,
     problem: &'a P,
@@ -624,6 +714,8 @@ struct Ctx<'a, P> {
     resume: bool,
     /// A robust run's nominal front to fly in its campaign at the end (`robust.nominal_front`).
     nominal_front: &'a [Vec<f64>],
+    /// The front end's batch evaluator ([`run_on`]); `None`: the run's threads.
+    external: Option<&'a dyn BatchEvaluator<P::Decision>>,
 }
 
 fn drive<P, A>(
@@ -695,11 +787,15 @@ where
     // generation boundary with the last complete generation's checkpoint and no final file.
     let _active = crate::sim::ActiveRun::start();
     let stop = crate::sim::stop_requested;
-    let run = Executor::new(ctx.problem, alg)
+    let executor = Executor::new(ctx.problem, alg)
         .budget(Budget::Generations(ctx.c.generations))
         .threads(ctx.pool.clone())
-        .stop_when(&stop)
-        .run_with(|alg: &A| save(alg, &mut records))?;
+        .stop_when(&stop);
+    let executor = match ctx.external {
+        Some(e) => executor.external(e),
+        None => executor,
+    };
+    let run = executor.run_with(|alg: &A| save(alg, &mut records))?;
     let (alg, wall) = (run.algorithm, run.wall_time_s);
     if run.stop == Stop::Interrupted {
         return Err(ReentryError::Interrupted {
