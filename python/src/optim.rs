@@ -14,8 +14,8 @@ use host_sim::optim::problems::{NAMES, TestProblem};
 use host_sim::optim::run::{RunResult, RunSettings, real_run_report, run_report};
 use host_sim::optim::spec::RunOptions;
 use host_sim::optim::{
-    Algorithm, AlgorithmSpec, BatchEvaluator, Bounds, EvalError, Evaluation, External,
-    NoObserver, Problem, RealAlgorithm, RealProblem, SPEC_NAMES, Serial, evolve,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Bounds, EvalError, Evaluation, External, NoObserver,
+    Problem, RealAlgorithm, RealProblem, SPEC_NAMES, Serial, evolve,
 };
 use host_sim::report::write_run_report;
 use pyo3::exceptions::PyValueError;

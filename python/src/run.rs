@@ -83,10 +83,9 @@ fn run_design(
             ));
         }
     };
-    let external = map_batch
-        .map(|f| move |xs: &[Vec<f64>]| -> Vec<Result<Evaluation, EvalError>> {
-            call_map_batch(&f, xs)
-        });
+    let external = map_batch.map(|f| {
+        move |xs: &[Vec<f64>]| -> Vec<Result<Evaluation, EvalError>> { call_map_batch(&f, xs) }
+    });
     let done = py
         .detach(|| {
             run_on(
@@ -96,7 +95,9 @@ fn run_design(
                 resume,
                 &base_dir,
                 &mut (),
-                external.as_ref().map(|f| f as &dyn BatchEvaluator<Vec<f64>>),
+                external
+                    .as_ref()
+                    .map(|f| f as &dyn BatchEvaluator<Vec<f64>>),
             )
         })
         .map_err(|e| bad(&e))?;
@@ -120,8 +121,13 @@ fn run_config_toml(preset: &str, overrides_json: &str) -> PyResult<String> {
     if let Some(m) = v.as_object_mut() {
         m.extend(over);
     }
-    let c: ReentryRunConfig = serde_path_to_error::deserialize(v)
-        .map_err(|e| bad(&format!("run settings: field `{}`: {}", e.path(), e.inner())))?;
+    let c: ReentryRunConfig = serde_path_to_error::deserialize(v).map_err(|e| {
+        bad(&format!(
+            "run settings: field `{}`: {}",
+            e.path(),
+            e.inner()
+        ))
+    })?;
     check(&c, "run settings").map_err(|e| bad(&e))?;
     toml::to_string(&c).map_err(|e| bad(&e))
 }
