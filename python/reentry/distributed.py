@@ -434,26 +434,33 @@ def _reference_point(a, problem) -> Optional[List[float]]:
 
 def _cmd_optimize_run_file(a) -> int:
     """``--config FILE`` or ``--resume DIR``: host-sim's design run and its run directory
-    (``reentry.run_design``), batches on Dask unless ``--local``."""
+    (``reentry.run_design``: host-sim optimize's), its batches on Dask unless ``--local``."""
+    if a.algorithm is not None:
+        print(
+            f"error: command line: {a.algorithm} beside --config or --resume: the run file "
+            "decides the algorithm; drop the subcommand", file=sys.stderr,
+        )
+        return 2
     resume = a.resume is not None
-    out = a.resume if resume else (a.out or f"runs/optimize-{os.path.splitext(os.path.basename(a.config))[0]}")
-    generations = a.generations if resume and a.generations_given else None
-    t0 = time.perf_counter()
+    if resume:
+        out, config = a.resume, None
+    else:
+        config = a.config
+        out = a.out or f"runs/optimize-{os.path.splitext(os.path.basename(config))[0]}"
+    # As host-sim optimize: a resumed run keeps its total unless --generations is given.
+    generations = a.generations if resume and a.generations != 250 else None
     if a.local:
-        last = run_design(out, None if resume else a.config, resume=resume, generations=generations)
+        last = run_design(out, config, resume=resume, generations=generations)
         where = "in this process (the run file's threads)"
     else:
         with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
             last = run_design_on_dask(
-                out, None if resume else a.config, client=client, resume=resume,
-                generations=generations, chunk_size=a.chunk_size,
+                out, config, client=client, resume=resume, generations=generations,
+                chunk_size=a.chunk_size,
             )
             where = a.scheduler or f"LocalCluster({a.workers} processes)"
-    print(
-        f"generation {last['generation']}, {last['evaluations']} evaluations in "
-        f"{time.perf_counter() - t0:.2f} s, feasible {100 * last['feasible_fraction']:.0f} %, "
-        f"hypervolume {last['hypervolume']:.6f}, {len(last['front'])} front members; wrote {out}"
-    )
+    if last.get("line"):
+        print(last["line"])
     print(f"evaluated {where}", file=sys.stderr)
     return 0
 
@@ -763,6 +770,17 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             help="hypervolume reference point (default: the problem's)",
         )
         sp.add_argument("--out", metavar="DIR", default=d(None), help="write population.csv, front.csv and summary.json here")
+        runs = sp.add_mutually_exclusive_group()
+        runs.add_argument(
+            "--config", metavar="FILE", default=d(None),
+            help="a design run file: host-sim optimize --config's run and run directory "
+            "(config.toml, checkpoints, records, front, member scenarios), batches on Dask",
+        )
+        runs.add_argument(
+            "--resume", metavar="DIR", default=d(None),
+            help="continue the design run in DIR from its last checkpoint (--generations: a "
+            "new total), as host-sim optimize --resume; the CLI resumes it too",
+        )
         where(sp, d)
 
     o = sub.add_parser(

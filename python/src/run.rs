@@ -40,7 +40,8 @@ pub(crate) fn call_map_batch(f: &Py<PyAny>, xs: &[Vec<f64>]) -> Vec<Result<Evalu
 /// a new total; by default the run's own). `map_batch(xs)` evaluates each batch (a list of
 /// decisions) into `(f, g)` pairs in order; default: host-sim's threads (`threads` of the
 /// run file). Returns the last generation's record as JSON (`generation`, `evaluations`,
-/// `feasible_fraction`, `hypervolume`, `front`, ...) with the run's `wall_time_s`. The GIL is
+/// `feasible_fraction`, `hypervolume`, `front`, ...) with the run's `wall_time_s` and `line`,
+/// the result line `host-sim optimize` prints. The GIL is
 /// released while the run goes.
 #[pyfunction]
 #[pyo3(signature = (out, config=None, *, resume=false, generations=None, map_batch=None))]
@@ -104,6 +105,7 @@ fn run_design(
     let mut v = serde_json::to_value(&done.last).map_err(|e| bad(&e))?;
     if let Some(m) = v.as_object_mut() {
         m.insert("wall_time_s".into(), done.wall_time_s.into());
+        m.insert("line".into(), done.line(&c, &out).into());
     }
     Ok(v.to_string())
 }
