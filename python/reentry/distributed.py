@@ -214,7 +214,7 @@ def run_design_on_dask(
     every generation: a lost worker's tasks are retried by Dask, and a run whose client or
     scheduler died resumes from its directory (``resume=True``), here or with the CLI."""
     path = os.path.join(os.fspath(out), "config.toml") if resume else os.fspath(config)
-    if _native.run_file_kind(path) == "robust":
+    if _native.run_file_info(path)[0] == "robust":
         map_batch = robust_batch_evaluator(client, RobustDesignProblem(path), chunk_size)
     else:
         map_batch = dask_batch_evaluator(client, DesignProblem(path), chunk_size)
@@ -432,23 +432,46 @@ def _reference_point(a, problem) -> Optional[List[float]]:
     return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
 
 
+#: ``--generations``'s default, host-sim optimize's (a resumed run keeps its own total unless
+#: another is given).
+_DEFAULT_GENERATIONS = 250
+
+#: The flags ``--resume`` refuses (the run keeps its config.toml), with their defaults.
+_NOT_WITH_RESUME = (
+    ("problem", "zdt1"), ("population", None), ("evaluations", None), ("seed", 1),
+    ("objectives", 3), ("ref", None), ("out", None),
+)
+
+
 def _cmd_optimize_run_file(a) -> int:
-    """``--config FILE`` or ``--resume DIR``: host-sim's design run and its run directory
-    (``reentry.run_design``: host-sim optimize's), its batches on Dask unless ``--local``."""
-    if a.algorithm is not None:
-        print(
-            f"error: command line: {a.algorithm} beside --config or --resume: the run file "
-            "decides the algorithm; drop the subcommand", file=sys.stderr,
-        )
+    """``--config FILE`` or ``--resume DIR``: host-sim optimize's design run and run directory
+    (:func:`reentry.run_design`), its batches on Dask unless ``--local``."""
+    def refuse(why: str) -> int:
+        print(f"error: command line: {why}", file=sys.stderr)
         return 2
+
+    if a.algorithm is not None:
+        return refuse(
+            f"{a.algorithm} beside --config or --resume: the run file decides the algorithm "
+            "and its settings; drop the subcommand"
+        )
+    if a.evaluations is not None:
+        return refuse("--evaluations beside --config or --resume: the run file sets generations")
     resume = a.resume is not None
     if resume:
+        given = [f"--{k}" for k, default in _NOT_WITH_RESUME if getattr(a, k) != default]
+        if given:
+            return refuse(f"{', '.join(given)} beside --resume: the run keeps its config.toml")
         out, config = a.resume, None
+        kind_of = os.path.join(out, "config.toml")
     else:
-        config = a.config
-        out = a.out or f"runs/optimize-{os.path.splitext(os.path.basename(config))[0]}"
-    # As host-sim optimize: a resumed run keeps its total unless --generations is given.
-    generations = a.generations if resume and a.generations != 250 else None
+        out, config = a.out, a.config
+        kind_of = config
+    _kind, default_dir = _native.run_file_info(kind_of)  # a bad file: its error, exit 1
+    out = out or os.fspath(default_dir)
+    generations = (
+        a.generations if resume and a.generations != _DEFAULT_GENERATIONS else None
+    )
     if a.local:
         last = run_design(out, config, resume=resume, generations=generations)
         where = "in this process (the run file's threads)"
@@ -466,7 +489,7 @@ def _cmd_optimize_run_file(a) -> int:
 
 
 def _cmd_optimize(a) -> int:
-    if getattr(a, "config", None) is not None or getattr(a, "resume", None) is not None:
+    if a.config is not None or a.resume is not None:
         return _cmd_optimize_run_file(a)
     problem = _problem(a)
     reference = _reference_point(a, problem)
@@ -757,7 +780,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         sp.add_argument("--population", type=int, default=d(None), help="population size (default 100)")
         gens = sp.add_mutually_exclusive_group()
         gens.add_argument(
-            "--generations", type=int, default=d(250), help="generations after the initial population (default 250)"
+            "--generations", type=int, default=d(_DEFAULT_GENERATIONS),
+            help=f"generations after the initial population (default {_DEFAULT_GENERATIONS}; with "
+            "--resume: a new total, else the run's own)"
         )
         gens.add_argument(
             "--evaluations", type=int, default=d(None), metavar="E",

@@ -134,21 +134,24 @@ fn run_config_toml(preset: &str, overrides_json: &str) -> PyResult<String> {
     toml::to_string(&c).map_err(|e| bad(&e))
 }
 
-/// Whether the run file `path` is a robust run (`"robust"`: a `[robust]` section) or a
-/// nominal one (`"nominal"`), for the Dask layer's choice of evaluator.
+/// What the Dask layer needs of the run file `path` before the run: whether it is a robust
+/// run (`"robust"`: a `[robust]` section, split over decisions and flights) or a nominal one
+/// (`"nominal"`), and the run directory it writes when none is named
+/// (`ReentryRunConfig::default_dir`, the CLI's default).
 #[pyfunction]
-fn run_file_kind(path: PathBuf) -> PyResult<&'static str> {
+fn run_file_info(path: PathBuf) -> PyResult<(&'static str, PathBuf)> {
     let c = parse_toml(&path).map_err(|e| errors::DesignError::new_err(e.to_string()))?;
-    Ok(if c.robust.is_some() {
+    let kind = if c.robust.is_some() {
         "robust"
     } else {
         "nominal"
-    })
+    };
+    Ok((kind, c.default_dir()))
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_design, m)?)?;
-    m.add_function(wrap_pyfunction!(run_file_kind, m)?)?;
+    m.add_function(wrap_pyfunction!(run_file_info, m)?)?;
     m.add_function(wrap_pyfunction!(run_config_toml, m)?)?;
     Ok(())
 }
