@@ -214,7 +214,7 @@ def run_design_on_dask(
     every generation: a lost worker's tasks are retried by Dask, and a run whose client or
     scheduler died resumes from its directory (``resume=True``), here or with the CLI."""
     path = os.path.join(os.fspath(out), "config.toml") if resume else os.fspath(config)
-    if _native.run_file_kind(path) == "robust":
+    if _native.run_file_info(path)[0] == "robust":
         map_batch = robust_batch_evaluator(client, RobustDesignProblem(path), chunk_size)
     else:
         map_batch = dask_batch_evaluator(client, DesignProblem(path), chunk_size)
@@ -432,34 +432,64 @@ def _reference_point(a, problem) -> Optional[List[float]]:
     return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
 
 
+#: ``--generations``'s default, host-sim optimize's (a resumed run keeps its own total unless
+#: another is given).
+_DEFAULT_GENERATIONS = 250
+
+#: The flags ``--resume`` refuses (the run keeps its config.toml), with their defaults.
+_NOT_WITH_RESUME = (
+    ("problem", "zdt1"), ("population", None), ("evaluations", None), ("seed", 1),
+    ("objectives", 3), ("ref", None), ("out", None),
+)
+
+
 def _cmd_optimize_run_file(a) -> int:
-    """``--config FILE`` or ``--resume DIR``: host-sim's design run and its run directory
-    (``reentry.run_design``), batches on Dask unless ``--local``."""
+    """``--config FILE`` or ``--resume DIR``: host-sim optimize's design run and run directory
+    (:func:`reentry.run_design`), its batches on Dask unless ``--local``."""
+    def refuse(why: str) -> int:
+        print(f"error: command line: {why}", file=sys.stderr)
+        return 2
+
+    if a.algorithm is not None:
+        return refuse(
+            f"{a.algorithm} beside --config or --resume: the run file decides the algorithm "
+            "and its settings; drop the subcommand"
+        )
+    if a.evaluations is not None:
+        return refuse("--evaluations beside --config or --resume: the run file sets generations")
     resume = a.resume is not None
-    out = a.resume if resume else (a.out or f"runs/optimize-{os.path.splitext(os.path.basename(a.config))[0]}")
-    generations = a.generations if resume and a.generations_given else None
-    t0 = time.perf_counter()
+    if resume:
+        given = [f"--{k}" for k, default in _NOT_WITH_RESUME if getattr(a, k) != default]
+        if given:
+            return refuse(f"{', '.join(given)} beside --resume: the run keeps its config.toml")
+        out, config = a.resume, None
+        kind_of = os.path.join(out, "config.toml")
+    else:
+        out, config = a.out, a.config
+        kind_of = config
+    _kind, default_dir = _native.run_file_info(kind_of)  # a bad file: its error, exit 1
+    out = out or os.fspath(default_dir)
+    generations = (
+        a.generations if resume and a.generations != _DEFAULT_GENERATIONS else None
+    )
     if a.local:
-        last = run_design(out, None if resume else a.config, resume=resume, generations=generations)
+        last = run_design(out, config, resume=resume, generations=generations)
         where = "in this process (the run file's threads)"
     else:
         with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
             last = run_design_on_dask(
-                out, None if resume else a.config, client=client, resume=resume,
-                generations=generations, chunk_size=a.chunk_size,
+                out, config, client=client, resume=resume, generations=generations,
+                chunk_size=a.chunk_size,
             )
             where = a.scheduler or f"LocalCluster({a.workers} processes)"
-    print(
-        f"generation {last['generation']}, {last['evaluations']} evaluations in "
-        f"{time.perf_counter() - t0:.2f} s, feasible {100 * last['feasible_fraction']:.0f} %, "
-        f"hypervolume {last['hypervolume']:.6f}, {len(last['front'])} front members; wrote {out}"
-    )
+    if last.get("line"):
+        print(last["line"])
     print(f"evaluated {where}", file=sys.stderr)
     return 0
 
 
 def _cmd_optimize(a) -> int:
-    if getattr(a, "config", None) is not None or getattr(a, "resume", None) is not None:
+    if a.config is not None or a.resume is not None:
         return _cmd_optimize_run_file(a)
     problem = _problem(a)
     reference = _reference_point(a, problem)
@@ -750,7 +780,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         sp.add_argument("--population", type=int, default=d(None), help="population size (default 100)")
         gens = sp.add_mutually_exclusive_group()
         gens.add_argument(
-            "--generations", type=int, default=d(250), help="generations after the initial population (default 250)"
+            "--generations", type=int, default=d(_DEFAULT_GENERATIONS),
+            help=f"generations after the initial population (default {_DEFAULT_GENERATIONS}; with "
+            "--resume: a new total, else the run's own)"
         )
         gens.add_argument(
             "--evaluations", type=int, default=d(None), metavar="E",
@@ -763,6 +795,17 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             help="hypervolume reference point (default: the problem's)",
         )
         sp.add_argument("--out", metavar="DIR", default=d(None), help="write population.csv, front.csv and summary.json here")
+        runs = sp.add_mutually_exclusive_group()
+        runs.add_argument(
+            "--config", metavar="FILE", default=d(None),
+            help="a design run file: host-sim optimize --config's run and run directory "
+            "(config.toml, checkpoints, records, front, member scenarios), batches on Dask",
+        )
+        runs.add_argument(
+            "--resume", metavar="DIR", default=d(None),
+            help="continue the design run in DIR from its last checkpoint (--generations: a "
+            "new total), as host-sim optimize --resume; the CLI resumes it too",
+        )
         where(sp, d)
 
     o = sub.add_parser(

@@ -40,7 +40,8 @@ pub(crate) fn call_map_batch(f: &Py<PyAny>, xs: &[Vec<f64>]) -> Vec<Result<Evalu
 /// a new total; by default the run's own). `map_batch(xs)` evaluates each batch (a list of
 /// decisions) into `(f, g)` pairs in order; default: host-sim's threads (`threads` of the
 /// run file). Returns the last generation's record as JSON (`generation`, `evaluations`,
-/// `feasible_fraction`, `hypervolume`, `front`, ...) with the run's `wall_time_s`. The GIL is
+/// `feasible_fraction`, `hypervolume`, `front`, ...) with the run's `wall_time_s` and `line`,
+/// the result line `host-sim optimize` prints. The GIL is
 /// released while the run goes.
 #[pyfunction]
 #[pyo3(signature = (out, config=None, *, resume=false, generations=None, map_batch=None))]
@@ -104,6 +105,7 @@ fn run_design(
     let mut v = serde_json::to_value(&done.last).map_err(|e| bad(&e))?;
     if let Some(m) = v.as_object_mut() {
         m.insert("wall_time_s".into(), done.wall_time_s.into());
+        m.insert("line".into(), done.line(&c, &out).into());
     }
     Ok(v.to_string())
 }
@@ -132,21 +134,24 @@ fn run_config_toml(preset: &str, overrides_json: &str) -> PyResult<String> {
     toml::to_string(&c).map_err(|e| bad(&e))
 }
 
-/// Whether the run file `path` is a robust run (`"robust"`: a `[robust]` section) or a
-/// nominal one (`"nominal"`), for the Dask layer's choice of evaluator.
+/// What the Dask layer needs of the run file `path` before the run: whether it is a robust
+/// run (`"robust"`: a `[robust]` section, split over decisions and flights) or a nominal one
+/// (`"nominal"`), and the run directory it writes when none is named
+/// (`ReentryRunConfig::default_dir`, the CLI's default).
 #[pyfunction]
-fn run_file_kind(path: PathBuf) -> PyResult<&'static str> {
+fn run_file_info(path: PathBuf) -> PyResult<(&'static str, PathBuf)> {
     let c = parse_toml(&path).map_err(|e| errors::DesignError::new_err(e.to_string()))?;
-    Ok(if c.robust.is_some() {
+    let kind = if c.robust.is_some() {
         "robust"
     } else {
         "nominal"
-    })
+    };
+    Ok((kind, c.default_dir()))
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_design, m)?)?;
-    m.add_function(wrap_pyfunction!(run_file_kind, m)?)?;
+    m.add_function(wrap_pyfunction!(run_file_info, m)?)?;
     m.add_function(wrap_pyfunction!(run_config_toml, m)?)?;
     Ok(())
 }

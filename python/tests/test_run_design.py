@@ -43,8 +43,8 @@ def _run_file(tmp_path: Path, generations: int, host_sim, name="run.toml", robus
         text = "\n".join(lines) + "\n"
     else:
         text = host_sim(
-            "optimize", "--problem", "srm", "--population", "6", "--neighbours", "5",
-            "--generations", str(generations), "--print-config",
+            "optimize", "--problem", "srm", "--population", "6", "--generations",
+            str(generations), "--print-config", "moead", "--neighbours", "5",
         ).stdout
     p = tmp_path / name
     p.write_text(text)
@@ -182,3 +182,35 @@ def test_design_run_config_is_a_checked_run_file(tmp_path):
         reentry.design_run_config("srm", reference=[1.0])
     with pytest.raises(reentry.DesignError, match="no-such-preset"):
         reentry.design_run_config("no-such-preset")
+
+
+def test_reentry_dask_optimize_config_and_resume_are_the_cli_run(
+    tmp_path, host_sim, client, straight, capsys, monkeypatch
+):
+    from reentry.distributed import main
+
+    address = client.scheduler.address
+    one = _run_file(tmp_path, 1, host_sim)
+    out = tmp_path / "dask"
+    assert main(["optimize", "--config", str(one), "--scheduler", address, "--out", str(out)]) == 0
+    first = capsys.readouterr().out.strip().splitlines()[-1]
+    cli = host_sim("optimize", "--config", one, "--out", tmp_path / "cli").stdout.strip()
+    # The library's result line, the CLI's but for the wall time and the directory.
+    strip = lambda s: s.split(" evaluations in ")[0] + s.split(" s in this run")[1].split("; wrote")[0]  # noqa: E731
+    assert strip(first) == strip(cli.splitlines()[-1])
+    assert first.endswith(f"; wrote {out}")
+    # --resume with a new total on Dask, as host-sim optimize --resume: the straight run.
+    assert main(["optimize", "--resume", str(out), "--generations", "3", "--scheduler", address]) == 0
+    assert _result(out) == straight
+    # The flags the run file decides are refused, as the CLI refuses them.
+    assert main(["optimize", "--config", str(one), "--local", "nsga2"]) == 2
+    assert main(["optimize", "--resume", str(out), "--seed", "3", "--local"]) == 2
+    assert main(["optimize", "--config", str(one), "--evaluations", "30", "--local"]) == 2
+    err = capsys.readouterr().err
+    assert "nsga2 beside --config" in err and "--seed beside --resume" in err
+    # Without --out: the CLI's default directory, runs/optimize-<base>.
+    monkeypatch.chdir(tmp_path)
+    assert main(["optimize", "--config", str(one), "--local"]) == 0
+    assert (tmp_path / "runs" / "optimize-srm" / "front.csv").read_text() == (
+        tmp_path / "cli" / "front.csv"
+    ).read_text()

@@ -62,10 +62,7 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         Some(dir) => (parse_toml(&dir.join("config.toml"))?, dir.clone(), true),
         None => {
             let c = config_of(a)?;
-            let dir = a
-                .out
-                .clone()
-                .unwrap_or_else(|| PathBuf::from(format!("runs/optimize-{}", c.problem.base)));
+            let dir = a.out.clone().unwrap_or_else(|| c.default_dir());
             (c, dir, false)
         }
     };

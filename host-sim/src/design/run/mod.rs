@@ -129,6 +129,13 @@ impl ReentryRunConfig {
         }
     }
 
+    /// The run directory a run of this file writes when none is named:
+    /// `runs/optimize-<problem.base>` (relative to the working directory).
+    #[must_use]
+    pub fn default_dir(&self) -> PathBuf {
+        PathBuf::from(format!("runs/optimize-{}", self.problem.base))
+    }
+
     /// The number of objectives: the robust statistics', or the design problem's (2, or 3
     /// with the skips).
     #[must_use]
