@@ -504,7 +504,7 @@ mod tests {
     use super::*;
     use crate::optim::evaluate::{Rayon, Serial, evolve};
     use crate::optim::observe::NoObserver;
-    use crate::optim::problems::Vlmop;
+    use crate::optim::problems::{OptionalNodes, Vlmop};
 
     fn make(seed: u64) -> VlMhaco {
         VlMhaco::new(
@@ -608,5 +608,77 @@ mod tests {
                 "vlmop{id}: {ratio}"
             );
         }
+    }
+
+    /// The hypervolume ratio of the archive on [`OptionalNodes`] and the share of its
+    /// non-dominated members whose nodes carry the extra gene exactly where it is needed.
+    fn optional_scores(p: &OptionalNodes, a: &VlMhaco) -> (f64, f64) {
+        use crate::optim::hypervolume::hypervolume;
+        use crate::optim::pareto::dominates;
+        use crate::optim::population::feasible_front;
+        let pop = <VlMhaco as Algorithm<OptionalNodes>>::population(a);
+        let r = p.reference_point();
+        let ratio =
+            hypervolume(&feasible_front(pop), &r).unwrap() / p.front_hypervolume(&r).unwrap();
+        let front: Vec<_> = pop
+            .iter()
+            .filter(|i| !pop.iter().any(|j| dominates(&j.objectives, &i.objectives)))
+            .collect();
+        let right = front
+            .iter()
+            .filter(|i| p.has_optimal_pattern(&i.decision))
+            .count();
+        (ratio, right as f64 / front.len() as f64)
+    }
+
+    fn optional_run(seed: u64, gens: u64) -> VlMhaco {
+        let p = OptionalNodes::standard().unwrap();
+        let mut a = VlMhaco::new(
+            MhacoConfig {
+                n_gen_mark: 15,
+                ..MhacoConfig::default()
+            },
+            seed,
+        );
+        evolve(&mut a, &p, &Serial, gens, &mut NoObserver).unwrap();
+        a
+    }
+
+    /// Seed survey on [`OptionalNodes`] (population 100, ker 63, n_gen_mark 15): ratio and
+    /// pattern share per seed 1..=8 (`cargo test -p host-sim --lib vl_mhaco_optional_survey
+    /// -- --ignored --nocapture`).
+    #[test]
+    #[ignore = "survey"]
+    fn vl_mhaco_optional_survey() {
+        let p = OptionalNodes::standard().unwrap();
+        for gens in [30, 100] {
+            let rows: Vec<String> = (1..=8)
+                .map(|seed| {
+                    let (ratio, share) = optional_scores(&p, &optional_run(seed, gens));
+                    format!("{ratio:.4}/{share:.2}")
+                })
+                .collect();
+            println!("vl-mhaco optional {gens} gens: {}", rows.join(" "));
+        }
+    }
+
+    /// Thresholds at 30 generations: the minima of `vl_mhaco_optional_survey` over seeds
+    /// 1..=8 (ratio 0.8256, share 0.22; seed 1 0.9453/1.00) less about 2 % (ratio) or 0.05
+    /// (share), rounded down; the test runs seed 1. Seeds 4 and 7 stall with shares 0.22-0.24
+    /// (still 0.24 and 0.80 after 100 generations): once the archive members agree on a
+    /// node's presence its spread is zero and the ants keep it, as they keep a converged
+    /// length; SCEA (mutation of the presence) finds the pattern on every seed.
+    const VL_MHACO_OPTIONAL: (f64, f64) = (0.80, 0.17);
+
+    #[test]
+    fn vl_mhaco_finds_the_optional_gene_pattern() {
+        let p = OptionalNodes::standard().unwrap();
+        let a = optional_run(1, 30);
+        for ind in <VlMhaco as Algorithm<OptionalNodes>>::population(&a) {
+            p.layout().check(&ind.decision, None).unwrap();
+        }
+        let (ratio, share) = optional_scores(&p, &a);
+        assert!(ratio > VL_MHACO_OPTIONAL.0, "ratio {ratio}");
+        assert!(share > VL_MHACO_OPTIONAL.1, "share {share}");
     }
 }

@@ -18,6 +18,7 @@ use crate::optim::problem::Evaluation;
 use crate::optim::problem::{Bounds, Problem};
 use crate::optim::pareto::dominates;
 use crate::optim::population::Individual;
+use crate::optim::rng::OptimRng;
 use crate::optim::problems::{Dtlz, OptionalNodes, TestProblem, Vlmop, Zdt};
 use crate::optim::weights::WeightGeneration;
 
@@ -450,21 +451,26 @@ fn scea_optional_genes_keep_the_layout_and_both_presences_occur() {
 #[ignore = "survey: run in release"]
 fn scea_optional_survey() {
     let p = OptionalNodes::standard().unwrap();
-    for genes in [NewGenes::Random, NewGenes::Population] {
-        let rows: Vec<String> = (1..=8)
-            .map(|seed| {
-                let a = run(scea(100, genes, seed), &p, 100);
-                let (ratio, share) = optional_scores(&p, a.population());
-                format!("{ratio:.4}/{share:.2}")
-            })
-            .collect();
-        println!("scea {genes:?} optional: {}", rows.join(" "));
+    for gens in [20, 30, 100] {
+        for genes in [NewGenes::Random, NewGenes::Population] {
+            let rows: Vec<String> = (1..=8)
+                .map(|seed| {
+                    let a = run(scea(100, genes, seed), &p, gens);
+                    let (ratio, share) = optional_scores(&p, a.population());
+                    format!("{ratio:.4}/{share:.2}")
+                })
+                .collect();
+            println!("scea {genes:?} optional {gens} gens: {}", rows.join(" "));
+        }
     }
 }
 
-/// Thresholds: the smallest ratio and share of `scea_optional_survey` over seeds 1..=8 less
-/// about 2 % (ratio) or 0.05 (share), rounded down; [random genes, population genes].
-const SCEA_OPTIONAL: [(f64, f64); 2] = [(0.0, 0.0), (0.0, 0.0)];
+/// Thresholds at 30 generations: the smallest ratio and share of `scea_optional_survey` over
+/// seeds 1..=8 (ratios 0.9662 random genes, 0.9612 population genes; shares 0.99 both; seed 1
+/// 0.9721/1.00 and 0.9695/1.00) less about 2 % (ratio) or 0.05 (share), rounded down;
+/// [random genes, population genes]. (At 20 generations the ratios are 0.89-0.97 and the
+/// shares 0.92-1.00, at 100 generations 0.988-0.992 and 1.00.)
+const SCEA_OPTIONAL: [(f64, f64); 2] = [(0.94, 0.94), (0.94, 0.94)];
 
 #[test]
 fn scea_finds_the_optional_gene_pattern() {
@@ -473,11 +479,59 @@ fn scea_finds_the_optional_gene_pattern() {
         .into_iter()
         .enumerate()
     {
-        let a = run(scea(100, genes, 1), &p, 100);
+        let a = run(scea(100, genes, 1), &p, 30);
         let (ratio, share) = optional_scores(&p, a.population());
         println!("scea {genes:?} optional: ratio {ratio:.4}, pattern share {share:.2}");
         let (min_ratio, min_share) = SCEA_OPTIONAL[k];
         assert!(ratio > min_ratio, "{genes:?}: ratio {ratio}");
         assert!(share > min_share, "{genes:?}: share {share}");
+    }
+}
+
+/// The presence of the optional group follows the module documentation's rule: with CR = 1
+/// the child takes parent `a`'s presence where the parents differ, the base's where they
+/// agree; with `count_mutation` = 1 it flips; new groups come from a parent that has one.
+#[test]
+fn scea_presence_of_the_optional_group_follows_the_parents() {
+    use super::variation::{Settings, child};
+    let p = OptionalNodes::new(1).unwrap();
+    let c = |x: f64, node: Vec<f64>| Chromosome {
+        fixed: vec![x],
+        legs: vec![vec![node]],
+    };
+    let settings = |cr: f64, count_mutation: f64| Settings {
+        cr,
+        f: 0.5,
+        eta_m: 20.0,
+        mutation_probability: Some(0.0),
+        count_mutation,
+        new_genes: NewGenes::Population,
+    };
+    let without = c(0.5, vec![0.3]);
+    let with = c(0.5, vec![0.3, 0.8]);
+    let mut rng = OptimRng::new(4);
+    let carries = |ch: &Chromosome| p.layout().carries_optional(&ch.legs[0][0]);
+    for _ in 0..20 {
+        // Parents differ: a's presence.
+        let k = child(&p, &without, &with, &without, &settings(1.0, 0.0), &mut rng);
+        assert!(carries(&k));
+        // The new group is the parent's (a and b both carry it: one of theirs).
+        assert_eq!(k.legs[0][0][1], 0.8);
+        let k = child(&p, &with, &without, &with, &settings(1.0, 0.0), &mut rng);
+        assert!(!carries(&k));
+        // Parents agree: the base's.
+        let k = child(&p, &with, &without, &without, &settings(1.0, 0.0), &mut rng);
+        assert!(carries(&k));
+        assert_eq!(k.legs[0][0][1], 0.8, "kept from the base");
+        let k = child(&p, &without, &with, &with, &settings(1.0, 0.0), &mut rng);
+        assert!(!carries(&k));
+        // No crossover: the base's; mutation 1: flipped.
+        let k = child(&p, &without, &with, &without, &settings(0.0, 0.0), &mut rng);
+        assert!(!carries(&k));
+        let k = child(&p, &without, &without, &without, &settings(0.0, 1.0), &mut rng);
+        assert!(carries(&k), "flipped on, a random group (no parent has one)");
+        p.layout().check(&k, None).unwrap();
+        let k = child(&p, &with, &with, &with, &settings(0.0, 1.0), &mut rng);
+        assert!(!carries(&k));
     }
 }
