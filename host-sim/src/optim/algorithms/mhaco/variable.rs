@@ -181,7 +181,8 @@ impl Spreads {
         let base: Vec<&[f64]> = all.iter().map(|n| &n[..node_dim]).collect();
         let pooled = sigmas_of(&base, layout.node(), gen_mark, focus, generation)
             .unwrap_or_else(|| vec![0.0; node_dim]);
-        let (mut presence, mut optional, mut optional_pooled) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut presence, mut optional, mut optional_pooled) =
+            (Vec::new(), Vec::new(), Vec::new());
         if let Some(bounds) = layout.optional() {
             for (l, row) in genes.iter().enumerate() {
                 let at = |k: usize| archive.iter().filter_map(move |c| c.legs.get(l)?.get(k));
@@ -192,13 +193,17 @@ impl Spreads {
                         .map(|n| f64::from(u8::from(layout.carries_optional(n))))
                         .collect();
                     p_row.push(spread(&mut p) / g);
-                    let rows: Vec<&[f64]> = at(k).filter_map(|n| layout.optional_genes(n)).collect();
+                    let rows: Vec<&[f64]> =
+                        at(k).filter_map(|n| layout.optional_genes(n)).collect();
                     o_row.push(sigmas_of(&rows, bounds, gen_mark, focus, generation));
                 }
                 presence.push(p_row);
                 optional.push(o_row);
             }
-            let carried: Vec<&[f64]> = all.iter().filter_map(|n| layout.optional_genes(n)).collect();
+            let carried: Vec<&[f64]> = all
+                .iter()
+                .filter_map(|n| layout.optional_genes(n))
+                .collect();
             optional_pooled = sigmas_of(&carried, bounds, gen_mark, focus, generation)
                 .unwrap_or_else(|| vec![0.0; bounds.dim()]);
         }

@@ -13,13 +13,13 @@ use crate::optim::error::{ConfigError, EvalError};
 use crate::optim::evaluate::{Rayon, Serial, evolve};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::observe::NoObserver;
+use crate::optim::pareto::dominates;
+use crate::optim::population::Individual;
 use crate::optim::population::feasible_front;
 use crate::optim::problem::Evaluation;
 use crate::optim::problem::{Bounds, Problem};
-use crate::optim::pareto::dominates;
-use crate::optim::population::Individual;
-use crate::optim::rng::OptimRng;
 use crate::optim::problems::{Dtlz, OptionalNodes, TestProblem, Vlmop, Zdt};
+use crate::optim::rng::OptimRng;
 use crate::optim::weights::WeightGeneration;
 
 fn scea(population: usize, new_genes: NewGenes, seed: u64) -> Scea {
@@ -439,7 +439,10 @@ fn scea_optional_genes_keep_the_layout_and_both_presences_occur() {
                 }
             }
         }
-        assert!(with > 0 && without > 0, "{genes:?}: {with} with, {without} without");
+        assert!(
+            with > 0 && without > 0,
+            "{genes:?}: {with} with, {without} without"
+        );
     }
 }
 
@@ -528,8 +531,18 @@ fn scea_presence_of_the_optional_group_follows_the_parents() {
         // No crossover: the base's; mutation 1: flipped.
         let k = child(&p, &without, &with, &without, &settings(0.0, 0.0), &mut rng);
         assert!(!carries(&k));
-        let k = child(&p, &without, &without, &without, &settings(0.0, 1.0), &mut rng);
-        assert!(carries(&k), "flipped on, a random group (no parent has one)");
+        let k = child(
+            &p,
+            &without,
+            &without,
+            &without,
+            &settings(0.0, 1.0),
+            &mut rng,
+        );
+        assert!(
+            carries(&k),
+            "flipped on, a random group (no parent has one)"
+        );
         p.layout().check(&k, None).unwrap();
         let k = child(&p, &with, &with, &with, &settings(0.0, 1.0), &mut rng);
         assert!(!carries(&k));
@@ -628,7 +641,10 @@ fn legs_problem_has_the_known_answer() {
         for worse in [count, off] {
             let e = p.evaluate(&worse).unwrap().objectives;
             assert!(Legs::g(&worse) >= 0.01 - 1e-12, "{worse:?}");
-            assert!(e.iter().zip(&f).all(|(e, f)| e >= f) && e != f, "{e:?} {f:?}");
+            assert!(
+                e.iter().zip(&f).all(|(e, f)| e >= f) && e != f,
+                "{e:?} {f:?}"
+            );
         }
     }
 }
@@ -671,6 +687,9 @@ fn scea_finds_every_number_of_legs_of_the_legs_problem() {
         }
         let best = legs_best_g(a.population());
         println!("scea {genes:?} legs: best g per leg count {best:?}");
-        assert!(best.iter().all(|&g| g < SCEA_LEGS_G[k]), "{genes:?}: {best:?}");
+        assert!(
+            best.iter().all(|&g| g < SCEA_LEGS_G[k]),
+            "{genes:?}: {best:?}"
+        );
     }
 }

@@ -51,10 +51,10 @@ pub fn random_count(range: CountRange, rng: &mut OptimRng) -> usize {
 /// with probability 1/2 that group's genes too.
 pub fn random_node(layout: &Layout, rng: &mut OptimRng) -> Vec<f64> {
     let mut node = random_point(layout.node(), rng);
-    if let Some(optional) = layout.optional() {
-        if rng.uniform() < 0.5 {
-            node.extend(random_point(optional, rng));
-        }
+    if let Some(optional) = layout.optional()
+        && rng.uniform() < 0.5
+    {
+        node.extend(random_point(optional, rng));
     }
     node
 }
@@ -283,9 +283,7 @@ pub fn child<P: StructuredProblem>(
             };
             let pa = a.legs.get(l).and_then(|leg| leg.get(k));
             let pb = b.legs.get(l).and_then(|leg| leg.get(k));
-            leg.push(inherited_node(
-                layout, x, pa, pb, settings, rng, &mut node,
-            ));
+            leg.push(inherited_node(layout, x, pa, pb, settings, rng, &mut node));
         }
         legs.push(leg);
     }
