@@ -147,7 +147,7 @@ fn evolve_presence(base: bool, a: bool, b: bool, settings: &Settings, rng: &mut 
 }
 
 /// The node of the child at `(l, k)` whose base had it (`x`; `pa`, `pb` the parents' same
-/// node, if they have it), written into `out`.
+/// node, if they have it; `scratch` is the DE step's buffer).
 fn inherited_node<'a>(
     layout: &Layout,
     x: &[f64],
