@@ -137,7 +137,7 @@ fn srm_altitude_encoding_and_setting_errors() {
 /// fixed-length problem's, and a chromosome outside the 4-8 node layout is an error.
 #[test]
 fn variable_length_problem_flies_its_table() {
-    use crate::optim::chromosome::{Chromosome, StructuredProblem};
+    use crate::optim::chromosome::{Chromosome, CountRange, StructuredProblem};
     let v = VariableReentry::new(horus(), [4, 8]).unwrap();
     assert_eq!(v.layout().nodes().min, 2);
     assert_eq!(v.layout().nodes().max, 6);
@@ -163,6 +163,24 @@ fn variable_length_problem_flies_its_table() {
         legs: vec![vec![vec![0.5, 30.0, 40.0]]],
     };
     assert!(v.evaluate(&short).is_err());
+    // One leg: the legs are not skip passes (the whole flight flies one energy-indexed
+    // table), and the nodes carry no optional genes. A second leg is a dimension error.
+    assert_eq!(v.layout().legs(), CountRange { min: 1, max: 1 });
+    assert!(v.layout().optional().is_none());
+    let two_legs = Chromosome {
+        fixed: vec![],
+        legs: vec![
+            vec![vec![0.8, 40.0, 20.0]; 2],
+            vec![vec![0.3, 30.0, 60.0]; 2],
+        ],
+    };
+    assert!(matches!(
+        v.evaluate(&two_legs),
+        Err(crate::optim::EvalError::Dimension {
+            expected: 1,
+            got: 2
+        })
+    ));
 }
 
 /// The padded encoding: the bounds are the largest node count's genes, then the count; a

@@ -7,6 +7,12 @@
 //! bounds form the problem's [`Layout`]. A problem may instead dictate the node counts from the
 //! fixed genes ([`StructuredProblem::derived_nodes`]; Li & Deb's `L(x)`), in which case they
 //! are not free decisions.
+//!
+//! A layout may give the nodes an optional group of genes ([`Layout::with_optional`]; the
+//! thesis' recommendation, sec. 10.2: "a variable number of variables per node", e.g. thrust
+//! at a few nodes only): a node then holds its `node_dim` genes, followed by the
+//! `optional_dim` optional ones when it carries the group. Whether a node carries it is the
+//! length of its vector, a further integer gene per node.
 
 use serde::{Deserialize, Serialize};
 
@@ -52,13 +58,16 @@ pub struct CountRange {
     pub max: usize,
 }
 
-/// The shape of a problem's chromosomes: fixed genes, leg and node counts, node genes.
+/// The shape of a problem's chromosomes: fixed genes, leg and node counts, node genes and the
+/// optional group of genes a node may carry.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Layout {
     fixed: Option<Bounds>,
     legs: CountRange,
     nodes: CountRange,
     node: Bounds,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    optional: Option<Bounds>,
 }
 
 impl Layout {
@@ -87,7 +96,42 @@ impl Layout {
             legs,
             nodes,
             node,
+            optional: None,
         })
+    }
+
+    /// The layout whose nodes may each carry the genes of `optional` after their own (all or
+    /// none of them).
+    #[must_use]
+    pub fn with_optional(mut self, optional: Bounds) -> Self {
+        self.optional = Some(optional);
+        self
+    }
+
+    /// Bounds of the optional genes of a node (`None`: nodes have none).
+    #[must_use]
+    pub fn optional(&self) -> Option<&Bounds> {
+        self.optional.as_ref()
+    }
+
+    /// Number of optional genes of a node that carries them (0 without a group).
+    #[must_use]
+    pub fn optional_dim(&self) -> usize {
+        self.optional.as_ref().map_or(0, Bounds::dim)
+    }
+
+    /// Whether a node's genes include the optional group.
+    #[must_use]
+    pub fn carries_optional(&self, node: &[f64]) -> bool {
+        self.optional.is_some() && node.len() > self.node.dim()
+    }
+
+    /// The optional genes of a node (`None`: it does not carry the group).
+    #[must_use]
+    pub fn optional_genes<'n>(&self, node: &'n [f64]) -> Option<&'n [f64]> {
+        self.carries_optional(node)
+            .then(|| node.get(self.node.dim()..))
+            .flatten()
     }
 
     /// Bounds of the fixed genes (`None`: there are none).
@@ -120,7 +164,9 @@ impl Layout {
         &self.node
     }
 
-    /// Check a chromosome against the layout (and, if given, the dictated node counts).
+    /// Check a chromosome against the layout (and, if given, the dictated node counts): a
+    /// node holds `node_dim` genes, or `node_dim + optional_dim` when it carries the optional
+    /// group.
     ///
     /// # Errors
     /// [`EvalError::Dimension`] with the expected and found count of the first mismatch.
@@ -142,7 +188,12 @@ impl Layout {
             };
             dim(expected, leg.len())?;
             for node in leg {
-                dim(self.node.dim(), node.len())?;
+                let expected = if self.carries_optional(node) {
+                    self.node.dim() + self.optional_dim()
+                } else {
+                    self.node.dim()
+                };
+                dim(expected, node.len())?;
             }
         }
         Ok(())
@@ -178,6 +229,7 @@ impl<P: super::problem::RealProblem> FixedLength<P> {
             legs: CountRange { min: 0, max: 0 },
             nodes: CountRange { min: 1, max: 1 },
             node: Bounds::from_checked(vec![0.0], vec![1.0]),
+            optional: None,
         };
         Self { inner, layout }
     }

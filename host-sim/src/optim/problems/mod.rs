@@ -1,13 +1,16 @@
 //! Standard test problems with known fronts: ZDT1-4 and 6, DTLZ1-7, and Deb's constrained
-//! CONSTR. [`TestProblem`] gathers them behind one type (for the CLI and the tests).
+//! CONSTR. [`TestProblem`] gathers them behind one type (for the CLI and the tests). The
+//! variable-length ones over chromosomes: [`Vlmop`] and [`OptionalNodes`].
 
 pub mod constr;
 pub mod dtlz;
+pub mod optional;
 pub mod vlmop;
 pub mod zdt;
 
 pub use constr::Constr;
 pub use dtlz::Dtlz;
+pub use optional::OptionalNodes;
 pub use vlmop::{VL_NAMES, Vlmop};
 pub use zdt::Zdt;
 

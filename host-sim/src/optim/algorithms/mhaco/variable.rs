@@ -25,13 +25,22 @@
 //!    recommendation), and is uniformly random only when no archive member has it. The
 //!    standard deviations of position `(l, k)` come from the archive members that have that
 //!    node (at least two), else from all nodes of all archive members pooled;
+//! 4. **optional node genes** ([`Layout::with_optional`]): whether node `(l, k)` carries the
+//!    group is an integer variable in `{0, 1}` drawn like the counts, around the presence of
+//!    the node its genes are centred on, with the spread of the presences of the archive
+//!    members that have node `(l, k)`. A node that carries it samples the group around the
+//!    centre node's group, or, when that node lacks it, around the group of the best-ranked
+//!    archive member whose node `(l, k)` carries it (uniformly random when none does), with
+//!    the deviations of the members carrying it there (at least two), else of all carried
+//!    groups pooled (else zero). A uniformly random node carries the group with probability
+//!    1/2. Without a group none of this draws a random number.
 //!
 //! Ask/tell, tell-order and thread invariance, checkpoints: as [`super::Mhaco`].
 
 use serde::{Deserialize, Serialize};
 
 use crate::optim::algorithm::{Algorithm, Batch, check_objectives};
-use crate::optim::algorithms::scea::variation::{random_chromosome, random_count};
+use crate::optim::algorithms::scea::variation::{random_chromosome, random_count, random_node};
 use crate::optim::chromosome::{Chromosome, CountRange, Layout, StructuredProblem};
 use crate::optim::error::OptimError;
 use crate::optim::operators::random_point;
@@ -107,6 +116,11 @@ struct Spreads {
     /// Per node position: base-gene deviations (`None`: fewer than two members have it).
     genes: Vec<Vec<Option<Vec<f64>>>>,
     pooled: Vec<f64>,
+    /// Per node position: the spread of the optional group's presence (empty without one).
+    presence: Vec<Vec<f64>>,
+    /// Per node position: the optional genes' deviations (`None`: fewer than two carry it).
+    optional: Vec<Vec<Option<Vec<f64>>>>,
+    optional_pooled: Vec<f64>,
 }
 
 /// Deviations of `rows` (at least two) in the bounds, or `None`.
@@ -138,7 +152,7 @@ impl Spreads {
         let legs = spread(&mut legs) / g;
         let max_legs = archive.iter().map(|c| c.legs.len()).max().unwrap_or(0);
         let mut nodes = Vec::with_capacity(max_legs);
-        let mut genes = Vec::with_capacity(max_legs);
+        let mut genes: Vec<Vec<Option<Vec<f64>>>> = Vec::with_capacity(max_legs);
         for l in 0..max_legs {
             let mut counts: Vec<f64> = archive
                 .iter()
@@ -167,12 +181,41 @@ impl Spreads {
         let base: Vec<&[f64]> = all.iter().map(|n| &n[..node_dim]).collect();
         let pooled = sigmas_of(&base, layout.node(), gen_mark, focus, generation)
             .unwrap_or_else(|| vec![0.0; node_dim]);
+        let (mut presence, mut optional, mut optional_pooled) =
+            (Vec::new(), Vec::new(), Vec::new());
+        if let Some(bounds) = layout.optional() {
+            for (l, row) in genes.iter().enumerate() {
+                let at = |k: usize| archive.iter().filter_map(move |c| c.legs.get(l)?.get(k));
+                let mut p_row = Vec::with_capacity(row.len());
+                let mut o_row = Vec::with_capacity(row.len());
+                for k in 0..row.len() {
+                    let mut p: Vec<f64> = at(k)
+                        .map(|n| f64::from(u8::from(layout.carries_optional(n))))
+                        .collect();
+                    p_row.push(spread(&mut p) / g);
+                    let rows: Vec<&[f64]> =
+                        at(k).filter_map(|n| layout.optional_genes(n)).collect();
+                    o_row.push(sigmas_of(&rows, bounds, gen_mark, focus, generation));
+                }
+                presence.push(p_row);
+                optional.push(o_row);
+            }
+            let carried: Vec<&[f64]> = all
+                .iter()
+                .filter_map(|n| layout.optional_genes(n))
+                .collect();
+            optional_pooled = sigmas_of(&carried, bounds, gen_mark, focus, generation)
+                .unwrap_or_else(|| vec![0.0; bounds.dim()]);
+        }
         Self {
             fixed,
             legs,
             nodes,
             genes,
             pooled,
+            presence,
+            optional,
+            optional_pooled,
         }
     }
 
@@ -234,11 +277,43 @@ impl Colony<'_> {
         let own = kernel.legs.get(l).and_then(|leg| leg.get(k));
         let centre = own.or_else(|| self.historical(l, k));
         let Some(centre) = centre else {
-            return random_point(layout.node(), rng);
+            return random_node(layout, rng);
         };
         let sigma =
             Spreads::at(&self.spreads.genes, l, k).unwrap_or_else(|| self.spreads.pooled.clone());
-        ant(&centre[..dim], &sigma, layout.node(), normal, rng)
+        let mut node = ant(&centre[..dim], &sigma, layout.node(), normal, rng);
+        let Some(optional) = layout.optional() else {
+            return node;
+        };
+        let carries = layout.carries_optional(centre);
+        let s = self
+            .spreads
+            .presence
+            .get(l)
+            .and_then(|row| row.get(k))
+            .copied()
+            .unwrap_or(0.0);
+        let range = CountRange { min: 0, max: 1 };
+        if draw_count(usize::from(carries), s, range, normal, rng) == 0 {
+            return node;
+        }
+        let group = if carries {
+            Some(&centre[dim..])
+        } else {
+            self.archive
+                .iter()
+                .filter_map(|c| c.legs.get(l)?.get(k))
+                .find_map(|n| layout.optional_genes(n))
+        };
+        match group {
+            Some(g) => {
+                let sigma = Spreads::at(&self.spreads.optional, l, k)
+                    .unwrap_or_else(|| self.spreads.optional_pooled.clone());
+                node.extend(ant(g, &sigma, optional, normal, rng));
+            }
+            None => node.extend(random_point(optional, rng)),
+        }
+        node
     }
 
     fn ant<P: StructuredProblem>(
@@ -434,7 +509,7 @@ mod tests {
     use super::*;
     use crate::optim::evaluate::{Rayon, Serial, evolve};
     use crate::optim::observe::NoObserver;
-    use crate::optim::problems::Vlmop;
+    use crate::optim::problems::{OptionalNodes, Vlmop};
 
     fn make(seed: u64) -> VlMhaco {
         VlMhaco::new(
@@ -538,5 +613,77 @@ mod tests {
                 "vlmop{id}: {ratio}"
             );
         }
+    }
+
+    /// The hypervolume ratio of the archive on [`OptionalNodes`] and the share of its
+    /// non-dominated members whose nodes carry the extra gene exactly where it is needed.
+    fn optional_scores(p: &OptionalNodes, a: &VlMhaco) -> (f64, f64) {
+        use crate::optim::hypervolume::hypervolume;
+        use crate::optim::pareto::dominates;
+        use crate::optim::population::feasible_front;
+        let pop = <VlMhaco as Algorithm<OptionalNodes>>::population(a);
+        let r = p.reference_point();
+        let ratio =
+            hypervolume(&feasible_front(pop), &r).unwrap() / p.front_hypervolume(&r).unwrap();
+        let front: Vec<_> = pop
+            .iter()
+            .filter(|i| !pop.iter().any(|j| dominates(&j.objectives, &i.objectives)))
+            .collect();
+        let right = front
+            .iter()
+            .filter(|i| p.has_optimal_pattern(&i.decision))
+            .count();
+        (ratio, right as f64 / front.len() as f64)
+    }
+
+    fn optional_run(seed: u64, gens: u64) -> VlMhaco {
+        let p = OptionalNodes::standard().unwrap();
+        let mut a = VlMhaco::new(
+            MhacoConfig {
+                n_gen_mark: 15,
+                ..MhacoConfig::default()
+            },
+            seed,
+        );
+        evolve(&mut a, &p, &Serial, gens, &mut NoObserver).unwrap();
+        a
+    }
+
+    /// Seed survey on [`OptionalNodes`] (population 100, ker 63, n_gen_mark 15): ratio and
+    /// pattern share per seed 1..=8 (`cargo test -p host-sim --lib vl_mhaco_optional_survey
+    /// -- --ignored --nocapture`).
+    #[test]
+    #[ignore = "survey"]
+    fn vl_mhaco_optional_survey() {
+        let p = OptionalNodes::standard().unwrap();
+        for gens in [30, 100] {
+            let rows: Vec<String> = (1..=8)
+                .map(|seed| {
+                    let (ratio, share) = optional_scores(&p, &optional_run(seed, gens));
+                    format!("{ratio:.4}/{share:.2}")
+                })
+                .collect();
+            println!("vl-mhaco optional {gens} gens: {}", rows.join(" "));
+        }
+    }
+
+    /// Thresholds at 30 generations: the minima of `vl_mhaco_optional_survey` over seeds
+    /// 1..=8 (ratio 0.8256, share 0.22; seed 1 0.9453/1.00) less about 2 % (ratio) or 0.05
+    /// (share), rounded down; the test runs seed 1. Seeds 4 and 7 stall with shares 0.22-0.24
+    /// (still 0.24 and 0.80 after 100 generations): once the archive members agree on a
+    /// node's presence its spread is zero and the ants keep it, as they keep a converged
+    /// length; SCEA (mutation of the presence) finds the pattern on every seed.
+    const VL_MHACO_OPTIONAL: (f64, f64) = (0.80, 0.17);
+
+    #[test]
+    fn vl_mhaco_finds_the_optional_gene_pattern() {
+        let p = OptionalNodes::standard().unwrap();
+        let a = optional_run(1, 30);
+        for ind in <VlMhaco as Algorithm<OptionalNodes>>::population(&a) {
+            p.layout().check(&ind.decision, None).unwrap();
+        }
+        let (ratio, share) = optional_scores(&p, &a);
+        assert!(ratio > VL_MHACO_OPTIONAL.0, "ratio {ratio}");
+        assert!(share > VL_MHACO_OPTIONAL.1, "share {share}");
     }
 }

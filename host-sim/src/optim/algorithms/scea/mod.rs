@@ -1,8 +1,8 @@
 //! SCEA, the structured-chromosome evolutionary algorithm of the thesis (sec. 4.1.5,
 //! Algorithm 1): MOEA/D (pagmo semantics, Lampinen's constraint rules; [`MoeadWith`]) over
 //! variable-length chromosomes ([`Chromosome`]: fixed genes, a number of legs, a number of
-//! nodes per leg) whose counts are either free decisions or dictated by the problem
-//! ([`StructuredProblem`]).
+//! nodes per leg, and per node an optional group of genes where the layout has one) whose
+//! counts are either free decisions or dictated by the problem ([`StructuredProblem`]).
 //!
 //! The generation loop, weights, neighbourhoods, mating pools, ideal point, replacement
 //! (Lampinen's rules), ask/tell and checkpoints are MOEA/D's; only the variation differs

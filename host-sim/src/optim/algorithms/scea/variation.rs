@@ -11,6 +11,16 @@
 //!    are appended with new genes ([`NewGenes`]);
 //! 4. real genes of every node the base had: DE step where both parents have that node too;
 //! 5. polynomial mutation of all real genes.
+//!
+//! With an optional group of node genes ([`Layout::with_optional`]) every node the base had
+//! also evolves whether it carries the group, a binary gene: with probability `CR`, where the
+//! two parents differ at that node, the child takes parent `a`'s presence (the DE step
+//! `p + F (p_a - p_b)` taken in the direction of the difference), then with probability
+//! `count_mutation` it flips. The group's genes: DE step where the base and both parents
+//! carry it, the base's where only the base does, new genes ([`NewGenes`]: a parent's group at
+//! that node, else random) where the base did not. An appended node comes with the group of
+//! the parent node it copies, or, random, carries it with probability 1/2. Without a group
+//! none of this draws a random number: such runs are those of a layout without it.
 
 use serde::{Deserialize, Serialize};
 
@@ -37,6 +47,18 @@ pub fn random_count(range: CountRange, rng: &mut OptimRng) -> usize {
     range.min + rng.below(range.max - range.min + 1)
 }
 
+/// A random node of the layout: genes inside the node bounds and, with an optional group,
+/// with probability 1/2 that group's genes too.
+pub fn random_node(layout: &Layout, rng: &mut OptimRng) -> Vec<f64> {
+    let mut node = random_point(layout.node(), rng);
+    if let Some(optional) = layout.optional()
+        && rng.uniform() < 0.5
+    {
+        node.extend(random_point(optional, rng));
+    }
+    node
+}
+
 /// A random chromosome of the layout (counts dictated by the problem where it does so).
 pub fn random_chromosome<P: StructuredProblem>(problem: &P, rng: &mut OptimRng) -> Chromosome {
     let layout = problem.layout();
@@ -51,7 +73,7 @@ pub fn random_chromosome<P: StructuredProblem>(problem: &P, rng: &mut OptimRng) 
     });
     let legs = counts
         .iter()
-        .map(|&n| (0..n).map(|_| random_point(layout.node(), rng)).collect())
+        .map(|&n| (0..n).map(|_| random_node(layout, rng)).collect())
         .collect();
     Chromosome { fixed, legs }
 }
@@ -108,7 +130,101 @@ fn new_node(
             (None, None) => {}
         }
     }
-    random_point(layout.node(), rng)
+    random_node(layout, rng)
+}
+
+/// Whether the child of a node carrying the optional group as `base`, `a`, `b` do (a parent
+/// without the node counts as the base) carries it (see the module documentation).
+fn evolve_presence(base: bool, a: bool, b: bool, settings: &Settings, rng: &mut OptimRng) -> bool {
+    let mut p = base;
+    if rng.uniform() < settings.cr && a != b {
+        p = a;
+    }
+    if rng.uniform() < settings.count_mutation {
+        p = !p;
+    }
+    p
+}
+
+/// The node of the child at `(l, k)` whose base had it (`x`; `pa`, `pb` the parents' same
+/// node, if they have it; `scratch` is the DE step's buffer).
+fn inherited_node<'a>(
+    layout: &Layout,
+    x: &[f64],
+    pa: Option<&'a Vec<f64>>,
+    pb: Option<&'a Vec<f64>>,
+    settings: &Settings,
+    rng: &mut OptimRng,
+    scratch: &mut Vec<f64>,
+) -> Vec<f64> {
+    let d = layout.node().dim();
+    let mut out = match (pa, pb) {
+        (Some(pa), Some(pb)) => {
+            de_step(
+                &x[..d],
+                &pa[..d],
+                &pb[..d],
+                settings.f,
+                settings.cr,
+                layout.node(),
+                rng,
+                scratch,
+            );
+            scratch.clone()
+        }
+        _ => x[..d].to_vec(),
+    };
+    let Some(optional) = layout.optional() else {
+        return out;
+    };
+    let carries = |n: &[f64]| layout.carries_optional(n);
+    let own = carries(x);
+    let of = |p: Option<&Vec<f64>>| p.map_or(own, |n| carries(n));
+    if !evolve_presence(own, of(pa), of(pb), settings, rng) {
+        return out;
+    }
+    let group = |p: Option<&'a Vec<f64>>| p.and_then(|n| layout.optional_genes(n));
+    match (own, group(pa), group(pb)) {
+        (true, Some(ga), Some(gb)) => {
+            de_step(
+                &x[d..],
+                ga,
+                gb,
+                settings.f,
+                settings.cr,
+                optional,
+                rng,
+                scratch,
+            );
+            out.extend_from_slice(scratch);
+        }
+        (true, _, _) => out.extend_from_slice(&x[d..]),
+        (false, ga, gb) => {
+            let from = if settings.new_genes == NewGenes::Population {
+                match (ga, gb) {
+                    (Some(ga), Some(gb)) => Some(if rng.uniform() < 0.5 { ga } else { gb }),
+                    (g, None) | (None, g) => g,
+                }
+            } else {
+                None
+            };
+            match from {
+                Some(g) => out.extend_from_slice(g),
+                None => out.extend(random_point(optional, rng)),
+            }
+        }
+    }
+    out
+}
+
+/// Polynomial mutation of a node's genes (its own, then the optional group if it has it).
+fn mutate_node(layout: &Layout, node: &mut [f64], rate: f64, eta_m: f64, rng: &mut OptimRng) {
+    let d = layout.node().dim();
+    let (own, group) = node.split_at_mut(d.min(node.len()));
+    polynomial_mutation(own, layout.node(), rate, eta_m, rng);
+    if let (Some(optional), false) = (layout.optional(), group.is_empty()) {
+        polynomial_mutation(group, optional, rate, eta_m, rng);
+    }
 }
 
 /// The child of `base` with parents `a`, `b` (see the module documentation).
@@ -167,22 +283,7 @@ pub fn child<P: StructuredProblem>(
             };
             let pa = a.legs.get(l).and_then(|leg| leg.get(k));
             let pb = b.legs.get(l).and_then(|leg| leg.get(k));
-            match (pa, pb) {
-                (Some(pa), Some(pb)) => {
-                    de_step(
-                        x,
-                        pa,
-                        pb,
-                        settings.f,
-                        settings.cr,
-                        layout.node(),
-                        rng,
-                        &mut node,
-                    );
-                    leg.push(node.clone());
-                }
-                _ => leg.push(x.clone()),
-            }
+            leg.push(inherited_node(layout, x, pa, pb, settings, rng, &mut node));
         }
         legs.push(leg);
     }
@@ -196,7 +297,7 @@ pub fn child<P: StructuredProblem>(
     }
     for leg in &mut c.legs {
         for node in leg {
-            polynomial_mutation(node, layout.node(), rate, settings.eta_m, rng);
+            mutate_node(layout, node, rate, settings.eta_m, rng);
         }
     }
     // A mutated fixed gene may change the dictated counts: re-shape (delete or append).
