@@ -423,6 +423,14 @@ def _problem(a):
     return TestProblem(a.problem, a.objectives)
 
 
+def _reference_arg(text: str) -> List[float]:
+    """``--ref``: host-sim's parser (finite numbers, comma-separated), its message on error."""
+    try:
+        return _native.parse_reference(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
 def _reference_point(a, problem) -> Optional[List[float]]:
     if a.ref is not None:
         return a.ref
@@ -791,7 +799,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         )
         sp.add_argument("--seed", type=int, default=d(1), help="seed of the run (default 1)")
         sp.add_argument(
-            "--ref", type=lambda s: [float(x) for x in s.split(",")], default=d(None), metavar="R1,R2,...",
+            "--ref", type=_reference_arg, default=d(None), metavar="R1,R2,...",
             help="hypervolume reference point (default: the problem's)",
         )
         sp.add_argument("--out", metavar="DIR", default=d(None), help="write population.csv, front.csv and summary.json here")

@@ -454,6 +454,14 @@ fn check_reference(reference: Vec<f64>, objectives: usize) -> PyResult<()> {
         .map_err(|e| errors::OptimError::new_err(format!("--ref: {e}")))
 }
 
+/// The reference point of the text of a `--ref` argument (`"1.1,1.1"`: comma-separated
+/// finite numbers), host-sim's parser; `ValueError` naming the coordinate otherwise.
+#[pyfunction]
+fn parse_reference(text: &str) -> PyResult<Vec<f64>> {
+    host_sim::optim::reference::parse_reference(text)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
+}
+
 /// host-sim `RunOptions` from JSON (missing fields: `host-sim optimize`'s defaults).
 fn run_options(options_json: &str) -> PyResult<RunOptions> {
     let mut de = serde_json::Deserializer::from_str(options_json);
@@ -611,5 +619,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hypervolume, m)?)?;
     m.add_function(wrap_pyfunction!(test_problems, m)?)?;
     m.add_function(wrap_pyfunction!(check_reference, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_reference, m)?)?;
     Ok(())
 }

@@ -164,3 +164,14 @@ def test_optimize_refuses_a_wrong_length_reference_before_the_run(tmp_path, caps
     err = capsys.readouterr().err
     assert "--ref: reference point has 3 values" in err and "2 objectives" in err, err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("ref, coordinate", [("1,nan", "coordinate 2: must be finite"), ("1,,", "coordinate 2: not a number")])
+def test_a_malformed_reference_is_refused_with_host_sims_message(host_sim, ref, coordinate, capsys):
+    # One parser (host_sim::optim::reference): the same words from both front ends.
+    hs = host_sim("optimize", "--problem", "zdt1", "--ref", ref, check=False)
+    assert hs.returncode != 0 and coordinate in hs.stderr, hs.stderr
+    with pytest.raises(SystemExit) as e:
+        main(["optimize", "--problem", "zdt1", "--ref", ref, "--local"])
+    assert e.value.code == 2
+    assert coordinate in capsys.readouterr().err

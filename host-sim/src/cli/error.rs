@@ -108,7 +108,7 @@ pub enum HypervolumeCmdError {
     },
     /// The `--ref` argument is malformed.
     #[error(transparent)]
-    Reference(#[from] super::reference_arg::ReferenceArgError),
+    Reference(#[from] crate::optim::reference::ReferenceArgError),
     /// The hypervolume could not be computed.
     #[error("{path}: {source}")]
     Hypervolume {

@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::error::{CliError, HypervolumeCmdError};
-use super::reference_arg::parse_reference;
 use crate::optim::hypervolume::{contributions, hypervolume};
+use crate::optim::reference::parse_reference;
 
 /// Arguments of `hypervolume`.
 #[derive(Debug, clap::Args)]

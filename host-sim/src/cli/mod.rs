@@ -18,7 +18,6 @@ mod optimize_resume_tests;
 mod optimize_structured;
 #[cfg(test)]
 mod optimize_variants_tests;
-mod reference_arg;
 mod sample_cmd;
 mod simulate_cmd;
 mod vehicles_cmd;

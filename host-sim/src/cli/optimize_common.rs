@@ -8,8 +8,8 @@
 
 use std::path::PathBuf;
 
-use super::reference_arg::parse_reference;
 use crate::optim::problems::{NAMES, TestProblemError};
+use crate::optim::reference::parse_reference;
 use crate::optim::spec::{MhacoConstraints, MoeadOperator, OptionsAlgorithm, RunOptions};
 use crate::optim::{MhacoConfig, NewGenes, OptimError, ThreadsError, WeightGeneration};
 
@@ -282,7 +282,7 @@ pub enum OptimizeError {
     },
     /// A malformed `--ref` (not a number, not finite).
     #[error(transparent)]
-    ReferenceText(#[from] super::reference_arg::ReferenceArgError),
+    ReferenceText(#[from] crate::optim::reference::ReferenceArgError),
     /// A flag or subcommand the problem does not take (the re-entry problems fix some
     /// settings; a variable-length problem runs with SCEA only).
     #[error("command line: {what} does not apply to --problem {problem}: {why}")]

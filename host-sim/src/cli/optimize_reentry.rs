@@ -7,9 +7,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::optimize_common::{OptimizeArgs, run_options};
-use super::reference_arg::parse_reference;
 use crate::design::run::{ProgressBar, parse_toml, run as design_run};
 pub use crate::design::run::{ReentryError, ReentryRunConfig, check_run_config};
+use crate::optim::reference::parse_reference;
 use crate::optim::spec::MhacoConstraints;
 
 /// The run configuration of flags (a preset `--problem`; the flags it does not take are

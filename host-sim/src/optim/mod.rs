@@ -39,6 +39,7 @@ pub mod pareto;
 pub mod population;
 pub mod problem;
 pub mod problems;
+pub mod reference;
 pub mod restore;
 pub mod rng;
 pub mod root;

@@ -1,6 +1,7 @@
-//! `--ref`, the hypervolume reference point of `hypervolume` and `optimize`: one parser for
-//! both (comma-separated finite numbers, one per objective; the dimension is checked by the
-//! command against its front or problem).
+//! The text of a hypervolume reference point (`--ref` of `host-sim hypervolume` and
+//! `optimize`, and of `reentry-dask optimize`): one parser for every front end
+//! (comma-separated finite numbers, one per objective; the dimension is checked against the
+//! front or problem by [`super::run::check_reference`]).
 
 /// A malformed `--ref` value.
 #[derive(Debug, thiserror::Error)]
@@ -18,7 +19,7 @@ pub struct ReferenceArgError {
 ///
 /// # Errors
 /// [`ReferenceArgError`] naming the first coordinate that is not a number or not finite.
-pub(super) fn parse_reference(s: &str) -> Result<Vec<f64>, ReferenceArgError> {
+pub fn parse_reference(s: &str) -> Result<Vec<f64>, ReferenceArgError> {
     let bad = |coordinate, reason| ReferenceArgError {
         value: s.to_string(),
         coordinate,
