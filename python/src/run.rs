@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use host_sim::design::run::{ReentryRunConfig, check, parse_toml, resumed_config, run_on};
+use host_sim::design::run::{ReentryRunConfig, check, parse_toml, resumed_config, run};
 use host_sim::optim::{BatchEvaluator, EvalError, Evaluation};
 use pyo3::prelude::*;
 
@@ -89,7 +89,7 @@ fn run_design(
     });
     let done = py
         .detach(|| {
-            run_on(
+            run(
                 &c,
                 &src,
                 &out,

@@ -88,6 +88,7 @@ pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryEr
         resume,
         &base_dir,
         &mut ProgressBar::default(),
+        None,
     )?;
     if let Some(line) = done.line(&c, &dir) {
         writeln!(out, "{line}")?;

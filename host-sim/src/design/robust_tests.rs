@@ -210,7 +210,7 @@ fn robust_run_writes_its_section_and_stack_members() {
     )
     .unwrap();
     c.robust.as_mut().unwrap().nominal_front = Some(nominal.display().to_string());
-    let done = run(&c, "test", &dir, false, &examples(), &mut ()).unwrap();
+    let done = run(&c, "test", &dir, false, &examples(), &mut (), None).unwrap();
     let last = done.last.unwrap();
     assert_eq!((last.generation, last.evaluations), (1, 8));
     // config.toml names the base scenario and the nominal front by absolute paths (the run
@@ -293,7 +293,7 @@ fn robust_run_writes_its_section_and_stack_members() {
         "x1,x2,f1,f2,g1,violation\n1e0,2e0,0e0,0e0,0e0,0e0\n",
     )
     .unwrap();
-    let e = run(&c, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    let e = run(&c, "run.toml", &dir, false, &examples(), &mut (), None).unwrap_err();
     assert!(
         e.to_string().contains("field `robust.nominal_front`")
             && e.to_string().contains(&nominal.display().to_string())
@@ -305,17 +305,17 @@ fn robust_run_writes_its_section_and_stack_members() {
     // A robust run refuses what it would not use.
     let mut bad = c.clone();
     bad.problem.limits.g_load = 4.0;
-    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut (), None).unwrap_err();
     assert!(e.to_string().contains("field `problem.limits`"), "{e}");
     // Refused before the run directory is touched: the previous run is still there.
     assert_eq!(parse_toml(&dir.join("config.toml")).unwrap(), anchored);
     let mut bad = c.clone();
     bad.algorithm = "scea".into();
-    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut (), None).unwrap_err();
     assert!(e.to_string().contains("field `algorithm` = scea"), "{e}");
     let mut bad = c;
     bad.reference = vec![1.0];
-    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut ()).unwrap_err();
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut (), None).unwrap_err();
     assert!(e.to_string().contains("give 2 finite values"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

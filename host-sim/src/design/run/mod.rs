@@ -446,25 +446,6 @@ pub struct Finished {
     pub wall_time_s: f64,
 }
 
-/// Run `c` (read from `src`, a file name or "command line", for the error messages) in the
-/// run directory `dir`: a new run (`resume` false) replaces a previous run there and writes
-/// config.toml; a resumed run continues from `dir`'s checkpoint (from the start when it has
-/// none). A base scenario file of the problem is relative to `base_dir`. Ctrl-C stops the run
-/// at the next generation boundary ([`ReentryError::Interrupted`]).
-///
-/// # Errors
-/// [`ReentryError`] naming the file, field and value, or the directory.
-pub fn run(
-    c: &ReentryRunConfig,
-    src: &str,
-    dir: &Path,
-    resume: bool,
-    base_dir: &Path,
-    progress: &mut dyn Progress,
-) -> Result<Finished, ReentryError> {
-    run_on(c, src, dir, resume, base_dir, progress, None)
-}
-
 /// The run file of the run in `dir` (its config.toml), for [`run`] with `resume`: its own
 /// generation total, or `generations` when given (a resumed run may be extended).
 ///
@@ -481,17 +462,24 @@ pub fn resumed_config(
     Ok(c)
 }
 
-/// [`run`], its batches evaluated by `external` when given (a front end's evaluator, e.g.
-/// the Python package's over a Dask cluster) instead of on the run file's `threads`, which
-/// then fly only the chosen front members' reports at the end. The run directory, its
-/// checkpoints and its result are those of [`run`] when `external` returns the problem's own
-/// evaluations; a run started one way resumes the other. A fixed-length run only: the
-/// decisions `external` gets are the genes (`x` of the design problem, or of the robust
-/// problem with `[robust]`).
+/// Run `c` (read from `src`, a file name or "command line", for the error messages) in the
+/// run directory `dir`: a new run (`resume` false) replaces a previous run there and writes
+/// config.toml; a resumed run continues from `dir`'s checkpoint (from the start when it has
+/// none). A base scenario file of the problem is relative to `base_dir`. Ctrl-C stops the run
+/// at the next generation boundary ([`ReentryError::Interrupted`]).
+///
+/// The batches are evaluated on the run file's `threads`, or by `external` when given (a
+/// front end's evaluator, e.g. the Python package's over a Dask cluster; the threads then fly
+/// only the chosen front members' reports at the end). The run directory, its checkpoints and
+/// its result are the same either way when `external` returns the problem's own evaluations;
+/// a run started one way resumes the other. `external` takes fixed-length runs only: the
+/// decisions it gets are the genes (`x` of the design problem, or of the robust problem with
+/// `[robust]`).
 ///
 /// # Errors
-/// [`run`]'s, and [`ReentryError::Setting`] for `algorithm = "scea"` with `external`.
-pub fn run_on(
+/// [`ReentryError`] naming the file, field and value, or the directory;
+/// [`ReentryError::Setting`] for `algorithm = "scea"` with `external`.
+pub fn run(
     c: &ReentryRunConfig,
     src: &str,
     dir: &Path,

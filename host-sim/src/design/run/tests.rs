@@ -1,11 +1,11 @@
-//! The run executor with a front end's batch evaluator ([`super::run_on`]): the run directory
+//! The run executor with a front end's batch evaluator ([`super::run`]): the run directory
 //! it writes is the in-process run's, a run started one way resumes the other, and a broken
 //! evaluator stops the run with an error.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::{ReentryError, ReentryRunConfig, resumed_config, run, run_on};
+use super::{ReentryError, ReentryRunConfig, resumed_config, run};
 use crate::optim::{EvalError, Evaluation, Problem};
 
 fn base_dir() -> PathBuf {
@@ -45,9 +45,9 @@ fn an_external_evaluator_writes_the_in_process_run_and_resumes_either_way() {
         xs.iter().map(|x| problem.evaluate(x)).collect()
     };
     let threads = tmp("threads");
-    run(&c, "test", &threads, false, &base_dir(), &mut ()).unwrap();
+    run(&c, "test", &threads, false, &base_dir(), &mut (), None).unwrap();
     let by_external = tmp("external");
-    run_on(
+    run(
         &c,
         "test",
         &by_external,
@@ -71,11 +71,11 @@ fn an_external_evaluator_writes_the_in_process_run_and_resumes_either_way() {
         let dir = tmp(name);
         let one = small(1);
         let first = first_external.then_some(&external as &dyn crate::optim::BatchEvaluator<_>);
-        run_on(&one, "test", &dir, false, &base_dir(), &mut (), first).unwrap();
+        run(&one, "test", &dir, false, &base_dir(), &mut (), first).unwrap();
         let resumed = resumed_config(&dir, Some(2)).unwrap();
         assert_eq!(resumed, c);
         let second = (!first_external).then_some(&external as &dyn crate::optim::BatchEvaluator<_>);
-        run_on(&resumed, "test", &dir, true, &base_dir(), &mut (), second).unwrap();
+        run(&resumed, "test", &dir, true, &base_dir(), &mut (), second).unwrap();
         assert_eq!(result_files(&dir), result_files(&threads), "{name}");
         let _ = std::fs::remove_dir_all(&dir);
     }
@@ -94,7 +94,7 @@ fn a_broken_external_evaluator_stops_the_run_and_scea_refuses_one() {
             .collect()
     };
     let dir = tmp("short");
-    let e = run_on(&c, "test", &dir, false, &base_dir(), &mut (), Some(&short)).unwrap_err();
+    let e = run(&c, "test", &dir, false, &base_dir(), &mut (), Some(&short)).unwrap_err();
     assert!(
         e.to_string()
             .contains("returned 5 results for a batch of 6"),
@@ -105,7 +105,7 @@ fn a_broken_external_evaluator_stops_the_run_and_scea_refuses_one() {
 
     let mut scea = small(1);
     scea.algorithm = "scea".into();
-    let e = run_on(
+    let e = run(
         &scea,
         "test",
         &tmp("scea"),
@@ -133,7 +133,7 @@ fn a_run_with_a_file_base_resumes_from_any_directory() {
     c.problem.base = "srm-glide-replanning.toml".into();
     let examples = base_dir().join("examples");
     let dir = tmp("file-base");
-    run(&c, "test", &dir, false, &examples, &mut ()).unwrap();
+    run(&c, "test", &dir, false, &examples, &mut (), None).unwrap();
     let resumed = resumed_config(&dir, Some(2)).unwrap();
     assert!(
         Path::new(&resumed.problem.base).is_absolute(),
@@ -146,6 +146,7 @@ fn a_run_with_a_file_base_resumes_from_any_directory() {
         true,
         Path::new("no-such-dir"),
         &mut (),
+        None,
     )
     .unwrap();
     assert_eq!(done.last.unwrap().generation, 2);
@@ -157,7 +158,7 @@ fn a_run_with_a_file_base_resumes_from_any_directory() {
 #[test]
 fn algorithm_settings_are_refused_before_the_directory_is_touched() {
     let dir = tmp("refused");
-    run(&small(0), "test", &dir, false, &base_dir(), &mut ()).unwrap();
+    run(&small(0), "test", &dir, false, &base_dir(), &mut (), None).unwrap();
     let before = read(&dir, "config.toml");
     for (algorithm, population, neighbours, what) in [
         ("moead", 6, 6, "neighbours"),
@@ -169,7 +170,7 @@ fn algorithm_settings_are_refused_before_the_directory_is_touched() {
         c.algorithm = algorithm.into();
         c.population = population;
         c.neighbours = neighbours;
-        let e = run(&c, "run.toml", &dir, false, &base_dir(), &mut ()).unwrap_err();
+        let e = run(&c, "run.toml", &dir, false, &base_dir(), &mut (), None).unwrap_err();
         let text = e.to_string();
         assert!(
             text.starts_with(&format!("run.toml: field `algorithm` = {algorithm}:"))

@@ -19,6 +19,9 @@
 
 use crate::optim::chromosome::{Chromosome, CountRange, Layout, StructuredProblem};
 use crate::optim::error::{BoundsError, EvalError};
+use crate::optim::hypervolume::hypervolume;
+use crate::optim::pareto::dominates;
+use crate::optim::population::{Individual, feasible_front};
 use crate::optim::problem::{Bounds, Evaluation, Problem};
 
 /// Cost of an extra gene on a node that does not need it.
@@ -119,6 +122,32 @@ impl OptionalNodes {
                 .iter()
                 .enumerate()
                 .all(|(k, n)| self.layout.carries_optional(n) == (k < m))
+    }
+
+    /// How well a population solved the problem: the hypervolume of its feasible front over
+    /// the true front's (for [`Self::reference_point`]), and the share of its non-dominated
+    /// members with [`Self::has_optimal_pattern`]. `None` for an empty population.
+    #[must_use]
+    pub fn scores(&self, population: &[Individual<Chromosome>]) -> Option<(f64, f64)> {
+        let r = self.reference_point();
+        let ratio =
+            hypervolume(&feasible_front(population), &r).ok()? / self.front_hypervolume(&r)?;
+        let front: Vec<&Individual<Chromosome>> = population
+            .iter()
+            .filter(|i| {
+                !population
+                    .iter()
+                    .any(|j| dominates(&j.objectives, &i.objectives))
+            })
+            .collect();
+        if front.is_empty() {
+            return None;
+        }
+        let right = front
+            .iter()
+            .filter(|i| self.has_optimal_pattern(&i.decision))
+            .count();
+        Some((ratio, right as f64 / front.len() as f64))
     }
 }
 

@@ -618,22 +618,8 @@ mod tests {
     /// The hypervolume ratio of the archive on [`OptionalNodes`] and the share of its
     /// non-dominated members whose nodes carry the extra gene exactly where it is needed.
     fn optional_scores(p: &OptionalNodes, a: &VlMhaco) -> (f64, f64) {
-        use crate::optim::hypervolume::hypervolume;
-        use crate::optim::pareto::dominates;
-        use crate::optim::population::feasible_front;
-        let pop = <VlMhaco as Algorithm<OptionalNodes>>::population(a);
-        let r = p.reference_point();
-        let ratio =
-            hypervolume(&feasible_front(pop), &r).unwrap() / p.front_hypervolume(&r).unwrap();
-        let front: Vec<_> = pop
-            .iter()
-            .filter(|i| !pop.iter().any(|j| dominates(&j.objectives, &i.objectives)))
-            .collect();
-        let right = front
-            .iter()
-            .filter(|i| p.has_optimal_pattern(&i.decision))
-            .count();
-        (ratio, right as f64 / front.len() as f64)
+        p.scores(<VlMhaco as Algorithm<OptionalNodes>>::population(a))
+            .unwrap()
     }
 
     fn optional_run(seed: u64, gens: u64) -> VlMhaco {

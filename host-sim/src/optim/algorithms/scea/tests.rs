@@ -13,7 +13,6 @@ use crate::optim::error::{ConfigError, EvalError};
 use crate::optim::evaluate::{Rayon, Serial, evolve};
 use crate::optim::hypervolume::hypervolume;
 use crate::optim::observe::NoObserver;
-use crate::optim::pareto::dominates;
 use crate::optim::population::Individual;
 use crate::optim::population::feasible_front;
 use crate::optim::problem::Evaluation;
@@ -407,20 +406,8 @@ fn scea_external_archive_leaves_the_run_unchanged_and_checkpoints() {
     assert_eq!(back, with);
 }
 
-/// Hypervolume ratio of the front of `pop` on [`OptionalNodes`] and the share of its members
-/// whose nodes carry the extra gene exactly where the position needs it.
 fn optional_scores(p: &OptionalNodes, pop: &[Individual<Chromosome>]) -> (f64, f64) {
-    let r = p.reference_point();
-    let ratio = hypervolume(&feasible_front(pop), &r).unwrap() / p.front_hypervolume(&r).unwrap();
-    let front: Vec<&Individual<Chromosome>> = pop
-        .iter()
-        .filter(|i| !pop.iter().any(|j| dominates(&j.objectives, &i.objectives)))
-        .collect();
-    let right = front
-        .iter()
-        .filter(|i| p.has_optimal_pattern(&i.decision))
-        .count();
-    (ratio, right as f64 / front.len() as f64)
+    p.scores(pop).unwrap()
 }
 
 #[test]
