@@ -709,7 +709,7 @@ struct Ctx<'a, P: Problem> {
     resume: bool,
     /// A robust run's nominal front to fly in its campaign at the end (`robust.nominal_front`).
     nominal_front: &'a [Vec<f64>],
-    /// The front end's batch evaluator ([`run_on`]); `None`: the run's threads.
+    /// The front end's batch evaluator ([`run`]); `None`: the run's threads.
     external: Option<&'a dyn BatchEvaluator<P::Decision>>,
 }
 
