@@ -123,3 +123,52 @@ def test_vehicles_equal_host_sim_vehicles(host_sim):
     for v, r in zip(vs, rows):
         assert v["mass_kg"] == float(r["mass_kg"])
         assert v["max_heat_flux_w_m2"] == pytest.approx(float(r["max_heat_flux_kw_m2"]) * 1e3)
+
+
+STACK = REPO / "examples" / "horus-2b-stack.toml"
+
+#: Every dispersion zero (host-sim/tests/it/stack_everywhere.rs flies the same settings).
+_ZERO = "[dispersions]\ncases = 1\nseed = 11\nimu_noise_m_s2 = 0.0\n" + "".join(
+    f'{k} = {{ distribution = "normal", three_sigma = 0.0 }}\n'
+    for k in (
+        "altitude_km", "speed_m_s", "flight_path_angle_deg", "heading_deg", "latitude_deg",
+        "longitude_deg", "density_bias", "density_wave", "lift", "drag", "mass",
+        "imu_bias_m_s2", "imu_scale_factor",
+    )
+)
+
+
+def test_the_one_stack_file_flies_in_python_as_in_simulate_and_a_one_case_campaign(host_sim, tmp_path):
+    """Issue 19's one-file check, its Python leg: ``examples/horus-2b-stack.toml`` (every
+    layer on) flown by ``reentry.fly`` is ``host-sim simulate --scenario``'s flight, and by a
+    1-case ``DispersionCampaign`` with every dispersion zero it is ``host-sim dispersions``'
+    record, whose nominal flight and undispersed case are the simulated flight."""
+    host_sim("simulate", "--quiet", "--scenario", STACK, "--out", tmp_path / "sim")
+    expected = json.loads((tmp_path / "sim" / "summary.json").read_text())
+    flight = reentry.fly(STACK)
+    assert flight.summary == expected
+    target = expected["target"]
+    assert target["mode"] == "replan-estimation" and target["reached_interface"]
+    assert target["replans"] > 10 and target["reversals"] > 0
+    end = flight.trajectory.iloc[-1]
+
+    settings = tmp_path / "zero.toml"
+    settings.write_text(_ZERO)
+    campaign = reentry.DispersionCampaign(
+        STACK, settings=settings, cases=1, modes=["replan-estimation"]
+    )
+    (text,) = campaign.run_local(threads=1)
+    host_sim(
+        "dispersions", "--scenario", STACK, "--settings", settings, "-n", "1", "--threads", "1",
+        "--quiet", "--modes", "replan-estimation", "--out", tmp_path / "cli",
+    )
+    cli = json.loads((tmp_path / "cli" / "cases" / "replan-estimation" / "000000.json").read_text())
+    case = json.loads(text)
+    assert case == cli
+    (nominal,) = json.loads((tmp_path / "cli" / "summary.json").read_text())["nominal"]
+    # The undispersed case flies the nominal flight, which is simulate's, bit for bit.
+    for record in (case, nominal):
+        assert record["miss_m"] / 1e3 == target["miss_km"]
+        assert (record["replans"], record["reversals"]) == (target["replans"], target["reversals"])
+        assert record["final_speed_m_s"] == end["speed_m_s"]
+        assert record["final_latitude_rad"] == end["latitude_rad"]

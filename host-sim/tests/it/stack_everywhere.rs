@@ -6,7 +6,9 @@
 //! ... --case ID` calls). They fly one stack built in one place, so the records agree bit for
 //! bit. In PIL (`pil_flies_the_one_file_stack_on_both_targets`): `simulate --pil`'s flight on
 //! the Cortex-M4F and the Cortex-M3, and the 1-case campaign's PIL leg (`dispersions --pil
-//! ELF --pil-cases 1`) on the M4F, against their twin and the SIL flights above.
+//! ELF --pil-cases 1`) on the M4F, against their twin and the SIL flights above. The Python
+//! leg (`reentry.fly` and a 1-case `DispersionCampaign` of the same file) is
+//! `python/tests/test_flight.py::test_the_one_stack_file_flies_in_python_as_in_simulate_and_a_one_case_campaign`.
 
 use host_sim::campaign::run::{Replay, RunOptions, replay_case};
 use host_sim::campaign::{CampaignSetup, DispersionSettings, Mode, run_campaign};
