@@ -31,7 +31,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     c.batch_size = o.batch_size;
     c.neighbours = o.moead_config().neighbours;
     c.mutation_probability = o.mutation_probability;
-    c.scea_genes = a.scea_genes().unwrap_or(c.scea_genes);
+    c.scea_genes = o.scea_genes;
     c.archive = o.archive;
     if let Some(r) = &a.reference {
         c.reference = parse_reference(r).map_err(|e| ReentryError::Setting {

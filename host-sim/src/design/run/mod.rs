@@ -27,9 +27,9 @@ use super::{
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
 use crate::optim::{
-    Algorithm, AlgorithmSpec, BatchEvaluator, Budget, ConstraintHandling, Executor, Individual,
-    Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2, Nsga2Config, OptimError,
-    Problem, Scea, SceaConfig, Stop, Threads,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Budget, BuiltAlgorithm, ChromosomeAlgorithm,
+    ConstraintHandling, Executor, Individual, MhacoConfig, MoeadConfig, NewGenes, Nsga2Config,
+    OptimError, Problem, RealAlgorithm, SceaConfig, Stop, Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -86,7 +86,7 @@ pub struct ReentryRunConfig {
 
 impl ReentryRunConfig {
     /// The run file's algorithm and its settings as the library's one specification
-    /// ([`AlgorithmSpec`]): `moead` (and `scea`, whose MOEA/D settings these are), `nsga2`,
+    /// ([`AlgorithmSpec`]): `moead`, `scea` (MOEA/D's settings and `scea_genes`), `nsga2`,
     /// `mhaco` (feasible candidates first), `mhaco-objectives` (the constraints as extra
     /// objectives, the thesis' normalisation: the problem's constraints are already
     /// `c / c_max - 1`, scale 1, cap 2, penalty 0.5). MHACO's archive is min(63, population).
@@ -111,6 +111,11 @@ impl ReentryRunConfig {
                     }
                 },
                 ..MhacoConfig::default()
+            }),
+            "scea" => AlgorithmSpec::Scea(SceaConfig {
+                moead: self.moead_config(),
+                new_genes: self.scea_genes,
+                ..SceaConfig::default()
             }),
             _ => AlgorithmSpec::Moead(self.moead_config()),
         }
@@ -494,7 +499,7 @@ pub fn run_on(
     external: Option<&dyn BatchEvaluator<Vec<f64>>>,
 ) -> Result<Finished, ReentryError> {
     check(c, src)?;
-    if external.is_some() && c.algorithm == "scea" {
+    if external.is_some() && c.algorithm_spec().is_chromosome() {
         return Err(ReentryError::Setting {
             source_name: src.to_string(),
             field: "algorithm",
@@ -571,8 +576,7 @@ pub fn run_on(
         value: c.threads.to_string(),
         reason: e.to_string(),
     })?;
-    if c.algorithm == "scea" {
-        let moead = c.moead_config();
+    if spec.is_chromosome() {
         let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
         let vproblem = VariableReentry::new(problem, nodes)?;
         let ctx = Ctx {
@@ -584,12 +588,7 @@ pub fn run_on(
             nominal_front: &nominal_front,
             external: None,
         };
-        let cfg = SceaConfig {
-            moead,
-            new_genes: c.scea_genes,
-            ..SceaConfig::default()
-        };
-        return drive(&ctx, Scea::new(cfg, c.seed), progress);
+        return drive_variable(&ctx, spec, progress);
     }
     if let Some(robust) = robust {
         let ctx = Ctx {
@@ -615,6 +614,20 @@ pub fn run_on(
     drive_fixed(&ctx, spec, progress)
 }
 
+/// [`drive`] with the variable-length algorithm the run file names (its checkpoint holds the
+/// algorithm's own state, as [`drive_fixed`]'s).
+fn drive_variable(
+    ctx: &Ctx<'_, VariableReentry>,
+    spec: AlgorithmSpec,
+    progress: &mut dyn Progress,
+) -> Result<Finished, ReentryError> {
+    match spec.build(ctx.c.seed) {
+        BuiltAlgorithm::Chromosome(ChromosomeAlgorithm::Scea(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Chromosome(ChromosomeAlgorithm::VlMhaco(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(_) => unreachable!("run_on drives the real-vector algorithms"),
+    }
+}
+
 /// [`drive`] with the fixed-length algorithm the run file names.
 fn drive_fixed<P>(
     ctx: &Ctx<'_, P>,
@@ -624,14 +637,12 @@ fn drive_fixed<P>(
 where
     P: RunProblem<Decision = Vec<f64>> + crate::optim::RealProblem,
 {
-    let seed = ctx.c.seed;
-    match spec {
-        AlgorithmSpec::Moead(cfg) => drive(ctx, Moead::new(cfg, seed), progress),
-        AlgorithmSpec::MoeadSbx { moead, sbx } => {
-            drive(ctx, MoeadSbx::sbx(moead, sbx, seed), progress)
-        }
-        AlgorithmSpec::Nsga2(cfg) => drive(ctx, Nsga2::new(cfg, seed), progress),
-        AlgorithmSpec::Mhaco(cfg) => drive(ctx, Mhaco::new(cfg, seed), progress),
+    match spec.build(ctx.c.seed) {
+        BuiltAlgorithm::Real(RealAlgorithm::Moead(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(RealAlgorithm::MoeadSbx(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(RealAlgorithm::Nsga2(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(RealAlgorithm::Mhaco(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Chromosome(_) => unreachable!("run_on drives the chromosome algorithms"),
     }
 }
 
