@@ -239,8 +239,8 @@ pub(super) fn run_options(a: &OptimizeArgs) -> RunOptions {
     }
 }
 
-/// Default of `--generations`.
-pub const DEFAULT_GENERATIONS: u64 = 250;
+/// Default of `--generations` (the library's).
+pub use crate::optim::spec::DEFAULT_GENERATIONS;
 
 /// Failures of `optimize`; each says what to change.
 #[derive(Debug, thiserror::Error)]

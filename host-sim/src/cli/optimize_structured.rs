@@ -185,7 +185,7 @@ mod tests {
         assert_eq!(json["algorithm"], "vl-mhaco");
         let pop = std::fs::read_to_string(dir.join("population.csv")).unwrap();
         std::fs::remove_dir_all(&dir).unwrap();
-        let config = run_options(&a).mhaco_config();
+        let config = super::super::optimize_common::run_options(&a).mhaco_config();
         assert_eq!((config.ker, config.n_gen_mark), (10, 3));
         let problem = Vlmop::by_name("vlmop1").unwrap();
         let mut direct = VlMhaco::new(config, 4);

@@ -143,7 +143,11 @@ impl AlgorithmSpec {
     }
 }
 
-/// The real-vector algorithms by the names of `host-sim optimize`'s subcommands.
+/// Generations after the initial population of a run when none are given (`host-sim
+/// optimize --generations`' default).
+pub const DEFAULT_GENERATIONS: u64 = 250;
+
+/// The algorithms by the names of `host-sim optimize`'s subcommands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OptionsAlgorithm {

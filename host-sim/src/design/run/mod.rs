@@ -26,6 +26,7 @@ use super::{
 };
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
+use crate::optim::spec::{MhacoConstraints, OptionsAlgorithm, RunOptions};
 use crate::optim::{
     Algorithm, AlgorithmSpec, BatchEvaluator, Budget, BuiltAlgorithm, ChromosomeAlgorithm,
     ConstraintHandling, Executor, Individual, MhacoConfig, MoeadConfig, NewGenes, Nsga2Config,
@@ -174,6 +175,86 @@ impl ReentryRunConfig {
             reference,
             problem,
             robust: None,
+        })
+    }
+}
+
+/// The run settings `host-sim optimize` takes as flags on a preset problem: the algorithm's
+/// ([`RunOptions`], the flags' mapping shared with the test problems) and the run's. Serde:
+/// the flags' names; missing fields take the flags' defaults, unknown fields are refused.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunFlags {
+    /// `--problem`: a preset ([`super::PRESETS`]).
+    pub preset: String,
+    /// The algorithm flags (the re-entry problems take MOEA/D's DE without resource
+    /// allocation, MHACO's default `ker` and `n_gen_mark`: the CLI refuses the others).
+    #[serde(default)]
+    pub options: RunOptions,
+    /// `--generations` (default [`crate::optim::spec::DEFAULT_GENERATIONS`]).
+    #[serde(default = "default_generations")]
+    pub generations: u64,
+    /// `--seed` (default 1).
+    #[serde(default = "one")]
+    pub seed: u64,
+    /// `--threads` (default 1).
+    #[serde(default = "one_thread")]
+    pub threads: usize,
+    /// `--ref` (default: the preset's, [`ReentryRunConfig::thesis`]).
+    #[serde(default)]
+    pub reference: Option<Vec<f64>>,
+}
+
+fn default_generations() -> u64 {
+    crate::optim::spec::DEFAULT_GENERATIONS
+}
+
+fn one() -> u64 {
+    1
+}
+
+fn one_thread() -> usize {
+    1
+}
+
+impl ReentryRunConfig {
+    /// The run file of `host-sim optimize`'s flags on a preset problem (what
+    /// `--print-config` prints): the thesis' settings ([`ReentryRunConfig::thesis`]) with
+    /// the flags over them; `mhaco` with `mhaco_constraints = objectives` is
+    /// `mhaco-objectives`.
+    ///
+    /// # Errors
+    /// [`DesignError::UnknownPreset`].
+    pub fn of_flags(f: &RunFlags) -> Result<Self, DesignError> {
+        let mut c = Self::thesis(&f.preset)?;
+        let o = &f.options;
+        c.algorithm = match (o.algorithm, o.mhaco_constraints) {
+            (OptionsAlgorithm::Mhaco, MhacoConstraints::Objectives) => "mhaco-objectives".into(),
+            (a, _) => a.as_str().into(),
+        };
+        c.population = o.population;
+        c.generations = f.generations;
+        c.seed = f.seed;
+        c.threads = f.threads;
+        c.batch_size = o.batch_size;
+        c.neighbours = o.moead_config().neighbours;
+        c.mutation_probability = o.mutation_probability;
+        c.scea_genes = o.scea_genes;
+        c.archive = o.archive;
+        if let Some(r) = &f.reference {
+            c.reference.clone_from(r);
+        }
+        Ok(c)
+    }
+
+    /// The run file's text (TOML), as config.toml and `--print-config` write it.
+    ///
+    /// # Errors
+    /// [`ReentryError::Parse`] naming `name` if the settings cannot be written as TOML.
+    pub fn to_toml(&self, name: &str) -> Result<String, ReentryError> {
+        toml::to_string(self).map_err(|e| ReentryError::Parse {
+            path: PathBuf::from(name),
+            message: e.to_string(),
         })
     }
 }
@@ -564,10 +645,7 @@ pub fn run_on(
         {
             *f = p.display().to_string();
         }
-        let text = toml::to_string(&written).map_err(|e| ReentryError::Parse {
-            path: dir.join("config.toml"),
-            message: e.to_string(),
-        })?;
+        let text = written.to_toml(&dir.join("config.toml").display().to_string())?;
         write_atomic(&dir.join("config.toml"), text.as_bytes())?;
     }
     let pool = Threads::new(c.threads).map_err(|e| ReentryError::Setting {
