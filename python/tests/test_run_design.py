@@ -43,7 +43,7 @@ def _run_file(tmp_path: Path, generations: int, host_sim, name="run.toml", robus
         text = "\n".join(lines) + "\n"
     else:
         text = host_sim(
-            "optimize", "--problem", "srm", "--population", "6", "--neighbours", "5",
+            "optimize", "--problem", "srm", "moead", "--population", "6", "--neighbours", "5",
             "--generations", str(generations), "--print-config",
         ).stdout
     p = tmp_path / name
