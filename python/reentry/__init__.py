@@ -36,6 +36,7 @@ from .design import (
     VariableDesignProblem,
     design_presets,
     design_run_config,
+    design_run_config_of_flags,
     pymoo_problem,
     run_design,
 )
@@ -80,6 +81,7 @@ __all__ = [
     "campaign_modes",
     "design_presets",
     "design_run_config",
+    "design_run_config_of_flags",
     "evaluate_batch",
     "evolve",
     "fly",

@@ -29,7 +29,7 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Mapping
-from typing import Optional, Tuple, Union
+from typing import Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -198,6 +198,32 @@ def design_run_config(preset: str = "horus-2b", **settings) -> str:
     return _native.run_config_toml(preset, json.dumps(settings))
 
 
+def design_run_config_of_flags(
+    preset: str,
+    *,
+    generations: Optional[int] = None,
+    seed: Optional[int] = None,
+    threads: Optional[int] = None,
+    reference: Optional[Sequence[float]] = None,
+    **options,
+) -> str:
+    """The run file of ``host-sim optimize``'s flags on a design preset, as TOML text: what
+    ``host-sim optimize --problem PRESET [ALGORITHM FLAGS] --print-config`` prints, mapped by
+    host-sim (``ReentryRunConfig::of_flags``). ``options``: the algorithm flags by their
+    names with underscores, as for :func:`reentry.from_options` (``algorithm``,
+    ``population``, ``neighbours``, ``batch_size``, ``archive``, ``mhaco_constraints``,
+    ``scea_genes``, ...); missing flags take the CLI's defaults. Checked as a run file is: a
+    bad value raises :class:`DesignError` naming the field."""
+    flags = dict(preset=preset, options=options)
+    for name, value in (
+        ("generations", generations), ("seed", seed), ("threads", threads),
+        ("reference", None if reference is None else [float(r) for r in reference]),
+    ):
+        if value is not None:
+            flags[name] = value
+    return _native.run_config_of_flags(json.dumps(flags))
+
+
 def run_design(
     out: "os.PathLike[str] | str",
     config: "os.PathLike[str] | str | None" = None,
@@ -238,6 +264,7 @@ __all__ = [
     "VariableDesignProblem",
     "design_presets",
     "design_run_config",
+    "design_run_config_of_flags",
     "pymoo_problem",
     "run_design",
 ]

@@ -1,6 +1,6 @@
 """The optimisers through ask/tell, the test problems, pygmo compatibility and :func:`evolve`.
 
-The algorithms are host-sim's (MOEA/D and NSGA-II with pagmo's semantics, see
+The algorithms are host-sim's (MOEA/D, NSGA-II and MHACO with pagmo's semantics, SCEA, see
 docs/reference/optimisers.md). They only ask for decisions and are told evaluations back by index, so
 whoever evaluates (Python, Rust, Dask workers, in any order) the run is the same, bit for bit,
 for the same seed.
@@ -359,11 +359,13 @@ class Mhaco(_Algorithm):
 
 def from_options(seed: int = 1, **options) -> _Algorithm:
     """The algorithm of ``host-sim optimize``'s algorithm flags on the test problems, by the
-    flags' names with underscores (``algorithm="moead"``, ``moead_operator``,
-    ``population``, ``weights``, ``neighbours``, ``mutation_probability``, ``batch_size``,
-    ``archive``, ``resource_allocation``, ``ker``, ``n_gen_mark``, ``mhaco_constraints``;
-    missing ones take the CLI's defaults), mapped onto host-sim's ``AlgorithmSpec`` by
-    host-sim (``RunOptions``), as the CLI maps them. An unknown name raises ``ValueError``;
+    flags' names with underscores (``algorithm="moead"``, ``"nsga2"``, ``"mhaco"`` or
+    ``"scea"``, ``moead_operator``, ``population``, ``weights``, ``neighbours``,
+    ``mutation_probability``, ``batch_size``, ``archive``, ``resource_allocation``, ``ker``,
+    ``n_gen_mark``, ``mhaco_constraints``, ``scea_genes``; missing ones take the CLI's
+    defaults), mapped onto host-sim's ``AlgorithmSpec`` by host-sim (``RunOptions``), as the
+    CLI maps them. SCEA runs on the decisions as chromosomes of fixed genes only, as
+    ``host-sim optimize scea`` does on the fixed-length test problems. An unknown name raises ``ValueError``;
     a bad value :class:`OptimError` at the first ``ask``, with the library's message."""
     return _Algorithm(_native.Optimizer.from_options(json.dumps(options), int(seed)))
 

@@ -1,7 +1,10 @@
 //! The optimisers through ask/tell, the test problems and the hypervolume.
 //!
-//! [`Optimizer`] holds a host-sim `RealAlgorithm` (built from an `AlgorithmSpec`: MOEA/D with
-//! DE or SBX, NSGA-II, MHACO) and the shape of the problem it runs on
+//! [`Optimizer`] holds a host-sim algorithm built from an `AlgorithmSpec` (a `RealAlgorithm`:
+//! MOEA/D with DE or SBX, NSGA-II, MHACO; or a `ChromosomeAlgorithm`: SCEA, the
+//! variable-length MHACO, run on the real vectors as chromosomes of fixed genes only, host-sim's
+//! `FixedLength`, as `host-sim optimize scea` runs SCEA on the test problems) and the shape of
+//! the problem it runs on
 //! ([`OpenProblem`]: bounds, objectives, constraints), read from any Python object with
 //! pygmo's user-defined-problem methods (`get_bounds`, `get_nobj`, `get_nic`). Evaluations
 //! happen outside (in Python, in Rust through [`PyTestProblem`], or on Dask workers) and come
@@ -9,13 +12,15 @@
 
 use std::path::PathBuf;
 
+use host_sim::optim::chromosome::{Chromosome, FixedLength};
 use host_sim::optim::hypervolume::hypervolume as hv;
 use host_sim::optim::problems::{NAMES, TestProblem};
 use host_sim::optim::run::{RunResult, RunSettings, real_run_report, run_report};
 use host_sim::optim::spec::RunOptions;
 use host_sim::optim::{
-    Algorithm, AlgorithmSpec, BatchEvaluator, Bounds, EvalError, Evaluation, External, NoObserver,
-    Problem, RealAlgorithm, RealProblem, SPEC_NAMES, Serial, evolve,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Bounds, BuiltAlgorithm, ChromosomeAlgorithm,
+    EvalError, Evaluation, External, Individual, NoObserver, Problem, RealAlgorithm, RealProblem,
+    SPEC_NAMES, Serial, evolve,
 };
 use host_sim::report::write_run_report;
 use pyo3::exceptions::PyValueError;
@@ -91,17 +96,119 @@ fn open_problem(problem: &Bound<'_, PyAny>) -> PyResult<OpenProblem> {
     })
 }
 
-/// What [`Optimizer::to_json`] writes: the algorithm's whole state and the problem shape.
+/// The algorithm an [`Optimizer`] holds.
+#[derive(Clone, Debug)]
+enum Held {
+    /// On the real vectors.
+    Real(RealAlgorithm),
+    /// On the real vectors as chromosomes of fixed genes only ([`FixedLength`]).
+    Fixed(ChromosomeAlgorithm),
+}
+
+/// `$body` with `$a` the algorithm of `$held` and `$P` the problem type it runs on.
+macro_rules! each {
+    ($held:expr, $a:ident, $P:ident => $body:expr) => {
+        match $held {
+            Held::Real($a) => {
+                type $P = OpenProblem;
+                $body
+            }
+            Held::Fixed($a) => {
+                type $P = FixedLength<OpenProblem>;
+                $body
+            }
+        }
+    };
+}
+
+impl Held {
+    fn built(b: BuiltAlgorithm) -> Self {
+        match b {
+            BuiltAlgorithm::Real(a) => Self::Real(a),
+            BuiltAlgorithm::Chromosome(a) => Self::Fixed(a),
+        }
+    }
+
+    fn validate(&self, p: &OpenProblem) -> Result<(), host_sim::optim::StateError> {
+        match self {
+            Self::Real(a) => a.validate(p),
+            Self::Fixed(a) => a.validate(&FixedLength::new(p.clone())),
+        }
+    }
+
+    fn generation(&self) -> u64 {
+        each!(self, a, P => Algorithm::<P>::generation(a))
+    }
+
+    fn evaluations(&self) -> u64 {
+        each!(self, a, P => Algorithm::<P>::evaluations(a))
+    }
+
+    fn is_initialised(&self) -> bool {
+        each!(self, a, P => Algorithm::<P>::is_initialised(a))
+    }
+
+    fn is_finished(&self) -> bool {
+        each!(self, a, P => Algorithm::<P>::is_finished(a))
+    }
+
+    fn is_told(&self, index: usize) -> bool {
+        each!(self, a, P => Algorithm::<P>::is_told(a, index))
+    }
+
+    fn name(&self) -> &'static str {
+        each!(self, a, P => Algorithm::<P>::name(a))
+    }
+
+    /// The population and the external archive (if any) as real vectors.
+    fn individuals(&self) -> (Vec<RealIndividual>, Option<Vec<RealIndividual>>) {
+        match self {
+            Self::Real(a) => (
+                Algorithm::<OpenProblem>::population(a).to_vec(),
+                Algorithm::<OpenProblem>::external_archive(a).map(<[_]>::to_vec),
+            ),
+            Self::Fixed(a) => {
+                type P = FixedLength<OpenProblem>;
+                (
+                    real(Algorithm::<P>::population(a)),
+                    Algorithm::<P>::external_archive(a).map(real),
+                )
+            }
+        }
+    }
+}
+
+/// An individual of the real vectors.
+type RealIndividual = Individual<Vec<f64>>;
+
+/// Chromosomes of fixed genes only as their real vectors.
+fn real(individuals: &[Individual<Chromosome>]) -> Vec<Individual<Vec<f64>>> {
+    individuals
+        .iter()
+        .map(|i| Individual {
+            decision: i.decision.fixed.clone(),
+            objectives: i.objectives.clone(),
+            constraints: i.constraints.clone(),
+            violation: i.violation,
+        })
+        .collect()
+}
+
+/// What [`Optimizer::to_json`] writes: the algorithm's whole state (`algorithm` a real-vector
+/// one, `chromosome_algorithm` SCEA or the variable-length MHACO) and the problem shape.
 #[derive(Serialize, Deserialize)]
 struct Checkpoint {
-    algorithm: RealAlgorithm,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    algorithm: Option<RealAlgorithm>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    chromosome_algorithm: Option<ChromosomeAlgorithm>,
     problem: Option<OpenProblem>,
 }
 
-/// An ask/tell optimiser (host-sim MOEA/D, NSGA-II or MHACO).
+/// An ask/tell optimiser (host-sim MOEA/D, NSGA-II, MHACO, SCEA or the variable-length MHACO).
 #[pyclass(module = "reentry._native")]
 pub struct Optimizer {
-    algo: RealAlgorithm,
+    algo: Held,
     problem: Option<OpenProblem>,
     /// Rebuilt from a checkpoint (checked against the first problem); a new algorithm's
     /// settings are checked by its first `ask`, with the algorithm's own message.
@@ -119,7 +226,7 @@ impl Optimizer {
             None => {
                 // A state restored without a problem is checked against the first one.
                 if self.restored {
-                    Algorithm::<OpenProblem>::validate(&self.algo, &shape).map_err(state_error)?;
+                    self.algo.validate(&shape).map_err(state_error)?;
                 }
                 self.problem = Some(shape);
                 Ok(())
@@ -144,8 +251,8 @@ fn config_error(e: &serde_json::Error) -> PyErr {
 
 #[pymethods]
 impl Optimizer {
-    /// The algorithm `name` (`moead`, `moead-sbx`, `nsga2`, `mhaco`: host-sim's
-    /// `AlgorithmSpec`) with the settings of `config_json` over its defaults (pagmo's; for
+    /// The algorithm `name` (`moead`, `moead-sbx`, `nsga2`, `mhaco`, `scea`, `vl-mhaco`:
+    /// host-sim's `AlgorithmSpec`; for `scea` the table `moead` over its defaults) with the settings of `config_json` over its defaults (pagmo's; for
     /// `moead-sbx` the tables `moead` and `sbx`, each over its defaults) and the run's seed.
     #[staticmethod]
     fn from_spec(name: &str, config_json: &str, seed: u64) -> PyResult<Self> {
@@ -171,7 +278,7 @@ impl Optimizer {
         merge(&mut full, &mut over);
         let spec: AlgorithmSpec = serde_json::from_value(full).map_err(|e| config_error(&e))?;
         Ok(Self {
-            algo: spec.build(seed),
+            algo: Held::built(spec.build(seed)),
             problem: None,
             restored: false,
         })
@@ -179,15 +286,16 @@ impl Optimizer {
 
     /// The algorithm of `host-sim optimize`'s algorithm flags on the test problems
     /// (`options_json`: host-sim `RunOptions` fields, the flags' names with underscores and
-    /// their defaults: `algorithm` moead, nsga2 or mhaco, `moead_operator`, `population`,
-    /// `weights`, `neighbours`, `mutation_probability`, `batch_size`, `archive`,
-    /// `resource_allocation`, `ker`, `n_gen_mark`, `mhaco_constraints`), mapped onto its
-    /// `AlgorithmSpec` as the CLI maps them, and the run's seed.
+    /// their defaults: `algorithm` moead, nsga2, mhaco or scea, `moead_operator`,
+    /// `population`, `weights`, `neighbours`, `mutation_probability`, `batch_size`,
+    /// `archive`, `resource_allocation`, `ker`, `n_gen_mark`, `mhaco_constraints`,
+    /// `scea_genes`), mapped onto its `AlgorithmSpec` as the CLI maps them, and the run's
+    /// seed.
     #[staticmethod]
     fn from_options(options_json: &str, seed: u64) -> PyResult<Self> {
         let options = run_options(options_json)?;
         Ok(Self {
-            algo: options.spec().build(seed),
+            algo: Held::built(options.spec().build(seed)),
             problem: None,
             restored: false,
         })
@@ -236,11 +344,27 @@ impl Optimizer {
                 "run_report: reference: required for a problem other than a TestProblem",
             ));
         };
-        let generations =
-            generations.unwrap_or_else(|| Algorithm::<OpenProblem>::generation(&self.algo));
-        let settings =
-            RunSettings::of_algorithm(&self.algo, &name, generations, seed, &reference, threads);
-        let result = RunResult::of::<OpenProblem, _>(&self.algo, wall_time_s);
+        let generations = generations.unwrap_or_else(|| self.algo.generation());
+        let settings = match &self.algo {
+            Held::Real(a) => {
+                RunSettings::of_algorithm(a, &name, generations, seed, &reference, threads)
+            }
+            Held::Fixed(a) => RunSettings::of_chromosome_algorithm(
+                a,
+                &name,
+                generations,
+                seed,
+                &reference,
+                threads,
+            ),
+        };
+        let (population, archive) = self.algo.individuals();
+        let result = RunResult {
+            population: &population,
+            archive: archive.as_deref(),
+            evaluations: self.algo.evaluations(),
+            wall_time_s,
+        };
         py.detach(|| {
             let report = match test {
                 Some(t) => run_report(&t.inner, &settings, result),
@@ -285,8 +409,13 @@ impl Optimizer {
         let Some(p) = problem.as_ref() else {
             return Ok(Vec::new());
         };
-        py.detach(|| algo.ask(p).map(<[Vec<f64>]>::to_vec))
-            .map_err(errors::optim)
+        py.detach(|| match algo {
+            Held::Real(a) => a.ask(p).map(<[Vec<f64>]>::to_vec),
+            Held::Fixed(a) => a
+                .ask(&FixedLength::new(p.clone()))
+                .map(|cs| cs.iter().map(|c| c.fixed.clone()).collect()),
+        })
+        .map_err(errors::optim)
     }
 
     /// Tell the evaluation of decision `index` of the current batch (objectives minimised,
@@ -301,8 +430,11 @@ impl Optimizer {
     ) -> PyResult<()> {
         let p = self.problem()?.clone();
         let e = Evaluation::with_constraints(objectives, constraints);
-        py.detach(|| self.algo.tell(&p, index, e))
-            .map_err(errors::optim)
+        py.detach(|| match &mut self.algo {
+            Held::Real(a) => a.tell(&p, index, e),
+            Held::Fixed(a) => a.tell(&FixedLength::new(p), index, e),
+        })
+        .map_err(errors::optim)
     }
 
     /// host-sim's `evolve` loop with every batch evaluated by `map_batch(xs) -> [(f, g), ...]`
@@ -325,11 +457,16 @@ impl Optimizer {
         slf.borrow_mut().adopt(shape.clone())?;
         let evaluate = |xs: &[Vec<f64>]| crate::run::call_map_batch(&map_batch, xs);
         let external = External(&evaluate as &dyn BatchEvaluator<Vec<f64>>);
+        let evaluate_fixed = |cs: &[Chromosome]| {
+            let xs: Vec<Vec<f64>> = cs.iter().map(|c| c.fixed.clone()).collect();
+            crate::run::call_map_batch(&map_batch, &xs)
+        };
+        let external_fixed = External(&evaluate_fixed as &dyn BatchEvaluator<Chromosome>);
+        let fixed = FixedLength::new(shape.clone());
         let target = {
-            let me = slf.borrow();
-            let a = &me.algo;
-            if Algorithm::<OpenProblem>::is_initialised(a) {
-                Algorithm::<OpenProblem>::generation(a) + generations
+            let a = &slf.borrow().algo;
+            if a.is_initialised() {
+                a.generation() + generations
             } else {
                 generations
             }
@@ -338,17 +475,20 @@ impl Optimizer {
             let moved = {
                 let mut me = slf.borrow_mut();
                 let a = &mut me.algo;
-                let done = Algorithm::<OpenProblem>::is_initialised(a)
-                    && Algorithm::<OpenProblem>::generation(a) >= target;
-                if done || Algorithm::<OpenProblem>::is_finished(a) {
+                let done = a.is_initialised() && a.generation() >= target;
+                if done || a.is_finished() {
                     return Ok(());
                 }
                 // One generation (or the initial population) at a time, so the observer may
                 // read the algorithm between them.
-                let before = Algorithm::<OpenProblem>::generation(a);
-                let step = u64::from(Algorithm::<OpenProblem>::is_initialised(a));
-                evolve(a, &shape, &external, step, &mut NoObserver).map_err(errors::optim)?;
-                step == 0 || Algorithm::<OpenProblem>::generation(a) != before
+                let before = a.generation();
+                let step = u64::from(a.is_initialised());
+                match a {
+                    Held::Real(r) => evolve(r, &shape, &external, step, &mut NoObserver),
+                    Held::Fixed(c) => evolve(c, &fixed, &external_fixed, step, &mut NoObserver),
+                }
+                .map_err(errors::optim)?;
+                step == 0 || a.generation() != before
             };
             if let (true, Some(o)) = (moved, &observer) {
                 o.call0(py)?;
@@ -358,13 +498,13 @@ impl Optimizer {
 
     /// Whether decision `index` of the open batch has been told.
     fn is_told(&self, index: usize) -> bool {
-        Algorithm::<OpenProblem>::is_told(&self.algo, index)
+        self.algo.is_told(index)
     }
 
     /// The population: `(decisions, objectives, constraints, violations)`.
     #[allow(clippy::type_complexity)]
     fn population(&self) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>) {
-        let pop = Algorithm::<OpenProblem>::population(&self.algo);
+        let (pop, _) = self.algo.individuals();
         (
             pop.iter().map(|i| i.decision.clone()).collect(),
             pop.iter().map(|i| i.objectives.clone()).collect(),
@@ -376,25 +516,25 @@ impl Optimizer {
     /// Completed generations (0 until the initial population is complete).
     #[getter]
     fn generation(&self) -> u64 {
-        Algorithm::<OpenProblem>::generation(&self.algo)
+        self.algo.generation()
     }
 
     /// Evaluations told so far.
     #[getter]
     fn evaluations(&self) -> u64 {
-        Algorithm::<OpenProblem>::evaluations(&self.algo)
+        self.algo.evaluations()
     }
 
     /// Whether the initial population is complete.
     #[getter]
     fn is_initialised(&self) -> bool {
-        Algorithm::<OpenProblem>::is_initialised(&self.algo)
+        self.algo.is_initialised()
     }
 
-    /// "moead", "moead-sbx", "nsga2" or "mhaco".
+    /// "moead", "moead-sbx", "nsga2", "mhaco", "scea" or "vl-mhaco".
     #[getter]
     fn name(&self) -> &'static str {
-        Algorithm::<OpenProblem>::name(&self.algo)
+        self.algo.name()
     }
 
     /// Run `generations` generations on a test problem inside Rust (host-sim `evolve`, serial
@@ -412,15 +552,26 @@ impl Optimizer {
             constraints: p.constraints(),
         };
         self.adopt(shape)?;
-        py.detach(|| evolve(&mut self.algo, p, &Serial, generations, &mut NoObserver))
-            .map_err(errors::optim)
+        py.detach(|| match &mut self.algo {
+            Held::Real(a) => evolve(a, p, &Serial, generations, &mut NoObserver),
+            Held::Fixed(a) => {
+                let fixed = FixedLength::new(p.clone());
+                evolve(a, &fixed, &Serial, generations, &mut NoObserver)
+            }
+        })
+        .map_err(errors::optim)
     }
 
     /// The whole state as JSON (algorithm, RNG, open batch, problem shape): resuming from it
     /// gives the bit-identical run.
     fn to_json(&self) -> PyResult<String> {
+        let (algorithm, chromosome_algorithm) = match &self.algo {
+            Held::Real(a) => (Some(a.clone()), None),
+            Held::Fixed(a) => (None, Some(a.clone())),
+        };
         serde_json::to_string(&Checkpoint {
-            algorithm: self.algo.clone(),
+            algorithm,
+            chromosome_algorithm,
             problem: self.problem.clone(),
         })
         .map_err(|e| errors::ReentryError::new_err(format!("checkpoint: {e}")))
@@ -433,13 +584,22 @@ impl Optimizer {
         let c: Checkpoint = serde_path_to_error::deserialize(&mut de).map_err(|e| {
             PyValueError::new_err(format!("checkpoint: field `{}`: {}", e.path(), e.inner()))
         })?;
+        let algo = match (c.algorithm, c.chromosome_algorithm) {
+            (Some(a), None) => Held::Real(a),
+            (None, Some(a)) => Held::Fixed(a),
+            _ => {
+                return Err(PyValueError::new_err(
+                    "checkpoint: give one of the fields `algorithm`, `chromosome_algorithm`",
+                ));
+            }
+        };
         // A tampered or corrupt state must not panic or hang later: it is checked against
         // itself and its problem (or, saved before the first ask, against the first problem).
         if let Some(p) = &c.problem {
-            Algorithm::<OpenProblem>::validate(&c.algorithm, p).map_err(state_error)?;
+            algo.validate(p).map_err(state_error)?;
         }
         Ok(Self {
-            algo: c.algorithm,
+            algo,
             problem: c.problem,
             restored: true,
         })

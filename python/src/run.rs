@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use host_sim::design::run::{ReentryRunConfig, check, parse_toml, resumed_config, run};
+use host_sim::design::run::{ReentryRunConfig, RunFlags, check, parse_toml, resumed_config, run};
 use host_sim::optim::{BatchEvaluator, EvalError, Evaluation};
 use pyo3::prelude::*;
 
@@ -134,6 +134,21 @@ fn run_config_toml(preset: &str, overrides_json: &str) -> PyResult<String> {
     toml::to_string(&c).map_err(|e| bad(&e))
 }
 
+/// The run file of `host-sim optimize`'s flags on a preset problem, as `--print-config`
+/// prints it (`flags_json`: host-sim `RunFlags`: `preset`, `options` (host-sim `RunOptions`,
+/// as for `Optimizer.from_options`), `generations`, `seed`, `threads`, `reference`; missing
+/// ones at the flags' defaults), checked as a run file is, as TOML text.
+#[pyfunction]
+fn run_config_of_flags(flags_json: &str) -> PyResult<String> {
+    let bad = |e: &dyn std::fmt::Display| errors::DesignError::new_err(e.to_string());
+    let mut de = serde_json::Deserializer::from_str(flags_json);
+    let flags: RunFlags = serde_path_to_error::deserialize(&mut de)
+        .map_err(|e| bad(&format!("run flags: field `{}`: {}", e.path(), e.inner())))?;
+    let c = ReentryRunConfig::of_flags(&flags).map_err(|e| errors::design(&e))?;
+    check(&c, "run flags").map_err(|e| bad(&e))?;
+    c.to_toml("run flags").map_err(|e| bad(&e))
+}
+
 /// What the Dask layer needs of the run file `path` before the run: whether it is a robust
 /// run (`"robust"`: a `[robust]` section, split over decisions and flights) or a nominal one
 /// (`"nominal"`), and the run directory it writes when none is named
@@ -153,5 +168,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_design, m)?)?;
     m.add_function(wrap_pyfunction!(run_file_info, m)?)?;
     m.add_function(wrap_pyfunction!(run_config_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(run_config_of_flags, m)?)?;
     Ok(())
 }

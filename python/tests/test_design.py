@@ -145,6 +145,38 @@ def test_errors_carry_host_sim_messages(host_sim):
         reentry.DesignProblem("srm").evaluate([0.5, 1.0, 2.0])
 
 
+@pytest.mark.parametrize(
+    "cli, options",
+    [
+        ([], {}),
+        (
+            ["--population", "12", "--generations", "7", "--seed", "4", "--threads", "2",
+             "--ref", "0.5,3", "nsga2", "--archive", "9"],
+            dict(population=12, generations=7, seed=4, threads=2, reference=[0.5, 3],
+                 algorithm="nsga2", archive=9),
+        ),
+        (
+            ["scea", "--population", "10", "--neighbours", "4", "--batch-size", "2",
+             "--mutation-probability", "0.2", "--scea-genes", "random"],
+            dict(algorithm="scea", population=10, neighbours=4, batch_size=2,
+                 mutation_probability=0.2, scea_genes="random"),
+        ),
+        (
+            ["mhaco", "--mhaco-constraints", "objectives", "--population", "16"],
+            dict(algorithm="mhaco", mhaco_constraints="objectives", population=16),
+        ),
+    ],
+    ids=["defaults", "nsga2", "scea", "mhaco-objectives"],
+)
+def test_run_config_of_flags_is_host_sims_print_config(host_sim, cli, options):
+    """The flags-to-run-file mapping is host-sim's (``ReentryRunConfig::of_flags``), the one
+    ``host-sim optimize --print-config`` prints."""
+    expected = host_sim("optimize", "--problem", "srm", *cli, "--print-config").stdout
+    assert reentry.design_run_config_of_flags("srm", **options) == expected
+    with pytest.raises(reentry.DesignError, match="neighbors"):
+        reentry.design_run_config_of_flags("srm", neighbors=4)
+
+
 def test_scenario_file_base_and_failed_flights(tmp_path):
     # A base scenario file (relative to the problem file) whose 2500 s time limit cuts the
     # long glides: those flights fail (NaN, host-sim's failed evaluation), steep ones finish.

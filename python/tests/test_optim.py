@@ -1,5 +1,6 @@
 """The optimisers through ask/tell: the Python loop equals host-sim's own runs bit for bit."""
 
+import json
 import pickle
 import random
 from pathlib import Path
@@ -33,10 +34,13 @@ def same_state(a, b):
             seed=3, population=20, ker=10,
             constraints={"as-objectives": {"scales": None, "cap": 2.0, "penalty": 0.5}},
         ),
+        lambda: reentry.from_options(
+            3, algorithm="scea", population=20, neighbours=5, batch_size=3, archive=12
+        ),
     ],
     ids=[
         "moead-steady", "moead-batch7", "moead-sbx-archive", "nsga2", "nsga2-archive", "mhaco",
-        "mhaco-constraints-as-objectives",
+        "mhaco-constraints-as-objectives", "scea",
     ],
 )
 @pytest.mark.parametrize("name", ["zdt1", "constr"])
@@ -91,6 +95,37 @@ def test_moead_sbx_equals_host_sim_optimize_moead_operator_sbx(host_sim, tmp_pat
     pop = a.population
     got = np.hstack([pop.x, pop.f, pop.violation[:, None]])
     assert np.array_equal(got, expected)
+
+
+@pytest.mark.parametrize("genes", ["population", "random"])
+def test_scea_from_options_equals_host_sim_optimize_scea(host_sim, tmp_path, genes):
+    """SCEA through ``from_options`` (host-sim's ``RunOptions``/``AlgorithmSpec``) on a
+    fixed-length test problem is ``host-sim optimize scea``'s run: its run directory byte for
+    byte (summary.json but for the wall time), a checkpoint resumes it bit for bit."""
+    host_sim(
+        "optimize", "--problem", "zdt1", "scea", "--population", "20", "--neighbours", "5",
+        "--batch-size", "4", "--archive", "8", "--scea-genes", genes, "--generations", "6",
+        "--seed", "9", "--out", tmp_path / "cli",
+    )
+    options = dict(
+        algorithm="scea", population=20, neighbours=5, batch_size=4, archive=8, scea_genes=genes
+    )
+    p = reentry.TestProblem("zdt1")
+    a = reentry.from_options(9, **options)
+    assert a.name == "scea"
+    reentry.evolve(a, p, 3)
+    b = type(a).from_json(a.to_json())
+    reentry.evolve(b, p, 3)
+    reentry.evolve(a, p, 3)
+    same_state(a, b)
+    b.run_report(p, seed=9, wall_time_s=0.0, generations=6, out=tmp_path / "py")
+    for f in ("population.csv", "front.csv"):
+        assert (tmp_path / "py" / f).read_text() == (tmp_path / "cli" / f).read_text(), f
+    summary = [json.loads((tmp_path / d / "summary.json").read_text()) for d in ("py", "cli")]
+    for s in summary:
+        s.pop("wall_time_s")
+    assert summary[0] == summary[1]
+    assert summary[0]["algorithm"] == "scea" and summary[0]["front_source"] == "archive"
 
 
 def test_checkpoint_mid_batch_resumes_bit_identically():

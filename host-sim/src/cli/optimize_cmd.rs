@@ -6,7 +6,7 @@ use std::io::Write;
 
 use crate::optim::problems::TestProblem;
 use crate::optim::run::{RunResult, RunSettings, run_report};
-use crate::optim::{Budget, Executor, Problem, RealAlgorithm};
+use crate::optim::{Budget, BuiltAlgorithm, Executor, Problem, RealAlgorithm};
 
 pub use super::optimize_common::{AlgorithmArgs, OptimizeArgs, OptimizeError};
 use super::optimize_common::{check, finish, generations_to_run, reference, run_options};
@@ -22,7 +22,7 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
         return Ok(super::optimize_reentry::run(a, out)?);
     }
     if let Some(vl) = crate::optim::problems::Vlmop::by_name(&a.problem) {
-        return super::optimize_structured::run_variable_length(a, &vl, out);
+        return super::optimize_structured::run_variable_length(a, &options, &vl, out);
     }
     let problem = TestProblem::by_name(&a.problem, a.objectives)
         .map_err(|source| OptimizeError::Problem {
@@ -37,10 +37,19 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
     let pool = crate::optim::Threads::new(a.threads)?;
-    if a.scea_genes().is_some() {
-        return super::optimize_structured::run_fixed_length(a, &problem, &reference, pool, out);
-    }
-    let run = Executor::new(&problem, options.spec().build(a.seed))
+    let algorithm = match options.spec().build(a.seed) {
+        BuiltAlgorithm::Real(r) => r,
+        BuiltAlgorithm::Chromosome(c) => {
+            let run = super::optimize_structured::Run {
+                algorithm: c,
+                generations,
+                reference: &reference,
+                threads: pool,
+            };
+            return super::optimize_structured::run_fixed_length(a, &problem, run, out);
+        }
+    };
+    let run = Executor::new(&problem, algorithm)
         .budget(Budget::Generations(generations))
         .threads(pool)
         .run()?;

@@ -22,7 +22,7 @@ pub struct OptimizeArgs {
     #[command(subcommand)]
     pub algorithm: Option<AlgorithmArgs>,
     /// Test problem (zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1 ... dtlz7, constr, vlmop1 ... vlmop5:
-    /// variable-length, SCEA only) or re-entry design preset (horus-2b, srm, srm-altitude,
+    /// variable-length, SCEA or MHACO (its variable-length form) only) or re-entry design preset (horus-2b, srm, srm-altitude,
     /// srm-analytical, srm-analytical-altitude: thesis sec. 4.2, 9.1 and 9.2 settings; the
     /// last two on the analytical simulator).
     #[arg(long, global = true, default_value = "zdt1")]
@@ -85,9 +85,10 @@ pub enum AlgorithmArgs {
     Moead(MoeadArgs),
     /// NSGA-II (Deb's constrained domination).
     Nsga2(Nsga2Args),
-    /// MHACO (pagmo maco semantics, ker = min(63, population), feasibility-first archive).
+    /// MHACO (pagmo maco semantics, ker = min(63, population), feasibility-first archive; on
+    /// the variable-length problems the variable-length MHACO).
     Mhaco(MhacoArgs),
-    /// SCEA (structured chromosomes; the only one for the variable-length problems).
+    /// SCEA (structured chromosomes; with MHACO the one for the variable-length problems).
     Scea(SceaArgs),
 }
 
@@ -194,14 +195,6 @@ impl OptimizeArgs {
     pub fn generations_given(&self) -> bool {
         self.generations != DEFAULT_GENERATIONS
     }
-
-    /// SCEA's gene source, for `optimize scea`.
-    pub(super) fn scea_genes(&self) -> Option<NewGenes> {
-        match &self.algorithm {
-            Some(AlgorithmArgs::Scea(s)) => Some(s.scea_genes),
-            _ => None,
-        }
-    }
 }
 
 /// The library's options of the flags (one mapping onto the algorithms, shared with the
@@ -226,7 +219,11 @@ pub(super) fn run_options(a: &OptimizeArgs) -> RunOptions {
             moead_operator: m.moead_operator,
             ..decomposition(&m.decomposition)
         },
-        Some(AlgorithmArgs::Scea(s)) => decomposition(&s.decomposition),
+        Some(AlgorithmArgs::Scea(s)) => RunOptions {
+            algorithm: OptionsAlgorithm::Scea,
+            scea_genes: s.scea_genes,
+            ..decomposition(&s.decomposition)
+        },
         Some(AlgorithmArgs::Nsga2(n)) => RunOptions {
             algorithm: OptionsAlgorithm::Nsga2,
             archive: n.archive,
@@ -242,8 +239,8 @@ pub(super) fn run_options(a: &OptimizeArgs) -> RunOptions {
     }
 }
 
-/// Default of `--generations`.
-pub const DEFAULT_GENERATIONS: u64 = 250;
+/// Default of `--generations` (the library's).
+pub use crate::optim::spec::DEFAULT_GENERATIONS;
 
 /// Failures of `optimize`; each says what to change.
 #[derive(Debug, thiserror::Error)]
@@ -284,7 +281,7 @@ pub enum OptimizeError {
     #[error(transparent)]
     ReferenceText(#[from] crate::optim::reference::ReferenceArgError),
     /// A flag or subcommand the problem does not take (the re-entry problems fix some
-    /// settings; a variable-length problem runs with SCEA only).
+    /// settings; a variable-length problem runs with SCEA or MHACO only).
     #[error("command line: {what} does not apply to --problem {problem}: {why}")]
     NotForProblem {
         /// The flag or subcommand given.
@@ -334,8 +331,8 @@ pub enum OptimizeError {
 /// The checks clap cannot make, in one place: an algorithm subcommand beside a run file
 /// (`--config`, `--resume`: the file decides), the flags a problem does not take (the
 /// re-entry problems fix MOEA/D's variation and resource allocation, MHACO's ker and
-/// schedule, and count generations; a variable-length problem runs with SCEA only), and
-/// SCEA's `--evaluations`.
+/// schedule, and count generations; a variable-length problem runs with SCEA or MHACO only:
+/// [`RunOptions::variable_length_spec`]).
 pub(super) fn check(a: &OptimizeArgs, o: &RunOptions) -> Result<(), OptimizeError> {
     let algorithm = a.algorithm_name();
     if a.algorithm.is_some() && (a.config.is_some() || a.resume.is_some()) {
@@ -368,20 +365,16 @@ pub(super) fn check(a: &OptimizeArgs, o: &RunOptions) -> Result<(), OptimizeErro
                  --generations); drop it",
             ));
         }
-    } else if algorithm != "scea" && crate::optim::problems::Vlmop::by_name(&a.problem).is_some() {
+    } else if crate::optim::problems::Vlmop::by_name(&a.problem).is_some()
+        && o.variable_length_spec().is_none()
+    {
         return Err(not_for(
             format!("`optimize {algorithm}`"),
-            "a variable-length problem runs with SCEA only; use `optimize scea`",
+            "a variable-length problem runs with SCEA or MHACO (the variable-length MHACO) \
+             only; use `optimize scea` or `optimize mhaco`",
         ));
     }
-    match a.evaluations {
-        Some(evaluations) if algorithm == "scea" => Err(OptimizeError::Evaluations {
-            evaluations,
-            why: "applies to the moead and nsga2 subcommands (given scea); use --generations"
-                .into(),
-        }),
-        _ => Ok(()),
-    }
+    Ok(())
 }
 
 /// The generations to run: `--generations`, or the fewest whole generations whose
@@ -484,11 +477,18 @@ mod tests {
             v.extend(extra);
             parse(&v)
         };
+        let a = flags("scea", &["--scea-genes", "random"]);
+        assert_eq!(
+            run_options(&a),
+            RunOptions {
+                algorithm: OptionsAlgorithm::Scea,
+                scea_genes: NewGenes::Random,
+                ..moead.clone()
+            }
+        );
         let a = flags("scea", &["--scea-genes", "history"]);
-        assert_eq!(run_options(&a), moead);
-        assert_eq!(a.scea_genes(), Some(NewGenes::Population));
+        assert_eq!(run_options(&a).scea_genes, NewGenes::Population);
         let a = flags("moead", &["--moead-operator", "sbx"]);
-        assert_eq!(a.scea_genes(), None);
         assert_eq!(
             run_options(&a),
             RunOptions {

@@ -4,13 +4,12 @@
 //! the run directory) is [`crate::design::run`]'s.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::optimize_common::{OptimizeArgs, run_options};
-use crate::design::run::{ProgressBar, parse_toml, run as design_run};
+use crate::design::run::{ProgressBar, RunFlags, parse_toml, run as design_run};
 pub use crate::design::run::{ReentryError, ReentryRunConfig, check_run_config};
 use crate::optim::reference::parse_reference;
-use crate::optim::spec::MhacoConstraints;
 
 /// The run configuration of flags (a preset `--problem`; the flags it does not take are
 /// refused before, by `optimize_common::check`) or `--config`.
@@ -18,30 +17,25 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
     if let Some(path) = &a.config {
         return parse_toml(path);
     }
-    let mut c = ReentryRunConfig::thesis(&a.problem)?;
-    let o = run_options(a);
-    c.algorithm = match (a.algorithm_name(), o.mhaco_constraints) {
-        ("mhaco", MhacoConstraints::Objectives) => "mhaco-objectives".into(),
-        (name, _) => name.into(),
-    };
-    c.population = a.population;
-    c.generations = a.generations;
-    c.seed = a.seed;
-    c.threads = a.threads;
-    c.batch_size = o.batch_size;
-    c.neighbours = o.moead_config().neighbours;
-    c.mutation_probability = o.mutation_probability;
-    c.scea_genes = a.scea_genes().unwrap_or(c.scea_genes);
-    c.archive = o.archive;
-    if let Some(r) = &a.reference {
-        c.reference = parse_reference(r).map_err(|e| ReentryError::Setting {
+    let reference = a
+        .reference
+        .as_deref()
+        .map(parse_reference)
+        .transpose()
+        .map_err(|e| ReentryError::Setting {
             source_name: "command line".into(),
             field: "reference",
             value: e.value.clone(),
             reason: format!("--ref coordinate {}: {}", e.coordinate, e.reason),
         })?;
-    }
-    Ok(c)
+    Ok(ReentryRunConfig::of_flags(&RunFlags {
+        preset: a.problem.clone(),
+        options: run_options(a),
+        generations: a.generations,
+        seed: a.seed,
+        threads: a.threads,
+        reference,
+    })?)
 }
 
 /// Run `optimize` on a re-entry problem.
@@ -50,12 +44,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
 /// [`ReentryError`].
 pub(super) fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), ReentryError> {
     if a.print_config {
-        let c = config_of(a)?;
-        let text = toml::to_string(&c).map_err(|e| ReentryError::Parse {
-            path: PathBuf::from("(template)"),
-            message: e.to_string(),
-        })?;
-        write!(out, "{text}")?;
+        write!(out, "{}", config_of(a)?.to_toml("(template)")?)?;
         return Ok(());
     }
     let (mut c, dir, resume) = match &a.resume {

@@ -1,63 +1,68 @@
-//! `host-sim optimize scea`: SCEA on the fixed-length test problems (as chromosomes of fixed
-//! genes only, reported as real vectors) and on the variable-length problems of Li & Deb
-//! (`vlmop1` ... `vlmop5`; population.csv one chromosome per row,
-//! [`crate::optim::run::chromosome_csv`]).
+//! `host-sim optimize` with a structured-chromosome algorithm (SCEA, the variable-length
+//! MHACO: [`crate::optim::ChromosomeAlgorithm`], built from the library's
+//! [`crate::optim::AlgorithmSpec`] as every algorithm is): SCEA on the fixed-length test
+//! problems (as chromosomes of fixed genes only, reported as real vectors), SCEA or MHACO
+//! (as the variable-length MHACO) on the variable-length problems of Li & Deb (`vlmop1` ...
+//! `vlmop5`; population.csv one chromosome per row, [`crate::optim::run::chromosome_csv`]).
 
 use std::io::Write;
 
-use super::optimize_common::{OptimizeArgs, OptimizeError, finish, reference, run_options};
+use super::optimize_common::{OptimizeArgs, OptimizeError, finish, generations_to_run, reference};
 use crate::optim::chromosome::{FixedLength, StructuredProblem};
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::run::{RunResult, RunSettings, run_report, vlmop_run_report};
-use crate::optim::{Algorithm, Budget, Executor, Problem, Scea, SceaConfig, Threads};
+use crate::optim::spec::RunOptions;
+use crate::optim::{
+    Algorithm, Budget, BuiltAlgorithm, ChromosomeAlgorithm, Executor, Problem, Threads,
+};
 
-/// SCEA of the flags run on `problem`, with the evolution's wall time \[s\].
-fn evolve<P: StructuredProblem>(
-    a: &OptimizeArgs,
-    problem: &P,
-    threads: Threads,
-) -> Result<(Scea, f64), OptimizeError> {
-    let d = SceaConfig::default();
-    let config = SceaConfig {
-        moead: run_options(a).moead_config(),
-        new_genes: a.scea_genes().unwrap_or(d.new_genes),
-        ..d
-    };
-    let run = Executor::new(problem, Scea::new(config, a.seed))
-        .budget(Budget::Generations(a.generations))
-        .threads(threads)
-        .run()?;
-    Ok((run.algorithm, run.wall_time_s))
+/// A structured-chromosome run to make: the algorithm built from the flags, the generations,
+/// the hypervolume reference point and the evaluation threads.
+pub(super) struct Run<'a> {
+    /// The algorithm, new.
+    pub algorithm: ChromosomeAlgorithm,
+    /// Generations after the initial population.
+    pub generations: u64,
+    /// Hypervolume reference point.
+    pub reference: &'a [f64],
+    /// Evaluation threads.
+    pub threads: Threads,
 }
 
-/// The settings SCEA's summary reports.
-fn settings<'a>(a: &'a OptimizeArgs, reference: &'a [f64]) -> RunSettings<'a> {
-    let o = run_options(a);
-    RunSettings {
-        problem: &a.problem,
-        algorithm: "scea",
-        population: a.population,
-        generations: a.generations,
-        seed: a.seed,
-        reference,
-        archive_capacity: o.archive,
-        resource_allocation: o.resource_allocation,
-        moead_operator: None,
-        threads: a.threads,
-    }
+/// `run` on `problem`, with the evolution's wall time \[s\].
+fn evolve<P: StructuredProblem>(
+    problem: &P,
+    run: &Run<'_>,
+) -> Result<(ChromosomeAlgorithm, f64), OptimizeError> {
+    let done = Executor::new(problem, run.algorithm.clone())
+        .budget(Budget::Generations(run.generations))
+        .threads(run.threads.clone())
+        .run()?;
+    Ok((done.algorithm, done.wall_time_s))
+}
+
+/// The settings the summary reports.
+fn settings<'a>(a: &'a OptimizeArgs, alg: &ChromosomeAlgorithm, run: &Run<'a>) -> RunSettings<'a> {
+    RunSettings::of_chromosome_algorithm(
+        alg,
+        &a.problem,
+        run.generations,
+        a.seed,
+        run.reference,
+        a.threads,
+    )
 }
 
 /// SCEA on a fixed-length test problem.
 pub(super) fn run_fixed_length(
     a: &OptimizeArgs,
     problem: &TestProblem,
-    reference: &[f64],
-    threads: Threads,
+    run: Run<'_>,
     out: &mut dyn Write,
 ) -> Result<(), OptimizeError> {
     type Fixed = FixedLength<TestProblem>;
     let wrapped = FixedLength::new(problem.clone());
-    let (alg, wall_time_s) = evolve(a, &wrapped, threads)?;
+    let (alg, wall_time_s) = evolve(&wrapped, &run)?;
     let population = wrapped.real_individuals(Algorithm::<Fixed>::population(&alg));
     let archive = Algorithm::<Fixed>::external_archive(&alg).map(|m| wrapped.real_individuals(m));
     let result = RunResult {
@@ -66,20 +71,41 @@ pub(super) fn run_fixed_length(
         evaluations: Algorithm::<Fixed>::evaluations(&alg),
         wall_time_s,
     };
-    let report = run_report(problem, &settings(a, reference), result)?;
+    let report = run_report(problem, &settings(a, &alg, &run), result)?;
     finish(a, &report, out)
 }
 
-/// `optimize` on a variable-length problem (SCEA only).
+/// `optimize` on a variable-length problem (SCEA, or MHACO as the variable-length MHACO:
+/// [`RunOptions::variable_length_spec`]; the others are refused before, by
+/// `optimize_common::check`).
 pub(super) fn run_variable_length(
     a: &OptimizeArgs,
+    options: &RunOptions,
     problem: &Vlmop,
     out: &mut dyn Write,
 ) -> Result<(), OptimizeError> {
-    let reference = reference(a, problem.objectives(), || problem.reference_point())?;
-    let (alg, wall_time_s) = evolve(a, problem, Threads::new(a.threads)?)?;
+    let m = problem.objectives();
+    let reference = reference(a, m, || problem.reference_point())?;
+    let generations = generations_to_run(a, m)?;
+    let Some(BuiltAlgorithm::Chromosome(algorithm)) =
+        options.variable_length_spec().map(|s| s.build(a.seed))
+    else {
+        // optimize_common::check refuses these before; said rather than panicking.
+        return Err(OptimizeError::NotForProblem {
+            what: a.algorithm_name().to_string(),
+            problem: a.problem.clone(),
+            why: "a variable-length problem runs with `optimize scea` or `optimize mhaco`",
+        });
+    };
+    let run = Run {
+        algorithm,
+        generations,
+        reference: &reference,
+        threads: Threads::new(a.threads)?,
+    };
+    let (alg, wall_time_s) = evolve(problem, &run)?;
     let result = RunResult::of::<Vlmop, _>(&alg, wall_time_s);
-    let report = vlmop_run_report(problem, &settings(a, &reference), result)?;
+    let report = vlmop_run_report(problem, &settings(a, &alg, &run), result)?;
     writeln!(out, "{}", report.summary.line())?;
     if let Some(dir) = &a.out {
         crate::report::write_chromosome_run_report(dir, &report)?;
@@ -127,10 +153,61 @@ mod tests {
         let truth = json["true_front_hypervolume"].as_f64().unwrap();
         assert!((truth - 0.535).abs() < 1e-12, "{truth}");
         std::fs::remove_dir_all(&dir).unwrap();
-        let e = run(&args("vlmop1", "moead"), &mut Vec::new()).unwrap_err();
-        assert!(matches!(e, OptimizeError::NotForProblem { .. }), "{e}");
-        assert!(e.to_string().contains("use `optimize scea`"), "{e}");
+        for alg in ["moead", "nsga2"] {
+            let e = run(&args("vlmop1", alg), &mut Vec::new()).unwrap_err();
+            assert!(matches!(e, OptimizeError::NotForProblem { .. }), "{e}");
+            assert!(
+                e.to_string()
+                    .contains("use `optimize scea` or `optimize mhaco`"),
+                "{e}"
+            );
+        }
         let e = run(&args("vlmop9", "scea"), &mut Vec::new()).unwrap_err();
         assert!(e.to_string().contains("vlmop1, vlmop2"), "{e}");
+    }
+
+    /// `optimize mhaco` on a variable-length problem runs the variable-length MHACO of the
+    /// library's spec: the run is `VlMhaco`'s own, bit for bit, its flags reach it, and
+    /// `--evaluations` is refused as for MHACO on the fixed-length problems.
+    #[test]
+    fn optimize_mhaco_on_a_variable_length_problem_runs_vl_mhaco() {
+        use crate::optim::problems::Vlmop;
+        use crate::optim::{NoObserver, Serial, VlMhaco};
+        let dir =
+            std::env::temp_dir().join(format!("host-sim-optimize-vlm-{}", std::process::id()));
+        let mut a = small_args("vlmop1", "mhaco", &["--ker", "10", "--n-gen-mark", "3"]);
+        (a.generations, a.seed, a.out) = (8, 4, Some(dir.clone()));
+        let mut out = Vec::new();
+        run(&a, &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(
+            text.contains("vl-mhaco on vlmop1: 180 evaluations"),
+            "{text}"
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["algorithm"], "vl-mhaco");
+        let pop = std::fs::read_to_string(dir.join("population.csv")).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        let config = super::super::optimize_common::run_options(&a).mhaco_config();
+        assert_eq!((config.ker, config.n_gen_mark), (10, 3));
+        let problem = Vlmop::by_name("vlmop1").unwrap();
+        let mut direct = VlMhaco::new(config, 4);
+        crate::optim::evolve(&mut direct, &problem, &Serial, 8, &mut NoObserver).unwrap();
+        let expected = crate::optim::run::chromosome_csv(
+            Algorithm::<Vlmop>::population(&direct),
+            problem.objectives(),
+            problem.constraints(),
+        )
+        .unwrap();
+        assert_eq!(pop, expected);
+        let mut a = small_args("vlmop1", "mhaco", &[]);
+        a.evaluations = Some(100);
+        let e = run(&a, &mut Vec::new()).unwrap_err();
+        assert!(
+            e.to_string().contains("(given mhaco); use --generations"),
+            "{e}"
+        );
     }
 }

@@ -51,7 +51,7 @@ pub mod weights;
 pub use algorithm::{Algorithm, Batch};
 pub use algorithms::{
     ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2,
-    Nsga2Config, ResourceAllocation, SbxVariation, Scea, SceaConfig,
+    Nsga2Config, ResourceAllocation, SbxVariation, Scea, SceaConfig, VlMhaco,
 };
 pub use archive::ParetoArchive;
 pub use error::{BoundsError, ConfigError, EvalError, OptimError, StateError, TellError};
@@ -63,5 +63,7 @@ pub use observe::{GenerationRecord, GenerationReport, History, NoObserver, Obser
 pub use population::Individual;
 pub use problem::{Bounds, Decision, Evaluation, Problem, RealProblem};
 pub use rng::OptimRng;
-pub use spec::{AlgorithmSpec, RealAlgorithm, RunOptions, SPEC_NAMES};
+pub use spec::{
+    AlgorithmSpec, BuiltAlgorithm, ChromosomeAlgorithm, RealAlgorithm, RunOptions, SPEC_NAMES,
+};
 pub use weights::{Decomposition, WeightGeneration};

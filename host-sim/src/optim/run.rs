@@ -346,6 +346,46 @@ impl<'a> RunSettings<'a> {
     }
 }
 
+impl<'a> RunSettings<'a> {
+    /// [`RunSettings::of_algorithm`] of a structured-chromosome algorithm (SCEA: MOEA/D's
+    /// population, archive and resource allocation).
+    #[must_use]
+    pub fn of_chromosome_algorithm(
+        algorithm: &super::spec::ChromosomeAlgorithm,
+        problem: &'a str,
+        generations: u64,
+        seed: u64,
+        reference: &'a [f64],
+        threads: usize,
+    ) -> Self {
+        use super::spec::ChromosomeAlgorithm as C;
+        let (name, population, archive_capacity, resource_allocation) = match algorithm {
+            C::Scea(a) => {
+                let c = a.config();
+                (
+                    "scea",
+                    c.population,
+                    c.archive,
+                    c.resource_allocation.is_some(),
+                )
+            }
+            C::VlMhaco(a) => ("vl-mhaco", a.config().population, None, false),
+        };
+        Self {
+            problem,
+            algorithm: name,
+            population,
+            generations,
+            seed,
+            reference,
+            archive_capacity,
+            resource_allocation,
+            moead_operator: None,
+            threads,
+        }
+    }
+}
+
 /// A finished run (real vectors, or chromosomes `D = Chromosome`): what the algorithm holds
 /// at its end.
 #[derive(Debug)]

@@ -1,21 +1,22 @@
-//! One algorithm specification for the real-vector problems: [`AlgorithmSpec`], which
-//! algorithm with which settings (serde, tagged by `algorithm`: `moead`, `moead-sbx`,
-//! `nsga2`, `mhaco`), checked against a problem's shape by [`AlgorithmSpec::check`] and
-//! built into a [`RealAlgorithm`], the one enum over the running algorithms that every front
-//! end drives (the CLI's test-problem runs, the Python `Optimizer`). Each variant carries
+//! One algorithm specification: [`AlgorithmSpec`], which algorithm with which settings
+//! (serde, tagged by `algorithm`: `moead`, `moead-sbx`, `nsga2`, `mhaco` on real vectors,
+//! `scea`, `vl-mhaco` on structured chromosomes), checked against a problem's shape by
+//! [`AlgorithmSpec::check`] and built by [`AlgorithmSpec::build`] into a [`BuiltAlgorithm`]:
+//! a [`RealAlgorithm`] or a [`ChromosomeAlgorithm`], the enums over the running algorithms
+//! that every front end drives (the CLI's test-problem runs, the re-entry design run, the
+//! Python `Optimizer`). A chromosome algorithm runs on a variable-length problem, or on a
+//! fixed-length one through [`crate::optim::chromosome::FixedLength`]. Each variant carries
 //! only its own configuration (MOEA/D's SBX settings exist only in `moead-sbx`, NSGA-II has
 //! no neighbourhood), so a combination the algorithms do not have cannot be built.
-//!
-//! SCEA and the variable-length MHACO run on chromosomes, not real vectors: they are not
-//! variants here.
 
 use serde::{Deserialize, Serialize};
 
 use super::algorithm::Algorithm;
 use super::algorithms::{
-    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, Nsga2, Nsga2Config,
-    ResourceAllocation, SbxVariation,
+    ConstraintHandling, Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2,
+    Nsga2Config, ResourceAllocation, SbxVariation, Scea, SceaConfig, VlMhaco,
 };
+use super::chromosome::{Chromosome, StructuredProblem};
 use super::error::{ConfigError, OptimError, StateError};
 use super::population::Individual;
 use super::problem::{Evaluation, RealProblem};
@@ -38,10 +39,24 @@ pub enum AlgorithmSpec {
     Nsga2(Nsga2Config),
     /// MHACO (pagmo's `maco`).
     Mhaco(MhacoConfig),
+    /// SCEA, MOEA/D over structured chromosomes (thesis sec. 4.1.5).
+    Scea(SceaConfig),
+    /// The variable-length MHACO over structured chromosomes (MHACO's settings).
+    VlMhaco(MhacoConfig),
 }
 
 /// The names [`AlgorithmSpec::defaults`] knows, as in the `algorithm` tag.
-pub const SPEC_NAMES: [&str; 4] = ["moead", "moead-sbx", "nsga2", "mhaco"];
+pub const SPEC_NAMES: [&str; 6] = ["moead", "moead-sbx", "nsga2", "mhaco", "scea", "vl-mhaco"];
+
+/// What an algorithm built from an [`AlgorithmSpec`] is.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+pub enum BuiltAlgorithm {
+    /// On real vectors ([`crate::optim::RealProblem`]).
+    Real(RealAlgorithm),
+    /// On structured chromosomes ([`StructuredProblem`]).
+    Chromosome(ChromosomeAlgorithm),
+}
 
 impl AlgorithmSpec {
     /// The algorithm `name` (one of [`SPEC_NAMES`]) with its default settings (pagmo's).
@@ -55,6 +70,8 @@ impl AlgorithmSpec {
             },
             "nsga2" => Self::Nsga2(Nsga2Config::default()),
             "mhaco" => Self::Mhaco(MhacoConfig::default()),
+            "scea" => Self::Scea(SceaConfig::default()),
+            "vl-mhaco" => Self::VlMhaco(MhacoConfig::default()),
             _ => return None,
         })
     }
@@ -67,7 +84,15 @@ impl AlgorithmSpec {
             Self::MoeadSbx { .. } => "moead-sbx",
             Self::Nsga2(_) => "nsga2",
             Self::Mhaco(_) => "mhaco",
+            Self::Scea(_) => "scea",
+            Self::VlMhaco(_) => "vl-mhaco",
         }
+    }
+
+    /// Whether it runs on structured chromosomes ([`BuiltAlgorithm::Chromosome`]).
+    #[must_use]
+    pub fn is_chromosome(&self) -> bool {
+        matches!(self, Self::Scea(_) | Self::VlMhaco(_))
     }
 
     /// Population size.
@@ -76,7 +101,8 @@ impl AlgorithmSpec {
         match self {
             Self::Moead(c) | Self::MoeadSbx { moead: c, .. } => c.population,
             Self::Nsga2(c) => c.population,
-            Self::Mhaco(c) => c.population,
+            Self::Mhaco(c) | Self::VlMhaco(c) => c.population,
+            Self::Scea(c) => c.moead.population,
         }
     }
 
@@ -93,25 +119,35 @@ impl AlgorithmSpec {
                 sbx.check_ranges()
             }
             Self::Nsga2(c) => c.check(),
-            Self::Mhaco(c) => c.check(objectives, constraints),
+            Self::Mhaco(c) | Self::VlMhaco(c) => c.check(objectives, constraints),
+            Self::Scea(c) => c.check(objectives),
         }
     }
 
     /// A new run of this algorithm seeded with `seed`.
     #[must_use]
-    pub fn build(&self, seed: u64) -> RealAlgorithm {
+    pub fn build(&self, seed: u64) -> BuiltAlgorithm {
+        use BuiltAlgorithm::{Chromosome as C, Real as R};
         match self {
-            Self::Moead(c) => RealAlgorithm::Moead(Moead::new(c.clone(), seed)),
-            Self::MoeadSbx { moead, sbx } => {
-                RealAlgorithm::MoeadSbx(MoeadSbx::sbx(moead.clone(), *sbx, seed))
-            }
-            Self::Nsga2(c) => RealAlgorithm::Nsga2(Nsga2::new(c.clone(), seed)),
-            Self::Mhaco(c) => RealAlgorithm::Mhaco(Mhaco::new(c.clone(), seed)),
+            Self::Moead(c) => R(RealAlgorithm::Moead(Moead::new(c.clone(), seed))),
+            Self::MoeadSbx { moead, sbx } => R(RealAlgorithm::MoeadSbx(MoeadSbx::sbx(
+                moead.clone(),
+                *sbx,
+                seed,
+            ))),
+            Self::Nsga2(c) => R(RealAlgorithm::Nsga2(Nsga2::new(c.clone(), seed))),
+            Self::Mhaco(c) => R(RealAlgorithm::Mhaco(Mhaco::new(c.clone(), seed))),
+            Self::Scea(c) => C(ChromosomeAlgorithm::Scea(Scea::new(c.clone(), seed))),
+            Self::VlMhaco(c) => C(ChromosomeAlgorithm::VlMhaco(VlMhaco::new(c.clone(), seed))),
         }
     }
 }
 
-/// The real-vector algorithms by the names of `host-sim optimize`'s subcommands.
+/// Generations after the initial population of a run when none are given (`host-sim
+/// optimize --generations`' default).
+pub const DEFAULT_GENERATIONS: u64 = 250;
+
+/// The algorithms by the names of `host-sim optimize`'s subcommands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OptionsAlgorithm {
@@ -119,8 +155,11 @@ pub enum OptionsAlgorithm {
     Moead,
     /// NSGA-II.
     Nsga2,
-    /// MHACO.
+    /// MHACO (on a variable-length problem the variable-length MHACO:
+    /// [`RunOptions::variable_length_spec`]).
     Mhaco,
+    /// SCEA (MOEA/D's fields and [`RunOptions::scea_genes`]).
+    Scea,
 }
 
 impl OptionsAlgorithm {
@@ -131,6 +170,7 @@ impl OptionsAlgorithm {
             Self::Moead => "moead",
             Self::Nsga2 => "nsga2",
             Self::Mhaco => "mhaco",
+            Self::Scea => "scea",
         }
     }
 }
@@ -168,7 +208,7 @@ pub enum MhacoConstraints {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RunOptions {
-    /// The subcommand of `host-sim optimize` (`moead`, `nsga2`, `mhaco`; SCEA takes
+    /// The subcommand of `host-sim optimize` (`moead`, `nsga2`, `mhaco`, `scea`; SCEA takes
     /// MOEA/D's fields).
     pub algorithm: OptionsAlgorithm,
     /// `--moead-operator` (MOEA/D only).
@@ -193,6 +233,8 @@ pub struct RunOptions {
     pub n_gen_mark: u64,
     /// `--mhaco-constraints` (MHACO).
     pub mhaco_constraints: MhacoConstraints,
+    /// `--scea-genes` (SCEA).
+    pub scea_genes: NewGenes,
 }
 
 impl Default for RunOptions {
@@ -210,6 +252,7 @@ impl Default for RunOptions {
             ker: None,
             n_gen_mark: MhacoConfig::default().n_gen_mark,
             mhaco_constraints: MhacoConstraints::FeasibilityFirst,
+            scea_genes: SceaConfig::default().new_genes,
         }
     }
 }
@@ -249,7 +292,8 @@ impl RunOptions {
         }
     }
 
-    /// The algorithm and its settings.
+    /// The algorithm and its settings on a fixed-length problem (SCEA through
+    /// [`crate::optim::chromosome::FixedLength`]).
     #[must_use]
     pub fn spec(&self) -> AlgorithmSpec {
         match self.algorithm {
@@ -266,6 +310,23 @@ impl RunOptions {
                 ..Nsga2Config::default()
             }),
             OptionsAlgorithm::Mhaco => AlgorithmSpec::Mhaco(self.mhaco_config()),
+            OptionsAlgorithm::Scea => AlgorithmSpec::Scea(SceaConfig {
+                moead: self.moead_config(),
+                new_genes: self.scea_genes,
+                ..SceaConfig::default()
+            }),
+        }
+    }
+
+    /// The algorithm and its settings on a variable-length problem: SCEA, or MHACO's
+    /// settings as the variable-length MHACO; `None` for MOEA/D and NSGA-II (real vectors
+    /// only).
+    #[must_use]
+    pub fn variable_length_spec(&self) -> Option<AlgorithmSpec> {
+        match self.algorithm {
+            OptionsAlgorithm::Scea => Some(self.spec()),
+            OptionsAlgorithm::Mhaco => Some(AlgorithmSpec::VlMhaco(self.mhaco_config())),
+            OptionsAlgorithm::Moead | OptionsAlgorithm::Nsga2 => None,
         }
     }
 
@@ -284,14 +345,17 @@ impl RunOptions {
     /// `evaluations` (`--evaluations`).
     ///
     /// # Errors
-    /// What to change: `evaluations` below the initial population, or MHACO (whose
-    /// generations are counted by `--generations` only).
+    /// What to change: `evaluations` below the initial population, or MHACO or SCEA
+    /// (whose generations are counted by `--generations` only).
     pub fn generations_for(&self, evaluations: u64, objectives: usize) -> Result<u64, String> {
-        if self.algorithm == OptionsAlgorithm::Mhaco {
-            return Err(
-                "applies to the moead and nsga2 subcommands (given mhaco); use --generations"
-                    .into(),
-            );
+        if matches!(
+            self.algorithm,
+            OptionsAlgorithm::Mhaco | OptionsAlgorithm::Scea
+        ) {
+            return Err(format!(
+                "applies to the moead and nsga2 subcommands (given {}); use --generations",
+                self.algorithm.as_str()
+            ));
         }
         let per_generation = self.children_per_generation(objectives);
         let n = self.population as u64;
@@ -385,6 +449,81 @@ impl<P: RealProblem> Algorithm<P> for RealAlgorithm {
     }
 }
 
+/// A running structured-chromosome algorithm: the state of an [`AlgorithmSpec`] `scea` or
+/// `vl-mhaco` (serde: the whole state).
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub enum ChromosomeAlgorithm {
+    /// SCEA.
+    Scea(Scea),
+    /// The variable-length MHACO.
+    VlMhaco(VlMhaco),
+}
+
+/// `$body` with `$a` bound to the algorithm inside `$algo`.
+macro_rules! each_chromosome {
+    ($algo:expr, $a:ident => $body:expr) => {
+        match $algo {
+            ChromosomeAlgorithm::Scea($a) => $body,
+            ChromosomeAlgorithm::VlMhaco($a) => $body,
+        }
+    };
+}
+
+impl<P: StructuredProblem> Algorithm<P> for ChromosomeAlgorithm {
+    fn name(&self) -> &'static str {
+        match self {
+            Self::Scea(_) => "scea",
+            Self::VlMhaco(a) => Algorithm::<P>::name(a),
+        }
+    }
+
+    fn ask(&mut self, problem: &P) -> Result<&[Chromosome], OptimError> {
+        each_chromosome!(self, a => a.ask(problem))
+    }
+
+    fn tell(
+        &mut self,
+        problem: &P,
+        index: usize,
+        evaluation: Evaluation,
+    ) -> Result<(), OptimError> {
+        each_chromosome!(self, a => a.tell(problem, index, evaluation))
+    }
+
+    fn population(&self) -> &[Individual<Chromosome>] {
+        each_chromosome!(self, a => Algorithm::<P>::population(a))
+    }
+
+    fn external_archive(&self) -> Option<&[Individual<Chromosome>]> {
+        each_chromosome!(self, a => Algorithm::<P>::external_archive(a))
+    }
+
+    fn is_initialised(&self) -> bool {
+        each_chromosome!(self, a => Algorithm::<P>::is_initialised(a))
+    }
+
+    fn generation(&self) -> u64 {
+        each_chromosome!(self, a => Algorithm::<P>::generation(a))
+    }
+
+    fn evaluations(&self) -> u64 {
+        each_chromosome!(self, a => Algorithm::<P>::evaluations(a))
+    }
+
+    fn is_told(&self, index: usize) -> bool {
+        each_chromosome!(self, a => Algorithm::<P>::is_told(a, index))
+    }
+
+    fn is_finished(&self) -> bool {
+        each_chromosome!(self, a => Algorithm::<P>::is_finished(a))
+    }
+
+    fn validate(&self, problem: &P) -> Result<(), StateError> {
+        each_chromosome!(self, a => a.validate(problem))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -407,10 +546,27 @@ mod tests {
             assert_eq!(back, s);
             assert!(s.check(2, 0).is_ok(), "{name}");
         }
-        assert!(AlgorithmSpec::defaults("scea").is_none());
+        assert!(AlgorithmSpec::defaults("maco").is_none());
         let unknown: Result<AlgorithmSpec, _> =
-            serde_json::from_str(r#"{"algorithm": "scea", "population": 20}"#);
+            serde_json::from_str(r#"{"algorithm": "maco", "population": 20}"#);
         assert!(unknown.is_err());
+        let e = AlgorithmSpec::Scea(SceaConfig {
+            count_mutation: 1.5,
+            ..SceaConfig::default()
+        })
+        .check(2, 0)
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("scea") && e.to_string().contains("count_mutation = 1.5"),
+            "{e}"
+        );
+        let e = AlgorithmSpec::VlMhaco(MhacoConfig {
+            ker: 0,
+            ..MhacoConfig::default()
+        })
+        .check(2, 0)
+        .unwrap_err();
+        assert!(e.to_string().contains("ker"), "{e}");
         let e = AlgorithmSpec::Nsga2(Nsga2Config {
             population: 10,
             ..Nsga2Config::default()
@@ -449,7 +605,9 @@ mod tests {
             moead: config.clone(),
             sbx: SbxVariation::default(),
         };
-        let mut built = spec.build(7);
+        let BuiltAlgorithm::Real(mut built) = spec.build(7) else {
+            panic!("moead-sbx builds a real-vector algorithm")
+        };
         let mut direct = MoeadSbx::sbx(config.clone(), SbxVariation::default(), 7);
         evolve(&mut built, &problem, &Serial, 3, &mut NoObserver).unwrap();
         evolve(&mut direct, &problem, &Serial, 3, &mut NoObserver).unwrap();
@@ -458,12 +616,85 @@ mod tests {
             Algorithm::<TestProblem>::population(&direct)
         );
         assert_eq!(Algorithm::<TestProblem>::name(&built), "moead-sbx");
-        let mut nsga2 = AlgorithmSpec::Nsga2(Nsga2Config {
+        let BuiltAlgorithm::Real(mut nsga2) = AlgorithmSpec::Nsga2(Nsga2Config {
             population: 24,
             ..Nsga2Config::default()
         })
-        .build(3);
+        .build(3) else {
+            panic!("nsga2 builds a real-vector algorithm")
+        };
         evolve(&mut nsga2, &problem, &Serial, 2, &mut NoObserver).unwrap();
         assert_eq!(Algorithm::<TestProblem>::generation(&nsga2), 2);
+    }
+
+    /// SCEA and the variable-length MHACO built from their specs run as the algorithms
+    /// themselves, bit for bit, on a fixed-length problem through `FixedLength` and on a
+    /// variable-length one; `RunOptions` maps `mhaco` on a variable-length problem to it.
+    #[test]
+    fn chromosome_specs_run_as_the_algorithms_themselves() {
+        use crate::optim::chromosome::FixedLength;
+        use crate::optim::problems::Vlmop;
+        let zdt1 = FixedLength::new(TestProblem::by_name("zdt1", 2).unwrap().unwrap());
+        let vlmop1 = Vlmop::by_name("vlmop1").unwrap();
+        let options = RunOptions {
+            algorithm: OptionsAlgorithm::Scea,
+            population: 20,
+            scea_genes: NewGenes::Random,
+            ..RunOptions::default()
+        };
+        let scea = options.spec();
+        assert_eq!(options.variable_length_spec(), Some(scea.clone()));
+        let AlgorithmSpec::Scea(config) = &scea else {
+            panic!("{scea:?}")
+        };
+        assert_eq!(config.new_genes, NewGenes::Random);
+        assert_eq!(config.moead, options.moead_config());
+        let mhaco = RunOptions {
+            algorithm: OptionsAlgorithm::Mhaco,
+            ..options.clone()
+        };
+        let vl = mhaco.variable_length_spec().unwrap();
+        assert_eq!(vl, AlgorithmSpec::VlMhaco(mhaco.mhaco_config()));
+        let moead = RunOptions {
+            algorithm: OptionsAlgorithm::Moead,
+            ..options.clone()
+        };
+        assert_eq!(moead.variable_length_spec(), None);
+        for spec in [scea, vl] {
+            assert!(spec.is_chromosome());
+            let BuiltAlgorithm::Chromosome(mut on_zdt1) = spec.build(5) else {
+                panic!("{spec:?} builds a chromosome algorithm")
+            };
+            let mut on_vlmop1 = on_zdt1.clone();
+            evolve(&mut on_zdt1, &zdt1, &Serial, 3, &mut NoObserver).unwrap();
+            evolve(&mut on_vlmop1, &vlmop1, &Serial, 3, &mut NoObserver).unwrap();
+            let population = |a: &ChromosomeAlgorithm| Algorithm::<Vlmop>::population(a).to_vec();
+            match &spec {
+                AlgorithmSpec::Scea(c) => {
+                    let mut direct = Scea::new(c.clone(), 5);
+                    evolve(&mut direct, &vlmop1, &Serial, 3, &mut NoObserver).unwrap();
+                    assert_eq!(
+                        population(&on_vlmop1),
+                        Algorithm::<Vlmop>::population(&direct)
+                    );
+                    assert_eq!(Algorithm::<Vlmop>::name(&on_vlmop1), "scea");
+                }
+                AlgorithmSpec::VlMhaco(c) => {
+                    let mut direct = VlMhaco::new(c.clone(), 5);
+                    evolve(&mut direct, &vlmop1, &Serial, 3, &mut NoObserver).unwrap();
+                    assert_eq!(
+                        population(&on_vlmop1),
+                        Algorithm::<Vlmop>::population(&direct)
+                    );
+                    assert_eq!(Algorithm::<Vlmop>::name(&on_vlmop1), "vl-mhaco");
+                }
+                _ => unreachable!(),
+            }
+            assert_eq!(
+                Algorithm::<FixedLength<TestProblem>>::generation(&on_zdt1),
+                3
+            );
+        }
+        assert!(!AlgorithmSpec::defaults("mhaco").unwrap().is_chromosome());
     }
 }

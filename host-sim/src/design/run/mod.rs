@@ -26,10 +26,11 @@ use super::{
 };
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
+use crate::optim::spec::{MhacoConstraints, OptionsAlgorithm, RunOptions};
 use crate::optim::{
-    Algorithm, AlgorithmSpec, BatchEvaluator, Budget, ConstraintHandling, Executor, Individual,
-    Mhaco, MhacoConfig, Moead, MoeadConfig, MoeadSbx, NewGenes, Nsga2, Nsga2Config, OptimError,
-    Problem, Scea, SceaConfig, Stop, Threads,
+    Algorithm, AlgorithmSpec, BatchEvaluator, Budget, BuiltAlgorithm, ChromosomeAlgorithm,
+    ConstraintHandling, Executor, Individual, MhacoConfig, MoeadConfig, NewGenes, Nsga2Config,
+    OptimError, Problem, RealAlgorithm, SceaConfig, Stop, Threads,
 };
 use crate::report::{ReportError, write_atomic};
 use crate::scenario::Scenario;
@@ -86,7 +87,7 @@ pub struct ReentryRunConfig {
 
 impl ReentryRunConfig {
     /// The run file's algorithm and its settings as the library's one specification
-    /// ([`AlgorithmSpec`]): `moead` (and `scea`, whose MOEA/D settings these are), `nsga2`,
+    /// ([`AlgorithmSpec`]): `moead`, `scea` (MOEA/D's settings and `scea_genes`), `nsga2`,
     /// `mhaco` (feasible candidates first), `mhaco-objectives` (the constraints as extra
     /// objectives, the thesis' normalisation: the problem's constraints are already
     /// `c / c_max - 1`, scale 1, cap 2, penalty 0.5). MHACO's archive is min(63, population).
@@ -111,6 +112,11 @@ impl ReentryRunConfig {
                     }
                 },
                 ..MhacoConfig::default()
+            }),
+            "scea" => AlgorithmSpec::Scea(SceaConfig {
+                moead: self.moead_config(),
+                new_genes: self.scea_genes,
+                ..SceaConfig::default()
             }),
             _ => AlgorithmSpec::Moead(self.moead_config()),
         }
@@ -176,6 +182,86 @@ impl ReentryRunConfig {
             reference,
             problem,
             robust: None,
+        })
+    }
+}
+
+/// The run settings `host-sim optimize` takes as flags on a preset problem: the algorithm's
+/// ([`RunOptions`], the flags' mapping shared with the test problems) and the run's. Serde:
+/// the flags' names; missing fields take the flags' defaults, unknown fields are refused.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunFlags {
+    /// `--problem`: a preset ([`super::PRESETS`]).
+    pub preset: String,
+    /// The algorithm flags (the re-entry problems take MOEA/D's DE without resource
+    /// allocation, MHACO's default `ker` and `n_gen_mark`: the CLI refuses the others).
+    #[serde(default)]
+    pub options: RunOptions,
+    /// `--generations` (default [`crate::optim::spec::DEFAULT_GENERATIONS`]).
+    #[serde(default = "default_generations")]
+    pub generations: u64,
+    /// `--seed` (default 1).
+    #[serde(default = "one")]
+    pub seed: u64,
+    /// `--threads` (default 1).
+    #[serde(default = "one_thread")]
+    pub threads: usize,
+    /// `--ref` (default: the preset's, [`ReentryRunConfig::thesis`]).
+    #[serde(default)]
+    pub reference: Option<Vec<f64>>,
+}
+
+fn default_generations() -> u64 {
+    crate::optim::spec::DEFAULT_GENERATIONS
+}
+
+fn one() -> u64 {
+    1
+}
+
+fn one_thread() -> usize {
+    1
+}
+
+impl ReentryRunConfig {
+    /// The run file of `host-sim optimize`'s flags on a preset problem (what
+    /// `--print-config` prints): the thesis' settings ([`ReentryRunConfig::thesis`]) with
+    /// the flags over them; `mhaco` with `mhaco_constraints = objectives` is
+    /// `mhaco-objectives`.
+    ///
+    /// # Errors
+    /// [`DesignError::UnknownPreset`].
+    pub fn of_flags(f: &RunFlags) -> Result<Self, DesignError> {
+        let mut c = Self::thesis(&f.preset)?;
+        let o = &f.options;
+        c.algorithm = match (o.algorithm, o.mhaco_constraints) {
+            (OptionsAlgorithm::Mhaco, MhacoConstraints::Objectives) => "mhaco-objectives".into(),
+            (a, _) => a.as_str().into(),
+        };
+        c.population = o.population;
+        c.generations = f.generations;
+        c.seed = f.seed;
+        c.threads = f.threads;
+        c.batch_size = o.batch_size;
+        c.neighbours = o.moead_config().neighbours;
+        c.mutation_probability = o.mutation_probability;
+        c.scea_genes = o.scea_genes;
+        c.archive = o.archive;
+        if let Some(r) = &f.reference {
+            c.reference.clone_from(r);
+        }
+        Ok(c)
+    }
+
+    /// The run file's text (TOML), as config.toml and `--print-config` write it.
+    ///
+    /// # Errors
+    /// [`ReentryError::Parse`] naming `name` if the settings cannot be written as TOML.
+    pub fn to_toml(&self, name: &str) -> Result<String, ReentryError> {
+        toml::to_string(self).map_err(|e| ReentryError::Parse {
+            path: PathBuf::from(name),
+            message: e.to_string(),
         })
     }
 }
@@ -489,7 +575,7 @@ pub fn run(
     external: Option<&dyn BatchEvaluator<Vec<f64>>>,
 ) -> Result<Finished, ReentryError> {
     check(c, src)?;
-    if external.is_some() && c.algorithm == "scea" {
+    if external.is_some() && c.algorithm_spec().is_chromosome() {
         return Err(ReentryError::Setting {
             source_name: src.to_string(),
             field: "algorithm",
@@ -554,10 +640,7 @@ pub fn run(
         {
             *f = p.display().to_string();
         }
-        let text = toml::to_string(&written).map_err(|e| ReentryError::Parse {
-            path: dir.join("config.toml"),
-            message: e.to_string(),
-        })?;
+        let text = written.to_toml(&dir.join("config.toml").display().to_string())?;
         write_atomic(&dir.join("config.toml"), text.as_bytes())?;
     }
     let pool = Threads::new(c.threads).map_err(|e| ReentryError::Setting {
@@ -566,8 +649,7 @@ pub fn run(
         value: c.threads.to_string(),
         reason: e.to_string(),
     })?;
-    if c.algorithm == "scea" {
-        let moead = c.moead_config();
+    if spec.is_chromosome() {
         let nodes = [4.min(c.problem.encoding.nodes), c.problem.encoding.nodes];
         let vproblem = VariableReentry::new(problem, nodes)?;
         let ctx = Ctx {
@@ -579,12 +661,7 @@ pub fn run(
             nominal_front: &nominal_front,
             external: None,
         };
-        let cfg = SceaConfig {
-            moead,
-            new_genes: c.scea_genes,
-            ..SceaConfig::default()
-        };
-        return drive(&ctx, Scea::new(cfg, c.seed), progress);
+        return drive_variable(&ctx, spec, progress);
     }
     if let Some(robust) = robust {
         let ctx = Ctx {
@@ -610,6 +687,32 @@ pub fn run(
     drive_fixed(&ctx, spec, progress)
 }
 
+/// [`drive`] with the variable-length algorithm the run file names (its checkpoint holds the
+/// algorithm's own state, as [`drive_fixed`]'s).
+fn drive_variable(
+    ctx: &Ctx<'_, VariableReentry>,
+    spec: AlgorithmSpec,
+    progress: &mut dyn Progress,
+) -> Result<Finished, ReentryError> {
+    match spec.build(ctx.c.seed) {
+        BuiltAlgorithm::Chromosome(ChromosomeAlgorithm::Scea(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Chromosome(ChromosomeAlgorithm::VlMhaco(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(_) => Err(not_this_length(ctx.c, "a variable-length")),
+    }
+}
+
+/// The run file's algorithm does not fly `problem` (a variable- or fixed-length problem):
+/// the dispatch above picks the problem by the algorithm, so this is never reached by a
+/// checked run file, and says so rather than panicking if it is.
+fn not_this_length(c: &ReentryRunConfig, problem: &str) -> ReentryError {
+    ReentryError::Setting {
+        source_name: "run file".into(),
+        field: "algorithm",
+        value: c.algorithm.clone(),
+        reason: format!("does not run on {problem} problem"),
+    }
+}
+
 /// [`drive`] with the fixed-length algorithm the run file names.
 fn drive_fixed<P>(
     ctx: &Ctx<'_, P>,
@@ -619,14 +722,12 @@ fn drive_fixed<P>(
 where
     P: RunProblem<Decision = Vec<f64>> + crate::optim::RealProblem,
 {
-    let seed = ctx.c.seed;
-    match spec {
-        AlgorithmSpec::Moead(cfg) => drive(ctx, Moead::new(cfg, seed), progress),
-        AlgorithmSpec::MoeadSbx { moead, sbx } => {
-            drive(ctx, MoeadSbx::sbx(moead, sbx, seed), progress)
-        }
-        AlgorithmSpec::Nsga2(cfg) => drive(ctx, Nsga2::new(cfg, seed), progress),
-        AlgorithmSpec::Mhaco(cfg) => drive(ctx, Mhaco::new(cfg, seed), progress),
+    match spec.build(ctx.c.seed) {
+        BuiltAlgorithm::Real(RealAlgorithm::Moead(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(RealAlgorithm::MoeadSbx(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(RealAlgorithm::Nsga2(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Real(RealAlgorithm::Mhaco(a)) => drive(ctx, a, progress),
+        BuiltAlgorithm::Chromosome(_) => Err(not_this_length(ctx.c, "a fixed-length")),
     }
 }
 

@@ -52,6 +52,23 @@ impl Default for SceaConfig {
     }
 }
 
+impl SceaConfig {
+    /// Check the settings for a problem of `objectives` objectives (what SCEA's first `ask`
+    /// would refuse).
+    ///
+    /// # Errors
+    /// [`ConfigError`] naming the algorithm, the field, its value and the range.
+    pub fn check(&self, objectives: usize) -> Result<(), ConfigError> {
+        self.moead.check(objectives)?;
+        check_count_mutation(self.count_mutation)
+    }
+}
+
+/// `count_mutation` in [0, 1].
+fn check_count_mutation(p: f64) -> Result<(), ConfigError> {
+    check_range("scea", "count_mutation", p, 0.0, 1.0, "[0, 1]")
+}
+
 /// The structured-chromosome variation (thesis Algorithm 1; see [`variation`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SceaVariation {
@@ -75,14 +92,7 @@ impl MoeadWith<Chromosome, SceaVariation> {
 
 impl<P: StructuredProblem> MoeadVariation<P> for SceaVariation {
     fn check(&self, _problem: &P, _config: &MoeadConfig) -> Result<(), ConfigError> {
-        check_range(
-            "scea",
-            "count_mutation",
-            self.count_mutation,
-            0.0,
-            1.0,
-            "[0, 1]",
-        )
+        check_count_mutation(self.count_mutation)
     }
 
     fn random(&self, problem: &P, rng: &mut OptimRng) -> Chromosome {
