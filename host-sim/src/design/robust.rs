@@ -1,5 +1,7 @@
 //! The robust design problem (issue 25 item 1): a decision is the stored profile's node table
-//! (the fixed-length [`Encoding`](super::Encoding) of [`ReentryProblem`]); its evaluation flies a dispersion
+//! (the fixed-length [`Encoding`](super::Encoding) of [`ReentryProblem`]), followed by one gene
+//! per named guidance setting of the base's stack (`[[robust.settings]]`,
+//! [`super::robust_settings`]); its evaluation flies a dispersion
 //! campaign of `K` flights of the base scenario's whole guidance stack with that profile, and
 //! takes its objectives and constraint from the campaign's statistics
 //! ([`crate::campaign::ModeStats`], the figures `host-sim dispersions` reports).

@@ -107,8 +107,7 @@ impl StackSettings {
             let (base, integer) = match value {
                 None => {
                     let on = sections.iter().any(|sec| {
-                        *sec == section
-                            && table.get("guidance").and_then(|g| g.get(sec)).is_some()
+                        *sec == section && table.get("guidance").and_then(|g| g.get(sec)).is_some()
                     });
                     let why = if on {
                         format!("the base scenario ({file}) does not set it (an optional key)")
@@ -134,7 +133,8 @@ impl StackSettings {
                     ));
                 }
             };
-            out.keys.push((section.to_string(), key.to_string(), integer));
+            out.keys
+                .push((section.to_string(), key.to_string(), integer));
             out.base.push(base);
         }
         out.table = table;
@@ -213,11 +213,13 @@ impl StackSettings {
             reason: format!("cannot write the file model: {e}"),
         })?;
         let sc = parse_scenario(&text, &self.file, Path::new("."))?;
-        sc.layers.map(|l| l.settings).ok_or_else(|| ScenarioError::Field {
-            file: self.file.clone(),
-            field: "guidance".into(),
-            value: String::new(),
-            reason: "the layers are gone".into(),
-        })
+        sc.layers
+            .map(|l| l.settings)
+            .ok_or_else(|| ScenarioError::Field {
+                file: self.file.clone(),
+                field: "guidance".into(),
+                value: String::new(),
+                reason: "the layers are gone".into(),
+            })
     }
 }

@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use super::*;
 use crate::campaign::{Campaign, JobOutcome, Mode, ModeStats};
-use crate::optim::{Problem, RealProblem};
 use crate::design::SettingVariable;
+use crate::optim::{Problem, RealProblem};
 
 fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
@@ -390,7 +390,10 @@ fn robust_setting_genes_are_the_candidates_stack_settings() {
     let sc = p.scenario_of(&x).unwrap();
     let g = &sc.layers.as_ref().unwrap().settings;
     assert_eq!(g.corridor_width_final_deg, 4.5);
-    assert_eq!(g.replan_every_n_ticks, 3, "an integer key takes its gene rounded");
+    assert_eq!(
+        g.replan_every_n_ticks, 3,
+        "an integer key takes its gene rounded"
+    );
     assert_eq!(g.replan_tolerance_km, 2.25);
     // The rest of the stack is the base's.
     let base = problem(2, Some("stored-reversals"))
@@ -504,7 +507,12 @@ fn robust_setting_gene_is_flown_as_the_member_scenario() {
         let ev = p.evaluate(&x).unwrap();
         let member = member_round_trip(&p.scenario_of(&x).unwrap());
         assert_eq!(
-            member.layers.as_ref().unwrap().settings.corridor_width_final_deg,
+            member
+                .layers
+                .as_ref()
+                .unwrap()
+                .settings
+                .corridor_width_final_deg,
             w
         );
         let c = Campaign::new(
@@ -533,4 +541,119 @@ fn robust_setting_gene_is_flown_as_the_member_scenario() {
     };
     let (narrow, wide) = (eval(1.0), eval(10.0));
     assert_ne!(narrow.objectives, wide.objectives);
+}
+
+/// A robust run with a setting: front.csv names the setting's gene after the encoding's
+/// (x13), each member scenario file carries the member's value, and the member's campaign
+/// report is its objectives; a bad setting is refused naming the run file before the run
+/// directory is touched.
+#[test]
+fn robust_run_with_a_setting_writes_it_into_the_members() {
+    use crate::design::run::{ReentryRunConfig, run};
+    let (d, mut r) = config(2, Some("stored-reversals"));
+    r.settings = vec![SettingVariable {
+        field: "guidance.lateral.corridor_width_final_deg".into(),
+        range: [1.0, 10.0],
+    }];
+    let mut c = ReentryRunConfig::thesis("srm").unwrap();
+    c.problem = d;
+    c.robust = Some(r);
+    c.population = 4;
+    c.neighbours = 3;
+    c.generations = 1;
+    c.threads = 2;
+    c.reference = vec![5000.0, 2.0];
+    let dir = std::env::temp_dir().join(format!(
+        "host-sim-robust-settings-run-{}",
+        std::process::id()
+    ));
+    run(&c, "test", &dir, false, &examples(), &mut (), None).unwrap();
+    let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();
+    let mut rows = front.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    assert_eq!(&header[11..14], &["x12", "x13", "f1"], "{front}");
+    let row: Vec<f64> = rows
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let member = crate::scenario::read_scenario(&dir.join("front/member_00.toml")).unwrap();
+    assert_eq!(
+        member.layers.unwrap().settings.corridor_width_final_deg,
+        row[12]
+    );
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("front/member_00/campaign/summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        summary["stats"][0]["miss_km"]["p99"].as_f64().unwrap(),
+        row[13]
+    );
+    let config_text = std::fs::read_to_string(dir.join("config.toml")).unwrap();
+    assert!(config_text.contains("[[robust.settings]]"), "{config_text}");
+    let mut bad = c;
+    bad.robust.as_mut().unwrap().settings[0].range = [0.0, 10.0];
+    bad.generations = 5;
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut (), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("run.toml: ")
+            && e.contains("`robust.settings[0].range` = [0, 10]")
+            && e.contains("corridor_width_final_deg = 0"),
+        "{e}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("config.toml")).unwrap(),
+        config_text,
+        "the run directory is untouched"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The run file's check reads `[[robust.settings]]` and refuses a bad one naming the file,
+/// the entry and the value (without flying the base's campaign).
+#[test]
+fn robust_settings_in_a_run_file_are_checked_naming_it() {
+    use crate::design::run::check_run_config;
+    let text = std::fs::read_to_string(examples().join("optimize-robust-srm.toml")).unwrap();
+    let path = examples().join("robust-settings.toml");
+    let with = |s: &str| format!("{text}\n[[robust.settings]]\n{s}\n");
+    let c = check_run_config(
+        &with("field = \"guidance.replanning.every_n_ticks\"\nrange = [2.0, 10.0]"),
+        &path,
+    )
+    .unwrap();
+    assert_eq!(
+        c.robust.unwrap().settings,
+        vec![SettingVariable {
+            field: "guidance.replanning.every_n_ticks".into(),
+            range: [2.0, 10.0],
+        }]
+    );
+    let e = check_run_config(
+        &with("field = \"guidance.replanning.every_n_ticks\"\nrange = [0.0, 10.0]"),
+        &path,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("robust-settings.toml")
+            && e.contains("`robust.settings[0].range` = [0, 10]")
+            && e.contains("every_n_ticks = 0 is refused by the scenario"),
+        "{e}"
+    );
+    let e = check_run_config(
+        &with("field = \"guidance.replanning.period_s\"\nrange = [4.0, 20.0]"),
+        &path,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("robust-settings.toml")
+            && e.contains("`robust.settings[0].field` = \"guidance.replanning.period_s\""),
+        "{e}"
+    );
 }

@@ -316,7 +316,18 @@ fn parse_text(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError>
 pub fn check_run_config(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError> {
     let c = parse_text(text, path)?;
     check(&c, &path.display().to_string())?;
-    c.problem.problem(path.parent().unwrap_or(Path::new(".")))?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    c.problem.problem(dir)?;
+    // The robust settings are checked against the base's stack (no flight needed).
+    if let Some(r) = c.robust.as_ref().filter(|r| !r.settings.is_empty()) {
+        let stack = c.problem.stack_scenario(dir)?;
+        super::robust_settings::StackSettings::new(&stack, &r.settings, &c.problem.base).map_err(
+            |e| DesignError::Toml {
+                label: path.display().to_string(),
+                message: e.to_string(),
+            },
+        )?;
+    }
     Ok(c)
 }
 
