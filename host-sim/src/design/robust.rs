@@ -549,7 +549,11 @@ pub fn problem_of_run_text(
         .map_err(|e: toml::de::Error| bad(format!("[robust]: {e}")))?;
     let inner = design.problem(base_dir)?;
     let stack = design.stack_scenario(base_dir)?;
-    let p = RobustProblem::new(inner, stack, config.clone(), &design.base)?;
+    let p =
+        RobustProblem::new(inner, stack, config.clone(), &design.base).map_err(|e| match e {
+            e @ DesignError::Robust { .. } => bad(e.to_string()),
+            e => e,
+        })?;
     Ok((design, config, p))
 }
 
