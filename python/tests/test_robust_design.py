@@ -85,3 +85,26 @@ def test_robust_batch_on_dask_split_over_flights_equals_local(client, tmp_path):
     assert bits(p.evaluate_parts(parts)[0]).tolist() == bits(local[1][0]).tolist()
     with pytest.raises(reentry.CampaignError, match="missing"):
         p.evaluate_parts(parts[:2])
+
+
+def test_robust_settings_are_genes_after_the_encodings(tmp_path):
+    """`[[robust.settings]]`: one gene per setting after the encoding's, its range the bounds;
+    two values give different campaigns; a range the scenario refuses raises host-sim's
+    message naming the run file and the entry."""
+    path = run_file(tmp_path, cases=2, mode="stored-reversals")
+    text = path.read_text() + (
+        '\n[[robust.settings]]\nfield = "guidance.lateral.corridor_width_final_deg"\n'
+        "range = [1.0, 10.0]\n"
+    )
+    path.write_text(text)
+    p = reentry.RobustDesignProblem(path)
+    lo, hi = p.get_bounds()
+    assert len(lo) == 13 and (lo[12], hi[12]) == (1.0, 10.0)
+    assert "[[robust.settings]]" in p.config_toml()
+    x = np.mean(p.get_bounds(), axis=0).tolist()
+    y = x[:12] + [10.0]
+    x[12] = 1.0
+    assert p.evaluate(x) != p.evaluate(y)
+    with pytest.raises(reentry.DesignError) as e:
+        reentry.RobustDesignProblem(text.replace("range = [1.0, 10.0]", "range = [0.0, 10.0]"))
+    assert "`robust.settings[0].range` = [0, 10]" in str(e.value)

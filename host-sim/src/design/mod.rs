@@ -22,6 +22,7 @@ pub mod config;
 pub mod encoding;
 pub mod problem;
 pub mod robust;
+pub mod robust_settings;
 #[cfg(test)]
 mod robust_tests;
 pub mod run;
@@ -35,6 +36,7 @@ pub use config::{DesignConfig, PRESETS};
 pub use encoding::{Encoding, FixedNode};
 pub use problem::{Limits, Objectives, ReentryProblem};
 pub use robust::{RobustConfig, RobustProblem, Statistic};
+pub use robust_settings::SettingVariable;
 pub use sample::latin_hypercube;
 pub use variable::VariableReentry;
 

@@ -1,5 +1,7 @@
 //! The robust design problem (issue 25 item 1): a decision is the stored profile's node table
-//! (the fixed-length [`Encoding`](super::Encoding) of [`ReentryProblem`]); its evaluation flies a dispersion
+//! (the fixed-length [`Encoding`](super::Encoding) of [`ReentryProblem`]), followed by one gene
+//! per named guidance setting of the base's stack (`[[robust.settings]]`,
+//! [`super::robust_settings`]); its evaluation flies a dispersion
 //! campaign of `K` flights of the base scenario's whole guidance stack with that profile, and
 //! takes its objectives and constraint from the campaign's statistics
 //! ([`crate::campaign::ModeStats`], the figures `host-sim dispersions` reports).
@@ -23,6 +25,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::robust_settings::{SettingVariable, StackSettings};
 use super::{DesignError, ReentryProblem};
 use crate::campaign::jobs::place_outcomes;
 use crate::campaign::{
@@ -111,6 +114,11 @@ pub struct RobustConfig {
     /// robust-vs-nominal.svg). Absent: no comparison.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nominal_front: Option<String>,
+    /// Guidance settings of the base scenario's stack that are decision variables too
+    /// (`[[robust.settings]]`, [`SettingVariable`]): one gene each, after the encoding's,
+    /// in this order. Empty: the base's settings are flown as they are.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub settings: Vec<SettingVariable>,
 }
 
 fn default_objectives() -> Vec<Statistic> {
@@ -125,6 +133,7 @@ impl Default for RobustConfig {
             objectives: default_objectives(),
             max_violation_fraction: 0.0,
             nominal_front: None,
+            settings: Vec::new(),
         }
     }
 }
@@ -196,6 +205,10 @@ pub struct RobustProblem {
     config: RobustConfig,
     mode: Mode,
     file: String,
+    /// The `[[robust.settings]]` checked against the stack.
+    settings: StackSettings,
+    /// The encoding's bounds and then each setting's range.
+    bounds: Bounds,
 }
 
 impl RobustProblem {
@@ -263,6 +276,16 @@ impl RobustProblem {
             );
         }
         config.validate()?;
+        let settings = StackSettings::new(&stack, &config.settings, file)?;
+        let (mut lower, mut upper) = (
+            inner.bounds().lower().to_vec(),
+            inner.bounds().upper().to_vec(),
+        );
+        for s in &config.settings {
+            lower.push(s.range[0]);
+            upper.push(s.range[1]);
+        }
+        let bounds = Bounds::new(lower, upper)?;
         let modes = match &config.mode {
             Some(name) => {
                 vec![
@@ -299,6 +322,8 @@ impl RobustProblem {
             config,
             mode,
             file: file.to_string(),
+            settings,
+            bounds,
         })
     }
 
@@ -320,17 +345,48 @@ impl RobustProblem {
         &self.config
     }
 
+    /// The base scenario's value of each `[[robust.settings]]` entry (file units): what a
+    /// decision of the encoding alone flies ([`RobustProblem::with_base_settings`]).
+    #[must_use]
+    pub fn base_setting_values(&self) -> &[f64] {
+        self.settings.base_values()
+    }
+
+    /// A decision of the encoding alone (a nominal run's front member) completed with the
+    /// base scenario's setting values.
+    #[must_use]
+    pub fn with_base_settings(&self, x: &[f64]) -> Vec<f64> {
+        let mut v = x.to_vec();
+        v.extend_from_slice(self.settings.base_values());
+        v
+    }
+
     /// The scenario a decision flies: the base stack with the decision's nodes (and entry
-    /// altitude).
+    /// altitude) from the encoding's genes, and each `[[robust.settings]]` value from the
+    /// genes after them, written into the base's file model and resolved by the scenario's
+    /// own checks.
     ///
     /// # Errors
-    /// [`DesignError::Dimension`].
+    /// [`DesignError::Dimension`]; [`DesignError::Scenario`] for a setting value the
+    /// scenario refuses.
     pub fn scenario_of(&self, x: &[f64]) -> Result<Scenario, DesignError> {
-        let (table, h) = self.inner.encoding().decode(x)?;
+        let n = self.inner.bounds().dim();
+        if x.len() != self.bounds.dim() {
+            return Err(DesignError::Dimension {
+                expected: self.bounds.dim(),
+                got: x.len(),
+            });
+        }
+        let (table, h) = self.inner.encoding().decode(&x[..n])?;
         let mut sc = self.stack.clone();
         sc.guidance.nodes = table;
         if let Some(h) = h {
             sc.entry.radius_m = sc.environment.planet.radius_m + h;
+        }
+        if !self.settings.is_empty()
+            && let Some(layers) = sc.layers.as_mut()
+        {
+            layers.settings = self.settings.resolve(&x[n..])?;
         }
         Ok(sc)
     }
@@ -493,7 +549,11 @@ pub fn problem_of_run_text(
         .map_err(|e: toml::de::Error| bad(format!("[robust]: {e}")))?;
     let inner = design.problem(base_dir)?;
     let stack = design.stack_scenario(base_dir)?;
-    let p = RobustProblem::new(inner, stack, config.clone(), &design.base)?;
+    let p =
+        RobustProblem::new(inner, stack, config.clone(), &design.base).map_err(|e| match e {
+            e @ DesignError::Robust { .. } => bad(e.to_string()),
+            e => e,
+        })?;
     Ok((design, config, p))
 }
 
@@ -509,7 +569,7 @@ impl Problem for RobustProblem {
     }
 
     fn evaluate(&self, x: &Vec<f64>) -> Result<Evaluation, EvalError> {
-        self.inner.bounds().check_dim(x)?;
+        self.bounds.check_dim(x)?;
         let sc = self
             .scenario_of(x)
             .map_err(|e| EvalError::Failed(Box::new(e)))?;
@@ -526,6 +586,6 @@ impl Problem for RobustProblem {
 
 impl RealProblem for RobustProblem {
     fn bounds(&self) -> &Bounds {
-        self.inner.bounds()
+        &self.bounds
     }
 }

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::*;
 use crate::campaign::{Campaign, JobOutcome, Mode, ModeStats};
+use crate::design::SettingVariable;
 use crate::optim::{Problem, RealProblem};
 
 fn examples() -> PathBuf {
@@ -343,4 +344,316 @@ fn robust_evaluation_split_over_flights_is_the_whole_one() {
     let e = p.outcome_of(twice).unwrap_err();
     assert!(e.to_string().contains("given twice"), "{e}");
     assert!(p.fly_cases(&sc, [4]).is_err(), "case 4 of 4");
+}
+
+/// `[[robust.settings]]` of the example's stack: the lateral corridor's final width, the
+/// re-planning period in ticks (an integer key) and the re-planner's accepted miss.
+fn settings() -> Vec<SettingVariable> {
+    [
+        ("guidance.lateral.corridor_width_final_deg", [1.0, 10.0]),
+        ("guidance.replanning.every_n_ticks", [1.0, 10.0]),
+        ("guidance.replanning.tolerance_km", [0.5, 5.0]),
+    ]
+    .into_iter()
+    .map(|(f, r)| SettingVariable {
+        field: f.into(),
+        range: r,
+    })
+    .collect()
+}
+
+fn problem_with(cases: u32, mode: Option<&str>, s: Vec<SettingVariable>) -> RobustProblem {
+    let (d, mut r) = config(cases, mode);
+    r.settings = s;
+    let inner = d.problem(&examples()).unwrap();
+    let stack = d.stack_scenario(&examples()).unwrap();
+    RobustProblem::new(inner, stack, r, &d.base).unwrap()
+}
+
+/// The member scenario file of a scenario read back (`front/member_NN.toml`).
+fn member_round_trip(sc: &crate::scenario::Scenario) -> crate::scenario::Scenario {
+    let text = crate::scenario::scenario_to_toml(sc);
+    crate::scenario::parse_scenario(&text, "member_00.toml", Path::new(".")).unwrap()
+}
+
+/// A decision's setting genes are written into its scenario's stack (read back from the
+/// scenario and from its member scenario file); the bounds are the encoding's and then the
+/// ranges; a decision of the encoding alone completed with the base's values flies the base.
+#[test]
+fn robust_setting_genes_are_the_candidates_stack_settings() {
+    let p = problem_with(2, Some("stored-reversals"), settings());
+    assert_eq!(p.bounds().dim(), 15);
+    assert_eq!(&p.bounds().lower()[12..], &[1.0, 1.0, 0.5]);
+    assert_eq!(&p.bounds().upper()[12..], &[10.0, 10.0, 5.0]);
+    let mut x = decision();
+    x.extend([4.5, 3.4, 2.25]);
+    let sc = p.scenario_of(&x).unwrap();
+    let g = &sc.layers.as_ref().unwrap().settings;
+    assert_eq!(g.corridor_width_final_deg, 4.5);
+    assert_eq!(
+        g.replan_every_n_ticks, 3,
+        "an integer key takes its gene rounded"
+    );
+    assert_eq!(g.replan_tolerance_km, 2.25);
+    // The rest of the stack is the base's.
+    let base = problem(2, Some("stored-reversals"))
+        .scenario_of(&decision())
+        .unwrap();
+    let mut expected = base.layers.clone().unwrap();
+    expected.settings.corridor_width_final_deg = 4.5;
+    expected.settings.replan_every_n_ticks = 3;
+    expected.settings.replan_tolerance_km = 2.25;
+    assert_eq!(sc.layers.as_ref(), Some(&expected));
+    assert_eq!(sc.guidance.nodes, base.guidance.nodes);
+    // The member scenario file carries them.
+    let back = member_round_trip(&sc);
+    assert_eq!(back.layers.unwrap().settings, expected.settings);
+    // The base's own values (3 deg, 5 ticks, 1 km: the example's) complete a nominal decision.
+    assert_eq!(p.base_setting_values(), &[3.0, 5.0, 1.0]);
+    let nominal = p.with_base_settings(&decision());
+    assert_eq!(nominal.len(), 15);
+    assert_eq!(
+        p.scenario_of(&nominal).unwrap().layers,
+        base.layers,
+        "the base's values fly the base's stack"
+    );
+    assert!(p.scenario_of(&decision()).is_err(), "12 genes of 15");
+}
+
+/// A setting that is not a number of the base's stack, named twice, or with a range the
+/// scenario refuses is refused when the problem is built, naming the entry and the value.
+#[test]
+fn robust_settings_are_refused_naming_the_entry() {
+    let err = |s: Vec<(&str, [f64; 2])>| {
+        let (d, mut r) = config(2, Some("stored"));
+        r.settings = s
+            .into_iter()
+            .map(|(f, range)| SettingVariable {
+                field: f.into(),
+                range,
+            })
+            .collect();
+        let inner = d.problem(&examples()).unwrap();
+        let stack = d.stack_scenario(&examples()).unwrap();
+        RobustProblem::new(inner, stack, r, &d.base)
+            .unwrap_err()
+            .to_string()
+    };
+    let ok = ("guidance.replanning.tolerance_km", [0.5, 5.0]);
+    let e = err(vec![ok, ("guidance.lateral.corridor_width", [1.0, 2.0])]);
+    assert!(
+        e.contains("`robust.settings[1].field` = \"guidance.lateral.corridor_width\"")
+            && e.contains("not a guidance layer setting"),
+        "{e}"
+    );
+    let e = err(vec![("guidance.period_s", [1.0, 2.0])]);
+    assert!(e.contains("`robust.settings[0].field`"), "{e}");
+    let e = err(vec![("guidance.barrier.damping", [0.5, 2.0])]);
+    assert!(
+        e.contains("`robust.settings[0].field` = \"guidance.barrier.damping\"")
+            && e.contains("no [guidance.barrier] layer")
+            && e.contains("srm-glide-replanning.toml"),
+        "{e}"
+    );
+    let e = err(vec![("guidance.lateral.terminal_start_km", [100.0, 500.0])]);
+    assert!(e.contains("does not set it"), "{e}");
+    let e = err(vec![("guidance.replanning.predictor", [0.0, 1.0])]);
+    assert!(
+        e.contains("`robust.settings[0].field` = \"guidance.replanning.predictor\"")
+            && e.contains("not a number")
+            && e.contains("\"hybrid\""),
+        "{e}"
+    );
+    let e = err(vec![ok, ok]);
+    assert!(
+        e.contains("`robust.settings[1].field`")
+            && e.contains("named twice (also robust.settings[0].field)"),
+        "{e}"
+    );
+    let e = err(vec![("guidance.replanning.tolerance_km", [-1.0, 5.0])]);
+    assert!(
+        e.contains("`robust.settings[0].range` = [-1, 5]")
+            && e.contains("guidance.replanning.tolerance_km = -1 is refused by the scenario")
+            && e.contains("field `guidance.replanning.tolerance_km`"),
+        "{e}"
+    );
+    let e = err(vec![("guidance.lateral.max_reversals", [1.0, 300.0])]);
+    assert!(
+        e.contains("`robust.settings[0].range` = [1, 300]")
+            && e.contains("must be an integer in [0, 255]"),
+        "{e}"
+    );
+    let e = err(vec![("guidance.replanning.tolerance_km", [5.0, 0.5])]);
+    assert!(
+        e.contains("`robust.settings[0].range` = [5, 0.5]") && e.contains("lower < upper"),
+        "{e}"
+    );
+}
+
+/// A setting gene changes the flights: the corridor's final width (the heading error at
+/// which the lateral logic reverses the bank) gives two different campaigns at its two ends,
+/// and each evaluation is the campaign the dispersions code flies on the member scenario
+/// file, bit for bit.
+#[test]
+fn robust_setting_gene_is_flown_as_the_member_scenario() {
+    let s = vec![SettingVariable {
+        field: "guidance.lateral.corridor_width_final_deg".into(),
+        range: [1.0, 10.0],
+    }];
+    let p = problem_with(2, Some("stored-reversals"), s);
+    let eval = |w: f64| {
+        let mut x = decision();
+        x.push(w);
+        let ev = p.evaluate(&x).unwrap();
+        let member = member_round_trip(&p.scenario_of(&x).unwrap());
+        assert_eq!(
+            member
+                .layers
+                .as_ref()
+                .unwrap()
+                .settings
+                .corridor_width_final_deg,
+            w
+        );
+        let c = Campaign::new(
+            &member,
+            "member_00.toml",
+            p.config().dispersions.clone(),
+            "test",
+            vec![Mode::StoredReversals],
+        )
+        .unwrap();
+        let outcomes = c.run_local(Some(2)).unwrap();
+        let flown: Vec<_> = outcomes
+            .iter()
+            .filter_map(|o| match o {
+                JobOutcome::Flown(c) => Some(c.clone()),
+                JobOutcome::Failed(_) => None,
+            })
+            .collect();
+        let stats = ModeStats::of(Mode::StoredReversals, &flown, outcomes.len() - flown.len());
+        assert_eq!(
+            ev.objectives,
+            vec![stats.miss_km.p99, stats.heat_flux_ratio.p99],
+            "width {w}"
+        );
+        ev
+    };
+    let (narrow, wide) = (eval(1.0), eval(10.0));
+    assert_ne!(narrow.objectives, wide.objectives);
+}
+
+/// A robust run with a setting: front.csv names the setting's gene after the encoding's
+/// (x13), each member scenario file carries the member's value, and the member's campaign
+/// report is its objectives; a bad setting is refused naming the run file before the run
+/// directory is touched.
+#[test]
+fn robust_run_with_a_setting_writes_it_into_the_members() {
+    use crate::design::run::{ReentryRunConfig, run};
+    let (d, mut r) = config(2, Some("stored-reversals"));
+    r.settings = vec![SettingVariable {
+        field: "guidance.lateral.corridor_width_final_deg".into(),
+        range: [1.0, 10.0],
+    }];
+    let mut c = ReentryRunConfig::thesis("srm").unwrap();
+    c.problem = d;
+    c.robust = Some(r);
+    c.population = 4;
+    c.neighbours = 3;
+    c.generations = 1;
+    c.threads = 2;
+    c.reference = vec![5000.0, 2.0];
+    let dir = std::env::temp_dir().join(format!(
+        "host-sim-robust-settings-run-{}",
+        std::process::id()
+    ));
+    run(&c, "test", &dir, false, &examples(), &mut (), None).unwrap();
+    let front = std::fs::read_to_string(dir.join("front.csv")).unwrap();
+    let mut rows = front.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    assert_eq!(&header[11..14], &["x12", "x13", "f1"], "{front}");
+    let row: Vec<f64> = rows
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let member = crate::scenario::read_scenario(&dir.join("front/member_00.toml")).unwrap();
+    assert_eq!(
+        member.layers.unwrap().settings.corridor_width_final_deg,
+        row[12]
+    );
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("front/member_00/campaign/summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        summary["stats"][0]["miss_km"]["p99"].as_f64().unwrap(),
+        row[13]
+    );
+    let config_text = std::fs::read_to_string(dir.join("config.toml")).unwrap();
+    assert!(config_text.contains("[[robust.settings]]"), "{config_text}");
+    let mut bad = c;
+    bad.robust.as_mut().unwrap().settings[0].range = [0.0, 10.0];
+    bad.generations = 5;
+    let e = run(&bad, "run.toml", &dir, false, &examples(), &mut (), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("run.toml: ")
+            && e.contains("`robust.settings[0].range` = [0, 10]")
+            && e.contains("corridor_width_final_deg = 0"),
+        "{e}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("config.toml")).unwrap(),
+        config_text,
+        "the run directory is untouched"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The run file's check reads `[[robust.settings]]` and refuses a bad one naming the file,
+/// the entry and the value (without flying the base's campaign).
+#[test]
+fn robust_settings_in_a_run_file_are_checked_naming_it() {
+    use crate::design::run::check_run_config;
+    let text = std::fs::read_to_string(examples().join("optimize-robust-srm.toml")).unwrap();
+    let path = examples().join("robust-settings.toml");
+    let with = |s: &str| format!("{text}\n[[robust.settings]]\n{s}\n");
+    let c = check_run_config(
+        &with("field = \"guidance.replanning.every_n_ticks\"\nrange = [2.0, 10.0]"),
+        &path,
+    )
+    .unwrap();
+    assert_eq!(
+        c.robust.unwrap().settings,
+        vec![SettingVariable {
+            field: "guidance.replanning.every_n_ticks".into(),
+            range: [2.0, 10.0],
+        }]
+    );
+    let e = check_run_config(
+        &with("field = \"guidance.replanning.every_n_ticks\"\nrange = [0.0, 10.0]"),
+        &path,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("robust-settings.toml")
+            && e.contains("`robust.settings[0].range` = [0, 10]")
+            && e.contains("every_n_ticks = 0 is refused by the scenario"),
+        "{e}"
+    );
+    let e = check_run_config(
+        &with("field = \"guidance.replanning.period_s\"\nrange = [4.0, 20.0]"),
+        &path,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("robust-settings.toml")
+            && e.contains("`robust.settings[0].field` = \"guidance.replanning.period_s\""),
+        "{e}"
+    );
 }

@@ -402,7 +402,18 @@ fn parse_text(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError>
 pub fn check_run_config(text: &str, path: &Path) -> Result<ReentryRunConfig, ReentryError> {
     let c = parse_text(text, path)?;
     check(&c, &path.display().to_string())?;
-    c.problem.problem(path.parent().unwrap_or(Path::new(".")))?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    c.problem.problem(dir)?;
+    // The robust settings are checked against the base's stack (no flight needed).
+    if let Some(r) = c.robust.as_ref().filter(|r| !r.settings.is_empty()) {
+        let stack = c.problem.stack_scenario(dir)?;
+        super::robust_settings::StackSettings::new(&stack, &r.settings, &c.problem.base).map_err(
+            |e| DesignError::Toml {
+                label: path.display().to_string(),
+                message: e.to_string(),
+            },
+        )?;
+    }
     Ok(c)
 }
 
@@ -591,18 +602,29 @@ pub fn run(
     let robust = match &c.robust {
         Some(r) => {
             let stack = c.problem.stack_scenario(base_dir)?;
-            Some(RobustProblem::new(
-                problem.clone(),
-                stack,
-                r.clone(),
-                &c.problem.base,
-            )?)
+            // Its setting errors name the run file too.
+            let p = RobustProblem::new(problem.clone(), stack, r.clone(), &c.problem.base)
+                .map_err(|e| match e {
+                    e @ DesignError::Robust { .. } => DesignError::Toml {
+                        label: src.to_string(),
+                        message: e.to_string(),
+                    },
+                    e => e,
+                })?;
+            Some(p)
         }
         None => None,
     };
     // So is the nominal front it is compared with read.
     let nominal_front = match c.robust.as_ref().and_then(|r| r.nominal_front.as_ref()) {
-        Some(f) => read_nominal_front(&base_dir.join(f), problem.encoding().dim())?,
+        Some(f) => {
+            let front = read_nominal_front(&base_dir.join(f), problem.encoding().dim())?;
+            // Its members fly the base's own values of the robust settings.
+            match &robust {
+                Some(p) => front.iter().map(|x| p.with_base_settings(x)).collect(),
+                None => front,
+            }
+        }
         None => Vec::new(),
     };
     // And are the algorithm's settings checked against the problem's shape.
