@@ -77,12 +77,16 @@ impl StackSettings {
             let name = format!("robust.settings[{i}].field");
             let parts: Vec<&str> = s.field.split('.').collect();
             let known = match parts.as_slice() {
-                ["guidance", section, key] => LAYER_KEYS
-                    .iter()
-                    .any(|(_, sec, k)| sec == section && k == key),
-                _ => false,
+                ["guidance", section, key]
+                    if LAYER_KEYS
+                        .iter()
+                        .any(|(_, sec, k)| sec == section && k == key) =>
+                {
+                    Some((*section, *key))
+                }
+                _ => None,
             };
-            if !known {
+            let Some((section, key)) = known else {
                 return Err(bad(
                     name,
                     format!("{:?}", s.field),
@@ -91,8 +95,7 @@ impl StackSettings {
                      [guidance.barrier] as guidance.<section>.<key>"
                         .into(),
                 ));
-            }
-            let (section, key) = (parts[1], parts[2]);
+            };
             if let Some(j) = settings[..i].iter().position(|o| o.field == s.field) {
                 return Err(bad(
                     name,
