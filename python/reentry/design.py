@@ -205,6 +205,7 @@ def design_run_config_of_flags(
     seed: Optional[int] = None,
     threads: Optional[int] = None,
     reference: Optional[Sequence[float]] = None,
+    evaluations: Optional[int] = None,
     **options,
 ) -> str:
     """The run file of ``host-sim optimize``'s flags on a design preset, as TOML text: what
@@ -213,11 +214,14 @@ def design_run_config_of_flags(
     names with underscores, as for :func:`reentry.from_options` (``algorithm``,
     ``population``, ``neighbours``, ``batch_size``, ``archive``, ``mhaco_constraints``,
     ``scea_genes``, ...); missing flags take the CLI's defaults. Checked as a run file is: a
-    bad value raises :class:`DesignError` naming the field."""
+    bad value raises :class:`DesignError` naming the field, and so does a flag the re-entry
+    problems fix (``resource_allocation``, ``moead_operator="sbx"``, ``ker``, ``n_gen_mark``,
+    ``evaluations``), as the CLI refuses it."""
     flags = dict(preset=preset, options=options)
     for name, value in (
         ("generations", generations), ("seed", seed), ("threads", threads),
         ("reference", None if reference is None else [float(r) for r in reference]),
+        ("evaluations", evaluations),
     ):
         if value is not None:
             flags[name] = value

@@ -36,7 +36,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence
 
 import numpy as np
 
-from .design import DesignProblem, RobustDesignProblem, run_design
+from .design import DesignProblem, RobustDesignProblem, design_run_config_of_flags, run_design
 from .dispersions import DispersionCampaign
 from .flight import _source, fly_summary, scenario_dict
 from .optim import TestProblem, evaluate_batch, evolve, from_options, generations_for
@@ -409,6 +409,7 @@ def _write_table(df, path: str) -> None:
 _OPTION_FLAGS = (
     "algorithm", "moead_operator", "population", "weights", "neighbours", "mutation_probability",
     "batch_size", "archive", "resource_allocation", "ker", "n_gen_mark", "mhaco_constraints",
+    "scea_genes",
 )
 
 
@@ -417,10 +418,6 @@ def _options(a) -> Dict[str, Any]:
     return {k: getattr(a, k) for k in _OPTION_FLAGS if getattr(a, k, None) is not None}
 
 
-def _problem(a):
-    if a.problem in _native.design_presets():
-        return DesignProblem(a.problem)
-    return TestProblem(a.problem, a.objectives)
 
 
 def _reference_arg(text: str) -> List[float]:
@@ -429,15 +426,6 @@ def _reference_arg(text: str) -> List[float]:
         return _native.parse_reference(text)
     except ValueError as e:
         raise argparse.ArgumentTypeError(str(e)) from None
-
-
-def _reference_point(a, problem) -> Optional[List[float]]:
-    if a.ref is not None:
-        return a.ref
-    if isinstance(problem, TestProblem):
-        return None  # the problem's own
-    # The design problems: host-sim optimize's default (zero range, 2 GJ/m^2).
-    return [0.0, 2.0] + [10.0] * (problem.get_nobj() - 2)
 
 
 #: ``--generations``'s default, host-sim optimize's (a resumed run keeps its own total unless
@@ -475,11 +463,17 @@ def _cmd_optimize_run_file(a) -> int:
     else:
         out, config = a.out, a.config
         kind_of = config
-    _kind, default_dir = _native.run_file_info(kind_of)  # a bad file: its error, exit 1
-    out = out or os.fspath(default_dir)
     generations = (
         a.generations if resume and a.generations != _DEFAULT_GENERATIONS else None
     )
+    return _run_design_run(a, out, config, kind_of, resume, generations)
+
+
+def _run_design_run(a, out, config, kind_of, resume: bool, generations) -> int:
+    """The design run of ``config`` (or ``--resume``) into ``out`` (default: the CLI's
+    directory of the run file ``kind_of``), here or on Dask; prints the library's line."""
+    _kind, default_dir = _native.run_file_info(kind_of)  # a bad file: its error, exit 1
+    out = out or os.fspath(default_dir)
     if a.local:
         last = run_design(out, config, resume=resume, generations=generations)
         where = "in this process (the run file's threads)"
@@ -496,11 +490,33 @@ def _cmd_optimize_run_file(a) -> int:
     return 0
 
 
+def _cmd_optimize_preset(a) -> int:
+    """A design preset (``--problem srm``, ...): the run file of the flags, mapped and checked
+    by host-sim (:func:`reentry.design_run_config_of_flags`, what ``host-sim optimize
+    --print-config`` prints; the flags the re-entry problems fix refused there), run as with
+    ``--config``: host-sim optimize's run directory, which either side resumes."""
+    text = design_run_config_of_flags(
+        a.problem, generations=a.generations, seed=a.seed, reference=a.ref,
+        evaluations=a.evaluations, **_options(a),
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        config = os.path.join(tmp, "config.toml")
+        with open(config, "w", encoding="utf-8") as f:
+            f.write(text)
+        try:
+            return _run_design_run(a, a.out, config, config, False, None)
+        except _native.ReentryError as e:
+            # The run file is the flags': errors name them, not the file gone with tmp.
+            raise type(e)(str(e).replace(config, "command line")) from None
+
+
 def _cmd_optimize(a) -> int:
     if a.config is not None or a.resume is not None:
         return _cmd_optimize_run_file(a)
-    problem = _problem(a)
-    reference = _reference_point(a, problem)
+    if a.problem in _native.design_presets():
+        return _cmd_optimize_preset(a)
+    problem = TestProblem(a.problem, a.objectives)
+    reference = a.ref  # None: the problem's own
     if reference is not None:  # refused before the run, not after it
         _native.check_reference(reference, problem.get_nobj())
     options = _options(a)
@@ -818,19 +834,20 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
     o = sub.add_parser(
         "optimize",
-        help="host-sim optimize on a test or design problem (moead, nsga2, mhaco), batches "
+        help="host-sim optimize on a test or design problem (moead, nsga2, mhaco, scea), batches "
         "evaluated on Dask; the same subcommands, flags, defaults and --out files",
         description="host-sim optimize's subcommands (the algorithm, default moead), flags, "
         "defaults and run directory (population.csv, front.csv, summary.json, written by "
         "host-sim) with each batch of decisions evaluated on Dask; the run equals host-sim "
         "optimize's bit for bit. MOEA/D asks --batch-size decisions at a time (default 1, "
         "pagmo's steady state): use --batch-size > 1 (e.g. the population) to spread its "
-        "evaluations over the workers. SCEA is not offered here (host-sim optimize scea).",
+        "evaluations over the workers. A design preset (--problem srm, ...) writes host-sim's "
+        "design run directory (config.toml, checkpoints, records; --resume continues it).",
     )
     optimize_common(o, True)
     algorithms = o.add_subparsers(
-        dest="algorithm", metavar="{moead,nsga2,mhaco}",
-        help="the algorithm and its own flags (default: moead with its defaults; SCEA: host-sim optimize scea)",
+        dest="algorithm", metavar="{moead,nsga2,mhaco,scea}",
+        help="the algorithm and its own flags (default: moead with its defaults)",
     )
 
     def algorithm(name, help):
@@ -845,29 +862,33 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             "the front written and scored is then the archive's (default none)",
         )
 
+    def decomposition(sp, who):
+        # MOEA/D's and SCEA's flags (host-sim's DecompositionArgs).
+        sp.add_argument(
+            "--weights", choices=["grid", "low-discrepancy", "random"], default=None,
+            help="weight generation (default grid)",
+        )
+        sp.add_argument(
+            "--neighbours", type=int, default=None,
+            help="neighbourhood size (default 20, or population - 1 for populations of 20 or less)",
+        )
+        sp.add_argument(
+            "--mutation-probability", type=float, default=None, metavar="P",
+            help="per-variable mutation probability (default 1/variables)",
+        )
+        sp.add_argument(
+            "--batch-size", type=int, default=None,
+            help="offspring per ask (default 1: pagmo's steady state, one decision per batch, "
+            "so no two evaluations run at once; use > 1 to spread them over the Dask workers)",
+        )
+        archive(sp, who)
+        sp.add_argument(
+            "--resource-allocation", action="store_const", const=True, default=None,
+            help="MOEA/D-DRA's dynamic resource allocation (default off)",
+        )
+
     m = algorithm("moead", "MOEA/D (pagmo semantics)")
-    m.add_argument(
-        "--weights", choices=["grid", "low-discrepancy", "random"], default=None,
-        help="weight generation (default grid)",
-    )
-    m.add_argument(
-        "--neighbours", type=int, default=None,
-        help="neighbourhood size (default 20, or population - 1 for populations of 20 or less)",
-    )
-    m.add_argument(
-        "--mutation-probability", type=float, default=None, metavar="P",
-        help="per-variable mutation probability (default 1/variables)",
-    )
-    m.add_argument(
-        "--batch-size", type=int, default=None,
-        help="offspring per ask (default 1: pagmo's steady state, one decision per batch, "
-        "so no two evaluations run at once; use > 1 to spread them over the Dask workers)",
-    )
-    archive(m, "MOEA/D")
-    m.add_argument(
-        "--resource-allocation", action="store_const", const=True, default=None,
-        help="MOEA/D-DRA's dynamic resource allocation (default off)",
-    )
+    decomposition(m, "MOEA/D")
     m.add_argument(
         "--moead-operator", choices=["de", "sbx"], default=None,
         help="variation: de (pagmo's MOEA/D-DE, default) or sbx (Zhang & Li 2007)",
@@ -879,6 +900,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     h.add_argument(
         "--mhaco-constraints", choices=["feasibility-first", "objectives"], default=None,
         help="constraint handling (default feasibility-first)",
+    )
+    c = algorithm("scea", "SCEA (structured chromosomes; on the fixed-length problems MOEA/D's loop)")
+    decomposition(c, "SCEA")
+    c.add_argument(
+        "--scea-genes", choices=["random", "population", "history"], default=None,
+        help="genes of appended nodes: random (the thesis' SCEA) or population (alias history; "
+        "default)",
     )
     o.set_defaults(run=_cmd_optimize)
 

@@ -28,6 +28,10 @@ CASES = {
         "--batch-size", "4", "--resource-allocation", "--evaluations", "60", "--ref", "2,2,2",
         "--archive", "8",
     ],
+    "scea-zdt1": [
+        "--problem", "zdt1", "scea", "--population", "20", "--neighbours", "5",
+        "--batch-size", "20", "--scea-genes", "random", "--generations", "4", "--seed", "3",
+    ],
     "mhaco-constr": [
         "--problem", "constr", "mhaco", "--population", "20", "--ker", "10",
         "--n-gen-mark", "3", "--mhaco-constraints", "objectives", "--generations", "5",
@@ -113,12 +117,6 @@ def test_optimize_bad_values_give_the_librarys_message(host_sim, flags, capsys):
     assert ours.startswith("error: "), ours
     message = ours[len("error: "):]
     assert message and message in hs.stderr, (message, hs.stderr)
-
-
-def test_optimize_refuses_scea(capsys):
-    with pytest.raises(SystemExit):
-        main(["optimize", "scea", "--local"])
-    assert "invalid choice: 'scea'" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize(

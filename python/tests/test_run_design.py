@@ -214,3 +214,34 @@ def test_reentry_dask_optimize_config_and_resume_are_the_cli_run(
     assert (tmp_path / "runs" / "optimize-srm" / "front.csv").read_text() == (
         tmp_path / "cli" / "front.csv"
     ).read_text()
+
+
+def test_reentry_dask_optimize_on_a_preset_is_the_cli_run(tmp_path, host_sim, client, straight, capsys):
+    """``reentry-dask optimize --problem srm [FLAGS]`` runs the run file of the flags
+    (host-sim's mapping): the CLI's run directory, which ``--resume`` continues on Dask to the
+    straight run; the flags the re-entry problems fix are refused with host-sim's reason."""
+    from reentry.distributed import main
+
+    flags = ["--problem", "srm", "--population", "6", "--generations", "1", "moead", "--neighbours", "5"]
+    out = tmp_path / "dask"
+    assert main(["optimize", *flags, "--scheduler", client.scheduler.address, "--out", str(out)]) == 0
+    host_sim("optimize", *flags, "--out", tmp_path / "cli")
+    assert _result(out) == _result(tmp_path / "cli")
+    assert (out / "config.toml").read_text() == (tmp_path / "cli" / "config.toml").read_text()
+    assert main(["optimize", "--resume", str(out), "--generations", "3", "--scheduler", client.scheduler.address]) == 0
+    assert _result(out) == straight
+    capsys.readouterr()
+    for extra, flag in ((["--resource-allocation"], "--resource-allocation"), (["--evaluations", "60"], "--evaluations")):
+        args = ["optimize", "--problem", "srm", "moead", *extra, "--local", "--out", str(tmp_path / "refused")]
+        assert main(args) == 1
+        err = capsys.readouterr().err
+        hs = host_sim(*args[:-3], check=False)
+        assert hs.returncode != 0
+        reason = err.split(": ", 2)[-1].strip()
+        assert err.startswith(f"error: {flag} does not apply") and reason in hs.stderr, (err, hs.stderr)
+    assert not (tmp_path / "refused").exists()
+    # SCEA evaluates in process: on Dask it is refused naming the flags, not a file.
+    assert main(["optimize", "--problem", "srm", "scea", "--population", "6", "--neighbours", "5",
+                 "--generations", "1", "--scheduler", client.scheduler.address,
+                 "--out", str(tmp_path / "scea")]) == 1
+    assert capsys.readouterr().err.startswith("error: command line: field `algorithm` = scea")

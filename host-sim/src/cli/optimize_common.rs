@@ -344,26 +344,8 @@ pub(super) fn check(a: &OptimizeArgs, o: &RunOptions) -> Result<(), OptimizeErro
         why,
     };
     if wants_reentry(a) {
-        let given = [
-            (o.resource_allocation, "--resource-allocation"),
-            (
-                o.moead_operator != MoeadOperator::De,
-                "--moead-operator sbx",
-            ),
-            (o.ker.is_some(), "--ker"),
-            (
-                o.n_gen_mark != MhacoConfig::default().n_gen_mark,
-                "--n-gen-mark",
-            ),
-            (a.evaluations.is_some(), "--evaluations"),
-        ];
-        if let Some((_, flag)) = given.iter().find(|(g, _)| *g) {
-            return Err(not_for(
-                (*flag).into(),
-                "fixed on the re-entry problems (MOEA/D's DE without resource allocation, \
-                 MHACO ker = min(63, population) and n_gen_mark 7, the budget in \
-                 --generations); drop it",
-            ));
+        if let Some(flag) = crate::design::run::fixed_on_reentry(o, a.evaluations) {
+            return Err(not_for(flag.into(), crate::design::run::FIXED_ON_REENTRY));
         }
     } else if crate::optim::problems::Vlmop::by_name(&a.problem).is_some()
         && o.variable_length_spec().is_none()

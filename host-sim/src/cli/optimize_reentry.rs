@@ -35,6 +35,7 @@ fn config_of(a: &OptimizeArgs) -> Result<ReentryRunConfig, ReentryError> {
         seed: a.seed,
         threads: a.threads,
         reference,
+        evaluations: a.evaluations,
     })?)
 }
 

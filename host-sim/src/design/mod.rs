@@ -65,6 +65,15 @@ pub enum DesignError {
         /// The name given.
         name: String,
     },
+    /// An algorithm setting the re-entry problems fix ([`run::fixed_on_reentry`]).
+    #[error(
+        "{flag} does not apply to the re-entry problems: {}",
+        run::FIXED_ON_REENTRY
+    )]
+    FixedOnReentry {
+        /// The flag given (`--resource-allocation`, `--ker`, ...).
+        flag: &'static str,
+    },
     /// A decision of the wrong length.
     #[error("decision has {got} variables, the encoding expects {expected}")]
     Dimension {

@@ -26,7 +26,7 @@ use super::{
 };
 use crate::optim::chromosome::Chromosome;
 use crate::optim::run::{Checkpoint, Record, check_records, record_of};
-use crate::optim::spec::{MhacoConstraints, OptionsAlgorithm, RunOptions};
+use crate::optim::spec::{MhacoConstraints, MoeadOperator, OptionsAlgorithm, RunOptions};
 use crate::optim::{
     Algorithm, AlgorithmSpec, BatchEvaluator, Budget, BuiltAlgorithm, ChromosomeAlgorithm,
     ConstraintHandling, Executor, Individual, MhacoConfig, MoeadConfig, NewGenes, Nsga2Config,
@@ -210,6 +210,38 @@ pub struct RunFlags {
     /// `--ref` (default: the preset's, [`ReentryRunConfig::thesis`]).
     #[serde(default)]
     pub reference: Option<Vec<f64>>,
+    /// `--evaluations`: refused ([`fixed_on_reentry`]: the re-entry runs count generations).
+    #[serde(default)]
+    pub evaluations: Option<u64>,
+}
+
+/// Why the re-entry problems refuse [`fixed_on_reentry`]'s flags (the CLI's and
+/// [`ReentryRunConfig::of_flags`]' message).
+pub const FIXED_ON_REENTRY: &str = "fixed on the re-entry problems (MOEA/D's DE without \
+     resource allocation, MHACO ker = min(63, population) and n_gen_mark 7, the budget in \
+     --generations); drop it";
+
+/// The first algorithm flag in `o` (or `--evaluations`, when given) that the re-entry
+/// problems fix (they run MOEA/D's DE without resource allocation and MHACO's default `ker`
+/// and `n_gen_mark`, and count generations), if any: the one check of it, for the CLI,
+/// Python and [`ReentryRunConfig::of_flags`].
+#[must_use]
+pub fn fixed_on_reentry(o: &RunOptions, evaluations: Option<u64>) -> Option<&'static str> {
+    [
+        (o.resource_allocation, "--resource-allocation"),
+        (
+            o.moead_operator != MoeadOperator::De,
+            "--moead-operator sbx",
+        ),
+        (o.ker.is_some(), "--ker"),
+        (
+            o.n_gen_mark != crate::optim::MhacoConfig::default().n_gen_mark,
+            "--n-gen-mark",
+        ),
+        (evaluations.is_some(), "--evaluations"),
+    ]
+    .into_iter()
+    .find_map(|(given, flag)| given.then_some(flag))
 }
 
 fn default_generations() -> u64 {
@@ -231,10 +263,14 @@ impl ReentryRunConfig {
     /// `mhaco-objectives`.
     ///
     /// # Errors
-    /// [`DesignError::UnknownPreset`].
+    /// [`DesignError::UnknownPreset`]; [`DesignError::FixedOnReentry`] for a flag the
+    /// re-entry problems fix ([`fixed_on_reentry`]).
     pub fn of_flags(f: &RunFlags) -> Result<Self, DesignError> {
         let mut c = Self::thesis(&f.preset)?;
         let o = &f.options;
+        if let Some(flag) = fixed_on_reentry(o, f.evaluations) {
+            return Err(DesignError::FixedOnReentry { flag });
+        }
         c.algorithm = match (o.algorithm, o.mhaco_constraints) {
             (OptionsAlgorithm::Mhaco, MhacoConstraints::Objectives) => "mhaco-objectives".into(),
             (a, _) => a.as_str().into(),

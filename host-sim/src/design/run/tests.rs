@@ -181,3 +181,81 @@ fn algorithm_settings_are_refused_before_the_directory_is_touched() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The flags the re-entry problems fix are refused by the flags' mapping itself (what the
+/// CLI and the Python front ends call), each named; the others reach the run file.
+#[test]
+fn run_flags_refuse_what_the_reentry_problems_fix() {
+    use super::{RunFlags, fixed_on_reentry};
+    use crate::design::DesignError;
+    use crate::optim::spec::{MoeadOperator, RunOptions};
+    let flags = |options: RunOptions, evaluations: Option<u64>| RunFlags {
+        preset: "srm".into(),
+        options,
+        generations: 3,
+        seed: 4,
+        threads: 1,
+        reference: Some(vec![0.0, 1.5]),
+        evaluations,
+    };
+    let c = ReentryRunConfig::of_flags(&flags(
+        RunOptions {
+            population: 8,
+            neighbours: Some(5),
+            ..RunOptions::default()
+        },
+        None,
+    ))
+    .unwrap();
+    assert_eq!(
+        (c.population, c.neighbours, c.generations, c.seed),
+        (8, 5, 3, 4)
+    );
+    assert_eq!(c.reference, vec![0.0, 1.5]);
+    let fixed = [
+        (
+            RunOptions {
+                resource_allocation: true,
+                ..RunOptions::default()
+            },
+            None,
+            "--resource-allocation",
+        ),
+        (
+            RunOptions {
+                moead_operator: MoeadOperator::Sbx,
+                ..RunOptions::default()
+            },
+            None,
+            "--moead-operator sbx",
+        ),
+        (
+            RunOptions {
+                ker: Some(9),
+                ..RunOptions::default()
+            },
+            None,
+            "--ker",
+        ),
+        (
+            RunOptions {
+                n_gen_mark: 2,
+                ..RunOptions::default()
+            },
+            None,
+            "--n-gen-mark",
+        ),
+        (RunOptions::default(), Some(600), "--evaluations"),
+    ];
+    for (o, evaluations, flag) in fixed {
+        assert_eq!(fixed_on_reentry(&o, evaluations), Some(flag));
+        match ReentryRunConfig::of_flags(&flags(o, evaluations)) {
+            Err(e @ DesignError::FixedOnReentry { .. }) => {
+                let m = e.to_string();
+                assert!(m.starts_with(flag) && m.contains("drop it"), "{m}");
+            }
+            other => panic!("{flag}: {other:?}"),
+        }
+    }
+    assert_eq!(fixed_on_reentry(&RunOptions::default(), None), None);
+}
