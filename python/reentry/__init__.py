@@ -54,6 +54,8 @@ from .optim import (
     evolve,
     from_options,
     generations_for,
+    run_variable_length,
+    variable_length_problems,
 )
 
 __all__ = [
@@ -91,8 +93,10 @@ __all__ = [
     "hypervolume",
     "pymoo_problem",
     "run_design",
+    "run_variable_length",
     "scenario_dict",
     "scenario_toml",
     "test_problems",
+    "variable_length_problems",
     "vehicles",
 ]

@@ -38,6 +38,17 @@ def atmosphere(altitudes_m: Sequence[float], model: str = "us76") -> Dict[str, L
 def vehicles() -> List[Dict[str, Any]]: ...
 def hypervolume(points: Sequence[Sequence[float]], reference: Sequence[float]) -> float: ...
 def test_problems() -> List[str]: ...
+def variable_length_problems() -> List[str]: ...
+def run_variable_length(
+    problem: str,
+    options_json: str,
+    seed: int,
+    generations: int,
+    evaluations: Optional[int] = ...,
+    reference: Optional[Sequence[float]] = ...,
+    threads: int = ...,
+    out: Optional[str] = ...,
+) -> str: ...
 
 class Optimizer:
     """host-sim MOEA/D, NSGA-II or MHACO behind ask/tell."""

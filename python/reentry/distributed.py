@@ -39,7 +39,9 @@ import numpy as np
 from .design import DesignProblem, RobustDesignProblem, design_run_config_of_flags, run_design
 from .dispersions import DispersionCampaign
 from .flight import _source, fly_summary, scenario_dict
-from .optim import TestProblem, evaluate_batch, evolve, from_options, generations_for
+from .optim import (
+    TestProblem, evaluate_batch, evolve, from_options, generations_for, run_variable_length,
+)
 from . import _native
 
 
@@ -510,11 +512,35 @@ def _cmd_optimize_preset(a) -> int:
             raise type(e)(str(e).replace(config, "command line")) from None
 
 
+def _cmd_optimize_variable_length(a) -> int:
+    """A variable-length test problem (``vlmop1`` ... ``vlmop5``): host-sim's run
+    (:func:`reentry.run_variable_length`) in this process; its evaluations are not split
+    over Dask, so ``--local`` is required rather than a cluster left idle."""
+    if not a.local:
+        print(
+            f"error: command line: --problem {a.problem}: a variable-length problem evaluates "
+            "in this process (host-sim's run): add --local",
+            file=sys.stderr,
+        )
+        return 2
+    line = run_variable_length(
+        a.problem, a.generations, a.seed, evaluations=a.evaluations, reference=a.ref,
+        out=a.out, **_options(a),
+    )
+    print(line)
+    print("evaluated in this process, 1 evaluation thread(s)", file=sys.stderr)
+    if a.out:
+        print(f"wrote {a.out}")
+    return 0
+
+
 def _cmd_optimize(a) -> int:
     if a.config is not None or a.resume is not None:
         return _cmd_optimize_run_file(a)
     if a.problem in _native.design_presets():
         return _cmd_optimize_preset(a)
+    if a.problem in _native.variable_length_problems():
+        return _cmd_optimize_variable_length(a)
     problem = TestProblem(a.problem, a.objectives)
     reference = a.ref  # None: the problem's own
     if reference is not None:  # refused before the run, not after it

@@ -377,6 +377,39 @@ def generations_for(evaluations: int, objectives: int, **options) -> int:
     return _native.Optimizer.generations_for(json.dumps(options), int(evaluations), int(objectives))
 
 
+def run_variable_length(
+    problem: str,
+    generations: int,
+    seed: int = 1,
+    *,
+    evaluations: Optional[int] = None,
+    reference: Optional[Sequence[float]] = None,
+    threads: int = 1,
+    out: "os.PathLike[str] | str | None" = None,
+    **options,
+) -> str:
+    """``host-sim optimize --problem PROBLEM {scea,mhaco} ...`` on a variable-length test
+    problem (``vlmop1`` ... ``vlmop5``, :func:`variable_length_problems`): host-sim's run
+    (``VariableLengthRun``: SCEA, or ``algorithm="mhaco"`` as the variable-length MHACO), in
+    this process on ``threads`` evaluation threads, ``options`` as for :func:`from_options`,
+    ``evaluations`` instead of ``generations`` as ``--evaluations`` (the fewest whole
+    generations that reach it), ``reference`` by default the problem's. Returns host-sim's summary line; with ``out`` the
+    run directory ``host-sim optimize --out`` writes (population.csv one chromosome per row,
+    front.csv, summary.json), written by host-sim. MOEA/D and NSGA-II raise
+    :class:`OptimError` (real vectors only)."""
+    return _native.run_variable_length(
+        problem, json.dumps(options), int(seed), int(generations),
+        evaluations=None if evaluations is None else int(evaluations),
+        reference=None if reference is None else [float(r) for r in reference],
+        threads=int(threads), out=None if out is None else os.fspath(out),
+    )
+
+
+def variable_length_problems() -> List[str]:
+    """Names of the variable-length test problems (``vlmop1`` ... ``vlmop5``)."""
+    return list(_native.variable_length_problems())
+
+
 def evolve(
     algorithm: _Algorithm,
     problem,

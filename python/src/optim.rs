@@ -14,15 +14,16 @@ use std::path::PathBuf;
 
 use host_sim::optim::chromosome::{Chromosome, FixedLength};
 use host_sim::optim::hypervolume::hypervolume as hv;
-use host_sim::optim::problems::{NAMES, TestProblem};
+use host_sim::optim::problems::{NAMES, TestProblem, VL_NAMES, Vlmop};
 use host_sim::optim::run::{RunResult, RunSettings, real_run_report, run_report};
 use host_sim::optim::spec::RunOptions;
+use host_sim::optim::variable_length_run::VariableLengthRun;
 use host_sim::optim::{
     Algorithm, AlgorithmSpec, BatchEvaluator, Bounds, BuiltAlgorithm, ChromosomeAlgorithm,
     EvalError, Evaluation, External, Individual, NoObserver, Problem, RealAlgorithm, RealProblem,
-    SPEC_NAMES, Serial, evolve,
+    SPEC_NAMES, Serial, Threads, evolve,
 };
-use host_sim::report::write_run_report;
+use host_sim::report::{write_chromosome_run_report, write_run_report};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
@@ -773,11 +774,68 @@ fn test_problems() -> Vec<&'static str> {
     NAMES.to_vec()
 }
 
+/// Names of the variable-length test problems (`vlmop1` ... `vlmop5`).
+#[pyfunction]
+fn variable_length_problems() -> Vec<&'static str> {
+    VL_NAMES.to_vec()
+}
+
+/// `host-sim optimize --problem NAME {scea,mhaco} ...` on a variable-length test problem,
+/// in this process (host-sim's `VariableLengthRun`, `threads` evaluation threads, GIL
+/// released): `options_json` as for `Optimizer.from_options` (`algorithm` scea or mhaco),
+/// `evaluations` (instead of `generations`, as `--evaluations`: the fewest whole generations
+/// that reach it), `reference` by default the problem's. Returns the summary line; with `out`
+/// the run directory is written as `host-sim optimize --out` writes it.
+#[pyfunction]
+#[pyo3(signature = (problem, options_json, seed, generations, evaluations=None, reference=None, threads=1, out=None))]
+#[allow(clippy::too_many_arguments)]
+fn run_variable_length(
+    py: Python<'_>,
+    problem: &str,
+    options_json: &str,
+    seed: u64,
+    generations: u64,
+    evaluations: Option<u64>,
+    reference: Option<Vec<f64>>,
+    threads: usize,
+    out: Option<PathBuf>,
+) -> PyResult<String> {
+    let Some(vl) = Vlmop::by_name(problem) else {
+        return Err(PyValueError::new_err(format!(
+            "problem {problem:?}: not a variable-length problem; use one of {}",
+            VL_NAMES.join(", ")
+        )));
+    };
+    let options = run_options(options_json)?;
+    let generations = match evaluations {
+        Some(e) => options
+            .generations_for(e, vl.objectives())
+            .map_err(|why| errors::OptimError::new_err(format!("--evaluations {e}: {why}")))?,
+        None => generations,
+    };
+    let reference = reference.unwrap_or_else(|| vl.reference_point());
+    let pool = Threads::new(threads).map_err(|e| PyValueError::new_err(format!("threads: {e}")))?;
+    py.detach(|| {
+        let run = VariableLengthRun::evolve(&vl, &options, seed, generations, pool)
+            .map_err(|e| errors::OptimError::new_err(e.to_string()))?;
+        let report = run
+            .report(&vl, problem, seed, &reference, threads)
+            .map_err(|e| errors::OptimError::new_err(format!("run_report: {e}")))?;
+        if let Some(dir) = &out {
+            write_chromosome_run_report(dir, &report)
+                .map_err(|e| errors::ReentryError::new_err(e.to_string()))?;
+        }
+        Ok(report.summary.line())
+    })
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Optimizer>()?;
     m.add_class::<PyTestProblem>()?;
     m.add_function(wrap_pyfunction!(hypervolume, m)?)?;
     m.add_function(wrap_pyfunction!(test_problems, m)?)?;
+    m.add_function(wrap_pyfunction!(variable_length_problems, m)?)?;
+    m.add_function(wrap_pyfunction!(run_variable_length, m)?)?;
     m.add_function(wrap_pyfunction!(check_reference, m)?)?;
     m.add_function(wrap_pyfunction!(parse_reference, m)?)?;
     Ok(())

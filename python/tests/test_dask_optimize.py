@@ -86,6 +86,36 @@ def test_optimize_writes_host_sims_run_directory(host_sim, client, tmp_path, cas
     assert summary["population"] == int(args[args.index("--population") + 1])
 
 
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--problem", "vlmop1", "scea", "--population", "20", "--neighbours", "5",
+         "--scea-genes", "random", "--generations", "5", "--seed", "3"],
+        ["--problem", "vlmop4", "mhaco", "--population", "20", "--ker", "10",
+         "--generations", "5", "--seed", "2"],
+    ],
+    ids=["scea-vlmop1", "mhaco-vlmop4"],
+)
+def test_optimize_on_a_variable_length_problem_is_host_sims_run(host_sim, tmp_path, args, capsys):
+    """A variable-length problem: host-sim's run (``reentry.run_variable_length``) with
+    ``--local``, the CLI's files; on a cluster it is refused before anything runs; MOEA/D and
+    NSGA-II are refused with host-sim's reason."""
+    hs = host_sim("optimize", *args, "--out", tmp_path / "host-sim")
+    assert main(["optimize", *args, "--local", "--out", str(tmp_path / "local")]) == 0
+    printed = capsys.readouterr().out.splitlines()[0]
+    _same_run(tmp_path / "local", tmp_path / "host-sim", 1)
+    cut = lambda line: line.split(" in ")[0] + line.split(" s,", 1)[1]  # noqa: E731
+    assert cut(printed) == cut(hs.stdout.splitlines()[0])
+    assert main(["optimize", *args, "--workers", "2", "--out", str(tmp_path / "dask")]) == 2
+    assert "add --local" in capsys.readouterr().err
+    assert not (tmp_path / "dask").exists()
+    problem = args[:2]
+    assert main(["optimize", *problem, "nsga2", "--local"]) == 1
+    reason = capsys.readouterr().err.split("nsga2: ", 1)[1].strip()
+    hs = host_sim("optimize", *problem, "nsga2", check=False)
+    assert hs.returncode != 0 and reason in hs.stderr, (reason, hs.stderr)
+
+
 def test_optimize_defaults_are_host_sims(host_sim, tmp_path):
     """No flags but the problem and a short run: host-sim's defaults (MOEA/D, population 100,
     steady state, seed 1) on both sides."""

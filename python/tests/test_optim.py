@@ -128,6 +128,43 @@ def test_scea_from_options_equals_host_sim_optimize_scea(host_sim, tmp_path, gen
     assert summary[0]["algorithm"] == "scea" and summary[0]["front_source"] == "archive"
 
 
+def test_run_variable_length_is_host_sim_optimize_on_a_vlmop(host_sim, tmp_path):
+    """``reentry.run_variable_length`` is ``host-sim optimize --problem vlmopN {scea,mhaco}``:
+    the summary line and run directory (population.csv one chromosome per row, front.csv
+    byte for byte; summary.json but for the wall time), whatever the thread count; MOEA/D
+    and NSGA-II are refused as the CLI refuses them."""
+    assert reentry.variable_length_problems() == [f"vlmop{i}" for i in range(1, 6)]
+    for problem, algorithm, flags, options in (
+        ("vlmop2", "scea", ["--neighbours", "5", "--archive", "6"], dict(neighbours=5, archive=6)),
+        ("vlmop5", "mhaco", ["--n-gen-mark", "3"], dict(n_gen_mark=3)),
+    ):
+        cli = host_sim(
+            "optimize", "--problem", problem, "--generations", "4", algorithm, "--population", "20", *flags,
+            "--seed", "4", "--threads", "2", "--out", tmp_path / f"cli-{problem}",
+        ).stdout.splitlines()[0]
+        line = reentry.run_variable_length(
+            problem, 4, seed=4, out=tmp_path / f"py-{problem}", algorithm=algorithm,
+            population=20, **options,
+        )
+        cut = lambda s: s.split(" in ")[0] + s.split(" s,", 1)[1]  # noqa: E731
+        assert cut(line) == cut(cli), (line, cli)
+        py, hs = tmp_path / f"py-{problem}", tmp_path / f"cli-{problem}"
+        for f in ("population.csv", "front.csv"):
+            assert (py / f).read_text() == (hs / f).read_text(), (problem, f)
+        summary = [json.loads((d / "summary.json").read_text()) for d in (py, hs)]
+        for s in summary:
+            s.pop("wall_time_s")
+        assert summary[0].pop("threads") == 1 and summary[1].pop("threads") == 2
+        assert summary[0] == summary[1]
+    with pytest.raises(reentry.OptimError, match="variable-length problem runs with SCEA or MHACO"):
+        reentry.run_variable_length("vlmop1", 2, algorithm="nsga2", population=20)
+    # --evaluations is MOEA/D's and NSGA-II's budget, as in the CLI.
+    with pytest.raises(reentry.OptimError, match="--evaluations 100: applies to the moead and nsga2"):
+        reentry.run_variable_length("vlmop1", 2, evaluations=100, algorithm="scea", population=20)
+    with pytest.raises(ValueError, match="not a variable-length problem"):
+        reentry.run_variable_length("zdt1", 2, algorithm="scea")
+
+
 def test_checkpoint_mid_batch_resumes_bit_identically():
     p = reentry.TestProblem("zdt3")
     a = reentry.Moead(seed=2, population=20, neighbours=8, batch_size=6)

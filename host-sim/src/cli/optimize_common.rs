@@ -352,8 +352,7 @@ pub(super) fn check(a: &OptimizeArgs, o: &RunOptions) -> Result<(), OptimizeErro
     {
         return Err(not_for(
             format!("`optimize {algorithm}`"),
-            "a variable-length problem runs with SCEA or MHACO (the variable-length MHACO) \
-             only; use `optimize scea` or `optimize mhaco`",
+            crate::optim::variable_length_run::VARIABLE_LENGTH_ALGORITHMS,
         ));
     }
     Ok(())

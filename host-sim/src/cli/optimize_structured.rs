@@ -10,11 +10,10 @@ use std::io::Write;
 use super::optimize_common::{OptimizeArgs, OptimizeError, finish, generations_to_run, reference};
 use crate::optim::chromosome::{FixedLength, StructuredProblem};
 use crate::optim::problems::{TestProblem, Vlmop};
-use crate::optim::run::{RunResult, RunSettings, run_report, vlmop_run_report};
+use crate::optim::run::{RunResult, RunSettings, run_report};
 use crate::optim::spec::RunOptions;
-use crate::optim::{
-    Algorithm, Budget, BuiltAlgorithm, ChromosomeAlgorithm, Executor, Problem, Threads,
-};
+use crate::optim::variable_length_run::{VariableLengthRun, VariableLengthRunError};
+use crate::optim::{Algorithm, Budget, ChromosomeAlgorithm, Executor, Problem, Threads};
 
 /// A structured-chromosome run to make: the algorithm built from the flags, the generations,
 /// the hypervolume reference point and the evaluation threads.
@@ -76,8 +75,7 @@ pub(super) fn run_fixed_length(
 }
 
 /// `optimize` on a variable-length problem (SCEA, or MHACO as the variable-length MHACO:
-/// [`RunOptions::variable_length_spec`]; the others are refused before, by
-/// `optimize_common::check`).
+/// [`VariableLengthRun`]; the others are refused before, by `optimize_common::check`).
 pub(super) fn run_variable_length(
     a: &OptimizeArgs,
     options: &RunOptions,
@@ -87,25 +85,22 @@ pub(super) fn run_variable_length(
     let m = problem.objectives();
     let reference = reference(a, m, || problem.reference_point())?;
     let generations = generations_to_run(a, m)?;
-    let Some(BuiltAlgorithm::Chromosome(algorithm)) =
-        options.variable_length_spec().map(|s| s.build(a.seed))
-    else {
-        // optimize_common::check refuses these before; said rather than panicking.
-        return Err(OptimizeError::NotForProblem {
+    let run = VariableLengthRun::evolve(
+        problem,
+        options,
+        a.seed,
+        generations,
+        Threads::new(a.threads)?,
+    )
+    .map_err(|e| match e {
+        VariableLengthRunError::Optim(e) => OptimizeError::Optim(e),
+        VariableLengthRunError::NotVariableLength { .. } => OptimizeError::NotForProblem {
             what: a.algorithm_name().to_string(),
             problem: a.problem.clone(),
-            why: "a variable-length problem runs with `optimize scea` or `optimize mhaco`",
-        });
-    };
-    let run = Run {
-        algorithm,
-        generations,
-        reference: &reference,
-        threads: Threads::new(a.threads)?,
-    };
-    let (alg, wall_time_s) = evolve(problem, &run)?;
-    let result = RunResult::of::<Vlmop, _>(&alg, wall_time_s);
-    let report = vlmop_run_report(problem, &settings(a, &alg, &run), result)?;
+            why: crate::optim::variable_length_run::VARIABLE_LENGTH_ALGORITHMS,
+        },
+    })?;
+    let report = run.report(problem, &a.problem, a.seed, &reference, a.threads)?;
     writeln!(out, "{}", report.summary.line())?;
     if let Some(dir) = &a.out {
         crate::report::write_chromosome_run_report(dir, &report)?;

@@ -46,6 +46,7 @@ pub mod root;
 pub mod rows;
 pub mod run;
 pub mod spec;
+pub mod variable_length_run;
 pub mod weights;
 
 pub use algorithm::{Algorithm, Batch};
