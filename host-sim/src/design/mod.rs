@@ -44,6 +44,12 @@ use crate::analytic::AnalyticError;
 use crate::optim::BoundsError;
 use crate::scenario::ScenarioError;
 
+/// Why the re-entry problems refuse the algorithm flags they fix (`run::fixed_on_reentry`:
+/// the CLI's and `run::ReentryRunConfig::of_flags`' message).
+pub const FIXED_ON_REENTRY: &str = "fixed on the re-entry problems (MOEA/D's DE without \
+     resource allocation, MHACO ker = min(63, population) and n_gen_mark 7, the budget in \
+     --generations); drop it";
+
 /// Design-problem failures; each names the field and what to change.
 #[derive(Debug, thiserror::Error)]
 pub enum DesignError {
@@ -65,11 +71,8 @@ pub enum DesignError {
         /// The name given.
         name: String,
     },
-    /// An algorithm setting the re-entry problems fix ([`run::fixed_on_reentry`]).
-    #[error(
-        "{flag} does not apply to the re-entry problems: {}",
-        run::FIXED_ON_REENTRY
-    )]
+    /// An algorithm setting the re-entry problems fix (`run::fixed_on_reentry`).
+    #[error("{flag} does not apply to the re-entry problems: {FIXED_ON_REENTRY}")]
     FixedOnReentry {
         /// The flag given (`--resource-allocation`, `--ker`, ...).
         flag: &'static str,

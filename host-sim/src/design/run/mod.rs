@@ -215,11 +215,7 @@ pub struct RunFlags {
     pub evaluations: Option<u64>,
 }
 
-/// Why the re-entry problems refuse [`fixed_on_reentry`]'s flags (the CLI's and
-/// [`ReentryRunConfig::of_flags`]' message).
-pub const FIXED_ON_REENTRY: &str = "fixed on the re-entry problems (MOEA/D's DE without \
-     resource allocation, MHACO ker = min(63, population) and n_gen_mark 7, the budget in \
-     --generations); drop it";
+pub use super::FIXED_ON_REENTRY;
 
 /// The first algorithm flag in `o` (or `--evaluations`, when given) that the re-entry
 /// problems fix (they run MOEA/D's DE without resource allocation and MHACO's default `ker`
