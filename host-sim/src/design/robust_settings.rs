@@ -3,7 +3,9 @@
 //! (`guidance.<section>.<key>`, [`LAYER_KEYS`]) and its range in the scenario file's units.
 //! A decision's value is written into the base scenario's file model (its TOML text, as
 //! [`scenario_to_toml`] prints it) and the whole file resolved again, so the scenario's own
-//! range checks ([`parse_scenario`]) check it: one name and one check per setting. A key the
+//! range checks ([`parse_scenario`]) check it: one name and one check per setting. An element
+//! of a pair-valued key (`limit_scale`) is named `guidance.<section>.limit_scale[0]` or `[1]`,
+//! the other element keeping the base's value. A key the
 //! base writes as an integer (`every_n_ticks`, `max_reversals`, `solver_steps_per_tick`) takes
 //! its gene rounded to the nearest integer.
 
@@ -23,10 +25,31 @@ use crate::scenario::{Scenario, ScenarioError, parse_scenario, scenario_to_toml}
 pub struct SettingVariable {
     /// The scenario file's key path, `guidance.<section>.<key>` (`guidance.lateral.
     /// corridor_width_final_deg`, `guidance.replanning.tolerance_km`, ...): a number the
-    /// base scenario's stack sets (its section present).
+    /// base scenario's stack sets (its section present), or an element of a pair
+    /// (`guidance.barrier.limit_scale[0]`).
     pub field: String,
     /// `[lower, upper]` in the scenario file's units, both accepted by the scenario.
     pub range: [f64; 2],
+}
+
+/// Where a setting's value goes: `[guidance.<section>] <key>`, or element `element` of that
+/// pair; an integer key's value is rounded.
+#[derive(Clone, Debug)]
+struct SettingKey {
+    section: String,
+    key: String,
+    element: Option<usize>,
+    integer: bool,
+}
+
+/// `key[i]`: the key and `Some(Some(i))`; `key[...]` with no index 0 or 1: the key and
+/// `Some(None)` (refused by the caller); `key`: the key and `None`.
+#[allow(clippy::option_option)] // "no element" and "a bad element" differ
+fn split_element(key: &str) -> (&str, Option<Option<usize>>) {
+    match key.strip_suffix(']').and_then(|k| k.split_once('[')) {
+        Some((name, index)) => (name, Some(index.parse::<usize>().ok().filter(|i| *i < 2))),
+        None => (key, None),
+    }
 }
 
 /// The settings checked against a base stack: its file model and where each value goes.
@@ -34,8 +57,8 @@ pub struct SettingVariable {
 pub struct StackSettings {
     /// The base scenario as its file model (empty when no setting is named).
     table: toml::Table,
-    /// `(section, key, integer)` of each setting under `[guidance]`.
-    keys: Vec<(String, String, bool)>,
+    /// Where each setting goes under `[guidance]`.
+    keys: Vec<SettingKey>,
     /// The base's value of each setting.
     base: Vec<f64>,
     /// The base scenario's name in errors.
@@ -77,22 +100,23 @@ impl StackSettings {
             let name = format!("robust.settings[{i}].field");
             let parts: Vec<&str> = s.field.split('.').collect();
             let known = match parts.as_slice() {
-                ["guidance", section, key]
-                    if LAYER_KEYS
+                ["guidance", section, key] => {
+                    let (key, element) = split_element(key);
+                    LAYER_KEYS
                         .iter()
-                        .any(|(_, sec, k)| sec == section && k == key) =>
-                {
-                    Some((*section, *key))
+                        .any(|(_, sec, k)| sec == section && *k == key)
+                        .then_some((*section, key, element))
                 }
                 _ => None,
             };
-            let Some((section, key)) = known else {
+            let Some((section, key, element)) = known else {
                 return Err(bad(
                     name,
                     format!("{:?}", s.field),
                     "not a guidance layer setting: name a key of the scenario file's \
                      [guidance.lateral], [guidance.replanning], [guidance.estimator] or \
-                     [guidance.barrier] as guidance.<section>.<key>"
+                     [guidance.barrier] as guidance.<section>.<key> (an element of a pair \
+                     as guidance.<section>.<key>[0] or [1])"
                         .into(),
                 ));
             };
@@ -107,6 +131,24 @@ impl StackSettings {
                 .get("guidance")
                 .and_then(|g| g.get(section))
                 .and_then(|t| t.get(key));
+            // An element of a pair: the base must write the pair and have that element.
+            let value = match (element, value) {
+                (None, v) => v,
+                (Some(e), Some(toml::Value::Array(a))) if e.is_some_and(|e| e < a.len()) => {
+                    e.and_then(|e| a.get(e))
+                }
+                (Some(_), Some(v)) => {
+                    return Err(bad(
+                        name,
+                        format!("{:?}", s.field),
+                        format!(
+                            "not an element of the base scenario's {key} ({file}: {key} = {v}): \
+                             name [0] or [1] of a pair"
+                        ),
+                    ));
+                }
+                (Some(_), None) => None,
+            };
             let (base, integer) = match value {
                 None => {
                     let on = sections.iter().any(|sec| {
@@ -131,13 +173,18 @@ impl StackSettings {
                         format!("{:?}", s.field),
                         format!(
                             "not a number in the base scenario ({file}: {key} = {v}): only a \
-                             single number can be a decision variable"
+                             single number, or an element of a pair as {key}[0] or {key}[1], \
+                             can be a decision variable"
                         ),
                     ));
                 }
             };
-            out.keys
-                .push((section.to_string(), key.to_string(), integer));
+            out.keys.push(SettingKey {
+                section: section.to_string(),
+                key: key.to_string(),
+                element: element.flatten(),
+                integer,
+            });
             out.base.push(base);
         }
         out.table = table;
@@ -196,17 +243,26 @@ impl StackSettings {
     /// [`ScenarioError`] from the scenario's checks, naming the base file and the key.
     pub fn resolve(&self, values: &[f64]) -> Result<CampaignGuidance, ScenarioError> {
         let mut t = self.table.clone();
-        for ((section, key, integer), v) in self.keys.iter().zip(values) {
-            let value = if *integer {
+        for (k, v) in self.keys.iter().zip(values) {
+            let value = if k.integer {
                 #[allow(clippy::cast_possible_truncation)] // checked by the scenario's range
                 toml::Value::Integer(v.round() as i64)
             } else {
                 toml::Value::Float(*v)
             };
             if let Some(toml::Value::Table(g)) = t.get_mut("guidance")
-                && let Some(toml::Value::Table(sec)) = g.get_mut(section.as_str())
+                && let Some(toml::Value::Table(sec)) = g.get_mut(k.section.as_str())
             {
-                sec.insert(key.clone(), value);
+                match (k.element, sec.get_mut(k.key.as_str())) {
+                    (Some(e), Some(toml::Value::Array(a))) => {
+                        if let Some(slot) = a.get_mut(e) {
+                            *slot = value;
+                        }
+                    }
+                    _ => {
+                        sec.insert(k.key.clone(), value);
+                    }
+                }
             }
         }
         let text = toml::to_string(&t).map_err(|e| ScenarioError::Field {

@@ -420,6 +420,53 @@ fn robust_setting_genes_are_the_candidates_stack_settings() {
     assert!(p.scenario_of(&decision()).is_err(), "12 genes of 15");
 }
 
+/// An element of a pair-valued key (`limit_scale[0]`: the re-planner's heat-flux limit as a
+/// multiple of the vehicle's) is a setting gene: it is written into that element, the other
+/// keeping the base's value, and read back from the member file; a bad element is refused.
+#[test]
+fn robust_setting_gene_may_be_an_element_of_a_pair() {
+    let field = |f: &str| SettingVariable {
+        field: f.into(),
+        range: [0.5, 1.0],
+    };
+    let p = problem_with(
+        2,
+        Some("stored-reversals"),
+        vec![field("guidance.replanning.limit_scale[0]")],
+    );
+    let mut x = decision();
+    x.push(0.8);
+    let sc = member_round_trip(&p.scenario_of(&x).unwrap());
+    let layers = sc.layers.as_ref().unwrap();
+    assert_eq!(layers.settings.replan_limit_scale, [0.8, 1.0]);
+    for (f, why) in [
+        (
+            "guidance.replanning.limit_scale[2]",
+            "name [0] or [1] of a pair",
+        ),
+        (
+            "guidance.replanning.tolerance_km[0]",
+            "not an element of the base scenario's",
+        ),
+        (
+            "guidance.replanning.limit_scale[x]",
+            "name [0] or [1] of a pair",
+        ),
+    ] {
+        let (d, mut r) = config(2, Some("stored-reversals"));
+        r.settings = vec![field(f)];
+        let inner = d.problem(&examples()).unwrap();
+        let stack = d.stack_scenario(&examples()).unwrap();
+        let e = RobustProblem::new(inner, stack, r, &d.base)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`robust.settings[0].field`") && e.contains(why),
+            "{f}: {e}"
+        );
+    }
+}
+
 /// A setting that is not a number of the base's stack, named twice, or with a range the
 /// scenario refuses is refused when the problem is built, naming the entry and the value.
 #[test]
