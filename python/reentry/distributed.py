@@ -492,15 +492,21 @@ def _run_design_run(a, out, config, kind_of, resume: bool, generations) -> int:
     return 0
 
 
-def _cmd_optimize_preset(a) -> int:
-    """A design preset (``--problem srm``, ...): the run file of the flags, mapped and checked
-    by host-sim (:func:`reentry.design_run_config_of_flags`, what ``host-sim optimize
-    --print-config`` prints; the flags the re-entry problems fix refused there), run as with
-    ``--config``: host-sim optimize's run directory, which either side resumes."""
-    text = design_run_config_of_flags(
+def _flags_run_file(a) -> str:
+    """The run file of the flags on the design preset ``--problem``, mapped and checked by
+    host-sim (:func:`reentry.design_run_config_of_flags`, what ``host-sim optimize
+    --print-config`` prints; the flags the re-entry problems fix refused there)."""
+    return design_run_config_of_flags(
         a.problem, generations=a.generations, seed=a.seed, reference=a.ref,
         evaluations=a.evaluations, **_options(a),
     )
+
+
+def _cmd_optimize_preset(a) -> int:
+    """A design preset (``--problem srm``, ...): the run file of the flags
+    (:func:`_flags_run_file`) run as with ``--config``: host-sim optimize's run directory,
+    which either side resumes."""
+    text = _flags_run_file(a)
     with tempfile.TemporaryDirectory() as tmp:
         config = os.path.join(tmp, "config.toml")
         with open(config, "w", encoding="utf-8") as f:
@@ -535,6 +541,16 @@ def _cmd_optimize_variable_length(a) -> int:
 
 
 def _cmd_optimize(a) -> int:
+    if a.print_config:
+        if a.config is not None or a.resume is not None:
+            print(
+                "error: command line: --print-config prints the run file of the flags; drop "
+                "--config and --resume",
+                file=sys.stderr,
+            )
+            return 2
+        print(_flags_run_file(a), end="")
+        return 0
     if a.config is not None or a.resume is not None:
         return _cmd_optimize_run_file(a)
     if a.problem in _native.design_presets():
@@ -845,6 +861,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             help="hypervolume reference point (default: the problem's)",
         )
         sp.add_argument("--out", metavar="DIR", default=d(None), help="write population.csv, front.csv and summary.json here")
+        sp.add_argument(
+            "--print-config", action="store_true", default=d(False),
+            help="print the run file of these flags on a design preset (host-sim optimize "
+            "--print-config's text) and exit",
+        )
         runs = sp.add_mutually_exclusive_group()
         runs.add_argument(
             "--config", metavar="FILE", default=d(None),

@@ -223,6 +223,9 @@ def test_reentry_dask_optimize_on_a_preset_is_the_cli_run(tmp_path, host_sim, cl
     from reentry.distributed import main
 
     flags = ["--problem", "srm", "--population", "6", "--generations", "1", "moead", "--neighbours", "5"]
+    # --print-config prints host-sim's run file of the flags.
+    assert main(["optimize", *flags, "--print-config"]) == 0
+    assert capsys.readouterr().out == host_sim("optimize", *flags, "--print-config").stdout
     out = tmp_path / "dask"
     assert main(["optimize", *flags, "--scheduler", client.scheduler.address, "--out", str(out)]) == 0
     host_sim("optimize", *flags, "--out", tmp_path / "cli")
