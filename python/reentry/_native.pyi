@@ -130,6 +130,7 @@ def run_design(
     resume: bool = False,
     generations: Optional[int] = None,
     map_batch: Optional[Callable[[List[List[float]]], List[Tuple[List[float], List[float]]]]] = None,
+    label: Optional[str] = None,
 ) -> str: ...
 
 class DesignProblem:

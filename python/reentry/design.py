@@ -235,6 +235,7 @@ def run_design(
     resume: bool = False,
     generations: Optional[int] = None,
     map_batch=None,
+    label: Optional[str] = None,
 ) -> dict:
     """Run the run file ``config`` into the run directory ``out`` (replacing a previous run
     there), or with ``resume=True`` continue the run in ``out`` from its last checkpoint
@@ -244,6 +245,7 @@ def run_design(
     ``(f, g)`` pairs in order (default: host-sim's ``threads`` of the run file); it must
     return what the problem's own evaluation returns (the Dask evaluators do) for the run to
     be the CLI's. Fixed-length algorithms only with ``map_batch`` (SCEA runs in process).
+    ``label``: what the run's errors call the run file (default its path).
     Returns the last generation's record (``generation``, ``evaluations``,
     ``feasible_fraction``, ``hypervolume``, ``front``, ...) and ``wall_time_s``. Raises
     :class:`DesignError` naming the file, field and value."""
@@ -253,6 +255,7 @@ def run_design(
         resume=resume,
         generations=generations,
         map_batch=map_batch,
+        label=label,
     )
     return json.loads(text)
 

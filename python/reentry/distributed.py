@@ -207,6 +207,7 @@ def run_design_on_dask(
     resume: bool = False,
     generations: Optional[int] = None,
     chunk_size: Optional[int] = None,
+    label: Optional[str] = None,
 ) -> dict:
     """:func:`reentry.run_design` with every batch evaluated on the Dask cluster of
     ``client``: the run directory, checkpoints and result of ``host-sim optimize --config
@@ -222,7 +223,7 @@ def run_design_on_dask(
         map_batch = dask_batch_evaluator(client, DesignProblem(path), chunk_size)
     return run_design(
         out, None if resume else config, resume=resume, generations=generations,
-        map_batch=map_batch,
+        map_batch=map_batch, label=label,
     )
 
 
@@ -420,8 +421,6 @@ def _options(a) -> Dict[str, Any]:
     return {k: getattr(a, k) for k in _OPTION_FLAGS if getattr(a, k, None) is not None}
 
 
-
-
 def _reference_arg(text: str) -> List[float]:
     """``--ref``: host-sim's parser (finite numbers, comma-separated), its message on error."""
     try:
@@ -471,19 +470,20 @@ def _cmd_optimize_run_file(a) -> int:
     return _run_design_run(a, out, config, kind_of, resume, generations)
 
 
-def _run_design_run(a, out, config, kind_of, resume: bool, generations) -> int:
+def _run_design_run(a, out, config, kind_of, resume: bool, generations, label=None) -> int:
     """The design run of ``config`` (or ``--resume``) into ``out`` (default: the CLI's
-    directory of the run file ``kind_of``), here or on Dask; prints the library's line."""
+    directory of the run file ``kind_of``), here or on Dask; prints the library's line.
+    ``label``: what errors call the run file (default its path)."""
     _kind, default_dir = _native.run_file_info(kind_of)  # a bad file: its error, exit 1
     out = out or os.fspath(default_dir)
     if a.local:
-        last = run_design(out, config, resume=resume, generations=generations)
+        last = run_design(out, config, resume=resume, generations=generations, label=label)
         where = "in this process (the run file's threads)"
     else:
         with client_for(a.scheduler, a.workers, dashboard_address=a.dashboard) as client:
             last = run_design_on_dask(
                 out, config, client=client, resume=resume, generations=generations,
-                chunk_size=a.chunk_size,
+                chunk_size=a.chunk_size, label=label,
             )
             where = a.scheduler or f"LocalCluster({a.workers} processes)"
     if last.get("line"):
@@ -511,11 +511,8 @@ def _cmd_optimize_preset(a) -> int:
         config = os.path.join(tmp, "config.toml")
         with open(config, "w", encoding="utf-8") as f:
             f.write(text)
-        try:
-            return _run_design_run(a, a.out, config, config, False, None)
-        except _native.ReentryError as e:
-            # The run file is the flags': errors name them, not the file gone with tmp.
-            raise type(e)(str(e).replace(config, "command line")) from None
+        # The run file is the flags': its errors name them, not a file gone with tmp.
+        return _run_design_run(a, a.out, config, config, False, None, label="command line")
 
 
 def _cmd_optimize_variable_length(a) -> int:

@@ -41,10 +41,11 @@ pub(crate) fn call_map_batch(f: &Py<PyAny>, xs: &[Vec<f64>]) -> Vec<Result<Evalu
 /// decisions) into `(f, g)` pairs in order; default: host-sim's threads (`threads` of the
 /// run file). Returns the last generation's record as JSON (`generation`, `evaluations`,
 /// `feasible_fraction`, `hypervolume`, `front`, ...) with the run's `wall_time_s` and `line`,
-/// the result line `host-sim optimize` prints. The GIL is
+/// the result line `host-sim optimize` prints. `label`: what the run's errors call the run
+/// file (default its path; a front end that wrote it from flags names those). The GIL is
 /// released while the run goes.
 #[pyfunction]
-#[pyo3(signature = (out, config=None, *, resume=false, generations=None, map_batch=None))]
+#[pyo3(signature = (out, config=None, *, resume=false, generations=None, map_batch=None, label=None))]
 fn run_design(
     py: Python<'_>,
     out: PathBuf,
@@ -52,6 +53,7 @@ fn run_design(
     resume: bool,
     generations: Option<u64>,
     map_batch: Option<Py<PyAny>>,
+    label: Option<String>,
 ) -> PyResult<String> {
     let bad = |e: &dyn std::fmt::Display| errors::DesignError::new_err(e.to_string());
     let (c, src, base_dir) = match (&config, resume) {
@@ -63,7 +65,8 @@ fn run_design(
             }
             let c = parse_toml(path).map_err(|e| bad(&e))?;
             let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-            (c, path.display().to_string(), base)
+            let src = label.unwrap_or_else(|| path.display().to_string());
+            (c, src, base)
         }
         (None, true) => {
             let c = resumed_config(&out, generations).map_err(|e| bad(&e))?;

@@ -40,13 +40,15 @@ pub fn run(a: &OptimizeArgs, out: &mut dyn Write) -> Result<(), OptimizeError> {
     let algorithm = match options.spec().build(a.seed) {
         BuiltAlgorithm::Real(r) => r,
         BuiltAlgorithm::Chromosome(c) => {
-            let run = super::optimize_structured::Run {
-                algorithm: c,
+            return super::optimize_structured::run_fixed_length(
+                a,
+                &problem,
+                c,
                 generations,
-                reference: &reference,
-                threads: pool,
-            };
-            return super::optimize_structured::run_fixed_length(a, &problem, run, out);
+                &reference,
+                pool,
+                out,
+            );
         }
     };
     let run = Executor::new(&problem, algorithm)

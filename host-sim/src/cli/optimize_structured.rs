@@ -8,69 +8,48 @@
 use std::io::Write;
 
 use super::optimize_common::{OptimizeArgs, OptimizeError, finish, generations_to_run, reference};
-use crate::optim::chromosome::{FixedLength, StructuredProblem};
+use crate::optim::chromosome::FixedLength;
 use crate::optim::problems::{TestProblem, Vlmop};
 use crate::optim::run::{RunResult, RunSettings, run_report};
 use crate::optim::spec::RunOptions;
 use crate::optim::variable_length_run::{VariableLengthRun, VariableLengthRunError};
 use crate::optim::{Algorithm, Budget, ChromosomeAlgorithm, Executor, Problem, Threads};
 
-/// A structured-chromosome run to make: the algorithm built from the flags, the generations,
-/// the hypervolume reference point and the evaluation threads.
-pub(super) struct Run<'a> {
-    /// The algorithm, new.
-    pub algorithm: ChromosomeAlgorithm,
-    /// Generations after the initial population.
-    pub generations: u64,
-    /// Hypervolume reference point.
-    pub reference: &'a [f64],
-    /// Evaluation threads.
-    pub threads: Threads,
-}
-
-/// `run` on `problem`, with the evolution's wall time \[s\].
-fn evolve<P: StructuredProblem>(
-    problem: &P,
-    run: &Run<'_>,
-) -> Result<(ChromosomeAlgorithm, f64), OptimizeError> {
-    let done = Executor::new(problem, run.algorithm.clone())
-        .budget(Budget::Generations(run.generations))
-        .threads(run.threads.clone())
-        .run()?;
-    Ok((done.algorithm, done.wall_time_s))
-}
-
-/// The settings the summary reports.
-fn settings<'a>(a: &'a OptimizeArgs, alg: &ChromosomeAlgorithm, run: &Run<'a>) -> RunSettings<'a> {
-    RunSettings::of_chromosome_algorithm(
-        alg,
-        &a.problem,
-        run.generations,
-        a.seed,
-        run.reference,
-        a.threads,
-    )
-}
-
-/// SCEA on a fixed-length test problem.
+/// SCEA (`algorithm`, new) on a fixed-length test problem for `generations` generations,
+/// on `threads`, scored against `reference`.
 pub(super) fn run_fixed_length(
     a: &OptimizeArgs,
     problem: &TestProblem,
-    run: Run<'_>,
+    algorithm: ChromosomeAlgorithm,
+    generations: u64,
+    reference: &[f64],
+    threads: Threads,
     out: &mut dyn Write,
 ) -> Result<(), OptimizeError> {
     type Fixed = FixedLength<TestProblem>;
     let wrapped = FixedLength::new(problem.clone());
-    let (alg, wall_time_s) = evolve(&wrapped, &run)?;
-    let population = wrapped.real_individuals(Algorithm::<Fixed>::population(&alg));
-    let archive = Algorithm::<Fixed>::external_archive(&alg).map(|m| wrapped.real_individuals(m));
+    let run = Executor::new(&wrapped, algorithm)
+        .budget(Budget::Generations(generations))
+        .threads(threads)
+        .run()?;
+    let alg = &run.algorithm;
+    let population = wrapped.real_individuals(Algorithm::<Fixed>::population(alg));
+    let archive = Algorithm::<Fixed>::external_archive(alg).map(|m| wrapped.real_individuals(m));
     let result = RunResult {
         population: &population,
         archive: archive.as_deref(),
-        evaluations: Algorithm::<Fixed>::evaluations(&alg),
-        wall_time_s,
+        evaluations: Algorithm::<Fixed>::evaluations(alg),
+        wall_time_s: run.wall_time_s,
     };
-    let report = run_report(problem, &settings(a, &alg, &run), result)?;
+    let settings = RunSettings::of_chromosome_algorithm(
+        alg,
+        &a.problem,
+        generations,
+        a.seed,
+        reference,
+        a.threads,
+    );
+    let report = run_report(problem, &settings, result)?;
     finish(a, &report, out)
 }
 

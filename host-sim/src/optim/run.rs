@@ -332,15 +332,33 @@ impl<'a> RunSettings<'a> {
                 R::Mhaco(a) => ("mhaco", a.config().population, None, false, None),
             };
         Self {
-            problem,
             algorithm: name,
             population,
-            generations,
-            seed,
-            reference,
             archive_capacity,
             resource_allocation,
             moead_operator,
+            ..Self::of_run(problem, generations, seed, reference, threads)
+        }
+    }
+
+    /// The settings of the run itself, before the algorithm's are filled in.
+    fn of_run(
+        problem: &'a str,
+        generations: u64,
+        seed: u64,
+        reference: &'a [f64],
+        threads: usize,
+    ) -> Self {
+        Self {
+            problem,
+            algorithm: "",
+            population: 0,
+            generations,
+            seed,
+            reference,
+            archive_capacity: None,
+            resource_allocation: false,
+            moead_operator: None,
             threads,
         }
     }
@@ -372,16 +390,11 @@ impl<'a> RunSettings<'a> {
             C::VlMhaco(a) => ("vl-mhaco", a.config().population, None, false),
         };
         Self {
-            problem,
             algorithm: name,
             population,
-            generations,
-            seed,
-            reference,
             archive_capacity,
             resource_allocation,
-            moead_operator: None,
-            threads,
+            ..Self::of_run(problem, generations, seed, reference, threads)
         }
     }
 }

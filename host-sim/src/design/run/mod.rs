@@ -231,7 +231,7 @@ pub fn fixed_on_reentry(o: &RunOptions, evaluations: Option<u64>) -> Option<&'st
         ),
         (o.ker.is_some(), "--ker"),
         (
-            o.n_gen_mark != crate::optim::MhacoConfig::default().n_gen_mark,
+            o.n_gen_mark != MhacoConfig::default().n_gen_mark,
             "--n-gen-mark",
         ),
         (evaluations.is_some(), "--evaluations"),
