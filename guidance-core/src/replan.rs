@@ -52,7 +52,8 @@
 //! `max_iterations + 7 + LIMIT_GRID` predictor calls in [`PredictorMode::AutoSink`], `+ 5` in
 //! [`PredictorMode::Auto`], `+ 3` in [`PredictorMode::Chain`], [`PredictorMode::Glide`] and
 //! [`PredictorMode::Numerical`]; a hybrid solve that leaves the closed forms adds a numerical
-//! solve to its closed-form one (at most [`MAX_PREDICTOR_CALLS`]`= 2 (40 + 16) + 10 = 122`);
+//! solve to its closed-form one (at most [`MAX_PREDICTOR_CALLS`]`= 2 (40 + 16) + 18 = 130` with a warm start's guess and
+//! secant steps before each);
 //! each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
 //! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
 //! all but the last and the limit grid are range-only. In practice Brent's method converges in
@@ -98,15 +99,17 @@ pub const MAX_ITERATIONS: u8 = 40;
 /// Fractions scanned when a limit binds.
 pub const LIMIT_GRID: u8 = 16;
 
-/// Worst-case predictor calls of one [`replan`]: `2 (MAX_ITERATIONS + LIMIT_GRID) + 10`, the
+/// Worst-case predictor calls of one solve: `2 (MAX_ITERATIONS + LIMIT_GRID) + 18`, the
 /// hybrid modes' worst case: a closed-form solve ([`PredictorMode::HybridSink`]: two end points
 /// of a failed chain attempt, two of the glide attempt, two more of the glide without the sink
 /// when the range with it is not monotone, the range search, one prediction with peaks at the
 /// result, the limit grid: `MAX_ITERATIONS + 7 + LIMIT_GRID`) whose result is out of the
 /// validated domain, then the numerical solve (`MAX_ITERATIONS + 3 + LIMIT_GRID`). Every other
-/// mode needs at most `MAX_ITERATIONS + 7 + LIMIT_GRID`. A numerical prediction counts once,
-/// however many solver steps it spans.
-pub const MAX_PREDICTOR_CALLS: u8 = 2 * (MAX_ITERATIONS + LIMIT_GRID) + 10;
+/// mode needs at most `MAX_ITERATIONS + 7 + LIMIT_GRID`. A warm start
+/// ([`ReplanSolver::with_warm_start`]) adds its guess and at most three secant steps before
+/// each of the two solves (8; [`replan`] itself starts cold: at most `+ 10`). A numerical
+/// prediction counts once, however many solver steps it spans.
+pub const MAX_PREDICTOR_CALLS: u8 = 2 * (MAX_ITERATIONS + LIMIT_GRID) + 18;
 
 /// How far above the current radius a glide-mode prediction may start \[m\]. A vehicle given
 /// more lift than its equilibrium glide needs climbs to a higher equilibrium: in an

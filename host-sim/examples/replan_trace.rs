@@ -33,12 +33,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     println!(
-        "tick t_s e_hat alt_km v_m_s gamma_deg rtg_km case bank_deg pred_km pred-rtg_km applied bound est"
+        "start_tick tick calls t_s e_hat alt_km v_m_s gamma_deg rtg_km case bank_deg pred_km pred-rtg_km applied bound est"
     );
     for (r, c) in &log {
         println!(
-            "{} {:.0} {:.4} {:.2} {:.1} {:.3} {:.1} {:?} {:.2} {} {} {} {} {:?}",
+            "{} {} {} {:.0} {:.4} {:.2} {:.1} {:.3} {:.1} {:?} {:.2} {} {} {} {} {:?}",
+            r.start_tick,
             r.tick,
+            r.predictor_calls,
             r.time_s,
             r.normalized_energy,
             (c.nav.radius_m - setup.planet_radius_m) / 1e3,

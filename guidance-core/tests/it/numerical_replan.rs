@@ -210,9 +210,10 @@ fn resumable_numerical_solver_gives_the_one_shot_answer() {
     }
 }
 
-/// `ReplanningGuidance` in `Numerical` mode with one solver step per tick: no tick exceeds
-/// `STEPS_PER_SOLVER_STEP` integration steps or one completed prediction, the solve completes
-/// after as many ticks as the stepped solver takes steps, with the one-shot bank.
+/// `ReplanningGuidance` in `Numerical` mode with `k` solver steps per tick: no tick exceeds
+/// `k STEPS_PER_SOLVER_STEP` integration steps, the solve (the first: a cold start) completes
+/// with the one-shot bank and calls, in no more ticks than one step of the stepped solver per
+/// solver step of budget would take and no fewer than its integration steps need.
 #[test]
 fn replanning_numerical_with_a_step_budget_matches_one_shot() {
     let total = numerical_range(&srm(), &glide_nav(0.0), 0.6) / R_EARTH;
@@ -242,7 +243,6 @@ fn replanning_numerical_with_a_step_budget_matches_one_shot() {
         let mut work = 0_u32;
         for k in 0..400 {
             let out = g.update(&glide_nav(2.0 * f64::from(k))).unwrap();
-            assert!(out.predictor_calls <= budget);
             assert!(out.integration_steps <= u32::from(budget) * u32::from(STEPS_PER_SOLVER_STEP));
             work += out.integration_steps;
             if let Some(r) = out.replan {
@@ -251,15 +251,58 @@ fn replanning_numerical_with_a_step_budget_matches_one_shot() {
             }
         }
         let (k, r) = done.expect("the solve completes");
-        assert_eq!(
-            k + 1,
-            want_ticks.div_ceil(u32::from(budget)),
+        let per_tick = u32::from(budget) * u32::from(STEPS_PER_SOLVER_STEP);
+        let ticks = k + 1;
+        assert!(
+            ticks <= want_ticks.div_ceil(u32::from(budget)),
+            "budget {budget}: {ticks} ticks"
+        );
+        assert!(
+            ticks >= s.integration_steps().div_ceil(per_tick),
             "budget {budget}"
         );
         assert_eq!(r.bank_rad, reference.bank_rad);
         assert_eq!(r.predictor_calls, reference.predictor_calls);
         assert_eq!(work, s.integration_steps());
         assert!(r.applied);
+    }
+}
+
+/// A warm start ([`ReplanSolver::with_warm_start`]) from a guess near the cold answer, with
+/// the slope the cold solve measured, converges within the tolerance in fewer predictor calls
+/// than the cold solve, and a guess far off (at a bound) still converges (secant steps, or the
+/// cold start); an invalid guess or slope is a cold start, bit for bit.
+#[test]
+fn warm_start_converges_in_fewer_calls() {
+    for c in cases().into_iter().take(3) {
+        let mut cold = solver(&c);
+        let want = cold.run(u8::MAX).unwrap();
+        assert_eq!(want, one_shot(&c));
+        assert_eq!(want.case, ReplanCase::Converged);
+        let slope = cold.range_slope().expect("the cold solve measures a slope");
+        let (f_min, f_max) = (c.4.min_vertical_fraction, c.4.max_vertical_fraction);
+        for guess in [want.vertical_fraction * 0.97, f_min, f_max] {
+            let mut warm = solver(&c).with_warm_start(guess.clamp(f_min, f_max), slope);
+            let r = warm.run(u8::MAX).unwrap();
+            assert_eq!(r.case, ReplanCase::Converged, "guess {guess}: {r:?}");
+            let p = r.prediction.unwrap();
+            assert!((p.range_m - c.2).abs() <= c.4.tolerance_m, "guess {guess}");
+            if guess != f_min && guess != f_max {
+                assert!(
+                    r.predictor_calls < want.predictor_calls,
+                    "guess {guess}: {} calls against {} cold",
+                    r.predictor_calls,
+                    want.predictor_calls
+                );
+            }
+        }
+        for (guess, slope) in [(f64::NAN, slope), (f_max + 0.1, slope), (0.5, -slope)] {
+            let r = solver(&c)
+                .with_warm_start(guess, slope)
+                .run(u8::MAX)
+                .unwrap();
+            assert_eq!(r, want, "guess {guess}, slope {slope}");
+        }
     }
 }
 

@@ -7,7 +7,7 @@ use crate::vinh::nondim::LiftControl;
 use crate::vinh::predict::{PeakMode, Prediction, predict_with};
 
 use super::super::glide_prediction;
-use super::super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
+use super::super::numerical::NumericalRun;
 use super::ReplanSolver;
 
 impl<S: Real> ReplanSolver<S> {
@@ -79,7 +79,7 @@ impl<S: Real> ReplanSolver<S> {
                 },
             };
             let before = run.steps();
-            let out = run.advance(STEPS_PER_SOLVER_STEP);
+            let out = run.advance(self.chunk);
             self.integration_steps = self
                 .integration_steps
                 .saturating_add(u32::from(run.steps().saturating_sub(before)));

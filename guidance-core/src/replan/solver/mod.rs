@@ -17,6 +17,19 @@
 //! Every fraction evaluated or returned is clamped into `[f_min, f_max]` (no rounding can put
 //! the output an ulp outside its bounds).
 //!
+//! # Warm start
+//! [`ReplanSolver::with_warm_start`] (a guess `f0` and a range slope `s`) replaces step 1:
+//! range-only predictions at `f0`, then at secant steps (the first `f0 - miss / s`, the next
+//! ones from the last two points, lengthened by `WARM_STEP_GROWTH` = 1.5 so that a range
+//! curving away is bracketed), at most `WARM_SECANT_STEPS` = 3 of them. A step within the
+//! tolerance goes to step 3; two points on either side of the target go to Brent's method
+//! between them (step 2); a step that does not reduce the miss, a step stuck at a bound or a
+//! failed prediction goes to the cold start (step 1). The guess is always refined by one step,
+//! also within the tolerance: a guess accepted as it is lets the miss drift to the tolerance
+//! from one solve to the next. A hybrid solve's switch to the numerical predictor starts from
+//! the same guess. [`ReplanSolver::range_slope`] gives the slope the solve's last two
+//! range-only predictions measured, for the next warm start.
+//!
 //! # Numerical predictions
 //! In [`PredictorMode::Numerical`] (and [`PredictorMode::Hybrid`] /
 //! [`PredictorMode::HybridSink`] once switched) a prediction is a [`NumericalRun`] held in the
@@ -44,7 +57,7 @@ use crate::vinh::nondim::{EntryState, ExpAtmosphere, Planet, VehicleParams};
 use crate::vinh::num::{Zeroin, ZeroinStep};
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction};
 
-use super::numerical::NumericalRun;
+use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
     ReplanFallBack, ReplanLimits, ReplanResult,
@@ -54,10 +67,20 @@ use super::{LiftSchedule, PathBound};
 mod eval;
 mod switch;
 
+/// Most secant steps of a warm start before the cold start takes over.
+const WARM_SECANT_STEPS: u8 = 3;
+/// Factor on the second and later secant steps of a warm start (> 1: they overshoot a
+/// root the secant falls short of, so that the last two points bracket it).
+const WARM_STEP_GROWTH: f64 = 1.5;
+
 /// Where the solver is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 enum Phase<S> {
+    /// Next: the range at the warm start's guess `f` ([`ReplanSolver::with_warm_start`]).
+    Guess { f: S, slope: S },
+    /// Next: the range at `f`, the `n`-th secant step from the last point `f0` (miss `m0`).
+    Secant { f0: S, m0: S, f: S, n: u8 },
     /// Next: the range at `f_min`.
     EndLo,
     /// Next: the range at `f_max` (`range(f_min)` known).
@@ -113,6 +136,15 @@ pub struct ReplanSolver<S> {
     final_energy: Option<(S, S)>,
     calls: u8,
     phase: Phase<S>,
+    /// The last two range-only evaluations `(f, miss)`, newest first (the secant slope a
+    /// later warm start uses: [`ReplanSolver::range_slope`]).
+    evals: [Option<(S, S)>; 2],
+    /// The warm start's guess and slope ([`ReplanSolver::with_warm_start`]): a hybrid
+    /// solve's switch to the numerical predictor starts from it again.
+    warm: Option<(S, S)>,
+    /// Integration steps the numerical prediction in progress may take in this step
+    /// ([`ReplanSolver::run`]).
+    chunk: u16,
 }
 
 /// The rotating planet of numerical predictions: the planet without a rotation correction,
@@ -190,6 +222,9 @@ impl<S: Real> ReplanSolver<S> {
             final_energy: None,
             calls: 0,
             phase: Phase::EndLo,
+            evals: [None, None],
+            chunk: STEPS_PER_SOLVER_STEP,
+            warm: None,
         };
         let scalars = [
             target_range_m,
@@ -267,6 +302,45 @@ impl<S: Real> ReplanSolver<S> {
         self
     }
 
+    /// This solver starting from the guess `f` \[-\] (e.g. the last solve's vertical fraction)
+    /// with the range sensitivity `slope_m` \[m per unit vertical fraction\] (e.g. that
+    /// solve's [`ReplanSolver::range_slope`]) instead of from the ends of `[f_min, f_max]`
+    /// (module docs, "Warm start"). Ignored (a cold start) for a non-finite guess, a guess
+    /// outside `[f_min, f_max]`, or a slope that is not finite and positive; also ignored by
+    /// a solver that is already done.
+    #[must_use]
+    pub fn with_warm_start(mut self, f: S, slope_m: S) -> Self {
+        let ok = f.is_finite()
+            && f >= self.config.min_vertical_fraction
+            && f <= self.config.max_vertical_fraction
+            && slope_m.is_finite()
+            && slope_m > S::ZERO;
+        if ok && self.phase == Phase::EndLo {
+            self.phase = Phase::Guess { f, slope: slope_m };
+            self.warm = Some((f, slope_m));
+        }
+        self
+    }
+
+    /// The secant slope of range against vertical fraction \[m\] between the solve's last two
+    /// range-only predictions at distinct fractions, if it has made two and the slope is
+    /// finite and positive (range grows with the vertical fraction).
+    #[must_use]
+    pub fn range_slope(&self) -> Option<S> {
+        match self.evals {
+            [Some((f1, m1)), Some((f0, m0))] if f1 != f0 => {
+                let s = (m1 - m0) / (f1 - f0);
+                (s.is_finite() && s > S::ZERO).then_some(s)
+            }
+            _ => None,
+        }
+    }
+
+    /// Record a completed range-only prediction at `f` with miss `miss` \[m\].
+    fn record(&mut self, f: S, miss: S) {
+        self.evals = [Some((f, miss)), self.evals[0]];
+    }
+
     /// This solver, finished as a fall-back for `e` (out of domain) without a predictor call.
     #[must_use]
     pub(crate) fn fallen_back(mut self, e: VinhError) -> Self {
@@ -304,14 +378,41 @@ impl<S: Real> ReplanSolver<S> {
         self.numerical
     }
 
-    /// Advance by at most `max_steps` predictor calls; the result if the solve is done.
+    /// Advance by at most `max_steps` solver steps of work; the result if the solve is done.
+    ///
+    /// A solver step of work is one closed-form prediction or
+    /// [`super::numerical::STEPS_PER_SOLVER_STEP`] integration steps of numerical predictions:
+    /// the integration steps of one call are shared by as many numerical predictions as they
+    /// complete (a short prediction near the end of the flight leaves the rest of the budget
+    /// to the next one). `u8::MAX` runs the solve to completion.
     pub fn run(&mut self, max_steps: u8) -> Option<ReplanResult<S>> {
-        let mut n = 0;
-        while n < max_steps {
-            if let Some(r) = self.step() {
+        if max_steps == u8::MAX {
+            loop {
+                if let Some(r) = self.step() {
+                    return Some(r);
+                }
+            }
+        }
+        let per = u32::from(STEPS_PER_SOLVER_STEP);
+        let budget = u32::from(max_steps) * per;
+        let mut used = 0_u32;
+        while used < budget {
+            let (calls, steps) = (self.calls, self.integration_steps);
+            // The integration steps left to this call (at most `budget`: fits in u16).
+            self.chunk = u16::try_from(budget - used).unwrap_or(STEPS_PER_SOLVER_STEP);
+            let done = self.step();
+            self.chunk = STEPS_PER_SOLVER_STEP;
+            if let Some(r) = done {
                 return Some(r);
             }
-            n += 1;
+            let taken = self.integration_steps.saturating_sub(steps);
+            // A closed-form call (no integration step) costs a whole solver step; every
+            // step costs at least one unit, so the loop ends.
+            used += if taken == 0 && self.calls != calls {
+                per
+            } else {
+                taken.max(1)
+            };
         }
         self.result()
     }
@@ -376,11 +477,105 @@ impl<S: Real> ReplanSolver<S> {
             }
             match self.phase {
                 Phase::Done(r) => return Some(r),
+                Phase::Guess { f, slope } => {
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(f, PeakMode::RangeOnly)?;
+                    let miss = match r {
+                        Ok(p) => p.range_m - target,
+                        // Any failure: the cold start decides (ends, glide, switch).
+                        Err(_) => {
+                            self.phase = Phase::EndLo;
+                            return None;
+                        }
+                    };
+                    self.record(f, miss);
+                    // The guess is refined by a secant step even within the tolerance (a
+                    // guess accepted as it is would let the miss drift to the tolerance).
+                    self.phase = if miss == S::ZERO {
+                        Phase::Final {
+                            f,
+                            case: ReplanCase::Converged,
+                        }
+                    } else {
+                        let f1 = self.clamp_f(f - miss / slope);
+                        if f1 == f {
+                            // At a bound and still short or long: the cold start decides.
+                            Phase::EndLo
+                        } else {
+                            Phase::Secant {
+                                f0: f,
+                                m0: miss,
+                                f: f1,
+                                n: 1,
+                            }
+                        }
+                    };
+                    return None;
+                }
+                Phase::Secant { f0, m0, f, n } => {
+                    // None: a numerical prediction in progress (this step ends).
+                    let r = self.eval(f, PeakMode::RangeOnly)?;
+                    let miss = match r {
+                        Ok(p) => p.range_m - target,
+                        Err(_) => {
+                            self.phase = Phase::EndLo;
+                            return None;
+                        }
+                    };
+                    self.record(f, miss);
+                    self.phase = if miss.abs() <= self.config.tolerance_m {
+                        Phase::Final {
+                            f,
+                            case: ReplanCase::Converged,
+                        }
+                    } else if (miss > S::ZERO) != (m0 > S::ZERO) {
+                        // Bracketed by the guess and the secant step: Brent's search there.
+                        let (f_a, m_a, f_b, m_b) = if f0 < f {
+                            (f0, m0, f, miss)
+                        } else {
+                            (f, miss, f0, m0)
+                        };
+                        let (best_f, best_miss) = if miss.abs() < m0.abs() {
+                            (f, miss)
+                        } else {
+                            (f0, m0)
+                        };
+                        match Zeroin::new(f_a, m_a, f_b, m_b, S::ZERO) {
+                            Ok(z) => Phase::Search {
+                                z,
+                                best_f,
+                                best_miss,
+                                iterations: 0,
+                            },
+                            Err(_) => Phase::EndLo,
+                        }
+                    } else if n < WARM_SECANT_STEPS && miss.abs() < m0.abs() {
+                        // Closer, not bracketed: another secant step, lengthened so that
+                        // the next one brackets the root when the range curves.
+                        let step = (f - f0) / (m0 - miss) * miss;
+                        let f2 = self.clamp_f(f + step * S::from_f64(WARM_STEP_GROWTH));
+                        if f2 == f {
+                            Phase::EndLo
+                        } else {
+                            Phase::Secant {
+                                f0: f,
+                                m0: miss,
+                                f: f2,
+                                n: n + 1,
+                            }
+                        }
+                    } else {
+                        // Not closing in: the cold start (both ends, then Brent).
+                        Phase::EndLo
+                    };
+                    return None;
+                }
                 Phase::EndLo => {
                     // None: a numerical prediction in progress (this step ends).
                     let r = self.eval(f_lo, PeakMode::RangeOnly)?;
                     return match r {
                         Ok(p) => {
+                            self.record(f_lo, p.range_m - target);
                             self.phase = Phase::EndHi {
                                 range_lo: p.range_m,
                             };
@@ -396,6 +591,7 @@ impl<S: Real> ReplanSolver<S> {
                         Ok(p) => p.range_m,
                         Err(e) => return self.end_failed(e),
                     };
+                    self.record(f_hi, range_hi - target);
                     if range_hi < range_lo {
                         if self.glide && self.sink {
                             // PredictorMode::AutoSink: near the end the sink term (falling
@@ -459,6 +655,7 @@ impl<S: Real> ReplanSolver<S> {
                         Err(_) if self.hybrid_closed_form() => return self.switch_to_numerical(),
                         Err(e) => return self.fail(ReplanFallBack::OutOfDomain(e)),
                     };
+                    self.record(f, miss);
                     if miss.abs() < best_miss.abs() {
                         best_f = f;
                         best_miss = miss;

@@ -30,7 +30,10 @@ impl<S: Real> ReplanSolver<S> {
         self.glide = false;
         self.sink = false;
         self.run = None;
-        self.phase = Phase::EndLo;
+        self.phase = match self.warm {
+            Some((f, slope)) => Phase::Guess { f, slope },
+            None => Phase::EndLo,
+        };
         None
     }
 
