@@ -4,6 +4,9 @@
 //! ```sh
 //! cargo run --release -p host-sim --example replan_trace -- examples/validation/horus-2b-nominal.toml
 //! ```
+//!
+//! `replan_trace SCENARIO [quiet] [CASE SEED]` flies dispersed case CASE of the default
+//! dispersions with seed SEED instead (as `host-sim dispersions --seed SEED` draws it).
 
 use std::path::Path;
 
@@ -15,12 +18,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
         .nth(1)
         .ok_or("usage: replan_trace SCENARIO [quiet]")?;
-    let quiet = std::env::args().nth(2).is_some();
+    let quiet = std::env::args().nth(2).is_some_and(|a| a == "quiet");
+    let case: Option<(u32, u64)> = match (std::env::args().nth(3), std::env::args().nth(4)) {
+        (Some(c), Some(s)) => Some((c.parse()?, s.parse()?)),
+        _ => None,
+    };
+    let draw = case.map(|(i, seed)| {
+        let settings = host_sim::campaign::DispersionSettings {
+            seed,
+            ..Default::default()
+        };
+        host_sim::campaign::draw::draw_case(&settings, i)
+    });
     let sc = read_scenario(Path::new(&path))?;
     let setup = CampaignSetup::new(&sc, &path, None)?;
-    let (stored, _) = fly_case_logged(&setup, None, Mode::StoredReversals)?;
+    let (stored, _) = fly_case_logged(&setup, draw.as_ref(), Mode::StoredReversals)?;
     let mode = setup.full_mode();
-    let (guided, log) = fly_case_logged(&setup, None, mode)?;
+    let (guided, log) = fly_case_logged(&setup, draw.as_ref(), mode)?;
     println!(
         "{path}: stored+reversals miss {:.3} km ratios {:.3?}; {mode:?} miss {:.3} km ratios {:.3?} ({} re-plans)",
         stored.miss_m / 1e3,

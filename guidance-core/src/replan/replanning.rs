@@ -61,7 +61,9 @@
 //! fraction of the last converged solve and the range slope its last two predictions
 //! measured ([`ReplanSolver::range_slope`]; a solve that measured none passes the previous
 //! slope on): a guess and secant steps, then Brent's search once they bracket the target, the
-//! cold start otherwise. Fewer predictions per solve shorten the time a solve flies a stale
+//! cold start otherwise. In the hybrid modes a solve after one that went numerical starts
+//! numerical ([`ReplanSolver::numerical_from_start`]): its closed-form search would be thrown
+//! away at the switch, and each of its calls costs a solver step. Fewer predictions per solve shorten the time a solve flies a stale
 //! table. Without a converged solve before it (the first, or after a fall-back or an
 //! out-of-reach result) a solve starts cold; its answer is then bit for bit that of
 //! [`super::replan`] from the start state (tested). A whole solve in its tick (`k = 0`)
@@ -423,9 +425,9 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     last_position: Option<(P, P)>,
     /// The solve in progress.
     pending: Option<Pending<P>>,
-    /// The last converged solve's vertical fraction and range slope \[-, m\]: the next
-    /// solve's warm start ([`ReplanningConfig::warm_start`]).
-    warm: Option<(P, P)>,
+    /// The last converged solve's vertical fraction \[-\], range slope \[m\] and whether it
+    /// used the numerical predictor: the next spread solve's warm start.
+    warm: Option<(P, P, bool)>,
     /// Onboard aerodynamic estimation (`None`: the predictor flies the model as is).
     estimator: Option<AeroEstimator<P>>,
     /// The lift parameter against speed of numerical predictions and of the estimator's model.
@@ -910,7 +912,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
                     let slope = p.solver.range_slope().or(self.warm.map(|w| w.1));
                     self.warm = match (res.case, slope) {
                         (ReplanCase::Converged, Some(slope)) => {
-                            Some((res.vertical_fraction, slope))
+                            Some((res.vertical_fraction, slope, p.solver.uses_numerical()))
                         }
                         _ => None,
                     };
@@ -1004,7 +1006,14 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         // Spread solves start from the last converged one (a whole solve in its tick keeps
         // the cold start: module docs, "Bounded work per tick").
         let solver = match self.warm {
-            Some((f, slope)) if cfg.steps_per_tick > 0 => solver.with_warm_start(f, slope),
+            Some((f, slope, numerical)) if cfg.steps_per_tick > 0 => {
+                let s = solver.with_warm_start(f, slope);
+                if numerical {
+                    s.numerical_from_start()
+                } else {
+                    s
+                }
+            }
             _ => solver,
         };
         Pending {

@@ -306,6 +306,25 @@ fn warm_start_converges_in_fewer_calls() {
     }
 }
 
+/// `numerical_from_start` makes a hybrid solve the `Numerical` one bit for bit (it skips the
+/// closed-form search a switch would discard) and changes nothing in `Numerical` mode.
+#[test]
+fn numerical_from_start_is_the_numerical_solve() {
+    for c in cases() {
+        let mut numerical = c;
+        numerical.4.mode = PredictorMode::Numerical;
+        let want = one_shot(&numerical);
+        let mut s = solver(&c).numerical_from_start();
+        let r = s.run(u8::MAX).unwrap();
+        if matches!(c.4.mode, PredictorMode::Hybrid | PredictorMode::HybridSink) {
+            assert_eq!(r, want, "{:?}", c.4.mode);
+            assert!(s.uses_numerical());
+        } else {
+            assert_eq!(r, one_shot(&c));
+        }
+    }
+}
+
 /// Hybrid: in the closed forms' validated domain (both ends `InDomain`) the solve is the
 /// `Auto` one bit for bit; out of it the `Numerical` one.
 #[test]

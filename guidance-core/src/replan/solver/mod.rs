@@ -27,7 +27,8 @@
 //! failed prediction goes to the cold start (step 1). The guess is always refined by one step,
 //! also within the tolerance: a guess accepted as it is lets the miss drift to the tolerance
 //! from one solve to the next. A hybrid solve's switch to the numerical predictor starts from
-//! the same guess. [`ReplanSolver::range_slope`] gives the slope the solve's last two
+//! the same guess; [`ReplanSolver::numerical_from_start`] makes a hybrid solve numerical from
+//! its first prediction (the re-planner's spread solves after one that went numerical). [`ReplanSolver::range_slope`] gives the slope the solve's last two
 //! range-only predictions measured, for the next warm start.
 //!
 //! # Numerical predictions
@@ -318,6 +319,19 @@ impl<S: Real> ReplanSolver<S> {
         if ok && self.phase == Phase::EndLo {
             self.phase = Phase::Guess { f, slope: slope_m };
             self.warm = Some((f, slope_m));
+        }
+        self
+    }
+
+    /// This solver, if hybrid ([`PredictorMode::Hybrid`], [`PredictorMode::HybridSink`]),
+    /// on the numerical predictor from its first prediction, as after a switch (e.g. when
+    /// the last solve left the closed forms' domain; [`ReplanSolver::uses_numerical`]).
+    #[must_use]
+    pub fn numerical_from_start(mut self) -> Self {
+        if self.hybrid_closed_form() && self.result().is_none() {
+            self.numerical = true;
+            self.glide = false;
+            self.sink = false;
         }
         self
     }
