@@ -78,10 +78,11 @@
 //! spans several ticks while the short ones near the end of the flight complete a whole solve
 //! in one (docs/reference/vinh.md, "Numerical predictor").
 //!
-//! Stated budget: on the Cortex-M4F (`f32`) one guidance tick, re-planning included, stays
-//! below 200 k instructions with `k = 1` (the measured counts and their budgets:
-//! docs/reference/performance.md, `onboard-demo/insn-budget.toml`); a worst-case solve then
-//! takes at most [`super::MAX_PREDICTOR_CALLS`] ticks.
+//! Measured on the Cortex-M4F (`f32`) with `k = 1`: the largest guidance tick of the
+//! re-planner alone (numerical SRM glide) and of the SRM glide's whole stack stay below 200 k
+//! instructions; HORUS-2B's whole stack does not (359 k: 64 RK4 steps with the barrier law at
+//! every stage). The counts and their budgets: docs/reference/performance.md,
+//! `onboard-demo/insn-budget.toml`.
 //!
 //! # Cost (worst case, bounded)
 //! An update without a re-plan costs what [`Guidance::update`] costs plus one great-circle
