@@ -67,12 +67,7 @@ use super::{LiftSchedule, PathBound};
 
 mod eval;
 mod switch;
-
-/// Most secant steps of a warm start before the cold start takes over.
-const WARM_SECANT_STEPS: u8 = 3;
-/// Factor on the second and later secant steps of a warm start (> 1: they overshoot a
-/// root the secant falls short of, so that the last two points bracket it).
-const WARM_STEP_GROWTH: f64 = 1.5;
+mod warm;
 
 /// Where the solver is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,6 +166,23 @@ pub(crate) fn settings_valid<S: Real>(limits: &ReplanLimits<S>, config: &ReplanC
         && limits.heat_flux_w_m2 > S::ZERO
         && limits.g_load > S::ZERO
         && config.max_iterations <= MAX_ITERATIONS
+}
+
+/// Brent's search between the evaluations `(f, miss)` `a` and `b` (misses of opposite signs),
+/// the better of the two as the best so far.
+fn search<S: Real>(a: (S, S), b: (S, S)) -> Result<Phase<S>, VinhError> {
+    let ((f_a, m_a), (f_b, m_b)) = if a.0 < b.0 { (a, b) } else { (b, a) };
+    let (best_f, best_miss) = if m_b.abs() < m_a.abs() {
+        (f_b, m_b)
+    } else {
+        (f_a, m_a)
+    };
+    Zeroin::new(f_a, m_a, f_b, m_b, S::ZERO).map(|z| Phase::Search {
+        z,
+        best_f,
+        best_miss,
+        iterations: 0,
+    })
 }
 
 fn fall_back<S: Real>(reason: ReplanFallBack, calls: u8) -> ReplanResult<S> {
@@ -301,58 +313,6 @@ impl<S: Real> ReplanSolver<S> {
             self.final_energy = Some((mu_m3_s2, final_energy_j_kg));
         }
         self
-    }
-
-    /// This solver starting from the guess `f` \[-\] (e.g. the last solve's vertical fraction)
-    /// with the range sensitivity `slope_m` \[m per unit vertical fraction\] (e.g. that
-    /// solve's [`ReplanSolver::range_slope`]) instead of from the ends of `[f_min, f_max]`
-    /// (module docs, "Warm start"). Ignored (a cold start) for a non-finite guess, a guess
-    /// outside `[f_min, f_max]`, or a slope that is not finite and positive; also ignored by
-    /// a solver that is already done.
-    #[must_use]
-    pub fn with_warm_start(mut self, f: S, slope_m: S) -> Self {
-        let ok = f.is_finite()
-            && f >= self.config.min_vertical_fraction
-            && f <= self.config.max_vertical_fraction
-            && slope_m.is_finite()
-            && slope_m > S::ZERO;
-        if ok && self.phase == Phase::EndLo {
-            self.phase = Phase::Guess { f, slope: slope_m };
-            self.warm = Some((f, slope_m));
-        }
-        self
-    }
-
-    /// This solver, if hybrid ([`PredictorMode::Hybrid`], [`PredictorMode::HybridSink`]),
-    /// on the numerical predictor from its first prediction, as after a switch (e.g. when
-    /// the last solve left the closed forms' domain; [`ReplanSolver::uses_numerical`]).
-    #[must_use]
-    pub fn numerical_from_start(mut self) -> Self {
-        if self.hybrid_closed_form() && self.result().is_none() {
-            self.numerical = true;
-            self.glide = false;
-            self.sink = false;
-        }
-        self
-    }
-
-    /// The secant slope of range against vertical fraction \[m\] between the solve's last two
-    /// range-only predictions at distinct fractions, if it has made two and the slope is
-    /// finite and positive (range grows with the vertical fraction).
-    #[must_use]
-    pub fn range_slope(&self) -> Option<S> {
-        match self.evals {
-            [Some((f1, m1)), Some((f0, m0))] if f1 != f0 => {
-                let s = (m1 - m0) / (f1 - f0);
-                (s.is_finite() && s > S::ZERO).then_some(s)
-            }
-            _ => None,
-        }
-    }
-
-    /// Record a completed range-only prediction at `f` with miss `miss` \[m\].
-    fn record(&mut self, f: S, miss: S) {
-        self.evals = [Some((f, miss)), self.evals[0]];
     }
 
     /// This solver, finished as a fall-back for `e` (out of domain) without a predictor call.
@@ -491,99 +451,8 @@ impl<S: Real> ReplanSolver<S> {
             }
             match self.phase {
                 Phase::Done(r) => return Some(r),
-                Phase::Guess { f, slope } => {
-                    // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(f, PeakMode::RangeOnly)?;
-                    let miss = match r {
-                        Ok(p) => p.range_m - target,
-                        // Any failure: the cold start decides (ends, glide, switch).
-                        Err(_) => {
-                            self.phase = Phase::EndLo;
-                            return None;
-                        }
-                    };
-                    self.record(f, miss);
-                    // The guess is refined by a secant step even within the tolerance (a
-                    // guess accepted as it is would let the miss drift to the tolerance).
-                    self.phase = if miss == S::ZERO {
-                        Phase::Final {
-                            f,
-                            case: ReplanCase::Converged,
-                        }
-                    } else {
-                        let f1 = self.clamp_f(f - miss / slope);
-                        if f1 == f {
-                            // At a bound and still short or long: the cold start decides.
-                            Phase::EndLo
-                        } else {
-                            Phase::Secant {
-                                f0: f,
-                                m0: miss,
-                                f: f1,
-                                n: 1,
-                            }
-                        }
-                    };
-                    return None;
-                }
-                Phase::Secant { f0, m0, f, n } => {
-                    // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(f, PeakMode::RangeOnly)?;
-                    let miss = match r {
-                        Ok(p) => p.range_m - target,
-                        Err(_) => {
-                            self.phase = Phase::EndLo;
-                            return None;
-                        }
-                    };
-                    self.record(f, miss);
-                    self.phase = if miss.abs() <= self.config.tolerance_m {
-                        Phase::Final {
-                            f,
-                            case: ReplanCase::Converged,
-                        }
-                    } else if (miss > S::ZERO) != (m0 > S::ZERO) {
-                        // Bracketed by the guess and the secant step: Brent's search there.
-                        let (f_a, m_a, f_b, m_b) = if f0 < f {
-                            (f0, m0, f, miss)
-                        } else {
-                            (f, miss, f0, m0)
-                        };
-                        let (best_f, best_miss) = if miss.abs() < m0.abs() {
-                            (f, miss)
-                        } else {
-                            (f0, m0)
-                        };
-                        match Zeroin::new(f_a, m_a, f_b, m_b, S::ZERO) {
-                            Ok(z) => Phase::Search {
-                                z,
-                                best_f,
-                                best_miss,
-                                iterations: 0,
-                            },
-                            Err(_) => Phase::EndLo,
-                        }
-                    } else if n < WARM_SECANT_STEPS && miss.abs() < m0.abs() {
-                        // Closer, not bracketed: another secant step, lengthened so that
-                        // the next one brackets the root when the range curves.
-                        let step = (f - f0) / (m0 - miss) * miss;
-                        let f2 = self.clamp_f(f + step * S::from_f64(WARM_STEP_GROWTH));
-                        if f2 == f {
-                            Phase::EndLo
-                        } else {
-                            Phase::Secant {
-                                f0: f,
-                                m0: miss,
-                                f: f2,
-                                n: n + 1,
-                            }
-                        }
-                    } else {
-                        // Not closing in: the cold start (both ends, then Brent).
-                        Phase::EndLo
-                    };
-                    return None;
-                }
+                Phase::Guess { f, slope } => return self.step_guess(f, slope),
+                Phase::Secant { f0, m0, f, n } => return self.step_secant(f0, m0, f, n),
                 Phase::EndLo => {
                     // None: a numerical prediction in progress (this step ends).
                     let r = self.eval(f_lo, PeakMode::RangeOnly)?;
@@ -627,19 +496,8 @@ impl<S: Real> ReplanSolver<S> {
                             case: ReplanCase::TargetOutOfReach,
                         }
                     } else {
-                        let (m_lo, m_hi) = (range_lo - target, range_hi - target);
-                        let (best_f, best_miss) = if m_hi.abs() < m_lo.abs() {
-                            (f_hi, m_hi)
-                        } else {
-                            (f_lo, m_lo)
-                        };
-                        match Zeroin::new(f_lo, m_lo, f_hi, m_hi, S::ZERO) {
-                            Ok(z) => Phase::Search {
-                                z,
-                                best_f,
-                                best_miss,
-                                iterations: 0,
-                            },
+                        match search((f_lo, range_lo - target), (f_hi, range_hi - target)) {
+                            Ok(p) => p,
                             Err(e) => return self.fail(ReplanFallBack::OutOfDomain(e)),
                         }
                     };
