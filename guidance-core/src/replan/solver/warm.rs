@@ -34,7 +34,7 @@ impl<S: Real> ReplanSolver<S> {
         self
     }
 
-    /// This solver, if hybrid ([`PredictorMode::Hybrid`], [`PredictorMode::HybridSink`]),
+    /// This solver, if hybrid ([`super::super::PredictorMode::Hybrid`], [`super::super::PredictorMode::HybridSink`]),
     /// on the numerical predictor from its first prediction, as after a switch (e.g. when
     /// the last solve left the closed forms' domain; [`ReplanSolver::uses_numerical`]).
     #[must_use]
