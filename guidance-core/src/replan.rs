@@ -52,8 +52,8 @@
 //! `max_iterations + 7 + LIMIT_GRID` predictor calls in [`PredictorMode::AutoSink`], `+ 5` in
 //! [`PredictorMode::Auto`], `+ 3` in [`PredictorMode::Chain`], [`PredictorMode::Glide`] and
 //! [`PredictorMode::Numerical`]; a hybrid solve that leaves the closed forms adds a numerical
-//! solve to its closed-form one (at most [`MAX_PREDICTOR_CALLS`]`= 2 (40 + 16) + 18 = 130` with a warm start's guess and
-//! secant steps before each);
+//! solve to its closed-form one (at most [`MAX_PREDICTOR_CALLS`]`= 2 (40 + 16) + 18 = 130`,
+//! with a warm start's guess and secant steps before each);
 //! each chain call is at most [`crate::vinh::predict::MAX_SKIPS`]
 //! skips and arcs plus one glide (see [`crate::vinh::predict()`]), each glide call one glide;
 //! all but the last and the limit grid are range-only. In practice Brent's method converges in

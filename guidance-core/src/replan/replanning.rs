@@ -63,8 +63,8 @@
 //! slope on): a guess and secant steps, then Brent's search once they bracket the target, the
 //! cold start otherwise. In the hybrid modes a solve after one that went numerical starts
 //! numerical ([`ReplanSolver::numerical_from_start`]): its closed-form search would be thrown
-//! away at the switch, and each of its calls costs a solver step. Fewer predictions per solve shorten the time a solve flies a stale
-//! table. Without a converged solve before it (the first, or after a fall-back or an
+//! away at the switch, and each of its calls costs a solver step. Fewer predictions per solve
+//! shorten the time a solve flies a stale table. Without a converged solve before it (the first, or after a fall-back or an
 //! out-of-reach result) a solve starts cold; its answer is then bit for bit that of
 //! [`super::replan`] from the start state (tested). A whole solve in its tick (`k = 0`)
 //! always starts cold: measured on HORUS-2B (300 dispersed flights), a warm start there

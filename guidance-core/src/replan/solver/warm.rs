@@ -34,8 +34,9 @@ impl<S: Real> ReplanSolver<S> {
         self
     }
 
-    /// This solver, if hybrid ([`super::super::PredictorMode::Hybrid`], [`super::super::PredictorMode::HybridSink`]),
-    /// on the numerical predictor from its first prediction, as after a switch (e.g. when
+    /// This solver, if hybrid ([`super::super::PredictorMode::Hybrid`],
+    /// [`super::super::PredictorMode::HybridSink`]), on the numerical predictor from its first
+    /// prediction, as after a switch (e.g. when
     /// the last solve left the closed forms' domain; [`ReplanSolver::uses_numerical`]).
     #[must_use]
     pub fn numerical_from_start(mut self) -> Self {
