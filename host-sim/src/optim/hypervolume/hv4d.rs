@@ -277,6 +277,43 @@ mod tests {
         vol
     }
 
+    /// Fronts large enough that the 3-D set outgrows the short paths (more than 32
+    /// members: the binary search for a point's place; more than 64 in the prefix: several
+    /// candidate bit masks), on the sphere and, rounded to a grid, with ties.
+    #[test]
+    fn hv4d_matches_slicing_on_large_fronts() {
+        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let r = [1.1; 4];
+        let mut hv = Hv4::default();
+        for (case, &n) in [300usize, 600, 600].iter().enumerate() {
+            let mut pts = Vec::with_capacity(4 * n);
+            for _ in 0..n {
+                let v: Vec<f64> = (0..4).map(|_| next() + 1e-3).collect();
+                let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+                for a in v {
+                    let u = a / norm;
+                    pts.push(if case == 2 {
+                        (u * 40.0).round() / 40.0
+                    } else {
+                        u
+                    });
+                }
+            }
+            let want = sliced(&pts, &r);
+            let got = hv.hypervolume(&pts, &r);
+            assert!(
+                (got - want).abs() <= 1e-12 * want,
+                "case {case}, n = {n}: {got} vs {want}"
+            );
+        }
+    }
+
     #[test]
     fn hv4d_matches_slicing_on_random_and_tied_sets() {
         let mut s: u64 = 0x2545_f491_4f6c_dd1d;
