@@ -3,83 +3,77 @@
 //! O(n^2) overall, like HV4D and HV4D+ (Guerreiro, Fonseca & Emmerich 2012; Guerreiro &
 //! Fonseca 2018), with the work per new point kept local to its neighbourhood.
 //!
-//! The 3-D set ("members") is kept dense, as a structure of arrays sorted by x rank. The new
+//! The 3-D set ("members") is kept dense, as a structure of arrays sorted by x. The new
 //! point `p`'s exclusive volume is the part of its box `[p, r)` no member covers:
 //! * members with `x <= p.x` (a prefix of the array) act on the box as a "wall" at `p.x`:
 //!   two branch-free passes give the wall's height at `p.z` (the lowest `y` of those with
 //!   `z <= p.z`), the first `z` above `p.z` at which one covers `p` in x and y (the box is
 //!   covered from there: the sweep stops), whether one dominates `p` (no volume at all),
-//!   and the ones that lower the wall in between;
+//!   and the ones that lower the wall in between (a bit mask per 64 members);
 //! * members with `x > p.x` are scanned in x order only until the first one with
-//!   `z <= p.z` and `y <= p.y`: it and everything beyond it in x is covered at `p.z` already.
-//!   Those with `z <= p.z` form the staircase at `p.z`; those above `p.z` that are not yet
-//!   covered are kept;
-//! * the kept members are sorted by z and inserted into the staircase, slab by slab.
+//!   `z <= p.z` and `y <= p.y`: it and everything beyond it in x is covered at `p.z` already
+//!   (and `p` dominates none of those: that member would dominate it). Those with
+//!   `z <= p.z` form the staircase at `p.z`; those above `p.z` that are not yet covered are
+//!   kept. The scan is branch-free but for its exit: each outcome is a conditional write;
+//! * the kept members are sorted by z and inserted into the staircase, slab by slab. The
+//!   staircase in a box holds a handful of steps: a short array ([`Stair`]).
 //!
-//! On random fronts this visits a few dozen members per point in branchy code (instead of
-//! every member), plus one branch-free pass over the members. A member that `p` dominates in
-//! (x, y, z) adds nothing to any later union and leaves the set when `p` comes in.
+//! On random fronts this visits a few dozen members per point in the scan (instead of
+//! every member), plus the branch-free passes over the prefix. A member that `p` dominates
+//! in (x, y, z) adds nothing to any later union and leaves the set when `p` comes in.
 
 use super::hv3d::key;
-use super::staircase::Staircase;
+use super::stair::{Stair, sort_short};
 
 /// Hypervolume of `n` points (stride 4) strictly dominating `r`.
 pub(super) fn hypervolume(pts: &[f64], r: &[f64]) -> f64 {
     Hv4::default().hypervolume(pts, r)
 }
 
-/// The 4-D sweep's buffers, reusable across calls (the >= 5-D recursion makes many).
+/// The 4-D sweep's buffers, reusable across calls (the >= 5-D recursion makes many). All
+/// are sized once per call (`n` entries or a few more), so the per-point work indexes them
+/// without growing any vector.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Hv4 {
-    /// Sort buffer: (x key, y key, point index).
-    keys: Vec<(u64, u64, u32)>,
-    /// Sort buffer: (w key, x rank).
+    /// Sort buffer: (w key, point index).
     wkeys: Vec<(u64, u32)>,
-    /// The points by x rank: x, y, z, w.
-    px: Vec<f64>,
-    py: Vec<f64>,
-    pz: Vec<f64>,
-    pw: Vec<f64>,
-    /// Staircase over the x ranks (slot `rank + 1`; slot 0 is the wall).
-    stair: Staircase,
-    /// The 3-D set, sorted by rank.
+    /// The staircase of the box's (x, y) face at the current z.
+    stair: Stair,
+    /// The 3-D set, sorted by x.
     mem: Members,
-    /// Per call: the members above `p.z` to insert (their positions in `mem`).
-    cand: Vec<u32>,
-    /// Per call: (z key, position) of the candidates, for sorting.
-    cand_z: Vec<(u64, u32)>,
-    /// Per call: positions of the members `p` dominates.
+    /// Per point: (z, position in `mem`) of the members above `p.z` to insert.
+    cand: Vec<(f64, u32)>,
+    /// Per point: positions of the members `p` dominates.
     gone: Vec<u32>,
 }
 
-/// The members of the 3-D set, dense, sorted by x rank.
+/// The members of the 3-D set, dense, sorted by x: the first `len` entries of each array.
 #[derive(Debug, Clone, Default)]
 struct Members {
-    rank: Vec<u32>,
     x: Vec<f64>,
     y: Vec<f64>,
     z: Vec<f64>,
+    len: usize,
 }
 
 impl Members {
-    fn clear(&mut self) {
-        self.rank.clear();
-        self.x.clear();
-        self.y.clear();
-        self.z.clear();
+    /// Empty, with room for `n` members.
+    fn reset(&mut self, n: usize) {
+        for v in [&mut self.x, &mut self.y, &mut self.z] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        self.len = 0;
     }
 
-    fn len(&self) -> usize {
-        self.rank.len()
-    }
-
-    /// Insert at the position of `rank`.
-    fn insert(&mut self, rank: u32, x: f64, y: f64, z: f64) {
-        let at = self.rank.partition_point(|&q| q < rank);
-        self.rank.insert(at, rank);
-        self.x.insert(at, x);
-        self.y.insert(at, y);
-        self.z.insert(at, z);
+    /// Insert at position `at` (room for it is known).
+    fn insert(&mut self, at: usize, x: f64, y: f64, z: f64) {
+        let len = self.len;
+        for (v, c) in [(&mut self.x, x), (&mut self.y, y), (&mut self.z, z)] {
+            v.copy_within(at..len, at + 1);
+            v[at] = c;
+        }
+        self.len = len + 1;
     }
 
     /// Remove the members at `positions` (increasing).
@@ -89,21 +83,17 @@ impl Members {
         };
         let mut w = first as usize;
         let mut next = positions.iter().copied().peekable();
-        for j in first as usize..self.len() {
+        for j in first as usize..self.len {
             if next.peek() == Some(&(j as u32)) {
                 next.next();
                 continue;
             }
-            self.rank[w] = self.rank[j];
             self.x[w] = self.x[j];
             self.y[w] = self.y[j];
             self.z[w] = self.z[j];
             w += 1;
         }
-        self.rank.truncate(w);
-        self.x.truncate(w);
-        self.y.truncate(w);
-        self.z.truncate(w);
+        self.len = w;
     }
 }
 
@@ -114,71 +104,62 @@ impl Hv4 {
         if n == 0 {
             return 0.0;
         }
-        // Ranks in (x, y) order; the staircase's slots follow them.
-        self.keys.clear();
-        self.keys
-            .extend((0..n).map(|i| (key(pts[4 * i]), key(pts[4 * i + 1]), i as u32)));
-        self.keys.sort_unstable();
-        self.px.clear();
-        self.py.clear();
-        self.pz.clear();
-        self.pw.clear();
-        for &(_, _, i) in &self.keys {
-            let p = &pts[4 * i as usize..4 * i as usize + 4];
-            self.px.push(p[0]);
-            self.py.push(p[1]);
-            self.pz.push(p[2]);
-            self.pw.push(p[3]);
-        }
         self.wkeys.clear();
         self.wkeys
-            .extend(self.pw.iter().enumerate().map(|(k, &v)| (key(v), k as u32)));
+            .extend((0..n).map(|i| (key(pts[4 * i + 3]), i as u32)));
         self.wkeys.sort_unstable();
-        self.stair.fill(&self.px, r[0], r[1]);
-        self.mem.clear();
+        self.mem.reset(n);
+        self.stair.resize(n + 2);
+        self.cand.resize(n + 1, (0.0, 0));
+        self.gone.resize(n + 1, 0);
         let r3 = [r[0], r[1], r[2]];
         let mut v3 = 0.0;
         let mut vol = 0.0;
         for t in 0..n {
-            let k = self.wkeys[t].1;
-            let ku = k as usize;
-            let p = [self.px[ku], self.py[ku], self.pz[ku]];
-            let c = self.exclusive(k, p, r3);
+            let i = self.wkeys[t].1 as usize;
+            let q = &pts[4 * i..4 * i + 4];
+            let p = [q[0], q[1], q[2]];
+            let (c, e, ng) = self.exclusive(p, r3);
             if c > 0.0 {
                 v3 += c;
-                self.mem.remove(&self.gone);
-                self.mem.insert(k, p[0], p[1], p[2]);
+                self.mem.remove(&self.gone[..ng]);
+                // The members p dominates all lie beyond its place e (their x is larger).
+                self.mem.insert(e, p[0], p[1], p[2]);
             }
             let w_next = self
                 .wkeys
                 .get(t + 1)
-                .map_or(r[3], |&(_, j)| self.pw[j as usize]);
-            vol += v3 * (w_next - self.pw[ku]);
+                .map_or(r[3], |&(_, j)| pts[4 * j as usize + 3]);
+            vol += v3 * (w_next - q[3]);
         }
         vol
     }
 
-    /// The volume of the box `[p, r)` (p of x rank `k`, not a member) that no member covers.
-    /// Leaves in `self.gone` the positions of the members `p` dominates (those it found; a
-    /// missed one only costs time), valid when the result is positive.
-    fn exclusive(&mut self, k: u32, p: [f64; 3], r: [f64; 3]) -> f64 {
+    /// The volume of the box `[p, r)` (p not a member) that no member covers; `p`'s place in
+    /// the members (after those with `x <= p.x`); and the number of positions left at the
+    /// start of `self.gone`: the members `p` dominates (those it found; a missed one only
+    /// costs time), valid when the volume is positive.
+    fn exclusive(&mut self, p: [f64; 3], r: [f64; 3]) -> (f64, usize, usize) {
         let [px, py, pz] = p;
         let [rx, ry, rz] = r;
         let m = &self.mem;
-        let len = m.len();
-        self.gone.clear();
-        self.cand.clear();
-        // Members with x <= px: those of lower rank and the ties of higher rank.
-        let mut e = m.rank.partition_point(|&q| q < k);
-        while e < len && m.x[e] <= px {
-            e += 1;
-        }
+        let len = m.len;
+        let (xs, ys, zs) = (&m.x[..len], &m.y[..len], &m.z[..len]);
+        let cand = &mut self.cand[..len + 1];
+        let gone = &mut self.gone[..len + 1];
+        // Members with x <= px.
+        // (Few members: a count, which has no chain of dependent loads.)
+        let e = if len <= 32 {
+            xs.iter().map(|&q| usize::from(q <= px)).sum()
+        } else {
+            xs.partition_point(|&q| q <= px)
+        };
         // Pass 1: the wall height at pz and the z from which the box is covered, four
         // independent lanes (no loop-carried dependency, vectorisable).
-        let (ys, zs) = (&m.y[..e], &m.z[..e]);
+        let (yp, zp) = (&ys[..e], &zs[..e]);
         let mut wy4 = [ry; 4];
         let mut zc4 = [rz; 4];
-        let (yc, zc) = (ys.chunks_exact(4), zs.chunks_exact(4));
+        let (yc, zc) = (yp.chunks_exact(4), zp.chunks_exact(4));
         let (yr, zr) = (yc.remainder(), zc.remainder());
         for (y, z) in yc.zip(zc) {
             for l in 0..4 {
@@ -201,85 +182,77 @@ impl Hv4 {
         let wy = wy4.iter().fold(ry, |a, &b| if b < a { b } else { a });
         let zcap = zc4.iter().fold(rz, |a, &b| if b < a { b } else { a });
         if wy <= py {
-            return 0.0; // a member weakly dominates p
+            return (0.0, e, 0); // a member weakly dominates p
         }
-        // Pass 2: the wall members above pz that lower the wall before zcap.
-        self.cand.resize(e, 0);
+        // Pass 2: the wall members above pz that lower the wall before zcap, as bit masks
+        // of 64 members (few bits are set).
         let mut nc = 0;
-        for (j, (&y, &z)) in ys.iter().zip(zs).enumerate() {
-            self.cand[nc] = j as u32;
-            nc += usize::from((z > pz) & (z < zcap) & (y < wy));
+        for (base, (yc, zc)) in yp.chunks(64).zip(zp.chunks(64)).enumerate() {
+            let mut bits = 0u64;
+            for (l, (&y, &z)) in yc.iter().zip(zc).enumerate() {
+                bits |= u64::from((z > pz) & (z < zcap) & (y < wy)) << l;
+            }
+            while bits != 0 {
+                let j = 64 * base + bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                cand[nc] = (zp[j], j as u32);
+                nc += 1;
+            }
         }
-        self.cand.truncate(nc);
         // The members with x > px in x order, up to the first covering the rest at pz.
-        self.stair.reset(px);
+        let stair = &mut self.stair;
+        stair.reset(rx, ry);
         if wy < ry {
-            self.stair.place(0, wy);
+            stair.push(px, wy);
         }
         let mut covered = 0.0;
         let mut last_x = px;
         let mut last_y = wy;
-        let mut j = e;
-        while j < len {
-            let (x, y, z) = (m.x[j], m.y[j], m.z[j]);
-            if z <= pz {
-                if y < last_y {
-                    let yc = y.max(py);
-                    covered += (x - last_x) * (ry - last_y);
-                    self.stair.place(m.rank[j] as usize + 1, yc);
-                    last_x = x;
-                    last_y = yc;
-                    if y <= py {
-                        j += 1;
-                        break;
-                    }
-                }
-            } else {
-                if z < zcap && y < last_y {
-                    self.cand.push(j as u32);
-                }
-                if y >= py {
-                    self.gone.push(j as u32);
-                }
+        // Branch-free but for the exit: a new step, a candidate and a dominated member are
+        // each a conditional write (the slot past the end takes the others).
+        let mut ng = 0;
+        let mut sl = stair.len;
+        for j in e..len {
+            let (x, y, z) = (xs[j], ys[j], zs[j]);
+            let below = z <= pz;
+            let step = below & (y < last_y);
+            let yc = y.max(py);
+            // A step at the x of the previous one (a tie) replaces it.
+            let k = sl - usize::from(step & (x == last_x));
+            stair.x[k] = x;
+            stair.y[k] = yc;
+            sl = k + usize::from(step);
+            let area = (x - last_x) * (ry - last_y);
+            covered += if step { area } else { 0.0 };
+            cand[nc] = (z, j as u32);
+            nc += usize::from(!below & (z < zcap) & (y < last_y));
+            gone[ng] = j as u32;
+            ng += usize::from(!below & (y >= py));
+            last_x = if step { x } else { last_x };
+            last_y = if step { yc } else { last_y };
+            if step & (y <= py) {
+                break;
             }
-            j += 1;
         }
-        // Beyond it, only the members p dominates are of interest.
-        let ng = self.gone.len();
-        self.gone.resize(ng + (len - j), 0);
-        let mut ng2 = ng;
-        for (j, (&y, &z)) in m.y[j..]
-            .iter()
-            .zip(&m.z[j..])
-            .enumerate()
-            .map(|(i, v)| (i + j, v))
-        {
-            self.gone[ng2] = j as u32;
-            ng2 += usize::from((z > pz) & (y >= py));
-        }
-        self.gone.truncate(ng2);
+        stair.len = sl;
+        // Beyond the covering member c nothing matters: a member q there that p dominates
+        // would have x >= c.x, y >= p.y >= c.y and z > p.z >= c.z, so c would dominate q,
+        // and members do not dominate one another (up to ties, which only cost time).
         covered += (rx - last_x) * (ry - last_y);
         let mut uncovered = super::num::nonneg((rx - px) * (ry - py) - covered);
         // Above pz: the candidates in z order, up to zcap.
-        self.cand_z.clear();
-        self.cand_z
-            .extend(self.cand.iter().map(|&j| (key(m.z[j as usize]), j)));
-        self.cand_z.sort_unstable();
+        let cand = &mut cand[..nc];
+        sort_short(cand);
         let mut vol = 0.0;
         let mut z_prev = pz;
-        for &(_, j) in &self.cand_z {
+        for &(z, j) in cand.iter() {
             let j = j as usize;
-            let (x, y, z) = (m.x[j], m.y[j], m.z[j]);
             vol += (z - z_prev) * uncovered;
             z_prev = z;
-            let added = if x <= px {
-                self.stair.insert(0, y)
-            } else {
-                self.stair.insert(m.rank[j] as usize + 1, y.max(py))
-            };
+            let added = stair.insert(xs[j].max(px), ys[j].max(py));
             uncovered = super::num::nonneg(uncovered - added);
         }
-        vol + (zcap - z_prev) * uncovered
+        (vol + (zcap - z_prev) * uncovered, e, ng)
     }
 }
 
@@ -302,6 +275,43 @@ mod tests {
                 crate::optim::hypervolume::hv3d::hypervolume(&below, r) * (w_next - pts[4 * i + 3]);
         }
         vol
+    }
+
+    /// Fronts large enough that the 3-D set outgrows the short paths (more than 32
+    /// members: the binary search for a point's place; more than 64 in the prefix: several
+    /// candidate bit masks), on the sphere and, rounded to a grid, with ties.
+    #[test]
+    fn hv4d_matches_slicing_on_large_fronts() {
+        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let r = [1.1; 4];
+        let mut hv = Hv4::default();
+        for (case, &n) in [300usize, 600, 600].iter().enumerate() {
+            let mut pts = Vec::with_capacity(4 * n);
+            for _ in 0..n {
+                let v: Vec<f64> = (0..4).map(|_| next() + 1e-3).collect();
+                let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+                for a in v {
+                    let u = a / norm;
+                    pts.push(if case == 2 {
+                        (u * 40.0).round() / 40.0
+                    } else {
+                        u
+                    });
+                }
+            }
+            let want = sliced(&pts, &r);
+            let got = hv.hypervolume(&pts, &r);
+            assert!(
+                (got - want).abs() <= 1e-12 * want,
+                "case {case}, n = {n}: {got} vs {want}"
+            );
+        }
     }
 
     #[test]

@@ -30,6 +30,7 @@ mod hv2d;
 mod hv3d;
 mod hv4d;
 mod num;
+mod stair;
 mod staircase;
 mod wfg;
 

@@ -1,4 +1,4 @@
-//! The 2-D building block of the 3-D and 4-D sweeps: a staircase of mutually non-dominated
+//! The 2-D building block of the 3-D sweeps: a staircase of mutually non-dominated
 //! points kept in slots ordered by x (the x-ranks of the points, known in advance), stored in a
 //! hierarchical bit set so that predecessor and successor queries cost O(log_64 n) word
 //! operations instead of a balanced tree's pointer chasing.
@@ -193,14 +193,6 @@ impl Staircase {
     pub(super) fn reset(&mut self, wall_x: f64) {
         self.set.clear();
         self.x[0] = wall_x;
-    }
-
-    /// Put a point at `slot` with height `y` without any dominance check or area accounting
-    /// (the caller knows it is on the staircase, e.g. when building it from a sorted scan).
-    #[inline]
-    pub(super) fn place(&mut self, slot: usize, y: f64) {
-        self.set.insert(slot);
-        self.y[slot] = y;
     }
 
     /// Insert the point (x of `slot`, `y`); returns the area it adds to the union (0 if it

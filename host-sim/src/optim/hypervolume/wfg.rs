@@ -93,7 +93,8 @@ pub(super) struct LimitScratch {
     multi: Vec<(u64, u32)>,
     /// Per seen point: whether `p` weakly dominates it.
     dominated: Vec<bool>,
-    /// Seen points left by the single-coordinate filter, with their mask sizes.
+    /// Seen points left by the single-coordinate filter, after their masks (up to
+    /// [`GROUPED`] coordinates, taken by mask size) or their mask sizes (beyond).
     survivors: Vec<(u32, u32)>,
     /// Kept clipped points with two or more exceeding coordinates, row-major.
     kept: Vec<f64>,
@@ -230,7 +231,7 @@ fn limit_set<const N: usize>(
             if track && filtered(m, s, &best) {
                 continue;
             }
-            start[m.count_ones() as usize + 1] += 1;
+            start[popcount_small(m) + 1] += 1;
             sc.multi[kept] = (m, i);
             kept += 1;
         }
@@ -240,8 +241,10 @@ fn limit_set<const N: usize>(
         }
         sc.survivors.resize(kept, (0, 0));
         for &(m, i) in &sc.multi {
-            let k = m.count_ones() as usize;
-            sc.survivors[start[k]] = (k as u32, i);
+            let k = popcount_small(m);
+            // The mask itself (it fits: at most GROUPED bits), so the loop below need not
+            // recompute it.
+            sc.survivors[start[k]] = (m as u32, i);
             start[k] += 1;
         }
     } else {
@@ -269,13 +272,18 @@ fn limit_set<const N: usize>(
         sc.kept.clear();
         sc.kept_mask.clear();
     }
-    for &(_, i) in &sc.survivors {
+    for &(key, i) in &sc.survivors {
         let i = i as usize;
         let s = &seen[i * dm..i * dm + dm];
-        let mut m = 0u64;
-        for c in 0..dm {
-            m |= u64::from(s[c] > p[c]) << (c & 63);
-        }
+        let m = if dm <= GROUPED {
+            u64::from(key)
+        } else {
+            let mut m = 0u64;
+            for c in 0..dm {
+                m |= u64::from(s[c] > p[c]) << (c & 63);
+            }
+            m
+        };
         let q = &mut sc.q[..dm];
         for c in 0..dm {
             q[c] = p[c].max(s[c]);
@@ -325,6 +333,22 @@ fn limit_set<const N: usize>(
         out.extend_from_slice(&sc.kept);
     }
     true
+}
+
+/// The number of set bits of a mask below 2^[`GROUPED`], by table: the baseline x86-64
+/// target has no `popcnt` instruction, and `count_ones` is a dozen operations there.
+#[inline]
+fn popcount_small(m: u64) -> usize {
+    const POP: [u8; 1 << GROUPED] = {
+        let mut t = [0u8; 1 << GROUPED];
+        let mut i = 1;
+        while i < t.len() {
+            t[i] = t[i >> 1] + (i & 1) as u8;
+            i += 1;
+        }
+        t
+    };
+    usize::from(POP[m as usize & ((1 << GROUPED) - 1)])
 }
 
 /// Whether the clipped point of `s` (mask `m`, at most 64 coordinates) is weakly dominated
