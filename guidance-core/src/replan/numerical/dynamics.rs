@@ -2,6 +2,7 @@
 //! equations of motion, the RK4 step and the step rule (see the parent module), and the
 //! parabolic refinement of a sampled peak.
 
+use crate::replan::bank_shape::BankShape;
 use crate::replan::path_bound::BarrierPoint;
 use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
@@ -73,6 +74,8 @@ pub(super) struct Model<S> {
     pub(super) bound: Option<PathBound<S>>,
     /// The planet's rotation, latitude and heading held (when present; module docs).
     pub(super) rotation: Option<Rotation<S>>,
+    /// The bank follows this shape instead of the constant `f` (when present).
+    pub(super) shape: Option<BankShape<S>>,
 }
 
 /// The rotating-planet terms of the planar equations with the latitude `phi` and heading `psi`
@@ -127,6 +130,7 @@ fn add_rotation<S: Real>(w: &Rotation<S>, r: S, v: S, (sg, cg): (S, S), dy: &mut
 fn bounded_f<S: Real>(
     bound: &PathBound<S>,
     m: &Model<S>,
+    f: S,
     r: S,
     v: S,
     (sin_gamma, cos_gamma): (S, S),
@@ -152,8 +156,8 @@ fn bounded_f<S: Real>(
         bound.fraction(m.mu, r, v, sin_gamma, cl, cd, &m.vehicle)
     };
     match fb {
-        Some(fb) if fb > m.f => fb,
-        _ => m.f,
+        Some(fb) if fb > f => fb,
+        _ => f,
     }
 }
 
@@ -179,11 +183,16 @@ impl<S: Real> Model<S> {
             aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, lambda, one_l2, rho, y.v);
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
-        let f = match &self.bound {
+        let f = match &self.shape {
             None => self.f,
+            Some(s) => s.fraction(r, y.v).unwrap_or(self.f),
+        };
+        let f = match &self.bound {
+            None => f,
             Some(b) => bounded_f(
                 b,
                 self,
+                f,
                 r,
                 y.v,
                 (sg, cg),

@@ -94,6 +94,7 @@
 //! [`VinhError::EscapeTrajectory`] (ascending above escape speed out of the atmosphere),
 //! [`VinhError::NonFiniteResult`] (defensive).
 
+use super::bank_shape::BankShape;
 use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
 use crate::vinh::VinhError;
@@ -230,6 +231,7 @@ impl<S: Real> NumericalRun<S> {
                 schedule: None,
                 bound: None,
                 rotation: None,
+                shape: None,
             },
             final_speed_m_s: config.final_speed_m_s,
             final_energy: None,
@@ -276,6 +278,19 @@ impl<S: Real> NumericalRun<S> {
     pub fn with_path_bound(mut self, bound: PathBound<S>) -> Self {
         if bound.is_valid() {
             self.model.bound = Some(bound);
+        }
+        self
+    }
+
+    /// This prediction flying `shape` ([`BankShape`]) instead of the constant vertical
+    /// fraction: its offset set so that the bank at the start is the one of `lift` given to
+    /// [`NumericalRun::new`]. A start whose E-hat is not computable leaves the constant
+    /// fraction.
+    #[must_use]
+    pub fn with_bank_shape(mut self, shape: BankShape<S>) -> Self {
+        let r = self.model.radius_m + self.y.h;
+        if let Some(e) = shape.normalized_energy(r, self.y.v) {
+            self.model.shape = Some(shape.with_offset(shape.offset_for(e, self.model.f)));
         }
         self
     }

@@ -57,6 +57,10 @@ impl<S: Real> ReplanSolver<S> {
                             Some(s) => r.with_lift_schedule(s),
                             None => r,
                         };
+                        let r = match self.shape {
+                            Some(s) => r.with_bank_shape(s),
+                            None => r,
+                        };
                         let r = match self.path_bound {
                             Some(b) => r.with_path_bound(b),
                             None => r,

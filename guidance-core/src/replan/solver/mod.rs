@@ -63,7 +63,7 @@ use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
     ReplanFallBack, ReplanLimits, ReplanResult,
 };
-use super::{LiftSchedule, PathBound};
+use super::{BankShape, LiftSchedule, PathBound};
 
 mod eval;
 mod switch;
@@ -123,6 +123,8 @@ pub struct ReplanSolver<S> {
     integration_steps: u32,
     /// The lift parameter of numerical predictions against speed (else `config.lambda`).
     lift_schedule: Option<LiftSchedule<S>>,
+    /// The bank shape of numerical predictions ([`NumericalRun::with_bank_shape`]).
+    shape: Option<BankShape<S>>,
     /// The path bound numerical predictions fly ([`NumericalRun::with_path_bound`]).
     path_bound: Option<PathBound<S>>,
     /// The rotating planet of numerical predictions ([`ReplanSolver::with_rotation`]).
@@ -230,6 +232,7 @@ impl<S: Real> ReplanSolver<S> {
             run: None,
             integration_steps: 0,
             lift_schedule: None,
+            shape: None,
             path_bound: None,
             rotation: None,
             final_energy: None,
@@ -270,6 +273,15 @@ impl<S: Real> ReplanSolver<S> {
         if schedule.is_valid() {
             self.lift_schedule = Some(schedule);
         }
+        self
+    }
+
+    /// This solver with its numerical predictions flying `shape` from the vertical fraction
+    /// they are asked for at the start ([`NumericalRun::with_bank_shape`]; closed-form
+    /// predictions keep a constant bank).
+    #[must_use]
+    pub fn with_bank_shape(mut self, shape: BankShape<S>) -> Self {
+        self.shape = Some(shape);
         self
     }
 
