@@ -15,12 +15,13 @@
 //! `[acos(f_max), acos(f_min)]` at every state, as the installed nodes are.
 //!
 //! # Cost
-//! Per RK4 stage: E-hat (one division more than the state's), a scan over at most
-//! [`SHAPE_CAPACITY`] nodes, one `cos`.
+//! Per RK4 stage: E-hat (two divisions), a scan over at most [`SHAPE_CAPACITY`] nodes with one
+//! division, one cosine (in `f32` the predictor's single-precision polynomial).
 
 use crate::energy::EnergyNormalizer;
 use crate::error::GuidanceError;
 use crate::scalar::Real;
+use crate::vinh::num::cos_reduced;
 
 /// Most nodes a [`BankShape`] holds (the onboard node table's capacity,
 /// [`crate::nodes::DEFAULT_NODE_CAPACITY`]).
@@ -30,7 +31,11 @@ pub const SHAPE_CAPACITY: usize = crate::nodes::DEFAULT_NODE_CAPACITY;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BankShape<S> {
-    energy: EnergyNormalizer<S>,
+    /// E-hat's constants: `1 / (2 mu/R)` \[s^2/m^2\], `R` \[m\], the inverse span \[-\]
+    /// ([`EnergyNormalizer::parts`]).
+    half_inv_vc2: S,
+    planet_radius_m: S,
+    inv_span: S,
     /// Node E-hat \[-\], strictly decreasing.
     x: [S; SHAPE_CAPACITY],
     /// Node bank magnitude \[rad\], in `[0, pi]`.
@@ -89,8 +94,15 @@ impl<S: Real> BankShape<S> {
         if len == 0 {
             return Err(bad);
         }
+        let [vc, radius, inv_span] = energy.parts();
+        let half_inv_vc2 = (S::ONE / (vc * vc)).half();
+        if !half_inv_vc2.is_finite() {
+            return Err(bad);
+        }
         Ok(Self {
-            energy,
+            half_inv_vc2,
+            planet_radius_m: radius,
+            inv_span,
             x,
             sigma,
             len,
@@ -113,20 +125,27 @@ impl<S: Real> BankShape<S> {
     /// beyond them.
     #[must_use]
     pub fn sigma_at(&self, e_hat: S) -> S {
-        let mut prev: Option<(S, S)> = None;
-        for (x, s) in self.nodes() {
-            if e_hat >= x {
-                return match prev {
-                    None => s,
-                    Some((x0, s0)) => {
-                        let w = (x0 - e_hat) / (x0 - x);
-                        s0 + (s - s0) * w
-                    }
+        let n = usize::from(self.len).min(SHAPE_CAPACITY);
+        let (Some(xs), Some(ss)) = (self.x.get(..n), self.sigma.get(..n)) else {
+            return S::ZERO;
+        };
+        let mut i = 0_usize;
+        while i < n {
+            let (Some(&x1), Some(&s1)) = (xs.get(i), ss.get(i)) else {
+                break;
+            };
+            if e_hat >= x1 {
+                return match (
+                    i.checked_sub(1).and_then(|j| xs.get(j)),
+                    i.checked_sub(1).and_then(|j| ss.get(j)),
+                ) {
+                    (Some(&x0), Some(&s0)) => s0 + (s1 - s0) * ((x0 - e_hat) / (x0 - x1)),
+                    _ => s1,
                 };
             }
-            prev = Some((x, s));
+            i += 1;
         }
-        prev.map_or(S::ZERO, |(_, s)| s)
+        ss.last().copied().unwrap_or(S::ZERO)
     }
 
     /// `s` held in the bank interval \[rad\].
@@ -162,7 +181,11 @@ impl<S: Real> BankShape<S> {
     /// not computable).
     #[must_use]
     pub fn normalized_energy(&self, radius_m: S, speed_m_s: S) -> Option<S> {
-        self.energy.normalized(radius_m, speed_m_s).ok()
+        // `EnergyNormalizer::normalized` with one division instead of three.
+        let e = (speed_m_s * speed_m_s * self.half_inv_vc2 + S::ONE
+            - self.planet_radius_m / radius_m)
+            * self.inv_span;
+        (e.is_finite() && radius_m > S::ZERO).then_some(e)
     }
 
     /// The vertical fraction flown at `radius_m` \[m\], `speed_m_s` \[m/s\]:
@@ -170,6 +193,8 @@ impl<S: Real> BankShape<S> {
     #[must_use]
     pub fn fraction(&self, radius_m: S, speed_m_s: S) -> Option<S> {
         let e = self.normalized_energy(radius_m, speed_m_s)?;
-        Some(self.clamp(self.sigma_at(e) + self.offset_rad).cos())
+        // The bank is in [0, pi/2]: the single-precision polynomial on f32 (libm's `cosf`
+        // works in f64, soft-float on the Cortex-M4F); libm in f64.
+        Some(cos_reduced(self.clamp(self.sigma_at(e) + self.offset_rad)))
     }
 }

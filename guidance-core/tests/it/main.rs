@@ -1,7 +1,7 @@
 //! The guidance-core integration-test binary (one per crate). Each module is one topic.
 
-mod estimate;
 mod bank_shape;
+mod estimate;
 mod guidance_props;
 mod lateral;
 mod lateral_terminal;

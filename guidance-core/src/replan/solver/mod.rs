@@ -59,11 +59,11 @@ use crate::vinh::num::{Zeroin, ZeroinStep};
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction};
 
 use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
+use super::{BankShape, LiftSchedule, PathBound};
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
     ReplanFallBack, ReplanLimits, ReplanResult,
 };
-use super::{BankShape, LiftSchedule, PathBound};
 
 mod eval;
 mod switch;
