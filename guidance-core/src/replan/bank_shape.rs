@@ -192,9 +192,15 @@ impl<S: Real> BankShape<S> {
     /// `cos(clamp(shape(E-hat) + offset))` (`None` where E-hat is not computable).
     #[must_use]
     pub fn fraction(&self, radius_m: S, speed_m_s: S) -> Option<S> {
+        self.fraction_with(radius_m, speed_m_s, self.offset_rad)
+    }
+
+    /// [`BankShape::fraction`] with the offset `offset_rad` \[rad\] instead of the one held.
+    #[must_use]
+    pub fn fraction_with(&self, radius_m: S, speed_m_s: S, offset_rad: S) -> Option<S> {
         let e = self.normalized_energy(radius_m, speed_m_s)?;
         // The bank is in [0, pi/2]: the single-precision polynomial on f32 (libm's `cosf`
         // works in f64, soft-float on the Cortex-M4F); libm in f64.
-        Some(cos_reduced(self.clamp(self.sigma_at(e) + self.offset_rad)))
+        Some(cos_reduced(self.clamp(self.sigma_at(e) + offset_rad)))
     }
 }

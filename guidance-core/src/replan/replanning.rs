@@ -945,8 +945,8 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             let before = p.solver.predictor_calls();
             let steps_before = p.solver.integration_steps();
             let done = match self.config.steps_per_tick {
-                0 => p.solver.run(u8::MAX),
-                k => p.solver.run(k),
+                0 => p.solver.run_shaped(u8::MAX, self.shape.as_ref()),
+                k => p.solver.run_shaped(k, self.shape.as_ref()),
             };
             calls = p.solver.predictor_calls().saturating_sub(before);
             steps = p.solver.integration_steps().saturating_sub(steps_before);
@@ -1033,10 +1033,6 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         );
         let solver = match self.lift_schedule {
             Some(s) => solver.with_lift_schedule(s),
-            None => solver,
-        };
-        let solver = match self.shape {
-            Some(s) => solver.with_bank_shape(s),
             None => solver,
         };
         let solver = match self.path_bound {

@@ -96,11 +96,16 @@ fn range_m(f: f64, shape: Option<BankShape<f64>>) -> f64 {
         PeakMode::RangeOnly,
     )
     .unwrap();
-    let mut run = match shape {
-        Some(s) => run.with_bank_shape(s),
-        None => run,
-    };
-    run.advance(MAX_STEPS).unwrap().unwrap().range_m
+    match shape {
+        Some(s) => {
+            let mut run = run.with_bank_shape(&s);
+            run.advance_shaped(MAX_STEPS, Some(&s)).unwrap().unwrap().range_m
+        }
+        None => {
+            let mut run = run;
+            run.advance(MAX_STEPS).unwrap().unwrap().range_m
+        }
+    }
 }
 
 #[test]

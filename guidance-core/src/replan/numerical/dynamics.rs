@@ -74,8 +74,9 @@ pub(super) struct Model<S> {
     pub(super) bound: Option<PathBound<S>>,
     /// The planet's rotation, latitude and heading held (when present; module docs).
     pub(super) rotation: Option<Rotation<S>>,
-    /// The bank follows this shape instead of the constant `f` (when present).
-    pub(super) shape: Option<BankShape<S>>,
+    /// The offset \[rad\] of the bank shape the prediction flies (when present: the shape is
+    /// passed to [`Model::rates`], not held, so that the solver's copies stay small).
+    pub(super) shape_offset: Option<S>,
 }
 
 /// The rotating-planet terms of the planar equations with the latitude `phi` and heading `psi`
@@ -172,7 +173,7 @@ fn scheduled<S: Real>(schedule: &LiftSchedule<S>, v: S) -> (S, S) {
 
 impl<S: Real> Model<S> {
     #[inline(always)]
-    pub(super) fn rates(&self, y: &Y<S>) -> Rates<S> {
+    pub(super) fn rates(&self, y: &Y<S>, shape: Option<&BankShape<S>>) -> Rates<S> {
         let r = self.radius_m + y.h;
         let rho = self.atmosphere_h.density_unchecked(y.h);
         let (lambda, one_l2) = match &self.schedule {
@@ -183,9 +184,9 @@ impl<S: Real> Model<S> {
             aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, lambda, one_l2, rho, y.v);
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
-        let f = match &self.shape {
-            None => self.f,
-            Some(s) => s.fraction(r, y.v).unwrap_or(self.f),
+        let f = match (shape, self.shape_offset) {
+            (Some(s), Some(offset)) => s.fraction_with(r, y.v, offset).unwrap_or(self.f),
+            _ => self.f,
         };
         let f = match &self.bound {
             None => f,
@@ -220,11 +221,11 @@ impl<S: Real> Model<S> {
     }
 
     /// One classic RK4 step of `dt` from `y` with first stage `k1`.
-    pub(super) fn rk4(&self, y: &Y<S>, k1: &Y<S>, dt: S) -> Y<S> {
+    pub(super) fn rk4(&self, y: &Y<S>, k1: &Y<S>, dt: S, shape: Option<&BankShape<S>>) -> Y<S> {
         let half = dt.half();
-        let k2 = self.rates(&y.axpy(k1, half)).dy;
-        let k3 = self.rates(&y.axpy(&k2, half)).dy;
-        let k4 = self.rates(&y.axpy(&k3, dt)).dy;
+        let k2 = self.rates(&y.axpy(k1, half), shape).dy;
+        let k3 = self.rates(&y.axpy(&k2, half), shape).dy;
+        let k4 = self.rates(&y.axpy(&k3, dt), shape).dy;
         let two: S = k(2.0);
         let sum = Y {
             h: k1.h + two * (k2.h + k3.h) + k4.h,
