@@ -765,7 +765,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     /// of a constant bank, and each re-plan installing the solved offset on the stored
     /// magnitudes of the nodes below E-hat and of the node that starts the segment being flown
     /// (what is flown is then what was predicted). Closed-form predictions keep a constant
-    /// bank: use it with [`PredictorMode::Numerical`].
+    /// bank: use it with [`super::PredictorMode::Numerical`].
     ///
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for a table of more than [`super::SHAPE_CAPACITY`] nodes or

@@ -99,7 +99,10 @@ fn range_m(f: f64, shape: Option<BankShape<f64>>) -> f64 {
     match shape {
         Some(s) => {
             let mut run = run.with_bank_shape(&s);
-            run.advance_shaped(MAX_STEPS, Some(&s)).unwrap().unwrap().range_m
+            run.advance_shaped(MAX_STEPS, Some(&s))
+                .unwrap()
+                .unwrap()
+                .range_m
         }
         None => {
             let mut run = run;

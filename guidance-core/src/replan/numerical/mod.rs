@@ -429,7 +429,10 @@ impl<S: Real> NumericalRun<S> {
     }
 
     /// One integration step; the outcome if the prediction ends.
-    fn step_once(&mut self, shape: Option<&BankShape<S>>) -> Option<Result<Prediction<S>, VinhError>> {
+    fn step_once(
+        &mut self,
+        shape: Option<&BankShape<S>>,
+    ) -> Option<Result<Prediction<S>, VinhError>> {
         if self.steps >= MAX_STEPS {
             return Some(Err(VinhError::StepLimit));
         }

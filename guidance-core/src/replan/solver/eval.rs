@@ -6,8 +6,8 @@ use crate::vinh::VinhError;
 use crate::vinh::nondim::LiftControl;
 use crate::vinh::predict::{PeakMode, Prediction, predict_with};
 
-use super::super::glide_prediction;
 use super::super::BankShape;
+use super::super::glide_prediction;
 use super::super::numerical::NumericalRun;
 use super::ReplanSolver;
 
