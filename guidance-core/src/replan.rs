@@ -64,12 +64,14 @@
 //! predictor call per tick ([`ReplanningConfig::steps_per_tick`]) the largest guidance tick is
 //! 115 k instructions.
 
+mod bank_shape;
 mod lift_schedule;
 pub mod numerical;
 mod path_bound;
 mod replanning;
 mod solver;
 
+pub use bank_shape::{BankShape, SHAPE_CAPACITY};
 pub use lift_schedule::{LiftSchedule, LiftScheduleError, SCHEDULE_NODES, ScheduleNode};
 pub use numerical::{NumericalRun, predict_numerical};
 pub use path_bound::{

@@ -109,6 +109,7 @@ use crate::nodes::{DEFAULT_NODE_CAPACITY, HOST_NODE_CAPACITY, Independent, NodeT
 use crate::scalar::{Real, Scalar};
 use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 
+use super::BankShape;
 use super::{
     LiftSchedule, PathBound, ReplanCase, ReplanConfig, ReplanLimits, ReplanResult, ReplanSolver,
 };
@@ -447,6 +448,9 @@ pub struct ReplanningGuidance<S, const N: usize = DEFAULT_NODE_CAPACITY, P = S> 
     /// The last sensed aerodynamic accelerations and their sample's time \[s\] (for the
     /// barrier bound).
     sensed: Option<(S, SensedAero<P>)>,
+    /// The stored profile's bank against E-hat that numerical predictions fly and re-plans
+    /// shift ([`ReplanningGuidance::with_bank_shape`]).
+    shape: Option<BankShape<P>>,
 }
 
 /// `x` in the predictor scalar (through `f64`; exact when both are the same type).
@@ -606,6 +610,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             final_energy_j_kg: None,
             numerical_rotation: false,
             sensed: None,
+            shape: None,
         })
     }
 
@@ -755,6 +760,45 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         self
     }
 
+    /// This guidance with its numerical predictions flying the stored profile's bank shape
+    /// ([`BankShape`]: the table's magnitudes against E-hat now, shifted by one offset) instead
+    /// of a constant bank, and each re-plan installing the solved offset on the stored
+    /// magnitudes of the nodes below E-hat and of the node that starts the segment being flown
+    /// (what is flown is then what was predicted). Closed-form predictions keep a constant
+    /// bank: use it with [`super::PredictorMode::Numerical`].
+    ///
+    /// # Errors
+    /// [`GuidanceError::InvalidConfig`] for a table of more than [`super::SHAPE_CAPACITY`] nodes or
+    /// an energy map that does not convert to the predictor scalar.
+    pub fn with_bank_shape(mut self) -> Result<Self, GuidanceError> {
+        self.set_bank_shape()?;
+        Ok(self)
+    }
+
+    /// [`Self::with_bank_shape`] in place (no copy of the guidance: used by
+    /// [`crate::stack::GuidanceStack`]).
+    ///
+    /// # Errors
+    /// As [`Self::with_bank_shape`]; nothing changes then.
+    pub(crate) fn set_bank_shape(&mut self) -> Result<(), GuidanceError> {
+        let [c, r, i] = self.energy.parts();
+        let energy = EnergyNormalizer::<P>::from_parts([c.to_f64(), r.to_f64(), i.to_f64()])?;
+        let s = &self.config.solver;
+        let nodes = self
+            .guidance
+            .table()
+            .nodes()
+            .iter()
+            .map(|n| (to_p::<S, P>(n.x), to_p::<S, P>(n.sigma_rad)));
+        self.shape = Some(BankShape::new(
+            energy,
+            nodes,
+            s.min_vertical_fraction,
+            s.max_vertical_fraction,
+        )?);
+        Ok(())
+    }
+
     /// The bank magnitude \[rad\] `bank_rad` lowered to the [`PathBound`] at `nav` (the
     /// model scaled by the current estimate), and whether the bound lowered it. Unchanged without a
     /// bound or where the bound is not computable.
@@ -901,8 +945,8 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             let before = p.solver.predictor_calls();
             let steps_before = p.solver.integration_steps();
             let done = match self.config.steps_per_tick {
-                0 => p.solver.run(u8::MAX),
-                k => p.solver.run(k),
+                0 => p.solver.run_shaped(u8::MAX, self.shape.as_ref()),
+                k => p.solver.run_shaped(k, self.shape.as_ref()),
             };
             calls = p.solver.predictor_calls().saturating_sub(before);
             steps = p.solver.integration_steps().saturating_sub(steps_before);
@@ -1070,23 +1114,42 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         if !apply || !res.bank_rad.is_finite() {
             return (report, None);
         }
-        let (bank, bound) = self.bounded_bank(res.bank_rad, nav);
+        let (bank_p, bound) = self.bounded_bank(res.bank_rad, nav);
         report.path_bound_active = bound;
         // The (bounded) solved magnitude in the guidance scalar.
-        let bank = S::from_f64(bank.to_f64());
+        let bank = S::from_f64(bank_p.to_f64());
         let mut table = self.guidance.table().clone();
         let bounds = table.bounds();
+        // With a shape: the solved offset on the stored magnitudes, on the nodes below E-hat
+        // and the one that starts the segment being flown (E-hat decreases: no later tick
+        // reaches the nodes above it).
+        let shaped = self.shape.map(|sh| {
+            let e = to_p::<S, P>(e_hat);
+            let offset = sh.offset_for(e, bank_p.cos());
+            (sh, offset)
+        });
+        let upper = match shaped {
+            Some(_) => table.nodes().iter().rposition(|n| n.x >= e_hat),
+            None => None,
+        };
         let mut count = 0_u16;
         let mut i = 0_usize;
         while i < table.len() {
             let Some(node) = table.nodes().get(i).copied() else {
                 break;
             };
-            if node.x < e_hat {
+            if node.x < e_hat || Some(i) == upper {
+                let magnitude = match shaped {
+                    Some((sh, offset)) => match sh.nodes().nth(i) {
+                        Some((_, stored)) => S::from_f64(sh.clamp(stored + offset).to_f64()),
+                        None => bank,
+                    },
+                    None => bank,
+                };
                 let signed = if node.sigma_rad < S::ZERO {
-                    -bank
+                    -magnitude
                 } else {
-                    bank
+                    magnitude
                 };
                 if table.set_sigma(i, bounds.clamp_sigma(signed)).is_ok() {
                     count = count.saturating_add(1);

@@ -29,7 +29,8 @@
 //! scale height \[m\], reference radius \[m\]), vehicle (mass \[kg\], area \[m^2\], `C_D0`, `K`,
 //! nose radius \[m\]), rotation rate \[rad/s\]; apply out of reach, steps per tick (`u8`
 //! each); lift schedule (`u8` node count, 0: none; speed \[m/s\], lambda, drag scale per node);
-//! start energy (`u8` flag, E-hat); numerical rotation (`u8`).
+//! start energy (`u8` flag, E-hat); numerical rotation (`u8`); final energy (`u8` flag,
+//! \[J/kg\]); bank shape (`u8`).
 //!
 //! Lateral ([`LateralLayer`]): corridor axis (`u8`: 0 speed, 1 E-hat with its map's three
 //! parts), x high, width high \[rad\], x low, width low \[rad\]; hysteresis \[rad\]; most
@@ -68,7 +69,7 @@ use crate::vinh::nondim::{ExpAtmosphere, Planet, VehicleParams};
 /// The image's first four bytes.
 pub const IMAGE_MAGIC: [u8; 4] = *b"RGS2";
 /// The image format version this build writes and reads.
-pub const IMAGE_VERSION: u16 = 2;
+pub const IMAGE_VERSION: u16 = 3;
 /// Image bytes carried by one image frame.
 pub const CHUNK_BYTES: usize = 68;
 /// Header bytes (magic, version, layer mask, length).
@@ -98,7 +99,8 @@ pub const fn image_capacity(nodes: usize) -> usize {
         + 8
         + 1
         + 1
-        + 8;
+        + 8
+        + 1;
     let lateral = 1 + 3 * 8 + 4 * 8 + 8 + 1 + 8 + 1 + 3 * 8;
     let estimator = 6 * 8 + 8;
     let barrier = 5 * 8 + 1;
@@ -390,6 +392,7 @@ pub fn encode<S: Scalar, const M: usize, P: Real>(
         if let Some(e) = r.final_energy_j_kg {
             wr.f(w(e))?;
         }
+        wr.flag(r.bank_shape)?;
     }
     if let Some(l) = &config.lateral {
         let c = &l.corridor;
@@ -656,6 +659,7 @@ pub fn decode<S: Scalar, const N: usize, P: Real>(
         let start_normalized_energy = if r.flag()? { Some(r.p()?) } else { None };
         let numerical_rotation = r.flag()?;
         let final_energy_j_kg = if r.flag()? { Some(r.p()?) } else { None };
+        let bank_shape = r.flag()?;
         Some(ReplanLayer {
             every_n_ticks,
             limits,
@@ -677,6 +681,7 @@ pub fn decode<S: Scalar, const N: usize, P: Real>(
             lift_schedule,
             start_normalized_energy,
             numerical_rotation,
+            bank_shape,
             final_energy_j_kg,
         })
     } else {
@@ -875,7 +880,7 @@ mod tests {
     /// The figure docs/reference/guidance-stack.md states.
     #[test]
     fn capacity_of_the_firmware_table() {
-        assert_eq!(image_capacity(16), 1180);
+        assert_eq!(image_capacity(16), 1181);
         assert_eq!(image_capacity(16).div_ceil(CHUNK_BYTES), 18);
     }
 }

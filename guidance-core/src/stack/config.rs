@@ -54,6 +54,10 @@ pub struct ReplanLayer<P> {
     pub start_normalized_energy: Option<P>,
     /// Numerical predictions model the planet's rotation in their equations of motion.
     pub numerical_rotation: bool,
+    /// Numerical predictions fly the stored profile's bank shape shifted by one offset, and
+    /// re-plans install that offset ([`crate::replan::ReplanningGuidance::with_bank_shape`]);
+    /// `false`: a constant bank.
+    pub bank_shape: bool,
     /// Numerical predictions end at this specific energy \[J/kg\] (`V^2/2 - mu/r` with the
     /// model planet's `mu`: the terminal interface the flight ends on;
     /// [`crate::replan::ReplanningGuidance::with_final_energy`]); `None`: at the final speed of

@@ -258,6 +258,9 @@ impl<S: Scalar, const N: usize, P: Real> FlightStack<S, N, P> {
                     if let Some(e) = r.final_energy_j_kg {
                         g.set_final_energy(e).map_err(rejected(Layer::Replan))?;
                     }
+                    if r.bank_shape {
+                        g.set_bank_shape().map_err(rejected(Layer::Replan))?;
+                    }
                 }
                 core
             }

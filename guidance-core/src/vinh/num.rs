@@ -123,6 +123,22 @@ pub(crate) fn sin_cos_reduced<S: Real>(x: S) -> (S, S) {
     (x * p, q)
 }
 
+/// `cos(x)` for `|x| <= pi/2 + 0.01` by the cosine polynomial of [`sin_cos_reduced`] (same
+/// accuracy; the sine not computed); libm's `cos` otherwise and in double precision.
+pub(crate) fn cos_reduced<S: Real>(x: S) -> S {
+    if !single::<S>() || !(x.abs() <= k(1.580_796_326_794_896_6)) {
+        return x.cos();
+    }
+    let x2 = x * x;
+    let mut q = S::ONE - x2 * k::<S>(1.0 / 182.0);
+    q = S::ONE - x2 * k::<S>(1.0 / 132.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 90.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 56.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 30.0) * q;
+    q = S::ONE - x2 * k::<S>(1.0 / 12.0) * q;
+    S::ONE - x2.half() * q
+}
+
 /// `asin(a)` for `a` in `[-1, 1]` by [`asin_unit`] (odd symmetry); libm otherwise.
 pub(crate) fn asin_signed<S: Real>(a: S) -> S {
     if a < S::ZERO {

@@ -1,5 +1,6 @@
 //! The guidance-core integration-test binary (one per crate). Each module is one topic.
 
+mod bank_shape;
 mod estimate;
 mod guidance_props;
 mod lateral;

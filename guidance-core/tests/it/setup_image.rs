@@ -26,6 +26,7 @@ fn everything() -> StackConfig<f64> {
         r.lift_schedule = Some(LiftSchedule::linear(7000.0, 1.2, 3000.0, 0.8));
         r.start_normalized_energy = Some(0.9);
         r.numerical_rotation = true;
+        r.bank_shape = true;
         r.steps_per_tick = 3;
     }
     if let Some(l) = c.lateral.as_mut() {

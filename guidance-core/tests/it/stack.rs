@@ -90,6 +90,7 @@ pub(crate) fn full() -> StackConfig<f64> {
             lift_schedule: None,
             start_normalized_energy: None,
             numerical_rotation: false,
+            bank_shape: false,
             final_energy_j_kg: None,
         }),
         lateral: Some(lateral()),

@@ -253,6 +253,7 @@ impl CampaignSetup {
             },
             start_normalized_energy: gs.replan_start_normalized_energy,
             numerical_rotation: gs.predictor_rotation,
+            bank_shape: gs.bank_shape,
             // The terminal interface the flights end on: the nominal flight's energy where it
             // crosses the interface.
             final_energy_j_kg: Some(0.5 * v_f * v_f - planet.mu_m3_s2 / end.radius_m),

@@ -87,9 +87,10 @@ impl Default for Scenario {
 /// The HORUS-2B reference mission's onboard stack: every layer, with the settings of the
 /// documented accuracy (CHANGELOG.md, issue 12; chosen on tuning seeds 1 and 2): the
 /// numerical predictor with the stored angle-of-attack profile's lift from E-hat 0.96 (after
-/// the entry pull-out), its whole-flight limit check off (scale 100), the numerical
-/// predictions ending at the terminal interface's energy, largest vertical fraction 0.9 (a bank of at least 25.8 deg for turning
-/// authority); the barrier law (0.2 rad/s, damping 1) at the vehicle's limits, flown by the
+/// the entry pull-out), flying the stored profile's bank shape (docs/reference/guidance-stack.md,
+/// "Bank shape"), its whole-flight limit check off (scale 100), the numerical predictions
+/// ending at the terminal interface's energy, largest vertical fraction 0.9 (a bank of at
+/// least 25.8 deg for turning authority); the barrier law (0.2 rad/s, damping 1) at the vehicle's limits, flown by the
 /// predictions too; the terminal crossrange law inside 250 km (tolerance 2 km), no reversal
 /// in the last 10 km.
 #[must_use]
@@ -98,6 +99,7 @@ pub fn horus_stack() -> GuidanceLayers {
         settings: CampaignGuidance {
             predictor: CampaignPredictor::Numerical,
             predictor_lift_profile: true,
+            bank_shape: true,
             replan_start_normalized_energy: Some(0.96),
             replan_limit_scale: [100.0, 100.0],
             path_bound_limit_scale: Some([1.0, 1.0]),

@@ -144,6 +144,13 @@ pub struct CampaignGuidance {
     /// closed forms. Not with `predictor = "closed-form"` (no numerical predictions).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub predictor_rotation: bool,
+    /// The re-planner's numerical predictions fly the stored profile's bank magnitudes against
+    /// E-hat shifted by one offset, and each re-plan installs that offset on the nodes it
+    /// replaces (`ReplanningGuidance::with_bank_shape`; docs/reference/guidance-stack.md, "Bank
+    /// shape"); default false: a constant bank. Only with `predictor = "numerical"` (the
+    /// closed forms fly a constant bank) and a profile of at most 16 nodes.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub bank_shape: bool,
     /// The last reversals from the predicted crossrange at the interface once the target is
     /// closer than this \[km\] (`guidance_core::lateral::TerminalLateral`; CHANGELOG.md,
     /// "The crossrange of HORUS-2B"), in `(freeze_km, 2000]`. Default (absent): the corridor to
@@ -174,7 +181,7 @@ pub struct CampaignGuidance {
 /// The scenario key of every field of [`CampaignGuidance`]: `(field, layer section, key)`,
 /// the key written as `[guidance.<section>] <key>` (the one list of these names: the parser,
 /// the template and the docs' key table are checked against it).
-pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
+pub const LAYER_KEYS: [(&str, &str, &str); 33] = [
     (
         "corridor_width_entry_deg",
         "lateral",
@@ -229,6 +236,7 @@ pub const LAYER_KEYS: [(&str, &str, &str); 32] = [
     ),
     ("replan_limit_scale", "replanning", "limit_scale"),
     ("predictor_rotation", "replanning", "numerical_rotation"),
+    ("bank_shape", "replanning", "bank_shape"),
     ("path_bound_limit_scale", "barrier", "limit_scale"),
     ("path_bound_descent_time_s", "barrier", "descent_time_s"),
     ("path_bound_barrier", "barrier", "frequency_rad_s"),
@@ -328,6 +336,7 @@ impl Default for CampaignGuidance {
             path_bound_barrier: None,
             path_bound_predicted: false,
             predictor_rotation: false,
+            bank_shape: false,
             terminal_lateral_km: None,
             terminal_tolerance_km: 1.0,
             terminal_reversal_lead_s: 5.0,
@@ -528,6 +537,13 @@ impl CampaignGuidance {
                 "predictor_rotation",
                 "true".into(),
                 "needs numerical predictions (predictor = \"numerical\" or \"hybrid\")",
+            ));
+        }
+        if self.bank_shape && self.predictor != CampaignPredictor::Numerical {
+            return Err(bad(
+                "bank_shape",
+                "true".into(),
+                "needs predictor = \"numerical\" (the closed forms fly a constant bank)",
             ));
         }
         let [q, g] = self.replan_limit_scale;

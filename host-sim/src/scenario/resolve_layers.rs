@@ -49,6 +49,7 @@ pub struct ReplanFile {
     start_normalized_energy: Option<Num>,
     limit_scale: Option<[Num; 2]>,
     numerical_rotation: Option<bool>,
+    bank_shape: Option<bool>,
 }
 
 /// `[guidance.estimator]`: onboard estimation of the L/D and drag scales.
@@ -320,6 +321,7 @@ pub(super) fn layers(
             g.replan_limit_scale = pair(v);
         }
         g.predictor_rotation = r.numerical_rotation.unwrap_or(false);
+        g.bank_shape = r.bank_shape.unwrap_or(false);
     }
     if let Some(e) = t.estimator {
         set(&mut g.estimator_lift_to_drag_gain, e.lift_to_drag_gain);

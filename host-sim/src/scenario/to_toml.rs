@@ -219,6 +219,7 @@ fn layers(s: &mut String, l: &super::GuidanceLayers) {
             "predictor_rotation",
             toml::Value::Boolean(g.predictor_rotation),
         ),
+        ("bank_shape", toml::Value::Boolean(g.bank_shape)),
         (
             "predictor_lift_profile",
             toml::Value::Boolean(g.predictor_lift_profile),

@@ -458,7 +458,13 @@ fn layer_outcome(text: &str, dir: &Path) -> Result<String, String> {
 #[allow(clippy::type_complexity)]
 fn layer_changes() -> Vec<(String, Value, Vec<(&'static str, Value)>)> {
     // With the hybrid predictor this mission flies no closed-form prediction: the closed forms.
-    let closed_form = || vec![("guidance.replanning.predictor", v("\"closed-form\""))];
+    // The template's bank shape needs the numerical predictor: off beside the closed forms.
+    let closed_form = || {
+        vec![
+            ("guidance.replanning.predictor", v("\"closed-form\"")),
+            ("guidance.replanning.bank_shape", Value::Boolean(false)),
+        ]
+    };
     let mut c: Vec<(String, Value, Vec<(&'static str, Value)>)> = vec![];
     let mut add = |k: &str, val: &str, ctx: Vec<(&'static str, Value)>| {
         c.push((format!("guidance.{k}"), v(val), ctx));
@@ -478,13 +484,18 @@ fn layer_changes() -> Vec<(String, Value, Vec<(&'static str, Value)>)> {
     add("replanning.min_vertical_fraction", "0.5", vec![]);
     add("replanning.max_vertical_fraction", "0.6", vec![]);
     add("replanning.glide_sink", "false", closed_form());
-    add("replanning.predictor", "\"closed-form\"", vec![]);
+    add(
+        "replanning.predictor",
+        "\"closed-form\"",
+        vec![("guidance.replanning.bank_shape", Value::Boolean(false))],
+    );
     add("replanning.lift_parameter", "2.0", closed_form());
     add("replanning.lift_profile", "false", vec![]);
     add("replanning.lift_profile_mach", "true", vec![]);
     add("replanning.start_normalized_energy", "0.8", vec![]);
     add("replanning.limit_scale", "[0.5, 0.5]", vec![]);
     add("replanning.numerical_rotation", "true", vec![]);
+    add("replanning.bank_shape", "false", vec![]);
     add("estimator.lift_to_drag_gain", "0.9", vec![]);
     add("estimator.drag_gain", "0.9", vec![]);
     add("estimator.lift_to_drag_bounds", "[0.99, 1.01]", vec![]);
@@ -631,7 +642,7 @@ fn layer_keys_read_by_nothing_are_refused() {
         (&'static str, Value),
         Value,
     );
-    let cases: [Case; 7] = [
+    let cases: [Case; 8] = [
         // The template flies the barrier law and the numerical predictor with the profile.
         (
             "barrier.descent_time_s",
@@ -677,9 +688,17 @@ fn layer_keys_read_by_nothing_are_refused() {
             vec![
                 ("guidance.estimator", None),
                 ("guidance.replanning.predictor", Some(v("\"hybrid\""))),
+                ("guidance.replanning.bank_shape", Some(v("false"))),
             ],
             ("false", v("false")),
             v("true"),
+        ),
+        // The closed forms fly a constant bank: the shape is numerical only.
+        (
+            "replanning.bank_shape",
+            vec![("guidance.replanning.predictor", Some(v("\"hybrid\"")))],
+            ("true", v("true")),
+            v("false"),
         ),
     ];
     for (key, ctx, (shown, value), default) in cases {

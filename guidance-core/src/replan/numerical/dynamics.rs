@@ -2,6 +2,7 @@
 //! equations of motion, the RK4 step and the step rule (see the parent module), and the
 //! parabolic refinement of a sampled peak.
 
+use crate::replan::bank_shape::BankShape;
 use crate::replan::path_bound::BarrierPoint;
 use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
@@ -73,6 +74,9 @@ pub(super) struct Model<S> {
     pub(super) bound: Option<PathBound<S>>,
     /// The planet's rotation, latitude and heading held (when present; module docs).
     pub(super) rotation: Option<Rotation<S>>,
+    /// The offset \[rad\] of the bank shape the prediction flies (when present: the shape is
+    /// passed to [`Model::rates`], not held, so that the solver's copies stay small).
+    pub(super) shape_offset: Option<S>,
 }
 
 /// The rotating-planet terms of the planar equations with the latitude `phi` and heading `psi`
@@ -127,6 +131,7 @@ fn add_rotation<S: Real>(w: &Rotation<S>, r: S, v: S, (sg, cg): (S, S), dy: &mut
 fn bounded_f<S: Real>(
     bound: &PathBound<S>,
     m: &Model<S>,
+    f: S,
     r: S,
     v: S,
     (sin_gamma, cos_gamma): (S, S),
@@ -152,8 +157,8 @@ fn bounded_f<S: Real>(
         bound.fraction(m.mu, r, v, sin_gamma, cl, cd, &m.vehicle)
     };
     match fb {
-        Some(fb) if fb > m.f => fb,
-        _ => m.f,
+        Some(fb) if fb > f => fb,
+        _ => f,
     }
 }
 
@@ -168,7 +173,7 @@ fn scheduled<S: Real>(schedule: &LiftSchedule<S>, v: S) -> (S, S) {
 
 impl<S: Real> Model<S> {
     #[inline(always)]
-    pub(super) fn rates(&self, y: &Y<S>) -> Rates<S> {
+    pub(super) fn rates(&self, y: &Y<S>, shape: Option<&BankShape<S>>) -> Rates<S> {
         let r = self.radius_m + y.h;
         let rho = self.atmosphere_h.density_unchecked(y.h);
         let (lambda, one_l2) = match &self.schedule {
@@ -179,11 +184,16 @@ impl<S: Real> Model<S> {
             aero_accelerations_m_s2(&self.vehicle, self.sqrt_cd0_k, lambda, one_l2, rho, y.v);
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
+        let f = match (shape, self.shape_offset) {
+            (Some(s), Some(offset)) => s.fraction_with(r, y.v, offset).unwrap_or(self.f),
+            _ => self.f,
+        };
         let f = match &self.bound {
-            None => self.f,
+            None => f,
             Some(b) => bounded_f(
                 b,
                 self,
+                f,
                 r,
                 y.v,
                 (sg, cg),
@@ -211,11 +221,11 @@ impl<S: Real> Model<S> {
     }
 
     /// One classic RK4 step of `dt` from `y` with first stage `k1`.
-    pub(super) fn rk4(&self, y: &Y<S>, k1: &Y<S>, dt: S) -> Y<S> {
+    pub(super) fn rk4(&self, y: &Y<S>, k1: &Y<S>, dt: S, shape: Option<&BankShape<S>>) -> Y<S> {
         let half = dt.half();
-        let k2 = self.rates(&y.axpy(k1, half)).dy;
-        let k3 = self.rates(&y.axpy(&k2, half)).dy;
-        let k4 = self.rates(&y.axpy(&k3, dt)).dy;
+        let k2 = self.rates(&y.axpy(k1, half), shape).dy;
+        let k3 = self.rates(&y.axpy(&k2, half), shape).dy;
+        let k4 = self.rates(&y.axpy(&k3, dt), shape).dy;
         let two: S = k(2.0);
         let sum = Y {
             h: k1.h + two * (k2.h + k3.h) + k4.h,

@@ -94,6 +94,7 @@
 //! [`VinhError::EscapeTrajectory`] (ascending above escape speed out of the atmosphere),
 //! [`VinhError::NonFiniteResult`] (defensive).
 
+use super::bank_shape::BankShape;
 use crate::replan::{LiftSchedule, PathBound};
 use crate::scalar::Real;
 use crate::vinh::VinhError;
@@ -230,6 +231,7 @@ impl<S: Real> NumericalRun<S> {
                 schedule: None,
                 bound: None,
                 rotation: None,
+                shape_offset: None,
             },
             final_speed_m_s: config.final_speed_m_s,
             final_energy: None,
@@ -278,6 +280,27 @@ impl<S: Real> NumericalRun<S> {
             self.model.bound = Some(bound);
         }
         self
+    }
+
+    /// This prediction flying `shape` ([`BankShape`]) instead of the constant vertical
+    /// fraction: its offset set so that the bank at the start is the one of `lift` given to
+    /// [`NumericalRun::new`]. The shape itself is not held: advance the run with
+    /// [`NumericalRun::advance_shaped`] and the same shape (with [`NumericalRun::advance`] it
+    /// flies the constant fraction). A start whose E-hat is not computable leaves the constant
+    /// fraction.
+    #[must_use]
+    pub fn with_bank_shape(mut self, shape: &BankShape<S>) -> Self {
+        self.set_bank_shape(shape);
+        self
+    }
+
+    /// [`NumericalRun::with_bank_shape`] in place (no copy of the run).
+    pub fn set_bank_shape(&mut self, shape: &BankShape<S>) {
+        let r = self.model.radius_m + self.y.h;
+        if let Some(e) = shape.normalized_energy(r, self.y.v) {
+            let offset = shape.offset_for(e, self.model.f);
+            self.model.shape_offset = offset.is_finite().then_some(offset);
+        }
     }
 
     /// This prediction on a planet rotating at `omega_rad_s` \[rad/s\], with the latitude
@@ -339,9 +362,19 @@ impl<S: Real> NumericalRun<S> {
     /// Take at most `max_steps` integration steps; the outcome once finished (then further
     /// calls take no step and return it again).
     pub fn advance(&mut self, max_steps: u16) -> Option<Result<Prediction<S>, VinhError>> {
+        self.advance_shaped(max_steps, None)
+    }
+
+    /// [`NumericalRun::advance`] flying `shape` (the one given to
+    /// [`NumericalRun::with_bank_shape`]; `None`: the constant fraction).
+    pub fn advance_shaped(
+        &mut self,
+        max_steps: u16,
+        shape: Option<&BankShape<S>>,
+    ) -> Option<Result<Prediction<S>, VinhError>> {
         let mut n = 0_u16;
         while n < max_steps && self.outcome.is_none() {
-            self.outcome = self.step_once();
+            self.outcome = self.step_once(shape);
             n += 1;
         }
         self.outcome
@@ -396,14 +429,17 @@ impl<S: Real> NumericalRun<S> {
     }
 
     /// One integration step; the outcome if the prediction ends.
-    fn step_once(&mut self) -> Option<Result<Prediction<S>, VinhError>> {
+    fn step_once(
+        &mut self,
+        shape: Option<&BankShape<S>>,
+    ) -> Option<Result<Prediction<S>, VinhError>> {
         if self.steps >= MAX_STEPS {
             return Some(Err(VinhError::StepLimit));
         }
         self.steps += 1;
         let y0 = self.y;
         // Borrowed, not copied: the model carries the schedule (up to 12 nodes).
-        let rt = self.model.rates(&y0);
+        let rt = self.model.rates(&y0, shape);
         if !(rt.dy.is_finite() && rt.rho.is_finite() && rt.drag.is_finite()) {
             return Some(Err(VinhError::NonFiniteResult));
         }
@@ -431,7 +467,7 @@ impl<S: Real> NumericalRun<S> {
             return Some(Err(VinhError::EscapeTrajectory));
         }
         let dt = m.step_size(&y0, &rt);
-        let y1 = m.rk4(&y0, &rt.dy, dt);
+        let y1 = m.rk4(&y0, &rt.dy, dt, shape);
         if !y1.is_finite() {
             return Some(Err(VinhError::NonFiniteResult));
         }
@@ -439,10 +475,10 @@ impl<S: Real> NumericalRun<S> {
             let r = m.radius_m;
             let g1 = e.residual(&y1, r);
             if !(g1 > S::ZERO) {
-                return Some(self.finish_energy(&e, &y0, &rt, dt, g1));
+                return Some(self.finish_energy(&e, &y0, &rt, dt, g1, shape));
             }
         } else if y1.v <= self.final_speed_m_s {
-            return Some(self.finish(&y0, &rt, dt, &y1));
+            return Some(self.finish(&y0, &rt, dt, &y1, shape));
         }
         if !(y1.h > S::ZERO) {
             return Some(Err(VinhError::GroundImpact));
@@ -463,6 +499,7 @@ impl<S: Real> NumericalRun<S> {
         rt: &Rates<S>,
         dt: S,
         g1: S,
+        shape: Option<&BankShape<S>>,
     ) -> Result<Prediction<S>, VinhError> {
         let m = &self.model;
         let r = m.radius_m;
@@ -470,8 +507,8 @@ impl<S: Real> NumericalRun<S> {
         // g0 > 0 >= g1, so the fraction is in [0, 1].
         let frac = (g0 / (g0 - g1)).clamp(S::ZERO, S::ONE);
         let mut dt1 = dt * frac;
-        let mut y2 = m.rk4(y0, &rt.dy, dt1);
-        let mut r2 = m.rates(&y2);
+        let mut y2 = m.rk4(y0, &rt.dy, dt1, shape);
+        let mut r2 = m.rates(&y2, shape);
         let mut dtc;
         let mut i = 0_u8;
         loop {
@@ -487,8 +524,8 @@ impl<S: Real> NumericalRun<S> {
             }
             i += 1;
             dt1 = dt1 + dtc;
-            y2 = m.rk4(y0, &rt.dy, dt1);
-            r2 = m.rates(&y2);
+            y2 = m.rk4(y0, &rt.dy, dt1, shape);
+            r2 = m.rates(&y2, shape);
         }
         let yf = Y {
             h: y2.h + r2.dy.h * dtc,
@@ -497,12 +534,18 @@ impl<S: Real> NumericalRun<S> {
             theta: y2.theta + r2.dy.theta * dtc,
         };
         let t_end = self.t + (dt1 + dtc);
-        self.end_at(&yf, &r2, t_end)
+        self.end_at(&yf, &r2, t_end, shape)
     }
 
     /// The prediction ends at `yf` at time `t_end` \[s\] (`r2` the rates the closure used):
     /// checks, the last node, the status.
-    fn end_at(&mut self, yf: &Y<S>, r2: &Rates<S>, t_end: S) -> Result<Prediction<S>, VinhError> {
+    fn end_at(
+        &mut self,
+        yf: &Y<S>,
+        r2: &Rates<S>,
+        t_end: S,
+        shape: Option<&BankShape<S>>,
+    ) -> Result<Prediction<S>, VinhError> {
         if !(yf.is_finite() && r2.dy.is_finite()) {
             return Err(VinhError::NonFiniteResult);
         }
@@ -515,7 +558,7 @@ impl<S: Real> NumericalRun<S> {
         if self.peaks == PeakMode::RangeOnly {
             return self.prediction(yf.theta, PeakStatus::NotComputed);
         }
-        let rf = m.rates(yf);
+        let rf = m.rates(yf, shape);
         if self.record_node(self.t, rf.rho, yf.v, rf.drag, rf.lift) {
             return self.prediction(yf.theta, PeakStatus::LimitExceeded);
         }
@@ -536,14 +579,15 @@ impl<S: Real> NumericalRun<S> {
         rt: &Rates<S>,
         dt: S,
         y1: &Y<S>,
+        shape: Option<&BankShape<S>>,
     ) -> Result<Prediction<S>, VinhError> {
         let m = &self.model;
         let vf = self.final_speed_m_s;
         // y0.v > vf >= y1.v, so the fraction is in (0, 1].
         let frac = ((y0.v - vf) / (y0.v - y1.v)).clamp(S::ZERO, S::ONE);
         let dt1 = dt * frac;
-        let y2 = m.rk4(y0, &rt.dy, dt1);
-        let r2 = m.rates(&y2);
+        let y2 = m.rk4(y0, &rt.dy, dt1, shape);
+        let r2 = m.rates(&y2, shape);
         let mut dtc = (vf - y2.v) / r2.dy.v;
         if !(dtc.is_finite() && dtc.abs() <= dt1) {
             dtc = S::ZERO;
@@ -555,7 +599,7 @@ impl<S: Real> NumericalRun<S> {
             theta: y2.theta + r2.dy.theta * dtc,
         };
         let t_end = self.t + dt1 + dtc;
-        self.end_at(&yf, &r2, t_end)
+        self.end_at(&yf, &r2, t_end, shape)
     }
 }
 

@@ -6,6 +6,7 @@ use crate::vinh::VinhError;
 use crate::vinh::nondim::LiftControl;
 use crate::vinh::predict::{PeakMode, Prediction, predict_with};
 
+use super::super::BankShape;
 use super::super::glide_prediction;
 use super::super::numerical::NumericalRun;
 use super::ReplanSolver;
@@ -17,13 +18,14 @@ impl<S: Real> ReplanSolver<S> {
         &mut self,
         f: S,
         peaks: PeakMode<S>,
+        shape: Option<&BankShape<S>>,
     ) -> Option<Result<Prediction<S>, VinhError>> {
         let lift = LiftControl {
             lambda: self.config.lambda,
             vertical_fraction: f,
         };
         if self.numerical {
-            return self.eval_numerical(&lift, peaks);
+            return self.eval_numerical(&lift, peaks, shape);
         }
         self.calls = self.calls.saturating_add(1);
         Some(self.eval_closed_form(&lift, peaks))
@@ -36,6 +38,7 @@ impl<S: Real> ReplanSolver<S> {
         &mut self,
         lift: &LiftControl<S>,
         peaks: PeakMode<S>,
+        shape: Option<&BankShape<S>>,
     ) -> Option<Result<Prediction<S>, VinhError>> {
         {
             let mut run = match self.run.take() {
@@ -67,10 +70,16 @@ impl<S: Real> ReplanSolver<S> {
                             }
                             None => r,
                         };
-                        match self.final_energy {
+                        let mut r = match self.final_energy {
                             Some((mu, e)) => r.with_final_energy(mu, e),
                             None => r,
+                        };
+                        // In place: one more by-value step would be another copy of the run
+                        // on the stack.
+                        if let Some(s) = shape {
+                            r.set_bank_shape(s);
                         }
+                        r
                     }
                     Err(e) => {
                         self.calls = self.calls.saturating_add(1);
@@ -79,7 +88,7 @@ impl<S: Real> ReplanSolver<S> {
                 },
             };
             let before = run.steps();
-            let out = run.advance(self.chunk);
+            let out = run.advance_shaped(self.chunk, shape);
             self.integration_steps = self
                 .integration_steps
                 .saturating_add(u32::from(run.steps().saturating_sub(before)));

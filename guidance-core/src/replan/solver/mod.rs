@@ -59,11 +59,11 @@ use crate::vinh::num::{Zeroin, ZeroinStep};
 use crate::vinh::predict::{PeakMode, PeakStatus, Prediction};
 
 use super::numerical::{NumericalRun, STEPS_PER_SOLVER_STEP};
+use super::{BankShape, LiftSchedule, PathBound};
 use super::{
     LIMIT_GRID, MAX_ITERATIONS, MAX_PREDICTOR_CALLS, PredictorMode, ReplanCase, ReplanConfig,
     ReplanFallBack, ReplanLimits, ReplanResult,
 };
-use super::{LiftSchedule, PathBound};
 
 mod eval;
 mod switch;
@@ -360,9 +360,21 @@ impl<S: Real> ReplanSolver<S> {
     /// complete (a short prediction near the end of the flight leaves the rest of the budget
     /// to the next one). `u8::MAX` runs the solve to completion.
     pub fn run(&mut self, max_steps: u8) -> Option<ReplanResult<S>> {
+        self.run_shaped(max_steps, None)
+    }
+
+    /// [`ReplanSolver::run`] with numerical predictions flying `shape` from the vertical
+    /// fraction they are asked for at the start ([`NumericalRun::with_bank_shape`];
+    /// closed-form predictions keep a constant bank). Pass the same shape on every call of a
+    /// solve (it is borrowed, not held: the solver stays small).
+    pub fn run_shaped(
+        &mut self,
+        max_steps: u8,
+        shape: Option<&BankShape<S>>,
+    ) -> Option<ReplanResult<S>> {
         if max_steps == u8::MAX {
             loop {
-                if let Some(r) = self.step() {
+                if let Some(r) = self.step_shaped(shape) {
                     return Some(r);
                 }
             }
@@ -374,7 +386,7 @@ impl<S: Real> ReplanSolver<S> {
             let (calls, steps) = (self.calls, self.integration_steps);
             // The integration steps left to this call (at most `budget`: fits in u16).
             self.chunk = u16::try_from(budget - used).unwrap_or(STEPS_PER_SOLVER_STEP);
-            let done = self.step();
+            let done = self.step_shaped(shape);
             self.chunk = STEPS_PER_SOLVER_STEP;
             if let Some(r) = done {
                 return Some(r);
@@ -432,6 +444,12 @@ impl<S: Real> ReplanSolver<S> {
 
     /// Make exactly one predictor call (or finish without one); the result when done.
     pub fn step(&mut self) -> Option<ReplanResult<S>> {
+        self.step_shaped(None)
+    }
+
+    /// [`ReplanSolver::step`] with numerical predictions flying `shape` (as
+    /// [`ReplanSolver::run_shaped`]).
+    pub fn step_shaped(&mut self, shape: Option<&BankShape<S>>) -> Option<ReplanResult<S>> {
         let (f_lo, f_hi) = (
             self.config.min_vertical_fraction,
             self.config.max_vertical_fraction,
@@ -451,11 +469,11 @@ impl<S: Real> ReplanSolver<S> {
             }
             match self.phase {
                 Phase::Done(r) => return Some(r),
-                Phase::Guess { f, slope } => return self.step_guess(f, slope),
-                Phase::Secant { f0, m0, f, n } => return self.step_secant(f0, m0, f, n),
+                Phase::Guess { f, slope } => return self.step_guess(f, slope, shape),
+                Phase::Secant { f0, m0, f, n } => return self.step_secant(f0, m0, f, n, shape),
                 Phase::EndLo => {
                     // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(f_lo, PeakMode::RangeOnly)?;
+                    let r = self.eval(f_lo, PeakMode::RangeOnly, shape)?;
                     return match r {
                         Ok(p) => {
                             self.record(f_lo, p.range_m - target);
@@ -469,7 +487,7 @@ impl<S: Real> ReplanSolver<S> {
                 }
                 Phase::EndHi { range_lo } => {
                     // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(f_hi, PeakMode::RangeOnly)?;
+                    let r = self.eval(f_hi, PeakMode::RangeOnly, shape)?;
                     let range_hi = match r {
                         Ok(p) => p.range_m,
                         Err(e) => return self.end_failed(e),
@@ -521,7 +539,7 @@ impl<S: Real> ReplanSolver<S> {
                         ZeroinStep::Eval(f) => self.clamp_f(f),
                     };
                     // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(f, PeakMode::RangeOnly)?;
+                    let r = self.eval(f, PeakMode::RangeOnly, shape)?;
                     let miss = match r {
                         Ok(p) => p.range_m - target,
                         Err(_) if self.hybrid_closed_form() => return self.switch_to_numerical(),
@@ -551,7 +569,7 @@ impl<S: Real> ReplanSolver<S> {
                 Phase::Final { f, case } => {
                     let limits = self.limits;
                     // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(f, PeakMode::Limits(limits))?;
+                    let r = self.eval(f, PeakMode::Limits(limits), shape)?;
                     return match r {
                         Ok(p) if self.leaves_domain(&p) => self.switch_to_numerical(),
                         Ok(p) if p.peak_status == PeakStatus::Computed => self.success(case, f, p),
@@ -577,7 +595,7 @@ impl<S: Real> ReplanSolver<S> {
                     let limits = self.limits;
                     let mut best = best;
                     // None: a numerical prediction in progress (this step ends).
-                    let r = self.eval(fi, PeakMode::Limits(limits))?;
+                    let r = self.eval(fi, PeakMode::Limits(limits), shape)?;
                     if let Ok(p) = r
                         && p.peak_status == PeakStatus::Computed
                     {

@@ -1,6 +1,7 @@
 //! [`ReplanSolver`]'s warm start: the guess and the secant steps that replace the bracketing
 //! predictions at `f_min` and `f_max` (see the parent module's docs, "Warm start").
 
+use super::super::BankShape;
 use crate::scalar::Real;
 use crate::vinh::predict::PeakMode;
 
@@ -70,8 +71,8 @@ impl<S: Real> ReplanSolver<S> {
     /// The range-only miss \[m\] at `f`: `None` while a numerical prediction is in progress,
     /// `Some(None)` (and the cold start next) if the prediction failed: the cold start then
     /// decides (ends, glide, switch).
-    fn warm_miss(&mut self, f: S) -> Option<Option<S>> {
-        let r = self.eval(f, PeakMode::RangeOnly)?;
+    fn warm_miss(&mut self, f: S, shape: Option<&BankShape<S>>) -> Option<Option<S>> {
+        let r = self.eval(f, PeakMode::RangeOnly, shape)?;
         match r {
             Ok(p) => {
                 let miss = p.range_m - self.target_range_m;
@@ -88,8 +89,13 @@ impl<S: Real> ReplanSolver<S> {
     /// [`Phase::Guess`]: the prediction at the guess `f`, then the first secant step with the
     /// slope `slope` \[m\]. The guess is refined even within the tolerance (a guess accepted
     /// as it is would let the miss drift to the tolerance from one solve to the next).
-    pub(super) fn step_guess(&mut self, f: S, slope: S) -> Option<ReplanResult<S>> {
-        let miss = self.warm_miss(f)??;
+    pub(super) fn step_guess(
+        &mut self,
+        f: S,
+        slope: S,
+        shape: Option<&BankShape<S>>,
+    ) -> Option<ReplanResult<S>> {
+        let miss = self.warm_miss(f, shape)??;
         self.phase = if miss == S::ZERO {
             Phase::Final {
                 f,
@@ -115,8 +121,15 @@ impl<S: Real> ReplanSolver<S> {
     /// [`Phase::Secant`]: the prediction at `f`, the `n`-th secant step from `f0` (miss `m0`
     /// \[m\]); then the final prediction, Brent's search in the bracket, another step or the
     /// cold start.
-    pub(super) fn step_secant(&mut self, f0: S, m0: S, f: S, n: u8) -> Option<ReplanResult<S>> {
-        let miss = self.warm_miss(f)??;
+    pub(super) fn step_secant(
+        &mut self,
+        f0: S,
+        m0: S,
+        f: S,
+        n: u8,
+        shape: Option<&BankShape<S>>,
+    ) -> Option<ReplanResult<S>> {
+        let miss = self.warm_miss(f, shape)??;
         self.phase = if miss.abs() <= self.config.tolerance_m {
             Phase::Final {
                 f,
