@@ -112,15 +112,20 @@ pub(crate) fn sin_cos_reduced<S: Real>(x: S) -> (S, S) {
     p = S::ONE - x2 * k::<S>(1.0 / 42.0) * p;
     p = S::ONE - x2 * k::<S>(1.0 / 20.0) * p;
     p = S::ONE - x2 * k::<S>(1.0 / 6.0) * p;
-    // cos: 1 - x2/(1 2) (1 - x2/(3 4) (1 - ... (1 - x2/(13 14))))
+    (x * p, cos_poly(x2))
+}
+
+/// The cosine polynomial of [`sin_cos_reduced`] at `x2 = x^2`:
+/// `1 - x2/(1 2) (1 - x2/(3 4) (1 - ... (1 - x2/(13 14))))`.
+#[inline(always)]
+fn cos_poly<S: Real>(x2: S) -> S {
     let mut q = S::ONE - x2 * k::<S>(1.0 / 182.0);
     q = S::ONE - x2 * k::<S>(1.0 / 132.0) * q;
     q = S::ONE - x2 * k::<S>(1.0 / 90.0) * q;
     q = S::ONE - x2 * k::<S>(1.0 / 56.0) * q;
     q = S::ONE - x2 * k::<S>(1.0 / 30.0) * q;
     q = S::ONE - x2 * k::<S>(1.0 / 12.0) * q;
-    q = S::ONE - x2.half() * q;
-    (x * p, q)
+    S::ONE - x2.half() * q
 }
 
 /// `cos(x)` for `|x| <= pi/2 + 0.01` by the cosine polynomial of [`sin_cos_reduced`] (same
@@ -129,14 +134,7 @@ pub(crate) fn cos_reduced<S: Real>(x: S) -> S {
     if !single::<S>() || !(x.abs() <= k(1.580_796_326_794_896_6)) {
         return x.cos();
     }
-    let x2 = x * x;
-    let mut q = S::ONE - x2 * k::<S>(1.0 / 182.0);
-    q = S::ONE - x2 * k::<S>(1.0 / 132.0) * q;
-    q = S::ONE - x2 * k::<S>(1.0 / 90.0) * q;
-    q = S::ONE - x2 * k::<S>(1.0 / 56.0) * q;
-    q = S::ONE - x2 * k::<S>(1.0 / 30.0) * q;
-    q = S::ONE - x2 * k::<S>(1.0 / 12.0) * q;
-    S::ONE - x2.half() * q
+    cos_poly(x * x)
 }
 
 /// `asin(a)` for `a` in `[-1, 1]` by [`asin_unit`] (odd symmetry); libm otherwise.
