@@ -581,9 +581,12 @@ mod tests {
         let (st, _, built) = upload(&img, &swapped);
         assert_eq!(st[1], LinkStatus::ImageOrder);
         assert!(!built);
-        let mut v3 = img.clone();
-        v3[4] = 3;
-        let (st, _, built) = upload(&v3, &all);
+        // An image of the next protocol version is refused by its version.
+        let mut newer = img.clone();
+        let v = (guidance_core::setup::image::IMAGE_VERSION + 1).to_le_bytes();
+        newer[4] = v[0];
+        newer[5] = v[1];
+        let (st, _, built) = upload(&newer, &all);
         assert_eq!(st.last(), Some(&LinkStatus::ImageVersion));
         assert!(!built);
     }
