@@ -776,7 +776,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
     }
 
     /// [`Self::with_bank_shape`] in place (no copy of the guidance: used by
-    /// [`crate::stack::GuidanceStack`]).
+    /// [`crate::stack::FlightStack`]).
     ///
     /// # Errors
     /// As [`Self::with_bank_shape`]; nothing changes then.
@@ -1123,7 +1123,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
         // With a shape: the solved offset on the stored magnitudes, on the nodes below E-hat
         // and the one that starts the segment being flown (E-hat decreases: no later tick
         // reaches the nodes above it).
-        let shaped = self.shape.map(|sh| {
+        let shaped = self.shape.as_ref().map(|sh| {
             let e = to_p::<S, P>(e_hat);
             let offset = sh.offset_for(e, bank_p.cos());
             (sh, offset)
