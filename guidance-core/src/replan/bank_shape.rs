@@ -27,7 +27,8 @@ use crate::vinh::num::cos_reduced;
 /// [`crate::nodes::DEFAULT_NODE_CAPACITY`]).
 pub const SHAPE_CAPACITY: usize = crate::nodes::DEFAULT_NODE_CAPACITY;
 
-/// The stored profile's bank magnitude against E-hat, with an offset (module docs).
+/// The stored profile's bank magnitude against E-hat (module docs); the offset a prediction
+/// flies is the prediction's own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BankShape<S> {
@@ -41,8 +42,6 @@ pub struct BankShape<S> {
     /// Node bank magnitude \[rad\], in `[0, pi]`.
     sigma: [S; SHAPE_CAPACITY],
     len: u8,
-    /// The offset added to every node \[rad\].
-    offset_rad: S,
     /// `acos(f_max)`, `acos(f_min)` \[rad\]: the bank interval.
     sigma_lo: S,
     sigma_hi: S,
@@ -51,7 +50,7 @@ pub struct BankShape<S> {
 impl<S: Real> BankShape<S> {
     /// The shape of `nodes` (`(E-hat [-], bank [rad])`, E-hat strictly decreasing; the sign
     /// of the bank is dropped), E-hat by `energy`, the bank held in `[acos(f_max),
-    /// acos(f_min)]` (the solver's vertical-fraction interval); offset 0.
+    /// acos(f_min)]` (the solver's vertical-fraction interval).
     ///
     /// # Errors
     /// [`GuidanceError::InvalidConfig`] for no node, more than [`SHAPE_CAPACITY`], a
@@ -106,7 +105,6 @@ impl<S: Real> BankShape<S> {
             x,
             sigma,
             len,
-            offset_rad: S::ZERO,
             sigma_lo: f_max.acos(),
             sigma_hi: f_min.acos(),
         })
@@ -160,23 +158,6 @@ impl<S: Real> BankShape<S> {
         f.clamp(-S::ONE, S::ONE).acos() - self.sigma_at(e_hat)
     }
 
-    /// This shape with offset `offset_rad` \[rad\] (a non-finite one: 0).
-    #[must_use]
-    pub fn with_offset(mut self, offset_rad: S) -> Self {
-        self.offset_rad = if offset_rad.is_finite() {
-            offset_rad
-        } else {
-            S::ZERO
-        };
-        self
-    }
-
-    /// The offset in use \[rad\].
-    #[must_use]
-    pub fn offset_rad(&self) -> S {
-        self.offset_rad
-    }
-
     /// E-hat \[-\] at radius `radius_m` \[m\] and speed `speed_m_s` \[m/s\] (`None` where it is
     /// not computable).
     #[must_use]
@@ -188,16 +169,11 @@ impl<S: Real> BankShape<S> {
         (e.is_finite() && radius_m > S::ZERO).then_some(e)
     }
 
-    /// The vertical fraction flown at `radius_m` \[m\], `speed_m_s` \[m/s\]:
-    /// `cos(clamp(shape(E-hat) + offset))` (`None` where E-hat is not computable).
+    /// The vertical fraction flown at `radius_m` \[m\], `speed_m_s` \[m/s\] with the offset
+    /// `offset_rad` \[rad\]: `cos(clamp(shape(E-hat) + offset))` (`None` where E-hat is not
+    /// computable). The offset is the prediction's own ([`BankShape::offset_for`]).
     #[must_use]
-    pub fn fraction(&self, radius_m: S, speed_m_s: S) -> Option<S> {
-        self.fraction_with(radius_m, speed_m_s, self.offset_rad)
-    }
-
-    /// [`BankShape::fraction`] with the offset `offset_rad` \[rad\] instead of the one held.
-    #[must_use]
-    pub fn fraction_with(&self, radius_m: S, speed_m_s: S, offset_rad: S) -> Option<S> {
+    pub fn fraction(&self, radius_m: S, speed_m_s: S, offset_rad: S) -> Option<S> {
         let e = self.normalized_energy(radius_m, speed_m_s)?;
         // The bank is in [0, pi/2]: the single-precision polynomial on f32 (libm's `cosf`
         // works in f64, soft-float on the Cortex-M4F); libm in f64.

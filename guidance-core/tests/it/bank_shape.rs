@@ -38,13 +38,13 @@ fn bank_shape_interpolates_clamps_and_refuses_bad_tables() {
     assert!((s.clamp(1.6) - 0.05_f64.acos()).abs() < 1e-15);
     // The offset that flies f at E-hat 0.6, and the fraction it then flies there.
     let f = 0.5;
-    let shifted = s.with_offset(s.offset_for(0.6, f));
-    assert!((shifted.offset_rad() - 10.0 * DEG).abs() < 1e-12);
+    let offset = s.offset_for(0.6, f);
+    assert!((offset - 10.0 * DEG).abs() < 1e-12);
     let e_hat = 0.6;
     let (r, v) = state_at(e_hat);
-    assert!((shifted.fraction(r, v).unwrap() - f).abs() < 1e-9);
-    // A non-finite offset is no offset.
-    assert_eq!(s.with_offset(f64::NAN).offset_rad(), 0.0);
+    assert!((s.fraction(r, v, offset).unwrap() - f).abs() < 1e-9);
+    // A non-finite state has no E-hat, so no fraction.
+    assert_eq!(s.fraction(f64::NAN, v, offset), None);
 
     let bad = GuidanceError::InvalidConfig;
     assert_eq!(shape(&[], 0.05, 0.9), Err(bad));

@@ -185,7 +185,7 @@ impl<S: Real> Model<S> {
         let g = self.mu / (r * r);
         let (sg, cg) = sin_cos(y.gamma);
         let f = match (shape, self.shape_offset) {
-            (Some(s), Some(offset)) => s.fraction_with(r, y.v, offset).unwrap_or(self.f),
+            (Some(s), Some(offset)) => s.fraction(r, y.v, offset).unwrap_or(self.f),
             _ => self.f,
         };
         let f = match &self.bound {
