@@ -198,6 +198,7 @@ fn fronts_have_no_repeated_members() {
         &crate::design::run::files::MemberFlights {
             analytical: None,
             robust: None,
+            objectives: &crate::design::Objectives::default(),
             threads: &crate::optim::Threads::serial(),
             nominal_front: &[],
         },

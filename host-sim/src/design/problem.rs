@@ -70,6 +70,25 @@ pub struct Objectives {
     pub target_range_deg: Option<f64>,
 }
 
+impl Objectives {
+    /// The objectives' axis labels, in order: the range objective (the miss of
+    /// `target_range_deg` when it is set), the heat load, and the skips when counted.
+    #[must_use]
+    pub fn labels(&self) -> Vec<String> {
+        let mut l = vec![
+            match self.target_range_deg {
+                Some(_) => "f_r = |theta - theta_target|/pi [-]".to_string(),
+                None => "f_r = -theta/pi [-]".to_string(),
+            },
+            "f_Q = heat load [scaled]".to_string(),
+        ];
+        if self.skips {
+            l.push("skips [-]".to_string());
+        }
+        l
+    }
+}
+
 impl Default for Objectives {
     fn default() -> Self {
         Self {

@@ -238,7 +238,19 @@ fn target_range_makes_the_miss_distance_the_first_objective() {
         assert!(ev.objectives[0] >= 0.0);
         assert_eq!(ev.objectives[1], plain.objectives[1]);
         assert_eq!(ev.constraints, plain.constraints);
+        // The plots' axis names the miss, not the range.
+        assert_eq!(
+            c.objectives.labels()[0],
+            "f_r = |theta - theta_target|/pi [-]"
+        );
     }
+    assert_eq!(
+        DesignConfig::preset("horus-2b")
+            .unwrap()
+            .objectives
+            .labels()[0],
+        "f_r = -theta/pi [-]"
+    );
     let mut c = DesignConfig::preset("horus-2b").unwrap();
     c.objectives.target_range_deg = Some(-5.0);
     let e = c

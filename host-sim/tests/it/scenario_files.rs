@@ -416,3 +416,50 @@ fn every_example_scenario_reads_on_its_own() {
     assert!(read >= 15, "{read} example scenarios read");
     assert!(runs >= 1, "{runs} example run files read");
 }
+
+/// The HORUS-2B profile designed with a 5 % margin on every limit
+/// (examples/optimize-horus-2b-margin.toml, its member 00 in
+/// examples/horus-2b-margin-profile.toml): flown undispersed with bank reversals it reaches its
+/// target (within 2 km), stays within 0.95 of every limit of the vehicle, and takes less heat
+/// than the reference profile, which exceeds the heat-flux limit with the same layers.
+#[test]
+fn margin_profile_example_holds_its_margin() {
+    let sc = read_scenario(&examples().join("horus-2b-margin-profile.toml")).unwrap();
+    let vehicle = sc.load_vehicle().unwrap();
+    let lim = vehicle.limits;
+    let flight = fly(&sc, "(test)", &mut |_| {}).unwrap();
+    let case = &flight.stack.as_ref().expect("the stack's outcome").case;
+    let s = &flight.result.summary;
+    let ratios = [
+        s.peak_heat_flux_w_m2.value / lim.heat_flux_w_m2,
+        s.peak_g_load.value / lim.g_load,
+        s.peak_g_load_rate_per_s.value / lim.g_load_rate_per_s,
+    ];
+    let flown_deg = s.flown_range_angle_rad.to_degrees();
+    println!(
+        "margin profile: miss {:.2} km, flown range {flown_deg:.3} deg, ratios {ratios:.3?}, \
+         heat load {:.1} MJ/m^2",
+        case.miss_m / 1e3,
+        s.heat_load_j_m2 / 1e6
+    );
+    assert!(case.reached_interface, "{}", case.termination);
+    assert!(case.miss_m < 2e3, "miss {} m", case.miss_m);
+    assert!(ratios.iter().all(|r| *r <= 0.95), "{ratios:?}");
+    let reference = Scenario {
+        guidance: read_scenario(&examples().join("horus-2b-stack.toml"))
+            .unwrap()
+            .guidance,
+        ..sc.clone()
+    };
+    let r = fly(&reference, "(test)", &mut |_| {})
+        .unwrap()
+        .result
+        .summary;
+    let r_q = r.peak_heat_flux_w_m2.value / lim.heat_flux_w_m2;
+    println!(
+        "reference profile, same layers: heat flux {r_q:.3} of the limit, heat load {:.1} MJ/m^2",
+        r.heat_load_j_m2 / 1e6
+    );
+    assert!(r_q > 1.0);
+    assert!(s.heat_load_j_m2 < r.heat_load_j_m2);
+}

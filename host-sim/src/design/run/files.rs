@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use crate::campaign::output::write_campaign;
-use crate::design::{AnalyticalModel, RobustProblem};
+use crate::design::{AnalyticalModel, Objectives, RobustProblem};
 use crate::optim::run::{Record, front_order, population_csv, records_csv};
 use crate::optim::{Evaluator, Individual, Threads};
 use crate::report::{ReportError, RunDir, write_atomic};
@@ -57,6 +57,8 @@ pub struct MemberFlights<'a> {
     pub analytical: Option<&'a AnalyticalModel>,
     /// The robust problem whose campaign each chosen member flies again for its report.
     pub robust: Option<&'a RobustProblem>,
+    /// The nominal problem's objective settings (its axis labels).
+    pub objectives: &'a Objectives,
     /// Threads for those campaigns (their results do not depend on them).
     pub threads: &'a Threads,
     /// A nominal front's decisions, flown in the robust problem's campaign for
@@ -68,12 +70,7 @@ impl MemberFlights<'_> {
     /// The objectives' axis labels: the robust statistics', or the nominal problem's.
     fn objective_labels(&self) -> Vec<String> {
         self.robust.map_or_else(
-            || {
-                vec![
-                    "f_r = -theta/pi [-]".into(),
-                    "f_Q = heat load [scaled]".into(),
-                ]
-            },
+            || self.objectives.labels(),
             |p| {
                 p.config()
                     .objectives

@@ -964,6 +964,7 @@ where
     let members = MemberFlights {
         analytical: ctx.problem.reentry().analytical(),
         robust: ctx.problem.robust(),
+        objectives: ctx.problem.reentry().objective_settings(),
         threads: &ctx.pool,
         nominal_front: ctx.nominal_front,
     };
