@@ -78,9 +78,9 @@ pub use path_bound::{
     DEFAULT_BARRIER_DAMPING, DEFAULT_BARRIER_FREQUENCY_RAD_S, PathBound, SENSED_MIN_DRAG_M_S2,
 };
 pub use replanning::{
-    DEFAULT_EVERY_N_TICKS, HostReplanningGuidance, MAX_EVERY_N_TICKS, PredictorModel, RangeTarget,
-    ReplanCounts, ReplanReport, ReplanningConfig, ReplanningGuidance, ReplanningOutput,
-    TargetPoint, range_to_go_m,
+    DEFAULT_EVERY_N_TICKS, HostReplanningGuidance, MAX_EVERY_N_TICKS, NODE_EDGE_E_HAT,
+    PredictorModel, RangeTarget, ReplanCounts, ReplanReport, ReplanningConfig, ReplanningGuidance,
+    ReplanningOutput, TargetPoint, range_to_go_m,
 };
 pub use solver::ReplanSolver;
 

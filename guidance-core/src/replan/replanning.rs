@@ -12,8 +12,8 @@
 //! 3. if the case is [`ReplanCase::Converged`] or [`ReplanCase::LimitsBind`] (a feasible
 //!    fraction that satisfies the limits) — and, only if
 //!    [`ReplanningConfig::apply_out_of_reach`] is set, [`ReplanCase::TargetOutOfReach`] —
-//!    sets the bank angle of every *remaining* node (E-hat strictly below the current E-hat:
-//!    not yet passed) to the solved magnitude with the node's own sign (a node at 0 counts as
+//!    sets the bank angle of every *remaining* node (E-hat below the current E-hat plus
+//!    [`NODE_EDGE_E_HAT`]: not yet passed) to the solved magnitude with the node's own sign (a node at 0 counts as
 //!    positive), clamped into the table's bounds, keeps the angle of attack and the node
 //!    positions, and installs the table with [`Guidance::replace_table`]. Because this happens
 //!    before the tick's command is computed, the re-planned table is used at this tick;
@@ -255,6 +255,15 @@ pub struct ReplanningConfig<S> {
 /// Default [`ReplanningConfig::every_n_ticks`] \[ticks\]: a re-plan every 10 s at the 2 s
 /// guidance period.
 pub const DEFAULT_EVERY_N_TICKS: u16 = 5;
+
+/// A node at most this far above the current E-hat \[-\] counts as remaining when a re-plan
+/// sets the nodes below E-hat (1e-6 of the energy span, about 0.004 m/s at orbital speed).
+/// Without it a node at the current E-hat (a first node at E-hat 1 and a re-plan at entry)
+/// is replaced or kept by the last bit of E-hat: `f64`, `f32` and fixed point round the same
+/// state to either side of it and then fly different profiles. 1e-6 is above the rounding of
+/// E-hat in each of them (`f32` 1.2e-7 at 1, fixed point 2.3e-10 per operation) and far below
+/// a node spacing.
+pub const NODE_EDGE_E_HAT: f64 = 1e-6;
 
 impl<S: Real> ReplanningConfig<S> {
     /// The default re-planner aimed at `target`, its predictions ending at `final_speed_m_s`
@@ -1128,8 +1137,10 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             let offset = sh.offset_for(e, bank_p.cos());
             (sh, offset)
         });
+        // Nodes below `edge` are the remaining ones ([`NODE_EDGE_E_HAT`]).
+        let edge = e_hat + S::from_f64(NODE_EDGE_E_HAT);
         let upper = match shaped {
-            Some(_) => table.nodes().iter().rposition(|n| n.x >= e_hat),
+            Some(_) => table.nodes().iter().rposition(|n| n.x >= edge),
             None => None,
         };
         let mut count = 0_u16;
@@ -1138,7 +1149,7 @@ impl<S: Scalar, const N: usize, P: Real> ReplanningGuidance<S, N, P> {
             let Some(node) = table.nodes().get(i).copied() else {
                 break;
             };
-            if node.x < e_hat || Some(i) == upper {
+            if node.x < edge || Some(i) == upper {
                 let magnitude = match shaped {
                     Some((sh, offset)) => match sh.nodes().nth(i) {
                         Some((_, stored)) => S::from_f64(sh.clamp(stored + offset).to_f64()),

@@ -406,6 +406,60 @@ fn replanning_sets_the_remaining_nodes() {
     assert_eq!(g.counts().applied, 1);
 }
 
+/// A node at most `NODE_EDGE_E_HAT` above the current E-hat counts as remaining: a re-plan sets
+/// it; a node further above is passed and kept. (Without the margin a node at the current
+/// E-hat was replaced or kept by the last bit of E-hat, which f64, f32 and fixed point round
+/// differently.)
+#[test]
+fn a_node_within_the_edge_above_e_hat_is_replanned() {
+    use guidance_core::replan::NODE_EDGE_E_HAT;
+    let e_now = normalizer()
+        .normalized(glide_nav(0.0).radius_m, glide_nav(0.0).speed_m_s)
+        .unwrap();
+    let total = glide_range_m(0.6) / R_EARTH;
+    for (above, replanned) in [(0.5 * NODE_EDGE_E_HAT, 5), (2.0 * NODE_EDGE_E_HAT, 4)] {
+        let rows = [
+            (e_now + above, 5.0, 10.0),
+            (0.8, 6.0, 40.0),
+            (0.6, 7.0, -50.0),
+            (0.4, 8.0, 60.0),
+            (0.0, 9.0, 0.0),
+        ];
+        let table = NodeTable::from_deg(
+            Independent::NormalizedEnergy,
+            &rows,
+            AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0).unwrap(),
+        )
+        .unwrap();
+        let mut g: ReplanningGuidance<f64> = ReplanningGuidance::new(
+            GuidanceConfig::thesis_default(),
+            table,
+            Interpolation::Linear,
+            normalizer(),
+            Command::from_deg(5.0, 10.0).unwrap(),
+            rcfg(
+                RangeTarget::FlownRangeAngle { total_rad: total },
+                3,
+                PredictorMode::Glide,
+            ),
+        )
+        .unwrap();
+        let r = g
+            .update(&glide_nav(0.0))
+            .unwrap()
+            .replan
+            .expect("tick 0 re-plans");
+        assert!(r.applied, "{r:?}");
+        assert_eq!(r.nodes_replanned, replanned, "node {above} above E-hat");
+        let first = g.guidance().table().nodes()[0].sigma_rad;
+        if replanned == 5 {
+            assert_eq!(first, r.bank_rad);
+        } else {
+            assert_eq!(first, 10.0 * DEG);
+        }
+    }
+}
+
 /// Re-planning works on a host-sized table (256 energy nodes): every node below the current
 /// E-hat gets the solved bank magnitude with its own sign (far more than the 16 the firmware
 /// table holds).
