@@ -331,9 +331,17 @@ pub(crate) fn normalizer() -> EnergyNormalizer<f64> {
 }
 
 pub(crate) fn replanning(cfg: ReplanningConfig<f64>) -> ReplanningGuidance<f64> {
+    replanning_on(energy_table(), cfg)
+}
+
+/// [`replanning`] on the table `table` (any capacity).
+fn replanning_on<const N: usize>(
+    table: NodeTable<f64, N>,
+    cfg: ReplanningConfig<f64>,
+) -> ReplanningGuidance<f64, N> {
     ReplanningGuidance::new(
         GuidanceConfig::thesis_default(),
-        energy_table(),
+        table,
         Interpolation::Linear,
         normalizer(),
         Command::from_deg(5.0, 10.0).unwrap(),
@@ -431,19 +439,14 @@ fn a_node_within_the_edge_above_e_hat_is_replanned() {
             AngleBounds::from_deg(0.0, 45.0, -90.0, 90.0).unwrap(),
         )
         .unwrap();
-        let mut g: ReplanningGuidance<f64> = ReplanningGuidance::new(
-            GuidanceConfig::thesis_default(),
+        let mut g: ReplanningGuidance<f64> = replanning_on(
             table,
-            Interpolation::Linear,
-            normalizer(),
-            Command::from_deg(5.0, 10.0).unwrap(),
             rcfg(
                 RangeTarget::FlownRangeAngle { total_rad: total },
                 3,
                 PredictorMode::Glide,
             ),
-        )
-        .unwrap();
+        );
         let r = g
             .update(&glide_nav(0.0))
             .unwrap()
@@ -479,19 +482,14 @@ fn replanning_with_a_host_sized_table() {
     )
     .unwrap();
     let total = glide_range_m(0.6) / R_EARTH;
-    let mut g: HostReplanningGuidance<f64> = ReplanningGuidance::new(
-        GuidanceConfig::thesis_default(),
+    let mut g: HostReplanningGuidance<f64> = replanning_on(
         table.clone(),
-        Interpolation::Linear,
-        normalizer(),
-        Command::from_deg(5.0, 10.0).unwrap(),
         rcfg(
             RangeTarget::FlownRangeAngle { total_rad: total },
             3,
             PredictorMode::Glide,
         ),
-    )
-    .unwrap();
+    );
     let out = g.update(&glide_nav(0.0)).unwrap();
     let r = out.replan.expect("tick 0 re-plans");
     assert_eq!(r.case, ReplanCase::Converged, "{r:?}");
