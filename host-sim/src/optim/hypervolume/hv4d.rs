@@ -113,9 +113,15 @@ impl Hv4 {
         self.cand.resize(n + 1, (0.0, 0));
         self.gone.resize(n + 1, 0);
         let r3 = [r[0], r[1], r[2]];
-        let mut v3 = 0.0;
-        let mut vol = 0.0;
-        for t in 0..n {
+        let (t0, mut v3) = self.first_slab(pts, r3);
+        let w0 = pts[4 * self.wkeys[0].1 as usize + 3];
+        let mut vol = v3
+            * (self
+                .wkeys
+                .get(t0)
+                .map_or(r[3], |&(_, j)| pts[4 * j as usize + 3])
+                - w0);
+        for t in t0..n {
             let i = self.wkeys[t].1 as usize;
             let q = &pts[4 * i..4 * i + 4];
             let p = [q[0], q[1], q[2]];
@@ -133,6 +139,52 @@ impl Hv4 {
             vol += v3 * (w_next - q[3]);
         }
         vol
+    }
+
+    /// The points sharing the lowest w (the first `t0` of `wkeys`) all enter the 3-D set at
+    /// once: their 3-D hypervolume by a z sweep over a short staircase, and the members are
+    /// those points sorted by x (a member another one dominates only costs time later).
+    /// Returns `t0` and that hypervolume, or `(0, 0.0)` when a single point has the lowest
+    /// w (it is left to the sweep). The limit sets of the >= 5-D recursion hold a dozen or
+    /// more such points: all those whose w is clipped to the box corner.
+    fn first_slab(&mut self, pts: &[f64], r: [f64; 3]) -> (usize, f64) {
+        let w0 = pts[4 * self.wkeys[0].1 as usize + 3];
+        let t0 = self
+            .wkeys
+            .iter()
+            .position(|&(_, j)| pts[4 * j as usize + 3] != w0)
+            .unwrap_or(self.wkeys.len());
+        if t0 < 2 {
+            return (0, 0.0);
+        }
+        let first = &mut self.cand[..t0];
+        for (f, &(_, j)) in first.iter_mut().zip(&self.wkeys) {
+            *f = (pts[4 * j as usize + 2], j);
+        }
+        sort_short(first);
+        let stair = &mut self.stair;
+        stair.reset(r[0], r[1]);
+        let mut area = 0.0;
+        let mut v3 = 0.0;
+        for k in 0..t0 {
+            let (z, j) = first[k];
+            let q = &pts[4 * j as usize..4 * j as usize + 2];
+            area += stair.insert(q[0], q[1]);
+            let z_next = first.get(k + 1).map_or(r[2], |f| f.0);
+            v3 += area * (z_next - z);
+        }
+        for f in first.iter_mut() {
+            f.0 = pts[4 * f.1 as usize];
+        }
+        sort_short(first);
+        let m = &mut self.mem;
+        for (k, &(x, j)) in first.iter().enumerate() {
+            m.x[k] = x;
+            m.y[k] = pts[4 * j as usize + 1];
+            m.z[k] = pts[4 * j as usize + 2];
+        }
+        m.len = t0;
+        (t0, v3)
     }
 
     /// The volume of the box `[p, r)` (p not a member) that no member covers; `p`'s place in
@@ -309,6 +361,50 @@ mod tests {
             let got = hv.hypervolume(&pts, &r);
             assert!(
                 (got - want).abs() <= 1e-12 * want,
+                "case {case}, n = {n}: {got} vs {want}"
+            );
+        }
+    }
+
+    /// Sets whose lowest w is shared by many points (as in the limit sets of the >= 5-D
+    /// recursion, where every point not exceeding the box corner in w sits at the corner's
+    /// w): the first slab enters at once. With duplicates, dominated points and ties in x,
+    /// y and z (a coarse grid).
+    #[test]
+    fn hv4d_matches_slicing_when_many_points_share_the_lowest_w() {
+        let mut s: u64 = 0x51a7_e11d_c0ff_ee01;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let r = [1.0; 4];
+        let mut hv = Hv4::default();
+        for case in 0..200 {
+            let n = 2 + case % 70;
+            let shared = 0.05 + 0.5 * next();
+            let grid = case % 3 == 0;
+            let mut pts = Vec::with_capacity(4 * n + 4);
+            for k in 0..n {
+                for _ in 0..3 {
+                    let u = next();
+                    pts.push(if grid { (u * 5.0).floor() / 5.0 } else { u });
+                }
+                // Two thirds of the points on the shared lowest w, the rest above it.
+                pts.push(if k % 3 < 2 {
+                    shared
+                } else {
+                    shared + (1.0 - shared) * next()
+                });
+            }
+            // A duplicate of the first point (on the shared slab).
+            let first: Vec<f64> = pts[..4].to_vec();
+            pts.extend_from_slice(&first);
+            let want = sliced(&pts, &r);
+            let got = hv.hypervolume(&pts, &r);
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1e-300),
                 "case {case}, n = {n}: {got} vs {want}"
             );
         }

@@ -48,7 +48,7 @@ impl Stair {
 
     /// Insert the step `(x, y)`; returns the area it adds to the union (0 if it is weakly
     /// dominated), removing the steps it dominates.
-    #[inline]
+    #[inline(always)]
     pub(super) fn insert(&mut self, x: f64, y: f64) -> f64 {
         let n = self.len;
         let (sx, sy) = (&mut self.x[..n + 1], &mut self.y[..n + 1]);
