@@ -13,9 +13,9 @@
 //!    fraction that satisfies the limits) — and, only if
 //!    [`ReplanningConfig::apply_out_of_reach`] is set, [`ReplanCase::TargetOutOfReach`] —
 //!    sets the bank angle of every *remaining* node (E-hat below the current E-hat plus
-//!    [`NODE_EDGE_E_HAT`]: not yet passed) to the solved magnitude with the node's own sign (a node at 0 counts as
-//!    positive), clamped into the table's bounds, keeps the angle of attack and the node
-//!    positions, and installs the table with [`Guidance::replace_table`]. Because this happens
+//!    [`NODE_EDGE_E_HAT`]: not yet passed) to the solved magnitude with the node's own sign
+//!    (a node at 0 counts as positive), clamped into the table's bounds, keeps the angle of
+//!    attack and the node positions, and installs the table with [`Guidance::replace_table`]. Because this happens
 //!    before the tick's command is computed, the re-planned table is used at this tick;
 //! 4. otherwise ([`ReplanCase::FallBack`], or out of reach without the option) keeps the table
 //!    in use (the stored profile, or the last applied re-plan).

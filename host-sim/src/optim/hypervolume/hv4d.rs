@@ -113,8 +113,7 @@ impl Hv4 {
         self.cand.resize(n + 1, (0.0, 0));
         self.gone.resize(n + 1, 0);
         let r3 = [r[0], r[1], r[2]];
-        let (t0, mut v3) = self.first_slab(pts, r3);
-        let w0 = pts[4 * self.wkeys[0].1 as usize + 3];
+        let (t0, w0, mut v3) = self.first_slab(pts, r3);
         let mut vol = v3
             * (self
                 .wkeys
@@ -144,10 +143,10 @@ impl Hv4 {
     /// The points sharing the lowest w (the first `t0` of `wkeys`) all enter the 3-D set at
     /// once: their 3-D hypervolume by a z sweep over a short staircase, and the members are
     /// those points sorted by x (a member another one dominates only costs time later).
-    /// Returns `t0` and that hypervolume, or `(0, 0.0)` when a single point has the lowest
-    /// w (it is left to the sweep). The limit sets of the >= 5-D recursion hold a dozen or
+    /// Returns `t0`, the lowest w and that hypervolume, or `(0, w, 0.0)` when a single point
+    /// has the lowest w (it is left to the sweep). The limit sets of the >= 5-D recursion hold a dozen or
     /// more such points: all those whose w is clipped to the box corner.
-    fn first_slab(&mut self, pts: &[f64], r: [f64; 3]) -> (usize, f64) {
+    fn first_slab(&mut self, pts: &[f64], r: [f64; 3]) -> (usize, f64, f64) {
         let w0 = pts[4 * self.wkeys[0].1 as usize + 3];
         let t0 = self
             .wkeys
@@ -155,7 +154,7 @@ impl Hv4 {
             .position(|&(_, j)| pts[4 * j as usize + 3] != w0)
             .unwrap_or(self.wkeys.len());
         if t0 < 2 {
-            return (0, 0.0);
+            return (0, w0, 0.0);
         }
         let first = &mut self.cand[..t0];
         for (f, &(_, j)) in first.iter_mut().zip(&self.wkeys) {
@@ -184,7 +183,7 @@ impl Hv4 {
             m.z[k] = pts[4 * j as usize + 2];
         }
         m.len = t0;
-        (t0, v3)
+        (t0, w0, v3)
     }
 
     /// The volume of the box `[p, r)` (p not a member) that no member covers; `p`'s place in
@@ -312,6 +311,16 @@ impl Hv4 {
 mod tests {
     use super::*;
 
+    /// Uniform numbers in [0, 1) from a xorshift stream seeded with `seed`.
+    fn uniform(mut s: u64) -> impl FnMut() -> f64 {
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// 4-D hypervolume by slicing w: the sum of the 3-D hypervolumes (HV3D sweep) of the
     /// points below each slab, an independent O(n^2 log n) path.
     fn sliced(pts: &[f64], r: &[f64]) -> f64 {
@@ -334,13 +343,7 @@ mod tests {
     /// candidate bit masks), on the sphere and, rounded to a grid, with ties.
     #[test]
     fn hv4d_matches_slicing_on_large_fronts() {
-        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         let r = [1.1; 4];
         let mut hv = Hv4::default();
         for (case, &n) in [300usize, 600, 600].iter().enumerate() {
@@ -372,13 +375,7 @@ mod tests {
     /// y and z (a coarse grid).
     #[test]
     fn hv4d_matches_slicing_when_many_points_share_the_lowest_w() {
-        let mut s: u64 = 0x51a7_e11d_c0ff_ee01;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(0x51a7_e11d_c0ff_ee01);
         let r = [1.0; 4];
         let mut hv = Hv4::default();
         for case in 0..200 {
